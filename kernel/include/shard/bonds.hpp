@@ -1,0 +1,36 @@
+#pragma once
+// Kernel-owned bond arrays (structure of arrays), kept sorted by first particle for locality.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "shard/bond_model.hpp"
+#include "shard/types.hpp"
+
+namespace shard {
+
+struct Bonds {
+  std::vector<Index> i, j;       // particle indices in the current ordering
+  std::size_t stride = 0;        // model state doubles per bond
+  std::vector<double> state;     // stride * size()
+  std::vector<Vec3> force, torque_i, torque_j;  // last step's outputs
+  std::vector<double> energy;
+  std::vector<std::uint8_t> broken;
+  std::vector<BondStress> stress;
+
+  std::size_t size() const { return i.size(); }
+  void resize(std::size_t n);
+  // Drops every bond with broken[k] != 0, keeping the order of the others.
+  std::size_t remove_broken();
+};
+
+// One bond failure, in the vocabulary of the field: when, where and why it cracked.
+struct BondBreakEvent {
+  double time = 0;
+  std::int64_t step = 0;
+  Index id_i = 0, id_j = 0;  // stable particle ids
+  Vec3 midpoint = Vec3::Zero();
+  BondStress stress;
+};
+
+}  // namespace shard

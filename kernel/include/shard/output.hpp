@@ -1,0 +1,68 @@
+#pragma once
+// One HDF5 file per run (layout in docs/output-format.md) and an XDMF index beside it so
+// ParaView opens the run as a temporal collection. Every frame is flushed: a killed run leaves
+// a readable file holding every frame written before the kill.
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "shard/bonds.hpp"
+#include "shard/particles.hpp"
+#include "shard/wall.hpp"
+
+namespace shard {
+
+struct RunMetadata {
+  std::string scene_text;     // the resolved scene (after --set overrides)
+  std::string scene_file;
+  std::uint64_t seed = 0;
+  std::string shard_version;
+  std::string git_revision;
+  // (kind/name, "version=...; E=...; ...") for each loaded plugin
+  std::vector<std::pair<std::string, std::string>> plugins;
+  std::vector<std::pair<std::string, double>> generator_quality;
+  std::vector<std::pair<std::string, std::string>> notes;  // e.g. time-step report
+};
+
+// One row of the time series.
+struct SeriesRow {
+  std::int64_t step = 0;
+  double time = 0;
+  double kinetic_energy = 0, bond_energy = 0, contact_energy = 0;
+  std::int64_t bonds_intact = 0, bonds_broken = 0, contacts = 0;
+  // Per wall, in the order of the walls vector: force, torque, displacement.
+  std::vector<Vec3> wall_force, wall_torque, wall_displacement;
+};
+
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class RunWriter {
+ public:
+  // Creates (truncates) path; throws OutputError naming the path if it cannot be written.
+  RunWriter(const std::filesystem::path& path, const RunMetadata& meta,
+            const std::vector<std::string>& wall_names);
+  ~RunWriter();
+  RunWriter(const RunWriter&) = delete;
+  RunWriter& operator=(const RunWriter&) = delete;
+
+  void append_series(const SeriesRow& row);
+  void append_break_events(const std::vector<BondBreakEvent>& events);
+  // A snapshot: particles, surviving bonds (as stable-id pairs) and optional fragment labels.
+  // Rewrites the .xmf index and flushes the file.
+  void write_frame(std::int64_t step, double time, const Particles& particles, const Bonds& bonds,
+                   const std::vector<Index>* fragment_labels = nullptr);
+  void flush();
+  const std::filesystem::path& path() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace shard

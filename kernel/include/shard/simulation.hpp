@@ -1,0 +1,96 @@
+#pragma once
+// The step loop: neighbour search -> master contact model -> bond model -> body forces ->
+// walls -> velocity-Verlet integration. Owns the state; plugins are borrowed.
+#include <cstdint>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "shard/bond_model.hpp"
+#include "shard/bonds.hpp"
+#include "shard/contact_model.hpp"
+#include "shard/particles.hpp"
+#include "shard/time_step.hpp"
+#include "shard/wall.hpp"
+
+namespace shard {
+
+struct SimulationSetup {
+  Particles particles;
+  std::vector<std::pair<Index, Index>> bonds;
+  const ContactModel* contact = nullptr;  // master model; may be null (bonds only)
+  const BondModel* bond = nullptr;        // may be null when there are no bonds
+  bool breakage = true;                   // false: bonds never fail (elastic calibration)
+  std::vector<Wall> walls;
+  Vec3 gravity = Vec3::Zero();
+  double dt = 0;                // 0 = auto: min of the models' recommended steps
+  double skin = 0;              // Verlet skin, m; 0 = 0.2 * largest radius
+  double global_damping = 0;    // numerical damping fraction, off by default
+};
+
+struct Energies {
+  double kinetic = 0;      // translational + rotational, J
+  double bond = 0;         // elastic energy stored in bonds, J
+  double contact = 0;      // elastic energy stored in contacts, J
+  double gravity = 0;      // potential energy -m g.x, J
+};
+
+class NeighbourList;
+
+class Simulation {
+ public:
+  explicit Simulation(SimulationSetup setup);
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  void step();
+  void run(std::int64_t steps);
+
+  double time() const { return time_; }
+  std::int64_t step_count() const { return step_; }
+  double dt() const { return dt_; }
+  const std::vector<TimeStepLimit>& time_step_limits() const { return limits_; }
+
+  Particles& particles() { return particles_; }
+  const Particles& particles() const { return particles_; }
+  const Bonds& bonds() const { return bonds_; }
+  std::vector<Wall>& walls() { return walls_; }
+  const std::vector<Wall>& walls() const { return walls_; }
+  std::size_t contact_count() const;
+  std::int64_t bonds_broken() const { return bonds_broken_; }
+  // Events since the last call (the output takes them), and all of them.
+  std::vector<BondBreakEvent> take_new_break_events();
+  const std::vector<BondBreakEvent>& break_events() const { return events_; }
+  Energies energies() const;
+  std::int64_t neighbour_rebuilds() const;
+
+ private:
+  void compute_forces();
+  void integrate_first_half();
+  void integrate_second_half();
+  void apply_bonds();
+  void apply_contacts();
+  void apply_gravity();
+  BondBatch bond_batch();
+
+  Particles particles_;
+  Bonds bonds_;
+  const ContactModel* contact_;
+  const BondModel* bond_;
+  bool breakage_;
+  std::vector<Wall> walls_;
+  Vec3 gravity_;
+  double dt_ = 0;
+  double global_damping_ = 0;
+  double time_ = 0;
+  std::int64_t step_ = 0;
+  std::int64_t bonds_broken_ = 0;
+  std::vector<TimeStepLimit> limits_;
+  std::unique_ptr<NeighbourList> neighbours_;
+  std::vector<BondBreakEvent> events_;
+  std::size_t events_taken_ = 0;
+  double contact_energy_ = 0;
+};
+
+}  // namespace shard
