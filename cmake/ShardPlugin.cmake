@@ -11,4 +11,8 @@ function(shard_add_plugin NAME)
     CXX_VISIBILITY_PRESET hidden
     VISIBILITY_INLINES_HIDDEN ON)
   install(TARGETS ${NAME} LIBRARY DESTINATION lib/shard/plugins)
+  if(NOT TARGET shard_all_plugins)
+    add_custom_target(shard_all_plugins)
+  endif()
+  add_dependencies(shard_all_plugins ${NAME})
 endfunction()

@@ -36,6 +36,7 @@ struct Energies {
 };
 
 class NeighbourList;
+struct ContactWorkspace;
 
 class Simulation {
  public:
@@ -88,6 +89,8 @@ class Simulation {
   std::int64_t bonds_broken_ = 0;
   std::vector<TimeStepLimit> limits_;
   std::unique_ptr<NeighbourList> neighbours_;
+  std::unique_ptr<ContactWorkspace> workspace_;
+  std::size_t contacts_ = 0;
   std::vector<BondBreakEvent> events_;
   std::size_t events_taken_ = 0;
   double contact_energy_ = 0;

@@ -1,0 +1,55 @@
+#include "shard/particles.hpp"
+
+#include <numbers>
+
+namespace shard {
+
+Index Particles::add(const Vec3& x, double r, double density, std::int32_t material_id) {
+  const double m = density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  const auto index = static_cast<Index>(size());
+  position.push_back(x);
+  velocity.push_back(Vec3::Zero());
+  orientation.push_back(Quat::Identity());
+  omega.push_back(Vec3::Zero());
+  force.push_back(Vec3::Zero());
+  torque.push_back(Vec3::Zero());
+  radius.push_back(r);
+  mass.push_back(m);
+  inertia.push_back(0.4 * m * r * r);
+  material.push_back(material_id);
+  flags.push_back(0);
+  id.push_back(index);
+  return index;
+}
+
+void Particles::reserve(std::size_t n) {
+  position.reserve(n);
+  velocity.reserve(n);
+  orientation.reserve(n);
+  omega.reserve(n);
+  force.reserve(n);
+  torque.reserve(n);
+  radius.reserve(n);
+  mass.reserve(n);
+  inertia.reserve(n);
+  material.reserve(n);
+  flags.reserve(n);
+  id.reserve(n);
+}
+
+ParticleView view_of(const Particles& p) {
+  ParticleView v;
+  v.count = p.size();
+  v.position = p.position.data();
+  v.velocity = p.velocity.data();
+  v.orientation = p.orientation.data();
+  v.omega = p.omega.data();
+  v.radius = p.radius.data();
+  v.mass = p.mass.data();
+  v.inertia = p.inertia.data();
+  v.material = p.material.data();
+  v.id = p.id.data();
+  return v;
+}
+
+}  // namespace shard

@@ -1,0 +1,74 @@
+#include "shard/wall.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace shard {
+namespace {
+
+// Closest point on triangle (a, b, c) to p, by Voronoi regions of the vertices, edges and face.
+Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  const double denom = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+}  // namespace
+
+bool wall_contact(const Wall& wall, const Vec3& x, double max_gap, Vec3& normal, double& distance) {
+  const Vec3 origin = wall.point + wall.displacement;
+  switch (wall.shape) {
+    case WallShape::Plane: {
+      distance = (x - origin).dot(wall.axis);
+      normal = wall.axis;
+      return distance <= max_gap;
+    }
+    case WallShape::Cylinder: {
+      const Vec3 rel = x - origin;
+      const double along = rel.dot(wall.axis);
+      if (std::abs(along) > 0.5 * wall.length) return false;
+      const Vec3 radial = rel - along * wall.axis;
+      const double rho = radial.norm();
+      if (rho == 0.0) return false;
+      normal = radial / rho;
+      distance = rho - wall.radius;
+      return distance <= max_gap;
+    }
+    case WallShape::Mesh: {
+      double best = std::numeric_limits<double>::infinity();
+      Vec3 best_point = Vec3::Zero();
+      const Vec3 shift = wall.displacement;
+      for (const auto& t : wall.triangles) {
+        const Vec3 q = closest_point_on_triangle(x, t[0] + shift, t[1] + shift, t[2] + shift);
+        const double d2 = (x - q).squaredNorm();
+        if (d2 < best) {
+          best = d2;
+          best_point = q;
+        }
+      }
+      distance = std::sqrt(best);
+      if (!(distance <= max_gap) || distance == 0.0) return false;
+      normal = (x - best_point) / distance;
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace shard
