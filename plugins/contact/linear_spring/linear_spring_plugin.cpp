@@ -1,0 +1,53 @@
+// Registration of the linear_spring contact model: its name, version and parameter schema.
+#include <memory>
+#include <optional>
+
+#include "linear_spring_model.hpp"
+#include "shard/plugin.hpp"
+
+namespace {
+
+shard::PluginInfo linear_spring_info() {
+  using shard::ParamSpec;
+  const shard::LinearSpringParameters defaults;
+  ParamSpec normal{.name = "normal_stiffness",
+                   .unit = "N/m",
+                   .doc = "normal spring k_n (default: order of the Hertz stiffness of 0.35 mm Table I spheres)",
+                   .default_value = defaults.normal_stiffness,
+                   .min = 0.0,
+                   .min_exclusive = true,
+                  .neutral = std::nullopt};
+  ParamSpec ratio{.name = "tangential_stiffness_ratio",
+                  .unit = "1",
+                  .doc = "k_t / k_n; 2/7 makes the tangential and normal oscillations of spheres equally fast",
+                  .default_value = defaults.tangential_stiffness_ratio,
+                  .min = 0.0,
+                  .min_exclusive = true,
+                  .neutral = std::nullopt};
+  ParamSpec friction{.name = "friction",
+                     .unit = "1",
+                     .doc = "Coulomb sliding friction coefficient mu, |F_t| <= mu F_n",
+                     .default_value = defaults.friction,
+                     .min = 0.0,
+                     .max = 10.0,
+                     .neutral = 0.0};
+  ParamSpec restitution{.name = "restitution",
+                        .unit = "1",
+                        .doc = "normal coefficient of restitution e, realised exactly for any impact speed",
+                        .default_value = defaults.restitution,
+                        .min = 0.0,
+                        .max = 1.0,
+                        .min_exclusive = true,
+                        .neutral = 1.0};
+  return {shard::PluginKind::Contact, "linear_spring", "1.0.0",
+          "linear normal and tangential spring-dashpot with exact restitution and Coulomb friction",
+          {normal, ratio, friction, restitution}};
+}
+
+}  // namespace
+
+SHARD_PLUGIN(registrar) {
+  registrar->add_contact(linear_spring_info(), [](const shard::ParamSet& params) {
+    return std::make_unique<shard::LinearSpring>(shard::LinearSpringParameters::from(params));
+  });
+}
