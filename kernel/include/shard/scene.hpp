@@ -1,0 +1,84 @@
+#pragma once
+// A scene file (TOML) turned into validated settings: which plugins with which parameters, the
+// walls, the time stepping, the output and the stop rule. Every error names file:line:column,
+// the key and, for a misspelt key, the closest valid one.
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "shard/params.hpp"
+#include "shard/plugin_host.hpp"
+#include "shard/simulation.hpp"
+#include "shard/wall.hpp"
+
+namespace shard {
+
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct PluginChoice {
+  std::string name;
+  ParamSet params;
+  std::string where;  // file:line:column of the section
+};
+
+// When to stop: at `duration`, or once the load on `load_walls` fell to `after_peak_fraction`
+// of its peak after the first bond broke, or once the load walls moved `max_displacement`.
+struct StopRule {
+  std::vector<std::string> load_walls;
+  Vec3 load_direction = -Vec3::UnitZ();  // the loading walls move along this
+  double after_peak_fraction = 0;        // 0: off
+  double max_displacement = 0;           // m; 0: off
+};
+
+struct Scene {
+  std::filesystem::path file;
+  std::filesystem::path dir;
+  std::string resolved_text;  // after --set overrides
+  std::uint64_t seed = 1;
+  double dt = 0;  // 0 = auto
+  double duration = 0;
+  double skin = 0;
+  double global_damping = 0;
+  Vec3 gravity = Vec3::Zero();
+  bool breakage = true;
+  double density = 0;
+  std::string output_file = "run.h5";
+  double frame_interval = 0;   // s; 0 = duration / 50
+  double series_interval = 0;  // s; 0 = duration / 2000
+  int fragments_every = 1;     // label fragments at every k-th frame; 0 = never
+  PluginChoice generator;
+  std::optional<PluginChoice> contact;
+  std::optional<PluginChoice> bond;
+  std::vector<Wall> walls;
+  StopRule stop;
+};
+
+// Parses and validates; plugins are looked up in `host` to check their parameters.
+// `overrides` are "section.key=value" (or "wall.NAME.key=value") strings from --set.
+Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides,
+                 const PluginHost& host);
+Scene load_scene_text(const std::string& text, const std::filesystem::path& file_for_messages,
+                      const std::vector<std::string>& overrides, const PluginHost& host);
+
+// The models and the generated body of a scene, ready to step.
+struct SceneInstance {
+  std::unique_ptr<ContactModel> contact;
+  std::unique_ptr<BondModel> bond;
+  GeneratedBody body;
+  std::unique_ptr<Simulation> simulation;
+};
+
+SceneInstance instantiate(const Scene& scene, const PluginHost& host,
+                          const std::function<void(const std::string&)>& log);
+
+// "name=value; name=value" for the output's plugin records.
+std::string describe(const ParamSet& params);
+
+}  // namespace shard

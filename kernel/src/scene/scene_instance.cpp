@@ -1,0 +1,54 @@
+#include <fmt/format.h>
+
+#include "shard/scene.hpp"
+
+namespace shard {
+
+SceneInstance instantiate(const Scene& scene, const PluginHost& host,
+                          const std::function<void(const std::string&)>& log) {
+  SceneInstance out;
+  auto generator = host.make_generator(scene.generator.name, scene.generator.params);
+  GeneratorContext ctx;
+  ctx.scene_dir = scene.dir.string();
+  ctx.seed = scene.seed;
+  ctx.log = log;
+  try {
+    out.body = generator->generate(ctx);
+  } catch (const std::exception& e) {
+    throw SceneError(fmt::format("{}: generator '{}' failed: {}", scene.generator.where, scene.generator.name, e.what()));
+  }
+  if (out.body.position.empty())
+    throw SceneError(fmt::format("{}: generator '{}' produced no particles; check its size parameters",
+                                 scene.generator.where, scene.generator.name));
+  if (!out.body.bonds.empty() && !scene.bond)
+    throw SceneError(fmt::format(
+        "{}: the generator made {} bonds but the scene has no [bond] section; add one (plugin = \"beam_bond\") "
+        "or switch bonding off in the generator",
+        scene.generator.where, out.body.bonds.size()));
+  if (scene.contact) out.contact = host.make_contact(scene.contact->name, scene.contact->params);
+  if (scene.bond) out.bond = host.make_bond(scene.bond->name, scene.bond->params);
+
+  SimulationSetup setup;
+  const std::size_t n = out.body.position.size();
+  setup.particles.reserve(n);
+  for (std::size_t k = 0; k < n; ++k)
+    setup.particles.add(out.body.position[k], out.body.radius[k], scene.density,
+                        out.body.material.empty() ? 0 : out.body.material[k]);
+  setup.bonds = out.body.bonds;
+  setup.contact = out.contact.get();
+  setup.bond = out.bond.get();
+  setup.breakage = scene.breakage;
+  setup.walls = scene.walls;
+  setup.gravity = scene.gravity;
+  setup.dt = scene.dt;
+  setup.skin = scene.skin;
+  setup.global_damping = scene.global_damping;
+  try {
+    out.simulation = std::make_unique<Simulation>(std::move(setup));
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(fmt::format("{}: {}", scene.file.string(), e.what()));
+  }
+  return out;
+}
+
+}  // namespace shard

@@ -1,0 +1,367 @@
+#include <fmt/format.h>
+
+#include <fstream>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "shard/geometry/stl.hpp"
+#include "shard/scene.hpp"
+
+namespace shard {
+namespace {
+
+std::string where(const std::string& file, const toml::source_region& s) {
+  return fmt::format("{}:{}:{}", file, s.begin.line, s.begin.column);
+}
+
+// Reads one section against a fixed list of keys; every getter records the key as known.
+class Section {
+ public:
+  Section(const toml::table* t, std::string file, std::string name)
+      : table_(t), file_(std::move(file)), name_(std::move(name)) {}
+  bool present() const { return table_ != nullptr; }
+  std::string at() const { return table_ ? where(file_, table_->source()) : file_; }
+  std::string at(const std::string& key) const {
+    const toml::node* n = table_ ? table_->get(key) : nullptr;
+    return n ? where(file_, n->source()) : at();
+  }
+
+  double number(const std::string& key, double fallback, double min = -1e300, double max = 1e300,
+                const char* unit = "") {
+    known_.push_back(key);
+    const toml::node* n = node(key);
+    if (!n) return fallback;
+    auto v = n->value<double>();
+    if (!v) fail(key, fmt::format("must be a number [{}]", unit));
+    if (!(*v >= min && *v <= max)) fail(key, fmt::format("= {} is out of range [{}, {}] {}", *v, min, max, unit));
+    return *v;
+  }
+  bool flag(const std::string& key, bool fallback) {
+    known_.push_back(key);
+    const toml::node* n = node(key);
+    if (!n) return fallback;
+    auto v = n->value<bool>();
+    if (!v) fail(key, "must be true or false");
+    return *v;
+  }
+  std::string text(const std::string& key, const std::string& fallback) {
+    known_.push_back(key);
+    const toml::node* n = node(key);
+    if (!n) return fallback;
+    auto v = n->value<std::string>();
+    if (!v) fail(key, "must be a string");
+    return *v;
+  }
+  Vec3 vec3(const std::string& key, const Vec3& fallback) {
+    known_.push_back(key);
+    const toml::node* n = node(key);
+    if (!n) return fallback;
+    return to_vec3(*n, key);
+  }
+  std::vector<std::string> strings(const std::string& key) {
+    known_.push_back(key);
+    std::vector<std::string> out;
+    const toml::node* n = node(key);
+    if (!n) return out;
+    const auto* arr = n->as_array();
+    if (!arr) fail(key, "must be an array of strings, e.g. [\"pin_left\", \"pin_right\"]");
+    for (const auto& e : *arr) {
+      auto s = e.value<std::string>();
+      if (!s) fail(key, "must be an array of strings");
+      out.push_back(*s);
+    }
+    return out;
+  }
+  // "auto" or a number.
+  double number_or_auto(const std::string& key) {
+    known_.push_back(key);
+    const toml::node* n = node(key);
+    if (!n) return 0;
+    if (auto s = n->value<std::string>(); s && *s == "auto") return 0;
+    auto v = n->value<double>();
+    if (!v || !(*v > 0)) fail(key, "must be \"auto\" or a positive number of seconds");
+    return *v;
+  }
+  Vec3 to_vec3(const toml::node& n, const std::string& key) const {
+    const auto* arr = n.as_array();
+    if (!arr || arr->size() != 3) fail(key, "must be an array of three numbers, e.g. [0, 0, -9.81]");
+    Vec3 v;
+    for (int c = 0; c < 3; ++c) {
+      auto d = (*arr)[static_cast<std::size_t>(c)].value<double>();
+      if (!d) fail(key, "must be an array of three numbers");
+      v[c] = *d;
+    }
+    return v;
+  }
+  // Everything not read by a getter is a plugin parameter (when `rest` is given) or an error.
+  void finish(std::map<std::string, RawParam>* rest = nullptr) const {
+    if (!table_) return;
+    for (auto&& [k, v] : *table_) {
+      const std::string key(k.str());
+      if (std::find(known_.begin(), known_.end(), key) != known_.end()) continue;
+      if (rest) {
+        (*rest)[key] = RawParam{plugin_value(v, key), where(file_, v.source())};
+        continue;
+      }
+      const std::string hint = closest_match(key, known_);
+      throw SceneError(fmt::format("{}: unknown key '{}' in [{}]{}; valid keys: {}", where(file_, v.source()), key,
+                                   name_, hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint),
+                                   fmt::join(known_, ", ")));
+    }
+  }
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
+    throw SceneError(fmt::format("{}: [{}] {} {}", at(key), name_, key, what));
+  }
+
+ private:
+  const toml::node* node(const std::string& key) const { return table_ ? table_->get(key) : nullptr; }
+  ParamValue plugin_value(const toml::node& n, const std::string& key) const {
+    if (auto d = n.value<double>()) return *d;
+    if (auto b = n.value<bool>()) return *b;
+    if (auto s = n.value<std::string>()) return *s;
+    if (n.is_array()) return to_vec3(n, key);
+    fail(key, "has a type no plugin parameter takes (number, boolean, string or [x, y, z])");
+  }
+  const toml::table* table_;
+  std::string file_;
+  std::string name_;
+  std::vector<std::string> known_;
+};
+
+void apply_override(toml::table& root, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw SceneError(fmt::format("--set '{}': expected section.key=value, e.g. bond.youngs_modulus=13e6", assignment));
+  const std::string path = assignment.substr(0, eq);
+  const std::string text = assignment.substr(eq + 1);
+  toml::node_view<toml::node> parsed_value;
+  toml::table holder;
+  try {
+    holder = toml::parse("v = " + text);
+  } catch (const toml::parse_error&) {
+    holder = toml::table{};
+    holder.insert("v", text);  // bare words are strings: --set generator.file=beam.stl
+  }
+  std::vector<std::string> parts;
+  std::stringstream ss(path);
+  for (std::string part; std::getline(ss, part, '.');) parts.push_back(part);
+  if (parts.size() == 3 && parts[0] == "wall") {
+    auto* walls = root["wall"].as_array();
+    if (walls)
+      for (auto& w : *walls)
+        if (auto* t = w.as_table(); t && (*t)["name"].value<std::string>() == parts[1]) {
+          t->insert_or_assign(parts[2], *holder.get("v"));
+          return;
+        }
+    throw SceneError(fmt::format("--set '{}': no [[wall]] named '{}'", assignment, parts[1]));
+  }
+  if (parts.size() != 2)
+    throw SceneError(fmt::format("--set '{}': expected section.key=value (or wall.NAME.key=value)", assignment));
+  auto* section = root[parts[0]].as_table();
+  if (!section) {
+    root.insert(parts[0], toml::table{});
+    section = root[parts[0]].as_table();
+  }
+  section->insert_or_assign(parts[1], *holder.get("v"));
+}
+
+PluginChoice plugin_section(const toml::table& root, const std::string& file, const std::string& name, PluginKind kind,
+                            const PluginHost& host) {
+  Section s(root[name].as_table(), file, name);
+  PluginChoice choice;
+  choice.where = s.at();
+  choice.name = s.text("plugin", "");
+  if (choice.name.empty()) s.fail("plugin", "is missing: name the plugin, e.g. plugin = \"...\" (see `shard plugins`)");
+  std::map<std::string, RawParam> raw;
+  s.finish(&raw);
+  const LoadedPlugin* plugin = nullptr;
+  try {
+    plugin = &host.find(kind, choice.name);
+  } catch (const PluginError& e) {
+    throw SceneError(fmt::format("{}: {}", s.at("plugin"), e.what()));
+  }
+  try {
+    choice.params = PluginHost::validate(plugin->info, raw, choice.where);
+  } catch (const PluginError& e) {
+    throw SceneError(e.what());
+  }
+  return choice;
+}
+
+Wall read_wall(const toml::table& t, const std::string& file, const std::filesystem::path& dir, std::size_t index) {
+  Section s(&t, file, "wall");
+  Wall w;
+  w.name = s.text("name", fmt::format("wall{}", index));
+  const std::string shape = s.text("shape", "");
+  w.velocity = s.vec3("velocity", Vec3::Zero());
+  if (shape == "plane") {
+    w.shape = WallShape::Plane;
+    w.point = s.vec3("point", Vec3::Zero());
+    w.axis = s.vec3("normal", Vec3::UnitZ());
+    if (w.axis.norm() == 0) s.fail("normal", "must not be the zero vector");
+  } else if (shape == "cylinder") {
+    w.shape = WallShape::Cylinder;
+    w.point = s.vec3("point", Vec3::Zero());
+    w.axis = s.vec3("axis", Vec3::UnitY());
+    if (w.axis.norm() == 0) s.fail("axis", "must not be the zero vector");
+    w.radius = s.number("radius", 0, 0, 1e300, "m");
+    w.length = s.number("length", 0, 0, 1e300, "m");
+    if (w.radius <= 0) s.fail("radius", "must be a positive length in m");
+    if (w.length <= 0) s.fail("length", "must be a positive length in m");
+  } else if (shape == "mesh") {
+    w.shape = WallShape::Mesh;
+    const std::string f = s.text("file", "");
+    if (f.empty()) s.fail("file", "is missing: a mesh wall needs an STL file");
+    const double scale = s.number("scale", 1.0, 1e-12, 1e12);
+    const Vec3 offset = s.vec3("offset", Vec3::Zero());
+    const auto path = std::filesystem::path(f).is_absolute() ? std::filesystem::path(f) : dir / f;
+    try {
+      const TriangleMesh mesh = read_stl(path, scale);
+      for (const auto& face : mesh.faces)
+        w.triangles.push_back({mesh.vertices[static_cast<std::size_t>(face[0])] + offset,
+                               mesh.vertices[static_cast<std::size_t>(face[1])] + offset,
+                               mesh.vertices[static_cast<std::size_t>(face[2])] + offset});
+    } catch (const std::exception& e) {
+      throw SceneError(fmt::format("{}: {}", s.at("file"), e.what()));
+    }
+  } else {
+    s.fail("shape", fmt::format("= '{}' is not a wall shape; use \"plane\", \"cylinder\" or \"mesh\"", shape));
+  }
+  s.finish();
+  return w;
+}
+
+}  // namespace
+
+std::string describe(const ParamSet& params) {
+  std::string out;
+  for (const auto& [name, value] : params.all()) {
+    std::string v = std::visit(
+        [](const auto& x) -> std::string {
+          using T = std::decay_t<decltype(x)>;
+          if constexpr (std::is_same_v<T, double>) return fmt::format("{}", x);
+          else if constexpr (std::is_same_v<T, bool>) return x ? "true" : "false";
+          else if constexpr (std::is_same_v<T, std::string>) return x;
+          else return fmt::format("[{}, {}, {}]", x[0], x[1], x[2]);
+        },
+        value);
+    out += (out.empty() ? "" : "; ") + name + "=" + v;
+  }
+  return out;
+}
+
+Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides,
+                 const PluginHost& host) {
+  std::ifstream in(file);
+  if (!in)
+    throw SceneError(fmt::format("{}: cannot open the scene file; check the path (scenes/ has examples)",
+                                 file.string()));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return load_scene_text(ss.str(), file, overrides, host);
+}
+
+Scene load_scene_text(const std::string& text, const std::filesystem::path& file_path,
+                      const std::vector<std::string>& overrides, const PluginHost& host) {
+  const std::string file = file_path.string();
+  toml::table root;
+  try {
+    root = toml::parse(text, file);
+  } catch (const toml::parse_error& e) {
+    throw SceneError(fmt::format("{}: TOML syntax error: {}", where(file, e.source()), e.description()));
+  }
+  for (const auto& o : overrides) apply_override(root, o);
+
+  static const std::vector<std::string> sections = {"simulation", "material", "output", "generator", "contact",
+                                                    "bond",       "wall",     "stop",   "analysis"};
+  for (auto&& [k, v] : root) {
+    const std::string key(k.str());
+    if (std::find(sections.begin(), sections.end(), key) != sections.end()) continue;
+    const std::string hint = closest_match(key, sections);
+    throw SceneError(fmt::format("{}: unknown section '{}'{}; valid: {}", where(file, v.source()), key,
+                                 hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint),
+                                 fmt::join(sections, ", ")));
+  }
+
+  Scene scene;
+  scene.file = file_path;
+  scene.dir = file_path.has_parent_path() ? file_path.parent_path() : std::filesystem::path(".");
+  std::ostringstream resolved;
+  resolved << root;
+  scene.resolved_text = resolved.str();
+
+  Section sim(root["simulation"].as_table(), file, "simulation");
+  if (!sim.present()) throw SceneError(fmt::format("{}: missing [simulation] section (duration, dt, seed)", file));
+  scene.dt = sim.number_or_auto("dt");
+  scene.duration = sim.number("duration", 0, 0, 1e300, "s");
+  if (scene.duration <= 0) sim.fail("duration", "is missing or zero: the simulated time span in s");
+  scene.seed = static_cast<std::uint64_t>(sim.number("seed", 1, 0, 9.0e15));
+  scene.gravity = sim.vec3("gravity", Vec3::Zero());
+  scene.skin = sim.number("skin", 0, 0, 1e300, "m");
+  scene.global_damping = sim.number("global_damping", 0, 0, 0.99);
+  scene.breakage = sim.flag("breakage", true);
+  sim.finish();
+
+  Section mat(root["material"].as_table(), file, "material");
+  scene.density = mat.number("density", 0, 0, 1e6, "kg/m^3");
+  if (scene.density <= 0) mat.fail("density", "is missing: particle density in kg/m^3 (filter cake: 3720)");
+  mat.text("name", "");
+  mat.finish();
+
+  Section out(root["output"].as_table(), file, "output");
+  scene.output_file = out.text("file", "run.h5");
+  scene.frame_interval = out.number("frame_interval", 0, 0, 1e300, "s");
+  scene.series_interval = out.number("series_interval", 0, 0, 1e300, "s");
+  out.finish();
+  if (scene.frame_interval <= 0) scene.frame_interval = scene.duration / 50;
+  if (scene.series_interval <= 0) scene.series_interval = scene.duration / 2000;
+
+  Section analysis(root["analysis"].as_table(), file, "analysis");
+  scene.fragments_every = static_cast<int>(analysis.number("fragments_every", 1, 0, 1e9));
+  analysis.finish();
+
+  if (!root["generator"].as_table()) throw SceneError(fmt::format("{}: missing [generator] section", file));
+  scene.generator = plugin_section(root, file, "generator", PluginKind::Generator, host);
+  if (root["contact"].as_table()) scene.contact = plugin_section(root, file, "contact", PluginKind::Contact, host);
+  if (root["bond"].as_table()) scene.bond = plugin_section(root, file, "bond", PluginKind::Bond, host);
+
+  if (const auto* walls = root["wall"].as_array()) {
+    std::size_t k = 0;
+    for (const auto& w : *walls) {
+      const auto* t = w.as_table();
+      if (!t) throw SceneError(fmt::format("{}: [[wall]] entries must be tables", where(file, w.source())));
+      scene.walls.push_back(read_wall(*t, file, scene.dir, k++));
+    }
+  } else if (root.contains("wall")) {
+    throw SceneError(fmt::format("{}: walls are an array of tables: write [[wall]], not [wall]",
+                                 where(file, root["wall"].node()->source())));
+  }
+
+  Section stop(root["stop"].as_table(), file, "stop");
+  scene.stop.load_walls = stop.strings("load_walls");
+  scene.stop.load_direction = stop.vec3("load_direction", -Vec3::UnitZ());
+  if (scene.stop.load_direction.norm() == 0) stop.fail("load_direction", "must not be the zero vector");
+  scene.stop.load_direction.normalize();
+  scene.stop.after_peak_fraction = stop.number("after_peak_fraction", 0, 0, 1);
+  scene.stop.max_displacement = stop.number("max_displacement", 0, 0, 1e300, "m");
+  stop.finish();
+  for (const auto& name : scene.stop.load_walls) {
+    bool found = false;
+    std::vector<std::string> names;
+    for (const auto& w : scene.walls) {
+      names.push_back(w.name);
+      found = found || w.name == name;
+    }
+    if (!found) {
+      const std::string hint = closest_match(name, names);
+      throw SceneError(fmt::format("{}: [stop] load_walls names '{}', which is no [[wall]]{}", stop.at("load_walls"),
+                                   name, hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint)));
+    }
+  }
+  if (!scene.breakage && !scene.bond) {
+    // Nothing contradictory: breakage off without bonds simply has no effect.
+  }
+  return scene;
+}
+
+}  // namespace shard
