@@ -1,0 +1,165 @@
+#include "beam_bond_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+#include "beam_geometry.hpp"
+#include "beam_stress.hpp"
+
+namespace shard::beam {
+namespace {
+
+// The bond's own "first" particle is the one with the smaller stable id, so the state stays
+// valid when the kernel reorders particles or lists a bond the other way round, and a swapped
+// bond runs exactly the same arithmetic.
+struct Ends {
+  Index first, second;
+  bool swapped;  // first is batch.j
+};
+
+Ends ends_of(const ParticleView& p, Index i, Index j) {
+  const bool swapped = p.id ? p.id[j] < p.id[i] : j < i;
+  return swapped ? Ends{j, i, true} : Ends{i, j, false};
+}
+
+struct Section {
+  double radius, area, second_moment;  // r_b, A_b = pi r_b^2, J_b = pi r_b^4 / 4
+};
+
+Section section_of(double lambda, double r1, double r2) {
+  const double r = lambda * std::min(r1, r2);
+  return {r, std::numbers::pi * r * r, std::numbers::pi * r * r * r * r / 4};
+}
+
+}  // namespace
+
+BeamBondParams BeamBondParams::from(const ParamSet& p) {
+  BeamBondParams b;
+  b.youngs_modulus = p.number("youngs_modulus");
+  b.shear_modulus = p.number("shear_modulus");
+  b.poisson_ratio = p.number("poisson_ratio");
+  b.shear_coefficient = p.number("shear_coefficient");
+  b.radius_ratio = p.number("radius_ratio");
+  b.damping = p.number("damping");
+  b.rotational_damping = p.number("rotational_damping");
+  b.critical_stress = p.number("critical_stress");
+  b.breakage = p.flag("breakage");
+  return b;
+}
+
+BeamBond::BeamBond(const BeamBondParams& params) : p_(params), shear_modulus_(params.effective_shear_modulus()) {
+  if (!(p_.youngs_modulus > 0) || !(shear_modulus_ > 0) || !(p_.shear_coefficient > 0) || !(p_.radius_ratio > 0))
+    throw std::invalid_argument("beam_bond: youngs_modulus, shear modulus, shear_coefficient and radius_ratio must be > 0");
+}
+
+std::size_t BeamBond::state_size() const { return kStateSize; }
+
+void BeamBond::initialize(BondBatch& batch) const {
+  const ParticleView& p = batch.particles;
+  for (std::size_t k = 0; k < batch.count; ++k) {
+    const Ends e = ends_of(p, batch.i[k], batch.j[k]);
+    const Reference ref = reference_of(p.position[e.first], p.position[e.second], p.orientation[e.first],
+                                       p.orientation[e.second]);
+    if (!(ref.l0 > 0)) throw std::invalid_argument("beam_bond: a bond joins two particles at the same position");
+    store(batch.state + k * kStateSize, ref);
+  }
+}
+
+// Eq. 12: t_bond = 0.17 sqrt(m / K), lightest bonded particle, stiffest bond K = E_b A_b / l0.
+TimeStepLimit BeamBond::time_step_limit(const BondBatch& batch) const {
+  const ParticleView& p = batch.particles;
+  double lightest = std::numeric_limits<double>::infinity();
+  double stiffest = 0;
+  for (std::size_t k = 0; k < batch.count; ++k) {
+    const Index i = batch.i[k], j = batch.j[k];
+    const double l0 = batch.state[k * kStateSize];
+    const Section sec = section_of(p_.radius_ratio, p.radius[i], p.radius[j]);
+    stiffest = std::max(stiffest, p_.youngs_modulus * sec.area / l0);
+    lightest = std::min({lightest, p.mass[i], p.mass[j]});
+  }
+  TimeStepLimit limit;
+  limit.name = "beam_bond t_bond (eq. 12)";
+  if (stiffest > 0) limit.critical = 0.17 * std::sqrt(lightest / stiffest);
+  else limit.critical = std::numeric_limits<double>::infinity();
+  limit.recommended = limit.critical;
+  return limit;
+}
+
+void BeamBond::compute(BondBatch& batch) const {
+  const ParticleView& p = batch.particles;
+  const double E = p_.youngs_modulus;
+  const double G = shear_modulus_;
+  const double a_s = p_.shear_coefficient;
+
+  for (std::size_t k = 0; k < batch.count; ++k) {
+    const Ends e = ends_of(p, batch.i[k], batch.j[k]);
+    const Index n1 = e.first, n2 = e.second;
+    const Reference ref = load(batch.state + k * kStateSize);
+    const double l0 = ref.l0;
+    const Section sec = section_of(p_.radius_ratio, p.radius[n1], p.radius[n2]);
+    const Deformation g = deform(ref, p.position[n1], p.position[n2], p.orientation[n1], p.orientation[n2]);
+
+    // Strain and curvature vectors, bond frame.
+    const Vec3 strain = g.d_local / l0 - Vec3::UnitX();  // Gamma
+    const Vec3 curvature = g.theta / l0;                 // kappa
+
+    if (p_.breakage) {
+      const BondStress s = stress_of(strain, curvature, E, G, sec.radius);
+      if (s.sigma_vm >= p_.critical_stress) {
+        batch.broken[k] = 1;
+        batch.stress[k] = s;
+        batch.force[k].setZero();
+        batch.torque_i[k].setZero();
+        batch.torque_j[k].setZero();
+        batch.energy[k] = 0;
+        continue;
+      }
+    }
+
+    // Eq. 3 and 5: elastic force and torque, bond frame.
+    const Vec3 elastic_force(E * sec.area * strain.x(), a_s * G * sec.area * strain.y(), a_s * G * sec.area * strain.z());
+    const Vec3 elastic_torque(2 * G * sec.second_moment * curvature.x(), E * sec.second_moment * curvature.y(),
+                              E * sec.second_moment * curvature.z());
+    batch.energy[k] = 0.5 * l0 * (strain.dot(elastic_force) + curvature.dot(elastic_torque));
+
+    // Eq. 4: viscous force on the objective strain rate v12 = l0 dGamma/dt (zero for rigid motion).
+    const Mat3& R = g.frame;
+    const Vec3 w1 = R.transpose() * p.omega[n1];
+    const Vec3 w2 = R.transpose() * p.omega[n2];
+    const Vec3 frame_spin = 0.5 * (w1 + w2) + g.skew_axis.cross(w1 - w2);
+    const Vec3 v12 = R.transpose() * (p.velocity[n2] - p.velocity[n1]) - frame_spin.cross(g.d_local);
+    const Vec3 damping_force = p_.damping * v12;
+
+    // Eq. 6-7: viscous torque on Omega_rel = d theta / dt, reduced inertia I_r.
+    const Vec3 omega_rel = g.apply_m(w2 - w1);
+    const double inertia_r = p.inertia[n1] * p.inertia[n2] / (p.inertia[n1] + p.inertia[n2]);
+    const double c_twist = p_.rotational_damping * std::sqrt(2 * G * sec.second_moment / l0 * inertia_r);
+    const double c_bend = p_.rotational_damping * std::sqrt(E * sec.second_moment / l0 * inertia_r);
+    const Vec3 damping_torque(c_twist * omega_rel.x(), c_bend * omega_rel.y(), c_bend * omega_rel.z());
+
+    // Generalised forces of the pair (beam_geometry.hpp): the force pair's couple C is split
+    // between the ends so that no angular momentum is created.
+    const Vec3 force = elastic_force + damping_force;
+    const Vec3 couple = g.d_local.cross(force);
+    const Vec3 couple_skew = g.skew_axis.cross(couple);
+    const Vec3 bend_twist = g.apply_m(elastic_torque + damping_torque);
+    const Vec3 force_on_first = R * force;
+    const Vec3 torque_on_first = R * (0.5 * couple - couple_skew + bend_twist);
+    const Vec3 torque_on_second = R * (0.5 * couple + couple_skew - bend_twist);
+
+    if (e.swapped) {
+      batch.force[k] = -force_on_first;
+      batch.torque_i[k] = torque_on_second;
+      batch.torque_j[k] = torque_on_first;
+    } else {
+      batch.force[k] = force_on_first;
+      batch.torque_i[k] = torque_on_first;
+      batch.torque_j[k] = torque_on_second;
+    }
+  }
+}
+
+}  // namespace shard::beam

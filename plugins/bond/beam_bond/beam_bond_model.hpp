@@ -1,0 +1,43 @@
+#pragma once
+// The seed paper's beam bond (model.md sec. 3, seed eq. 3-13) as a BondModel.
+#include <cstddef>
+
+#include "shard/bond_model.hpp"
+#include "shard/params.hpp"
+
+namespace shard::beam {
+
+struct BeamBondParams {
+  double youngs_modulus = 12.8e6;   // E_b, Pa (Table I)
+  double shear_modulus = 0;         // G_b, Pa; 0 = E_b / (2 (1 + nu_b))
+  double poisson_ratio = 0.25;      // nu_b, 1
+  double shear_coefficient = 0.9;   // a_s, 1 (Timoshenko coefficient of a circular section)
+  double radius_ratio = 1;          // lambda, 1: r_b = lambda min(r1, r2)
+  double damping = 0;               // d, N s/m (eq. 4)
+  double rotational_damping = 1;    // factor on the eq. 6 coefficients, 1 = as printed, 0 = off
+  double critical_stress = 0.24e6;  // sigma_v,crit, Pa (Table I)
+  bool breakage = true;
+
+  double effective_shear_modulus() const {
+    return shear_modulus > 0 ? shear_modulus : youngs_modulus / (2 * (1 + poisson_ratio));
+  }
+  static BeamBondParams from(const ParamSet& p);
+};
+
+class BeamBond final : public BondModel {
+ public:
+  explicit BeamBond(const BeamBondParams& params);
+
+  std::size_t state_size() const override;
+  void initialize(BondBatch& batch) const override;
+  TimeStepLimit time_step_limit(const BondBatch& batch) const override;
+  void compute(BondBatch& batch) const override;
+
+  const BeamBondParams& params() const { return p_; }
+
+ private:
+  BeamBondParams p_;
+  double shear_modulus_;  // G_b actually used
+};
+
+}  // namespace shard::beam

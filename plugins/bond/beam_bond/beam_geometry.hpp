@@ -1,0 +1,114 @@
+#pragma once
+// Kinematics of one beam bond in the total formulation (model.md sec. 3): everything is measured
+// from the bonded reference configuration, so rigid motions of the pair produce no strain.
+//
+// Frames. At bonding the bond frame B0 (x along the centre line from the first to the second
+// particle) is stored in the body frame of each particle: b1 = q1^-1 B0, b2 = q2^-1 B0. Later each
+// particle carries its own copy, B1 = q1 b1 and B2 = q2 b2. Their relative rotation is
+//   q_rel = B1^-1 B2 = exp(theta / 2)   (rotation vector theta, the same components in B1 and B2),
+// and the bond frame used for everything below is the mid rotation
+//   Bm = B1 exp(theta / 2) = B2 exp(-theta / 2),
+// which does not prefer either particle.
+//
+// Strain and curvature (the seed's Gamma and kappa):
+//   Gamma = Bm^T (x2 - x1) / l0 - e_x   (axial strain; two shear strains: bond-line rotation
+//                                        relative to the mean particle rotation)
+//   kappa = theta / l0                   (twist about x; two bending curvatures)
+// For small motions this is the two-node Timoshenko element with one-point integration:
+// Gamma_y = (u2y - u1y) / l0 - (phi1z + phi2z) / 2,  kappa_z = (phi2z - phi1z) / l0.
+//
+// Elastic energy U = l0/2 (Gamma . F + kappa . T), F = K_F Gamma, T = K_T kappa (eq. 3, 5).
+// Forces and torques are the exact derivatives of U with respect to the particle positions and
+// lab-frame rotations; with the identities
+//   d theta = M Bm^T (dphi2 - dphi1),        M = I + (mu - 1) P,  mu = (|theta|/2) / sin(|theta|/2)
+//   d(Bm)   = rotation by Bm (A1 Bm^T dphi1 + A2 Bm^T dphi2),  A1,2 = I/2 +- tan(|theta|/4)/(2|theta|) [theta]x
+// (P projects normal to theta) this gives, in the bond frame, with the couple C = d_local x F:
+//   force on 1 = Bm F,                   force on 2 = -Bm F
+//   torque on 1 = Bm (A1^T C + M T),     torque on 2 = Bm (A2^T C - M T).
+// The couple of the shear force is split half and half (plus a skew part of order |theta|
+// that keeps the split exact), and torque1 + torque2 + (x1 - x2) x F = 0: no angular momentum
+// is created. Because U is a function of the configuration only, an undamped pair conserves
+// energy, and U is unchanged when the two particles trade places (the swapped bond frame is Bm
+// turned half a turn about z, under which the diagonal stiffnesses are invariant).
+#include <cmath>
+#include <cstddef>
+
+#include "shard/types.hpp"
+
+namespace shard::beam {
+
+// Per-bond state in the kernel array: l0, then b1 and b2 as (w, x, y, z).
+inline constexpr std::size_t kStateSize = 9;
+
+struct Reference {
+  double l0 = 0;                   // m, centre distance at bonding
+  Quat frame_in_first = Quat::Identity();   // b1
+  Quat frame_in_second = Quat::Identity();  // b2
+};
+
+inline void store(double* s, const Reference& r) {
+  s[0] = r.l0;
+  s[1] = r.frame_in_first.w();
+  s[2] = r.frame_in_first.x();
+  s[3] = r.frame_in_first.y();
+  s[4] = r.frame_in_first.z();
+  s[5] = r.frame_in_second.w();
+  s[6] = r.frame_in_second.x();
+  s[7] = r.frame_in_second.y();
+  s[8] = r.frame_in_second.z();
+}
+
+inline Reference load(const double* s) {
+  return {s[0], Quat(s[1], s[2], s[3], s[4]), Quat(s[5], s[6], s[7], s[8])};
+}
+
+// Records the bonded configuration: B0 turns e_x onto the centre line.
+inline Reference reference_of(const Vec3& x1, const Vec3& x2, const Quat& q1, const Quat& q2) {
+  const Vec3 line = x2 - x1;
+  const Quat frame = Quat::FromTwoVectors(Vec3::UnitX(), line);
+  return {line.norm(), (q1.conjugate() * frame).normalized(), (q2.conjugate() * frame).normalized()};
+}
+
+// The deformed bond in its mid frame.
+struct Deformation {
+  Mat3 frame;       // Bm: bond frame -> lab
+  Vec3 d_local;     // x2 - x1 in the bond frame
+  Vec3 theta;       // relative rotation vector, bond frame
+  Vec3 skew_axis;   // tan(|theta|/4)/(2|theta|) theta: the skew part of A1, A2
+  double mu = 1;    // M on the plane normal to theta
+  double mu_axis = 0;  // (1 - mu) / s^2 with s = sin(|theta|/2): M u = mu u + mu_axis (v.u) v
+  Vec3 v;           // vector part of q_rel, s = |v|
+
+  // M u: maps a bond-frame torque to the mid frame's conjugate of d theta (symmetric).
+  Vec3 apply_m(const Vec3& u) const { return mu * u + mu_axis * v.dot(u) * v; }
+};
+
+inline Deformation deform(const Reference& ref, const Vec3& x1, const Vec3& x2, const Quat& q1,
+                          const Quat& q2) {
+  const Quat frame1 = q1 * ref.frame_in_first;
+  const Quat frame2 = q2 * ref.frame_in_second;
+  Quat rel = frame1.conjugate() * frame2;
+  if (rel.w() < 0) rel.coeffs() = -rel.coeffs();  // shortest rotation, |theta| <= pi
+  rel.normalize();
+  Deformation g;
+  g.v = rel.vec();
+  const double s = g.v.norm();  // sin(|theta|/2)
+  const double w = rel.w();     // cos(|theta|/2)
+  const double half_angle = std::atan2(s, w);
+  // Below s = 1e-4 the series are exact to double precision (next terms ~ s^4).
+  if (s > 1e-4) {
+    g.mu = half_angle / s;
+    g.mu_axis = (s - half_angle) / (s * s * s);
+  } else {
+    g.mu = 1 + s * s / 6;
+    g.mu_axis = -(1.0 / 6 + 0.075 * s * s);
+  }
+  g.theta = 2 * g.mu * g.v;
+  g.skew_axis = g.v / (2 * (1 + w));  // tan(t/4) = s / (1 + w) with t = |theta|
+  const Quat half = Quat(1 + w, g.v.x(), g.v.y(), g.v.z()).normalized();  // sqrt(q_rel)
+  g.frame = (frame1 * half).toRotationMatrix();
+  g.d_local = g.frame.transpose() * (x2 - x1);
+  return g;
+}
+
+}  // namespace shard::beam

@@ -1,0 +1,43 @@
+#pragma once
+// Bond stresses (eq. 8, 9) and the von Mises criterion (eq. 10) of the seed paper.
+//
+// Reading of eq. 10 (the seed counts the normal stress only in tension):
+//   tension  = max(E_b Gamma_x, 0)                  axial normal stress, tension only
+//   bending  = E_b r_b |kappa_bend|                 outer-fibre bending stress, |(kappa_y, kappa_z)|
+//   shear    = G_b |Gamma_shear|                    |(Gamma_y, Gamma_z)|
+//   torsion  = G_b r_b |kappa_twist|                outer-fibre torsional shear stress
+//   sigma_axial = tension + bending,  tau = shear + torsion,  sigma_vm = sqrt(sigma_axial^2 + 3 tau^2)
+// The bending fibre in tension always exists, so bending counts whatever the sign of kappa.
+// The dominant mode is the largest of (tension, bending, sqrt(3) shear, sqrt(3) torsion): the
+// shear terms are scaled to their von Mises equivalent so the four compare in one unit.
+#include <algorithm>
+#include <cmath>
+
+#include "shard/bond_model.hpp"
+#include "shard/types.hpp"
+
+namespace shard::beam {
+
+inline BondStress stress_of(const Vec3& strain, const Vec3& curvature, double youngs, double shear_modulus,
+                            double radius) {
+  BondStress s;
+  s.tension = std::max(youngs * strain.x(), 0.0);
+  s.bending = youngs * radius * std::hypot(curvature.y(), curvature.z());
+  s.shear = shear_modulus * std::hypot(strain.y(), strain.z());
+  s.torsion = shear_modulus * radius * std::abs(curvature.x());
+  s.sigma_axial = s.tension + s.bending;
+  s.tau = s.shear + s.torsion;
+  s.sigma_vm = std::sqrt(s.sigma_axial * s.sigma_axial + 3 * s.tau * s.tau);
+
+  const double root3 = std::sqrt(3.0);
+  const double candidates[4] = {s.tension, s.bending, root3 * s.shear, root3 * s.torsion};
+  const BondFailureMode modes[4] = {BondFailureMode::Tension, BondFailureMode::Bending,
+                                    BondFailureMode::Shear, BondFailureMode::Torsion};
+  int best = 0;
+  for (int m = 1; m < 4; ++m)
+    if (candidates[m] > candidates[best]) best = m;
+  s.dominant = candidates[best] > 0 ? modes[best] : BondFailureMode::None;
+  return s;
+}
+
+}  // namespace shard::beam
