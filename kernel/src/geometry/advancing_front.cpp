@@ -1,0 +1,207 @@
+// Advancing-front sphere filling (seed sec. III). The front is a min-heap of placed spheres keyed by
+// their distance to the seed point; the top sphere is "worked" until no sphere of the pending
+// radius fits around it, then it leaves the front. Each sphere enters the front once and leaves it
+// once, so the loop runs at most 2N times; the grid keeps each attempt O(1).
+#include "shard/geometry/advancing_front.hpp"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <queue>
+
+#include "shard/geometry/random.hpp"
+#include "shard/geometry/sphere_grid.hpp"
+
+namespace shard::geometry {
+namespace {
+
+// Points at distances da, db, dc from a, b, c (three-sphere trilateration): 0, 1 or 2 solutions.
+int tangent_positions(const Vec3& a, const Vec3& b, const Vec3& c, double da, double db, double dc,
+                      std::array<Vec3, 2>& out) {
+  const Vec3 ab = b - a;
+  const double d = ab.norm();
+  if (!(d > 0.0)) return 0;
+  const Vec3 ex = ab / d;
+  const Vec3 ac = c - a;
+  const double i = ex.dot(ac);
+  const Vec3 across = ac - i * ex;
+  const double j = across.norm();
+  if (j <= 1e-9 * d) return 0;  // collinear centres: a circle of solutions, none isolated
+  const Vec3 ey = across / j;
+  const Vec3 ez = ex.cross(ey);
+  const double x = (da * da - db * db + d * d) / (2.0 * d);
+  const double y = (da * da - dc * dc + i * i + j * j) / (2.0 * j) - i * x / j;
+  const double z2 = da * da - x * x - y * y;
+  if (z2 < 0.0) return 0;
+  const double z = std::sqrt(z2);
+  const Vec3 base = a + x * ex + y * ey;
+  out[0] = base + z * ez;
+  out[1] = base - z * ez;
+  return z > 0.0 ? 2 : 1;
+}
+
+struct Candidate {
+  double key;  // squared distance to the seed point
+  Vec3 centre;
+};
+
+class FrontFiller {
+ public:
+  FrontFiller(const SignedDistance& distance, const Box& bounds, const SizeDistribution& psd,
+              const FrontFillOptions& options)
+      : distance_(distance),
+        bounds_(bounds),
+        psd_(psd),
+        options_(options),
+        rng_(options.seed),
+        r_max_(0.5 * psd.d_max()),
+        grid_(bounds.lower, bounds.upper, psd.d_max()) {}
+
+  SpherePacking run() {
+    place_seed();
+    double r = draw_radius();
+    while (!front_.empty()) {
+      const Index worked = front_.top().second;
+      if (const auto spot = best_spot_around(worked, r)) {
+        add(*spot, r);
+        r = draw_radius();
+      } else {
+        front_.pop();  // nothing of this size fits around it any more
+      }
+    }
+    return std::move(packing_);
+  }
+
+ private:
+  double draw_radius() { return 0.5 * psd_.diameter_at(rng_.uniform()); }
+
+  void add(const Vec3& centre, double radius) {
+    const auto id = static_cast<Index>(packing_.centre.size());
+    packing_.centre.push_back(centre);
+    packing_.radius.push_back(radius);
+    grid_.insert(id, centre);
+    front_.emplace((centre - seed_point_).squaredNorm(), id);
+  }
+
+  bool overlaps_any(const Vec3& p, double r) const {
+    bool clear = grid_.for_each_near(p, r + r_max_, [&](Index id) {
+      const double rj = packing_.radius[id];
+      const double limit = r + rj - options_.overlap_tolerance * std::min(r, rj);
+      return (packing_.centre[id] - p).squaredNorm() >= limit * limit;
+    });
+    return !clear;
+  }
+
+  bool fits(const Vec3& p, double r) const { return !overlaps_any(p, r) && distance_(p) <= -r; }
+
+  std::optional<Vec3> best_spot_around(Index a, double r) {
+    const Vec3 ca = packing_.centre[a];
+    const double ra = packing_.radius[a];
+    neighbours_.clear();
+    grid_.for_each_near(ca, ra + 2.0 * r + r_max_, [&](Index id) {
+      if (id != a) {
+        const double reach = ra + packing_.radius[id] + 2.0 * r;
+        if ((packing_.centre[id] - ca).squaredNorm() < reach * reach) neighbours_.push_back(id);
+      }
+      return true;
+    });
+    candidates_.clear();
+    std::array<Vec3, 2> spots;
+    for (std::size_t p = 0; p < neighbours_.size(); ++p) {
+      const Index b = neighbours_[p];
+      const Vec3& cb = packing_.centre[b];
+      const double rb = packing_.radius[b];
+      for (std::size_t q = p + 1; q < neighbours_.size(); ++q) {
+        const Index c = neighbours_[q];
+        const Vec3& cc = packing_.centre[c];
+        const double rc = packing_.radius[c];
+        const double reach = rb + rc + 2.0 * r;
+        if ((cb - cc).squaredNorm() >= reach * reach) continue;
+        const int n = tangent_positions(ca, cb, cc, ra + r, rb + r, rc + r, spots);
+        for (int s = 0; s < n; ++s) candidates_.push_back({(spots[s] - seed_point_).squaredNorm(), spots[s]});
+      }
+    }
+    std::sort(candidates_.begin(), candidates_.end(),
+              [](const Candidate& x, const Candidate& y) { return x.key < y.key; });
+    for (const Candidate& candidate : candidates_)
+      if (fits(candidate.centre, r)) return candidate.centre;
+    return std::nullopt;
+  }
+
+  // The deepest point of a probe lattice hosts the seed; three touching spheres are tried in
+  // random orientations around it.
+  void place_seed() {
+    const double spacing = options_.probe_spacing * psd_.d_max();
+    const Vec3 middle = 0.5 * (bounds_.lower + bounds_.upper);
+    double deepest = std::numeric_limits<double>::infinity();
+    Vec3 best = middle;
+    double best_offset = std::numeric_limits<double>::infinity();
+    const Vec3 extent = bounds_.upper - bounds_.lower;
+    std::array<long, 3> count{};
+    for (int k = 0; k < 3; ++k) count[k] = std::max(1L, static_cast<long>(extent[k] / spacing));
+    for (long i = 0; i < count[0]; ++i)
+      for (long j = 0; j < count[1]; ++j)
+        for (long k = 0; k < count[2]; ++k) {
+          const Vec3 p = bounds_.lower + Vec3((static_cast<double>(i) + 0.5) * extent.x() / static_cast<double>(count[0]),
+                                              (static_cast<double>(j) + 0.5) * extent.y() / static_cast<double>(count[1]),
+                                              (static_cast<double>(k) + 0.5) * extent.z() / static_cast<double>(count[2]));
+          const double d = distance_(p);
+          const double offset = (p - middle).squaredNorm();
+          if (d < deepest || (d == deepest && offset < best_offset)) {
+            deepest = d;
+            best = p;
+            best_offset = offset;
+          }
+        }
+    seed_point_ = best;
+    constexpr int kOrientations = 64;
+    for (int attempt = 0; attempt < kOrientations; ++attempt) {
+      const std::array<double, 3> r{draw_radius(), draw_radius(), draw_radius()};
+      const Vec3 e1 = rng_.direction();
+      const Vec3 e2 = e1.cross(rng_.direction()).normalized();
+      const double c = r[0] + r[1];
+      const double a = r[0] + r[2];
+      const double b = r[1] + r[2];
+      const double x = (a * a - b * b + c * c) / (2.0 * c);
+      const std::array<Vec3, 3> local{Vec3::Zero(), Vec3(c * e1), Vec3(x * e1 + std::sqrt(a * a - x * x) * e2)};
+      const Vec3 shift = seed_point_ - (local[0] + local[1] + local[2]) / 3.0;
+      bool inside = true;
+      for (int s = 0; s < 3; ++s) inside = inside && distance_(local[s] + shift) <= -r[s];
+      if (!inside) continue;
+      for (int s = 0; s < 3; ++s) add(local[s] + shift, r[s]);
+      return;
+    }
+    throw FillError(fmt::format("the body is too thin for the particle size: its deepest probed point lies "
+                                "{:.4g} m inside the surface, but a seed of three touching spheres of "
+                                "diameter up to d_max = {:.4g} m does not fit there. Reduce diameter_max or "
+                                "check the STL scale",
+                                -deepest, psd_.d_max()));
+  }
+
+  const SignedDistance& distance_;
+  Box bounds_;
+  const SizeDistribution& psd_;
+  FrontFillOptions options_;
+  Random rng_;
+  double r_max_;
+  SphereGrid grid_;
+  SpherePacking packing_;
+  Vec3 seed_point_ = Vec3::Zero();
+  using Entry = std::pair<double, Index>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> front_;
+  std::vector<Index> neighbours_;
+  std::vector<Candidate> candidates_;
+};
+
+}  // namespace
+
+SpherePacking advancing_front_fill(const SignedDistance& distance, const Box& bounds,
+                                   const SizeDistribution& psd, const FrontFillOptions& options) {
+  return FrontFiller(distance, bounds, psd, options).run();
+}
+
+}  // namespace shard::geometry
