@@ -29,10 +29,8 @@ class CsrComponentLabeller {
  public:
   // Writes a component label in [0, count) per particle into labels (resized to n) and returns
   // count. Labels are raw: numbered in Boost's DFS discovery order.
+  // The graph itself is rebuilt (allocated) on every call.
   Index label(std::size_t particle_count, const BondList& bonds, std::vector<Index>& labels);
-
- private:
-  std::vector<std::uint32_t> sources_, targets_;
 };
 
 class UnionFindLabeller {
