@@ -62,10 +62,16 @@ inline Reference load(const double* s) {
   return {s[0], Quat(s[1], s[2], s[3], s[4]), Quat(s[5], s[6], s[7], s[8])};
 }
 
+// The shortest rotation taking e_x onto the unit vector n (half a turn about z when n = -e_x).
+inline Quat frame_along(const Vec3& n) {
+  if (n.x() < -1 + 1e-12) return Quat(0, 0, 0, 1);
+  return Quat(1 + n.x(), 0, -n.z(), n.y()).normalized();  // (1 + e_x . n, e_x x n)
+}
+
 // Records the bonded configuration: B0 turns e_x onto the centre line.
 inline Reference reference_of(const Vec3& x1, const Vec3& x2, const Quat& q1, const Quat& q2) {
   const Vec3 line = x2 - x1;
-  const Quat frame = Quat::FromTwoVectors(Vec3::UnitX(), line);
+  const Quat frame = frame_along(line.normalized());
   return {line.norm(), (q1.conjugate() * frame).normalized(), (q2.conjugate() * frame).normalized()};
 }
 
