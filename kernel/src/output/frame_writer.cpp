@@ -1,0 +1,61 @@
+#include "frame_writer.hpp"
+
+#include <string>
+
+#include "h5_io.hpp"
+#include "shard/output.hpp"
+
+namespace shard {
+
+namespace {
+
+const double* flat(const std::vector<Vec3>& v) { return v.empty() ? nullptr : v.front().data(); }
+
+void require_size(std::size_t actual, std::size_t n, const char* what) {
+  if (actual != n)
+    throw OutputError(std::string("frame not written: ") + what + " has " +
+                      std::to_string(actual) + " entries for " + std::to_string(n) +
+                      " particles");
+}
+
+}  // namespace
+
+void collect_frame_bonds(const Particles& particles, const Bonds& bonds,
+                         const std::vector<Index>* fragment_labels, std::vector<Index>& pairs) {
+  const std::size_t n = particles.size();
+  require_size(particles.id.size(), n, "id");
+  require_size(particles.velocity.size(), n, "velocity");
+  require_size(particles.omega.size(), n, "omega");
+  require_size(particles.radius.size(), n, "radius");
+  require_size(particles.material.size(), n, "material");
+  if (fragment_labels != nullptr) require_size(fragment_labels->size(), n, "fragment labels");
+
+  // Bonds flagged broken but not yet removed are not part of the snapshot.
+  const bool flags = bonds.broken.size() == bonds.size();
+  pairs.clear();
+  for (std::size_t k = 0; k < bonds.size(); ++k) {
+    if (flags && bonds.broken[k] != 0) continue;
+    const Index i = bonds.i[k], j = bonds.j[k];
+    if (i < 0 || j < 0 || static_cast<std::size_t>(i) >= n || static_cast<std::size_t>(j) >= n)
+      throw OutputError("frame not written: bond " + std::to_string(k) + " joins particles " +
+                        std::to_string(i) + " and " + std::to_string(j) + " of " +
+                        std::to_string(n));
+    pairs.push_back(i);
+    pairs.push_back(j);
+  }
+}
+
+void write_frame_datasets(hid_t group, const Particles& particles, const std::vector<Index>& pairs,
+                          const std::vector<Index>* fragment_labels) {
+  const std::size_t n = particles.size();
+  h5::write_dataset(group, "id", particles.id.data(), n);
+  h5::write_dataset(group, "position", flat(particles.position), n, 3);
+  h5::write_dataset(group, "velocity", flat(particles.velocity), n, 3);
+  h5::write_dataset(group, "omega", flat(particles.omega), n, 3);
+  h5::write_dataset(group, "radius", particles.radius.data(), n);
+  h5::write_dataset(group, "material", particles.material.data(), n);
+  h5::write_dataset(group, "bonds", pairs.data(), pairs.size() / 2, 2);
+  if (fragment_labels != nullptr) h5::write_dataset(group, "fragment", fragment_labels->data(), n);
+}
+
+}  // namespace shard

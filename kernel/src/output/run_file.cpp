@@ -1,0 +1,254 @@
+#include "shard/run_file.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <limits>
+
+#include "h5_io.hpp"
+
+namespace shard {
+
+namespace {
+
+constexpr std::size_t kAll = std::numeric_limits<std::size_t>::max();
+
+const std::vector<std::string>& scalar_series_names() {
+  static const std::vector<std::string> names{"step",         "time",        "kinetic_energy",
+                                              "bond_energy",  "contact_energy",
+                                              "bonds_intact", "bonds_broken", "contacts"};
+  return names;
+}
+
+const std::vector<std::string>& event_column_names() {
+  static const std::vector<std::string> names{
+      "time",    "step",    "id_i",    "id_j",  "midpoint", "sigma_vm", "sigma_axial",
+      "tau",     "tension", "bending", "shear", "torsion",  "mode"};
+  return names;
+}
+
+constexpr std::array<const char*, 3> kWallQuantities{"force", "torque", "displacement"};
+
+std::vector<Vec3> read_vec3(hid_t file, const std::string& path, std::size_t rows = kAll) {
+  const h5::Shape shape = h5::dataset_shape(file, path);
+  if (shape.cols != 3) throw OutputError("dataset '" + path + "' is not an [n,3] array");
+  rows = std::min(rows, shape.rows);
+  std::vector<Vec3> out(rows);
+  if (rows > 0) h5::read_dataset(file, path, H5T_NATIVE_DOUBLE, out.front().data(), rows, 3);
+  return out;
+}
+
+std::string frame_path(std::size_t k) { return fmt::format("frames/{:06d}", k); }
+
+h5::Handle open_file(const std::filesystem::path& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error))
+    throw OutputError("run file '" + path.string() + "' does not exist or is not a file");
+  // A running job holds an exclusive lock on its file; reading what it has flushed is the point
+  // of flushing, so a locked file is opened again without locking. (Not the first choice:
+  // within the writer's own process HDF5 refuses a second open with other locking flags.)
+  hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (id < 0) {
+    H5Eclear2(H5E_DEFAULT);
+    h5::Handle access =
+        h5::plist_handle(H5Pcreate(H5P_FILE_ACCESS), "creating file access list");
+    h5::check(H5Pset_file_locking(access.get(), false, true), "disabling file locking");
+    id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, access.get());
+  }
+  if (id < 0) {
+    const std::string cause = h5::take_error_stack();
+    throw OutputError("cannot open the run file '" + path.string() + "' as HDF5" +
+                      (cause.empty() ? "" : " (" + cause + ")"));
+  }
+  h5::Handle file(id, H5Fclose);
+  if (!h5::has_attribute(file.get(), "abi_version") || !h5::path_exists(file.get(), "frames"))
+    throw OutputError("'" + path.string() + "' is an HDF5 file but not a Shard run file");
+  return file;
+}
+
+}  // namespace
+
+struct RunFile::Impl {
+  std::filesystem::path path;
+  h5::Handle file;
+  std::size_t frames = 0;
+  std::size_t series_rows = 0;
+  std::size_t event_rows = 0;
+  std::vector<std::string> walls;
+
+  hid_t id() const { return file.get(); }
+
+  std::size_t rows_of(const std::string& dataset) const {
+    return h5::dataset_shape(id(), dataset).rows;
+  }
+
+  // Columns are written one after another; a killed run may hold a block in some and not in
+  // others, so every reader sees the rows they all hold.
+  void scan() {
+    while (h5::path_exists(id(), frame_path(frames))) {
+      h5::Handle group = h5::open_group(id(), frame_path(frames));
+      if (!h5::has_attribute(group.get(), "time")) break;
+      ++frames;
+    }
+    if (h5::path_exists(id(), "series/walls"))
+      walls = h5::child_names(h5::open_group(id(), "series/walls").get());
+    series_rows = kAll;
+    for (const std::string& name : scalar_series_names())
+      series_rows = std::min(series_rows, rows_of("series/" + name));
+    for (const std::string& wall : walls)
+      for (const char* quantity : kWallQuantities)
+        series_rows = std::min(series_rows, rows_of("series/walls/" + wall + "/" + quantity));
+    event_rows = kAll;
+    for (const std::string& name : event_column_names())
+      event_rows = std::min(event_rows, rows_of("events/bond_breaks/" + name));
+  }
+};
+
+RunFile::RunFile(const std::filesystem::path& path) {
+  const h5::QuietErrors quiet;
+  impl_ = std::make_unique<Impl>();
+  impl_->path = path;
+  impl_->file = open_file(path);
+  impl_->scan();
+}
+
+RunFile::~RunFile() = default;
+RunFile::RunFile(RunFile&&) noexcept = default;
+RunFile& RunFile::operator=(RunFile&&) noexcept = default;
+
+const std::filesystem::path& RunFile::path() const { return impl_->path; }
+
+RunMetadata RunFile::metadata() const {
+  const h5::QuietErrors quiet;
+  const hid_t f = impl_->id();
+  RunMetadata meta;
+  meta.shard_version = h5::read_string_attribute(f, "shard_version");
+  meta.git_revision = h5::read_string_attribute(f, "git_revision");
+  meta.scene_file = h5::read_string_attribute(f, "scene_file");
+  meta.scene_text = h5::read_string_attribute(f, "scene");
+  meta.seed = h5::read_uint_attribute(f, "seed");
+  h5::Handle plugins = h5::open_group(f, "plugins");
+  for (const std::string& name : h5::attribute_names(plugins.get()))
+    meta.plugins.emplace_back(name, h5::read_string_attribute(plugins.get(), name));
+  h5::Handle generator = h5::open_group(f, "generator");
+  for (const std::string& name : h5::attribute_names(generator.get()))
+    meta.generator_quality.emplace_back(name, h5::read_double_attribute(generator.get(), name));
+  h5::Handle notes = h5::open_group(f, "notes");
+  for (const std::string& name : h5::attribute_names(notes.get()))
+    meta.notes.emplace_back(name, h5::read_string_attribute(notes.get(), name));
+  return meta;
+}
+
+int RunFile::abi_version() const {
+  const h5::QuietErrors quiet;
+  return static_cast<int>(h5::read_int_attribute(impl_->id(), "abi_version"));
+}
+
+std::size_t RunFile::frame_count() const { return impl_->frames; }
+
+FrameData RunFile::read_frame(std::size_t k) const {
+  if (k >= impl_->frames)
+    throw OutputError(fmt::format("frame {} is not in '{}', which holds {} frames", k,
+                                  impl_->path.string(), impl_->frames));
+  const h5::QuietErrors quiet;
+  const hid_t f = impl_->id();
+  const std::string g = frame_path(k);
+  h5::Handle group = h5::open_group(f, g);
+  FrameData frame;
+  frame.step = h5::read_int_attribute(group.get(), "step");
+  frame.time = h5::read_double_attribute(group.get(), "time");
+  frame.id = h5::read_dataset<Index>(f, g + "/id", 0);
+  const std::size_t n = frame.id.size();
+  frame.position = read_vec3(f, g + "/position");
+  frame.velocity = read_vec3(f, g + "/velocity");
+  frame.omega = read_vec3(f, g + "/omega");
+  frame.radius = h5::read_dataset<double>(f, g + "/radius", 0);
+  frame.material = h5::read_dataset<std::int32_t>(f, g + "/material", 0);
+  for (std::size_t size : {frame.position.size(), frame.velocity.size(), frame.omega.size(),
+                           frame.radius.size(), frame.material.size()})
+    if (size != n)
+      throw OutputError(fmt::format("frame {} of '{}' has arrays of different lengths", k,
+                                    impl_->path.string()));
+  const std::vector<Index> pairs = h5::read_dataset<Index>(f, g + "/bonds", 2);
+  frame.bonds.resize(pairs.size() / 2);
+  for (std::size_t b = 0; b < frame.bonds.size(); ++b)
+    frame.bonds[b] = {pairs[2 * b], pairs[2 * b + 1]};
+  if (h5::path_exists(f, g + "/fragment"))
+    frame.fragment = h5::read_dataset<Index>(f, g + "/fragment", 0);
+  return frame;
+}
+
+std::size_t RunFile::series_rows() const { return impl_->series_rows; }
+
+std::vector<double> RunFile::read_series(const std::string& name) const {
+  const auto& names = scalar_series_names();
+  if (std::find(names.begin(), names.end(), name) == names.end())
+    throw OutputError(fmt::format("no series '{}' in a run file; the series are: {}", name,
+                                  fmt::join(names, ", ")));
+  const h5::QuietErrors quiet;
+  return h5::read_dataset<double>(impl_->id(), "series/" + name, 0, impl_->series_rows);
+}
+
+std::vector<std::int64_t> RunFile::read_integer_series(const std::string& name) const {
+  const auto& names = scalar_series_names();
+  if (std::find(names.begin(), names.end(), name) == names.end())
+    throw OutputError(fmt::format("no series '{}' in a run file; the series are: {}", name,
+                                  fmt::join(names, ", ")));
+  const h5::QuietErrors quiet;
+  return h5::read_dataset<std::int64_t>(impl_->id(), "series/" + name, 0, impl_->series_rows);
+}
+
+std::vector<std::string> RunFile::wall_names() const { return impl_->walls; }
+
+std::vector<Vec3> RunFile::read_wall_series(const std::string& wall,
+                                            const std::string& quantity) const {
+  if (std::find(impl_->walls.begin(), impl_->walls.end(), wall) == impl_->walls.end())
+    throw OutputError(fmt::format("no wall '{}' in '{}'; its walls are: {}", wall,
+                                  impl_->path.string(), fmt::join(impl_->walls, ", ")));
+  if (std::find(kWallQuantities.begin(), kWallQuantities.end(), quantity) ==
+      kWallQuantities.end())
+    throw OutputError(fmt::format("no wall quantity '{}'; use force, torque or displacement",
+                                  quantity));
+  const h5::QuietErrors quiet;
+  return read_vec3(impl_->id(), "series/walls/" + wall + "/" + quantity, impl_->series_rows);
+}
+
+std::vector<BondBreakEvent> RunFile::read_break_events() const {
+  const h5::QuietErrors quiet;
+  const hid_t f = impl_->id();
+  const std::size_t rows = impl_->event_rows;
+  const std::string g = "events/bond_breaks/";
+  const auto time = h5::read_dataset<double>(f, g + "time", 0, rows);
+  const auto step = h5::read_dataset<std::int64_t>(f, g + "step", 0, rows);
+  const auto id_i = h5::read_dataset<Index>(f, g + "id_i", 0, rows);
+  const auto id_j = h5::read_dataset<Index>(f, g + "id_j", 0, rows);
+  const auto midpoint = read_vec3(f, g + "midpoint", rows);
+  const auto sigma_vm = h5::read_dataset<double>(f, g + "sigma_vm", 0, rows);
+  const auto sigma_axial = h5::read_dataset<double>(f, g + "sigma_axial", 0, rows);
+  const auto tau = h5::read_dataset<double>(f, g + "tau", 0, rows);
+  const auto tension = h5::read_dataset<double>(f, g + "tension", 0, rows);
+  const auto bending = h5::read_dataset<double>(f, g + "bending", 0, rows);
+  const auto shear = h5::read_dataset<double>(f, g + "shear", 0, rows);
+  const auto torsion = h5::read_dataset<double>(f, g + "torsion", 0, rows);
+  const auto mode = h5::read_dataset<std::uint8_t>(f, g + "mode", 0, rows);
+  std::vector<BondBreakEvent> events(rows);
+  for (std::size_t k = 0; k < rows; ++k) {
+    BondBreakEvent& e = events[k];
+    e.time = time[k];
+    e.step = step[k];
+    e.id_i = id_i[k];
+    e.id_j = id_j[k];
+    e.midpoint = midpoint[k];
+    e.stress.sigma_vm = sigma_vm[k];
+    e.stress.sigma_axial = sigma_axial[k];
+    e.stress.tau = tau[k];
+    e.stress.tension = tension[k];
+    e.stress.bending = bending[k];
+    e.stress.shear = shear[k];
+    e.stress.torsion = torsion[k];
+    e.stress.dominant = static_cast<BondFailureMode>(mode[k]);
+  }
+  return events;
+}
+
+}  // namespace shard

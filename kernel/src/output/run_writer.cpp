@@ -1,0 +1,186 @@
+// RunWriter: the HDF5 run file and its XDMF index.
+//
+// Crash safety. Every write into the file (a block of series rows or events, a frame) ends with
+// H5Fflush, so the file on disk is a consistent HDF5 file between writes; a frame's step/time
+// attributes are written after its datasets have been flushed, so a reader counts a frame only
+// once all of it is on disk. The file uses the 1.8 object format (libver low bound V18), not
+// the 1.10 one: a 1.10 superblock (v3) records "open for writing" in the file and HDF5 then
+// refuses to open a killed run's file until `h5clear -s` is run on it. SWMR is not used because
+// HDF5 1.10 forbids creating groups and datasets in SWMR mode, and every frame is a new group.
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <system_error>
+
+#include "break_event_writer.hpp"
+#include "frame_writer.hpp"
+#include "h5_io.hpp"
+#include "series_writer.hpp"
+#include "shard/output.hpp"
+#include "shard/plugin.hpp"
+#include "xdmf_index.hpp"
+
+namespace shard {
+
+namespace {
+
+// Rows buffered before a block is written (and the file flushed).
+constexpr std::size_t kBlockRows = 64;
+
+std::filesystem::path xmf_path_of(const std::filesystem::path& h5_path) {
+  std::filesystem::path xmf = h5_path;
+  xmf.replace_extension(".xmf");
+  return xmf;
+}
+
+void make_parent_folder(const std::filesystem::path& path) {
+  const std::filesystem::path parent = path.parent_path();
+  if (parent.empty()) return;
+  std::error_code error;
+  std::filesystem::create_directories(parent, error);
+  if (error)
+    throw OutputError("cannot create the folder '" + parent.string() + "' for the run file '" +
+                      path.string() + "': " + error.message() +
+                      ". Choose an output path in a folder you can write to.");
+}
+
+h5::Handle create_file(const std::filesystem::path& path) {
+  h5::Handle access = h5::plist_handle(H5Pcreate(H5P_FILE_ACCESS), "creating file access list");
+  h5::check(H5Pset_libver_bounds(access.get(), H5F_LIBVER_V18, H5F_LIBVER_LATEST),
+            "selecting the file format");
+  h5::Handle creation =
+      h5::plist_handle(H5Pcreate(H5P_FILE_CREATE), "creating file creation list");
+  h5::check(H5Pset_attr_creation_order(creation.get(),
+                                       H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED),
+            "tracking attribute order");
+  const hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, creation.get(), access.get());
+  if (id < 0) {
+    const std::string cause = h5::take_error_stack();
+    throw OutputError("cannot create the run file '" + path.string() + "'" +
+                      (cause.empty() ? "" : " (" + cause + ")") +
+                      ". Check that the folder exists and is writable and that no other "
+                      "program has the file open, or choose another output path.");
+  }
+  return h5::Handle(id, H5Fclose);
+}
+
+h5::Handle create_run_file(const std::filesystem::path& path, const RunMetadata& meta) {
+  h5::Handle handle = create_file(path);
+  const hid_t file = handle.get();
+  h5::write_attribute(file, "shard_version", meta.shard_version);
+  h5::write_attribute(file, "git_revision", meta.git_revision);
+  h5::write_attribute(file, "scene_file", meta.scene_file);
+  h5::write_attribute(file, "scene", meta.scene_text);
+  h5::write_attribute(file, "seed", meta.seed);
+  h5::write_attribute(file, "abi_version", static_cast<std::int64_t>(kAbiVersion));
+  h5::Handle plugins = h5::create_group(file, "plugins");
+  for (const auto& [name, description] : meta.plugins)
+    h5::write_attribute(plugins.get(), name, description);
+  h5::Handle generator = h5::create_group(file, "generator");
+  for (const auto& [name, value] : meta.generator_quality)
+    h5::write_attribute(generator.get(), name, value);
+  h5::Handle notes = h5::create_group(file, "notes");
+  for (const auto& [name, text] : meta.notes) h5::write_attribute(notes.get(), name, text);
+  return handle;
+}
+
+}  // namespace
+
+struct RunWriter::Impl {
+  Impl(const std::filesystem::path& file_path, const RunMetadata& meta,
+       const std::vector<std::string>& wall_names)
+      : path(file_path),
+        file(create_run_file(file_path, meta)),
+        series(file.get(), wall_names, kBlockRows),
+        events(file.get(), kBlockRows),
+        frames(h5::create_group(file.get(), "frames")),
+        index(xmf_path_of(file_path), file_path.filename().string()) {
+    flush_file();
+  }
+
+  void flush_file() {
+    h5::check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "flushing " + path.string());
+  }
+
+  void write_blocks() {
+    series.write();
+    events.write();
+    flush_file();
+  }
+
+  std::filesystem::path path;
+  h5::Handle file;
+  SeriesWriter series;
+  BreakEventWriter events;
+  h5::Handle frames;
+  XdmfIndex index;
+  std::int64_t frame_count = 0;
+  std::vector<Index> pair_scratch;
+};
+
+RunWriter::RunWriter(const std::filesystem::path& path, const RunMetadata& meta,
+                     const std::vector<std::string>& wall_names) {
+  if (path.extension() == ".xmf")
+    throw OutputError("run file '" + path.string() +
+                      "' ends in .xmf, the name of its XDMF index: use a .h5 name");
+  make_parent_folder(path);
+  const h5::QuietErrors quiet;
+  impl_ = std::make_unique<Impl>(path, meta, wall_names);
+}
+
+RunWriter::~RunWriter() {
+  if (!impl_) return;
+  try {
+    const h5::QuietErrors quiet;
+    impl_->write_blocks();
+  } catch (const std::exception& error) {
+    // A destructor cannot throw; say what was lost rather than lose it silently.
+    std::fprintf(stderr, "shard: the last series rows of %s were not written: %s\n",
+                 impl_->path.c_str(), error.what());
+  }
+}
+
+void RunWriter::append_series(const SeriesRow& row) {
+  impl_->series.append(row);
+  if (impl_->series.block_full()) {
+    const h5::QuietErrors quiet;
+    impl_->write_blocks();
+  }
+}
+
+void RunWriter::append_break_events(const std::vector<BondBreakEvent>& events) {
+  impl_->events.append(events);
+  if (impl_->events.block_full()) {
+    const h5::QuietErrors quiet;
+    impl_->write_blocks();
+  }
+}
+
+void RunWriter::write_frame(std::int64_t step, double time, const Particles& particles,
+                            const Bonds& bonds, const std::vector<Index>* fragment_labels) {
+  const h5::QuietErrors quiet;
+  Impl& m = *impl_;
+  m.series.write();
+  m.events.write();
+  collect_frame_bonds(particles, bonds, fragment_labels, m.pair_scratch);
+  const std::string name = fmt::format("{:06d}", m.frame_count);
+  h5::Handle group = h5::create_group(m.frames.get(), name);
+  write_frame_datasets(group.get(), particles, m.pair_scratch, fragment_labels);
+  m.flush_file();
+  // The frame counts as written once these are on disk (see the note at the top).
+  h5::write_attribute(group.get(), "step", step);
+  h5::write_attribute(group.get(), "time", time);
+  m.flush_file();
+  ++m.frame_count;
+  m.index.add({"/frames/" + name, time, particles.size(), m.pair_scratch.size() / 2,
+               fragment_labels != nullptr});
+}
+
+void RunWriter::flush() {
+  const h5::QuietErrors quiet;
+  impl_->write_blocks();
+}
+
+const std::filesystem::path& RunWriter::path() const { return impl_->path; }
+
+}  // namespace shard
