@@ -216,11 +216,11 @@ Wall read_wall(const toml::table& t, const std::string& file, const std::filesys
     const Vec3 offset = s.vec3("offset", Vec3::Zero());
     const auto path = std::filesystem::path(f).is_absolute() ? std::filesystem::path(f) : dir / f;
     try {
-      const TriangleMesh mesh = read_stl(path, scale);
+      const geometry::TriangleMesh mesh = geometry::read_stl(path, scale);
       for (const auto& face : mesh.faces)
-        w.triangles.push_back({mesh.vertices[static_cast<std::size_t>(face[0])] + offset,
-                               mesh.vertices[static_cast<std::size_t>(face[1])] + offset,
-                               mesh.vertices[static_cast<std::size_t>(face[2])] + offset});
+        w.triangles.push_back(std::array<Vec3, 3>{Vec3(mesh.vertices[static_cast<std::size_t>(face[0])] + offset),
+                                                  Vec3(mesh.vertices[static_cast<std::size_t>(face[1])] + offset),
+                                                  Vec3(mesh.vertices[static_cast<std::size_t>(face[2])] + offset)});
     } catch (const std::exception& e) {
       throw SceneError(fmt::format("{}: {}", s.at("file"), e.what()));
     }
