@@ -1,0 +1,27 @@
+#pragma once
+// Registers the options of `shard fragments` on a CLI11 (sub)command; header-only so the
+// analysis library itself does not depend on CLI11. Usage in apps/:
+//   FragmentsOptions opts; auto* sub = app.add_subcommand("fragments", "...");
+//   add_fragments_options(*sub, opts); sub->callback([&] { rc = fragments_command(opts, std::cout, std::cerr); });
+#include <CLI/CLI.hpp>
+
+#include "shard/analysis/fragments_command.hpp"
+
+namespace shard::analysis {
+
+inline void add_fragments_options(CLI::App& app, FragmentsOptions& o) {
+  app.add_option("run_file", o.run_file, "run.h5 written by `shard run`")->required()->check(CLI::ExistingFile);
+  app.add_option("--frame", o.frame, "frame number k of /frames/<k:06d> (default: the last)");
+  app.add_option("--csv", o.csv, "write the fragment table (every fragment, every column) as CSV");
+  app.add_option("--plot", o.plot, "draw the size distribution with gnuplot (.png or .svg)");
+  app.add_flag("--write-labels", o.write_labels,
+               "store the labels in the frame ('fragment' dataset) and the table under /fragments");
+  app.add_option("--fines", o.fines_size, "fines size [m]: report the mass of fragments with d_eq below it")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--density", o.density, "particle density [kg/m^3] when the file has no masses")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--since", o.since, "earlier frame: print which of its fragments became which");
+  app.add_option("--rows", o.rows, "fragments listed in the printed table (default 20)");
+}
+
+}  // namespace shard::analysis

@@ -1,0 +1,127 @@
+#include "shard/analysis/fragments_command.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <fstream>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "shard/analysis/fragment_table.hpp"
+#include "shard/analysis/fsd_plot.hpp"
+#include "shard/analysis/lineage.hpp"
+#include "shard/analysis/run_file.hpp"
+#include "shard/analysis/size_distribution.hpp"
+
+namespace shard::analysis {
+
+namespace {
+
+void print_table(const std::vector<Fragment>& fragments, std::size_t rows, std::ostream& out) {
+  out << fmt::format("{:>8} {:>9} {:>12} {:>11} {:>11} {:>11} {:>11} {:>5}\n", "fragment",
+                     "particles", "mass[kg]", "d_eq[mm]", "x[m]", "y[m]", "z[m]", "body");
+  const std::size_t shown = std::min(rows, fragments.size());
+  for (std::size_t k = 0; k < shown; ++k) {
+    const Fragment& f = fragments[k];
+    out << fmt::format("{:>8} {:>9} {:>12.5g} {:>11.5g} {:>11.4g} {:>11.4g} {:>11.4g} {:>5}{}\n",
+                       f.label, f.particles, f.mass, f.d_eq * 1e3, f.centre.x(), f.centre.y(),
+                       f.centre.z(), f.body, f.mixed_bodies ? "*" : "");
+  }
+  if (shown < fragments.size()) {
+    out << fmt::format("{:>8} ... {} more fragments (all in --csv)\n", "", fragments.size() - shown);
+  }
+}
+
+void print_distribution(const SizeDistribution& fsd, std::ostream& out) {
+  out << fmt::format("fragments {}  total mass {:.6g} kg\n", fsd.fragments, fsd.total_mass);
+  out << fmt::format("x10 {:.5g} mm  x50 {:.5g} mm  x90 {:.5g} mm  (mass-weighted, d_eq)\n",
+                     fsd.x10 * 1e3, fsd.x50 * 1e3, fsd.x90 * 1e3);
+  if (fsd.fines_size > 0) {
+    out << fmt::format("fines below {:.5g} mm: {:.6g} kg ({:.3g} % of the mass)\n",
+                       fsd.fines_size * 1e3, fsd.fines_mass, 100.0 * fsd.fines_fraction());
+  }
+}
+
+void write_csv(const std::vector<Fragment>& fragments, const std::filesystem::path& path) {
+  std::ofstream csv(path);
+  if (!csv) throw RunFileError("cannot write " + path.string());
+  csv << "fragment,particles,mass_kg,volume_m3,d_eq_m,cx_m,cy_m,cz_m,vx_m_s,vy_m_s,vz_m_s,"
+         "min_x_m,min_y_m,min_z_m,max_x_m,max_y_m,max_z_m,body,mixed_bodies,smallest_id\n";
+  for (const Fragment& f : fragments) {
+    csv << fmt::format("{},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},"
+                       "{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{},{},{}\n",
+                       f.label, f.particles, f.mass, f.volume, f.d_eq, f.centre.x(), f.centre.y(),
+                       f.centre.z(), f.velocity.x(), f.velocity.y(), f.velocity.z(), f.box_min.x(),
+                       f.box_min.y(), f.box_min.z(), f.box_max.x(), f.box_max.y(), f.box_max.z(),
+                       f.body, f.mixed_bodies ? 1 : 0, f.smallest_id);
+  }
+  if (!csv) throw RunFileError("cannot write " + path.string());
+}
+
+void print_lineage(std::int64_t from, std::int64_t to, const Lineage& l, std::ostream& out) {
+  out << fmt::format("lineage frame {} -> frame {} (by shared particle ids)\n", from, to);
+  for (std::size_t a = 0; a < l.children.size(); ++a) {
+    std::string children;
+    for (const Overlap& o : l.overlaps) {
+      if (static_cast<std::size_t>(o.a) == a) {
+        if (!children.empty()) children += ", ";
+        children += fmt::format("{} ({} particles{})", o.b, o.shared,
+                                l.parent[static_cast<std::size_t>(o.b)] == o.a ? "" : ", not its parent");
+      }
+    }
+    out << fmt::format("  {} -> {}\n", a, children.empty() ? std::string("(gone)") : children);
+  }
+  std::size_t orphans = 0;
+  for (Index p : l.parent) orphans += p < 0 ? 1 : 0;
+  if (orphans > 0) out << fmt::format("  {} fragments have no particle in frame {}\n", orphans, from);
+}
+
+}  // namespace
+
+int fragments_command(const FragmentsOptions& options, std::ostream& out, std::ostream& err) {
+  try {
+    RunFile file(options.run_file, options.write_labels ? RunFile::Mode::read_write : RunFile::Mode::read);
+    const std::vector<std::int64_t> frames = file.frames();
+    if (frames.empty()) throw RunFileError(options.run_file.string() + " holds no frame yet");
+    const std::int64_t k = options.frame.value_or(frames.back());
+    const Frame frame = file.read_frame(k, options.density);
+    const FragmentAnalysis analysis = analyse_fragments(frame.sample(), frame.bonds());
+    const SizeDistribution fsd = size_distribution(analysis.fragments, options.fines_size);
+
+    out << fmt::format("{}: frame {} (step {}, t = {:.6g} s), {} particles, {} bonds\n",
+                       options.run_file.string(), k, frame.step, frame.time, frame.id.size(),
+                       frame.bond_i.size());
+    out << "masses: " << frame.mass_source << "\n";
+    print_table(analysis.fragments, options.rows, out);
+    print_distribution(fsd, out);
+
+    if (options.since) {
+      const Frame earlier = file.read_frame(*options.since, options.density);
+      const FragmentAnalysis before = analyse_fragments(earlier.sample(), earlier.bonds());
+      const Lineage l = lineage({earlier.id, before.labels, static_cast<Index>(before.fragments.size())},
+                                {frame.id, analysis.labels, static_cast<Index>(analysis.fragments.size())});
+      print_lineage(*options.since, k, l, out);
+    }
+    if (options.csv) {
+      write_csv(analysis.fragments, *options.csv);
+      out << "wrote " << options.csv->string() << "\n";
+    }
+    if (options.write_labels) {
+      file.write_fragment_labels(k, analysis.labels);
+      file.write_fragment_table(k, analysis.fragments, fsd);
+      out << fmt::format("wrote /frames/{0}/fragment and /fragments/{0}\n", frame_name(k));
+    }
+    if (options.plot) {
+      plot_size_distribution(fsd, *options.plot,
+                             fmt::format("{} frame {}", options.run_file.filename().string(), k));
+      out << "wrote " << options.plot->string() << "\n";
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    err << "error: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace shard::analysis
