@@ -87,48 +87,62 @@ class FrontFiller {
     front_.emplace((centre - seed_point_).squaredNorm(), id);
   }
 
-  bool overlaps_any(const Vec3& p, double r) const {
-    bool clear = grid_.for_each_near(p, r + r_max_, [&](Index id) {
-      const double rj = packing_.radius[id];
+  // Any sphere overlapping a candidate P (|P - c_A| = r_A + r) lies within r_A + r_j + 2r of A,
+  // so A's neighbour list is the complete set of possible blockers: no grid query per candidate.
+  // Blockers cluster: the sphere that blocked the previous candidate is tried first.
+  bool blocked(const Vec3& p, double r) {
+    const std::size_t count = near_centre_.size();
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t n = k == 0 ? last_blocker_ : (k == last_blocker_ ? 0 : k);
+      const double rj = near_radius_[n];
       const double limit = r + rj - options_.overlap_tolerance * std::min(r, rj);
-      return (packing_.centre[id] - p).squaredNorm() >= limit * limit;
-    });
-    return !clear;
+      if ((near_centre_[n] - p).squaredNorm() < limit * limit) {
+        last_blocker_ = n;
+        return true;
+      }
+    }
+    return false;
   }
-
-  bool fits(const Vec3& p, double r) const { return !overlaps_any(p, r) && distance_(p) <= -r; }
 
   std::optional<Vec3> best_spot_around(Index a, double r) {
     const Vec3 ca = packing_.centre[a];
     const double ra = packing_.radius[a];
-    neighbours_.clear();
+    near_centre_.clear();
+    near_radius_.clear();
     grid_.for_each_near(ca, ra + 2.0 * r + r_max_, [&](Index id) {
       if (id != a) {
         const double reach = ra + packing_.radius[id] + 2.0 * r;
-        if ((packing_.centre[id] - ca).squaredNorm() < reach * reach) neighbours_.push_back(id);
+        if ((packing_.centre[id] - ca).squaredNorm() < reach * reach) {
+          near_centre_.push_back(packing_.centre[id]);
+          near_radius_.push_back(packing_.radius[id]);
+        }
       }
       return true;
     });
+    // Blocked candidates are dropped at once; the free ones are few, and the nearest to the seed
+    // among those inside the body wins.
     candidates_.clear();
+    last_blocker_ = 0;
     std::array<Vec3, 2> spots;
-    for (std::size_t p = 0; p < neighbours_.size(); ++p) {
-      const Index b = neighbours_[p];
-      const Vec3& cb = packing_.centre[b];
-      const double rb = packing_.radius[b];
-      for (std::size_t q = p + 1; q < neighbours_.size(); ++q) {
-        const Index c = neighbours_[q];
-        const Vec3& cc = packing_.centre[c];
-        const double rc = packing_.radius[c];
+    for (std::size_t p = 0; p < near_centre_.size(); ++p) {
+      const Vec3& cb = near_centre_[p];
+      const double rb = near_radius_[p];
+      for (std::size_t q = p + 1; q < near_centre_.size(); ++q) {
+        const Vec3& cc = near_centre_[q];
+        const double rc = near_radius_[q];
         const double reach = rb + rc + 2.0 * r;
         if ((cb - cc).squaredNorm() >= reach * reach) continue;
         const int n = tangent_positions(ca, cb, cc, ra + r, rb + r, rc + r, spots);
-        for (int s = 0; s < n; ++s) candidates_.push_back({(spots[s] - seed_point_).squaredNorm(), spots[s]});
+        for (int s = 0; s < n; ++s)
+          if (!blocked(spots[s], r)) candidates_.push_back({(spots[s] - seed_point_).squaredNorm(), spots[s]});
       }
     }
-    std::sort(candidates_.begin(), candidates_.end(),
-              [](const Candidate& x, const Candidate& y) { return x.key < y.key; });
+    std::sort(candidates_.begin(), candidates_.end(), [](const Candidate& x, const Candidate& y) {
+      return x.key < y.key || (x.key == y.key && std::lexicographical_compare(x.centre.data(), x.centre.data() + 3,
+                                                                               y.centre.data(), y.centre.data() + 3));
+    });
     for (const Candidate& candidate : candidates_)
-      if (fits(candidate.centre, r)) return candidate.centre;
+      if (distance_(candidate.centre) <= -r) return candidate.centre;
     return std::nullopt;
   }
 
@@ -193,7 +207,9 @@ class FrontFiller {
   Vec3 seed_point_ = Vec3::Zero();
   using Entry = std::pair<double, Index>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> front_;
-  std::vector<Index> neighbours_;
+  std::vector<Vec3> near_centre_;  // the worked sphere's neighbours, copied contiguously
+  std::vector<double> near_radius_;
+  std::size_t last_blocker_ = 0;
   std::vector<Candidate> candidates_;
 };
 

@@ -134,3 +134,24 @@ BondList read_bonds_csv(const std::filesystem::path& file, std::size_t particles
 }
 
 }  // namespace shard::geometry
+
+namespace shard::geometry {
+
+std::filesystem::path resolve_against(const std::string& scene_dir, const std::string& file) {
+  const std::filesystem::path path(file);
+  if (path.is_absolute() || scene_dir.empty()) return path;
+  return std::filesystem::path(scene_dir) / path;
+}
+
+GeneratedBody to_generated_body(SpherePacking packing, BondList bonds, std::vector<std::int32_t> material,
+                                std::vector<std::pair<std::string, double>> quality) {
+  GeneratedBody body;
+  body.position = std::move(packing.centre);
+  body.radius = std::move(packing.radius);
+  body.material = std::move(material);
+  body.bonds = std::move(bonds);
+  body.quality = std::move(quality);
+  return body;
+}
+
+}  // namespace shard::geometry

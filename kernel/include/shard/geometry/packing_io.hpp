@@ -33,3 +33,16 @@ StoredPacking read_spheres_csv(const std::filesystem::path& file);
 BondList read_bonds_csv(const std::filesystem::path& file, std::size_t particles);
 
 }  // namespace shard::geometry
+
+#include "shard/generator.hpp"
+
+namespace shard::geometry {
+
+// A parameter's file name: absolute as given, relative ones against the scene folder.
+std::filesystem::path resolve_against(const std::string& scene_dir, const std::string& file);
+
+// Hands a packing to the kernel in the generator ABI's shape.
+GeneratedBody to_generated_body(SpherePacking packing, BondList bonds, std::vector<std::int32_t> material,
+                                std::vector<std::pair<std::string, double>> quality);
+
+}  // namespace shard::geometry

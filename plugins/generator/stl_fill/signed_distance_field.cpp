@@ -1,0 +1,61 @@
+#include "signed_distance_field.hpp"
+
+#include <openvdb/openvdb.h>
+#include <openvdb/tools/ChangeBackground.h>
+#include <openvdb/tools/Interpolation.h>
+#include <openvdb/tools/MeshToVolume.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace shard::stl_fill {
+
+struct SignedDistanceField::Impl {
+  openvdb::FloatGrid::Ptr grid;
+  openvdb::FloatGrid::ConstAccessor accessor;
+  Vec3 origin;  // the mesh is voxelized relative to its lower corner: small float32 coordinates
+  Impl(openvdb::FloatGrid::Ptr g, const Vec3& o) : grid(std::move(g)), accessor(grid->getConstAccessor()), origin(o) {}
+};
+
+SignedDistanceField::SignedDistanceField(const geometry::TriangleMesh& mesh, double voxel, double band)
+    : voxel_(voxel) {
+  if (!(voxel > 0.0) || !(band >= voxel))
+    throw std::invalid_argument("SignedDistanceField: need voxel > 0 and band >= voxel");
+  openvdb::initialize();  // idempotent; registers grid types
+  const Vec3 origin = geometry::bounding_box(mesh).lower;
+  std::vector<openvdb::Vec3s> points;
+  points.reserve(mesh.vertices.size());
+  for (const Vec3& v : mesh.vertices) {
+    const Vec3 local = v - origin;
+    points.emplace_back(static_cast<float>(local.x()), static_cast<float>(local.y()), static_cast<float>(local.z()));
+  }
+  std::vector<openvdb::Vec3I> triangles;
+  triangles.reserve(mesh.faces.size());
+  for (const auto& f : mesh.faces)
+    triangles.emplace_back(static_cast<openvdb::Index32>(f[0]), static_cast<openvdb::Index32>(f[1]),
+                           static_cast<openvdb::Index32>(f[2]));
+  const auto transform = openvdb::math::Transform::createLinearTransform(voxel);
+  // Only the inside needs the full band (is a sphere of radius r at least r deep?); outside, two
+  // voxels give the sign and a correct interpolation at the surface.
+  const float inside = static_cast<float>(std::ceil(band / voxel));
+  constexpr float outside = 2.0f;
+  auto grid = openvdb::tools::meshToSignedDistanceField<openvdb::FloatGrid>(*transform, points, triangles, {},
+                                                                             outside, inside);
+  // OpenVDB marks inactive interior space with -background = -(exterior width): reset it to
+  // -band so "deep inside" reads as deep.
+  openvdb::tools::changeAsymmetricLevelSetBackground(grid->tree(), static_cast<float>(outside * voxel),
+                                                     static_cast<float>(-inside * voxel));
+  impl_ = std::make_unique<Impl>(std::move(grid), origin);
+}
+
+SignedDistanceField::~SignedDistanceField() = default;
+
+double SignedDistanceField::distance(const Vec3& point) const {
+  const Vec3 local = point - impl_->origin;
+  const openvdb::Vec3d index = impl_->grid->transform().worldToIndex(openvdb::Vec3d(local.x(), local.y(), local.z()));
+  return static_cast<double>(openvdb::tools::BoxSampler::sample(impl_->accessor, index));
+}
+
+std::size_t SignedDistanceField::active_voxels() const { return static_cast<std::size_t>(impl_->grid->activeVoxelCount()); }
+
+}  // namespace shard::stl_fill

@@ -1,0 +1,34 @@
+#pragma once
+// Signed distance to a closed triangle mesh, voxelized by OpenVDB (the seed's voxelization step).
+// All OpenVDB headers stay inside signed_distance_field.cpp: this interface is all the rest of
+// Shard sees, so OpenVDB's heavy templates compile once and link only into this plugin.
+#include <memory>
+
+#include "shard/geometry/stl.hpp"
+#include "shard/types.hpp"
+
+namespace shard::stl_fill {
+
+class SignedDistanceField {
+ public:
+  // Narrow band of `band` [m] inside the surface and two voxels outside; beyond it distance()
+  // returns about -band inside and +2 voxels outside (exact sign, clamped magnitude). `voxel` is
+  // the grid spacing [m].
+  SignedDistanceField(const geometry::TriangleMesh& mesh, double voxel, double band);
+  ~SignedDistanceField();
+  SignedDistanceField(const SignedDistanceField&) = delete;
+  SignedDistanceField& operator=(const SignedDistanceField&) = delete;
+
+  // Trilinear interpolation of the voxel values [m], negative inside. Not thread-safe (it keeps
+  // OpenVDB's node cache between calls, which makes neighbouring queries fast).
+  double distance(const Vec3& point) const;
+  double voxel_size() const { return voxel_; }
+  std::size_t active_voxels() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  double voxel_;
+};
+
+}  // namespace shard::stl_fill
