@@ -59,19 +59,32 @@ void write_csv(const std::vector<Fragment>& fragments, const std::filesystem::pa
   if (!csv) throw RunFileError("cannot write " + path.string());
 }
 
-void print_lineage(std::int64_t from, std::int64_t to, const Lineage& l, std::ostream& out) {
-  out << fmt::format("lineage frame {} -> frame {} (by shared particle ids)\n", from, to);
-  for (std::size_t a = 0; a < l.children.size(); ++a) {
-    std::string children;
-    for (const Overlap& o : l.overlaps) {
-      if (static_cast<std::size_t>(o.a) == a) {
-        if (!children.empty()) children += ", ";
-        children += fmt::format("{} ({} particles{})", o.b, o.shared,
-                                l.parent[static_cast<std::size_t>(o.b)] == o.a ? "" : ", not its parent");
-      }
+// Bounded output: the first `rows` fragments of the earlier frame, at most 8 pieces each.
+void print_lineage(std::int64_t from, std::int64_t to, const Lineage& l, std::size_t rows,
+                   std::ostream& out) {
+  constexpr std::size_t kPiecesShown = 8;
+  std::size_t split = 0;
+  for (const auto& c : l.children) split += c.size() > 1 ? 1 : 0;
+  out << fmt::format("lineage frame {} -> frame {} (by shared particle ids): {} fragments became {}, "
+                     "{} of them broke\n",
+                     from, to, l.children.size(), l.parent.size(), split);
+  std::vector<std::vector<const Overlap*>> by_parent(l.children.size());
+  for (const Overlap& o : l.overlaps) by_parent[static_cast<std::size_t>(o.a)].push_back(&o);
+  const std::size_t shown = std::min(rows, by_parent.size());
+  for (std::size_t a = 0; a < shown; ++a) {
+    std::string pieces;
+    for (std::size_t k = 0; k < std::min(kPiecesShown, by_parent[a].size()); ++k) {
+      const Overlap& o = *by_parent[a][k];
+      if (!pieces.empty()) pieces += ", ";
+      pieces += fmt::format("{} ({} particles{})", o.b, o.shared,
+                            l.parent[static_cast<std::size_t>(o.b)] == o.a ? "" : ", parent elsewhere");
     }
-    out << fmt::format("  {} -> {}\n", a, children.empty() ? std::string("(gone)") : children);
+    if (by_parent[a].size() > kPiecesShown) {
+      pieces += fmt::format(", ... {} more", by_parent[a].size() - kPiecesShown);
+    }
+    out << fmt::format("  {} -> {}\n", a, pieces.empty() ? std::string("(gone)") : pieces);
   }
+  if (shown < by_parent.size()) out << fmt::format("  ... {} more fragments\n", by_parent.size() - shown);
   std::size_t orphans = 0;
   for (Index p : l.parent) orphans += p < 0 ? 1 : 0;
   if (orphans > 0) out << fmt::format("  {} fragments have no particle in frame {}\n", orphans, from);
@@ -101,7 +114,7 @@ int fragments_command(const FragmentsOptions& options, std::ostream& out, std::o
       const FragmentAnalysis before = analyse_fragments(earlier.sample(), earlier.bonds());
       const Lineage l = lineage({earlier.id, before.labels, static_cast<Index>(before.fragments.size())},
                                 {frame.id, analysis.labels, static_cast<Index>(analysis.fragments.size())});
-      print_lineage(*options.since, k, l, out);
+      print_lineage(*options.since, k, l, options.rows, out);
     }
     if (options.csv) {
       write_csv(analysis.fragments, *options.csv);

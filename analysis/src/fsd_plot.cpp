@@ -103,6 +103,9 @@ std::filesystem::path write_fsd_plot_script(const SizeDistribution& fsd,
   out << "set ylabel 'cumulative mass Q(d_{eq}) [%]'\n";
   out << "set yrange [0:100]\nset grid\nset key bottom right\n";
   if (log_axis) out << "set logscale x\n";
+  // A margin of 20 % around the sizes keeps the x10 label off the frame (and gives one-size
+  // distributions a non-empty range).
+  out << fmt::format("set xrange [{:.9g}:{:.9g}]\n", d_min / 1.2, d_max * 1.2);
   struct Mark {
     const char* name;
     double x;
