@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <initializer_list>
 #include <numbers>
 
 #include "contact_arrays.hpp"
