@@ -1,0 +1,21 @@
+#pragma once
+// Sub-commands of `shard` register themselves on the CLI11 app. Each sets a callback that stores
+// its exit code in the context; errors propagate as exceptions and main prints them.
+#include <filesystem>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace shard {
+
+struct CommandContext {
+  std::vector<std::filesystem::path> plugin_dirs;  // --plugin-dir, before the sub-command
+  int exit_code = 0;
+};
+
+void add_run_command(CLI::App& app, CommandContext& ctx);
+void add_plugins_command(CLI::App& app, CommandContext& ctx);
+
+}  // namespace shard

@@ -1,0 +1,72 @@
+// `shard run` and `shard plugins`.
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <iostream>
+#include <memory>
+
+#include "shard/app/commands.hpp"
+#include "shard/app/run_command.hpp"
+#include "shard/plugin_host.hpp"
+
+namespace shard {
+namespace {
+
+std::string param_type(ParamType t) {
+  switch (t) {
+    case ParamType::Number: return "number";
+    case ParamType::Integer: return "integer";
+    case ParamType::Boolean: return "bool";
+    case ParamType::String: return "string";
+    case ParamType::Vector3: return "vec3";
+  }
+  return "?";
+}
+
+std::string default_text(const ParamSpec& s) {
+  return std::visit(
+      [](const auto& d) -> std::string {
+        using T = std::decay_t<decltype(d)>;
+        if constexpr (std::is_same_v<T, std::monostate>) return "(required)";
+        else if constexpr (std::is_same_v<T, double>) return fmt::format("{}", d);
+        else if constexpr (std::is_same_v<T, bool>) return d ? "true" : "false";
+        else if constexpr (std::is_same_v<T, std::string>) return "\"" + d + "\"";
+        else return fmt::format("[{}, {}, {}]", d[0], d[1], d[2]);
+      },
+      s.default_value);
+}
+
+}  // namespace
+
+void add_run_command(CLI::App& app, CommandContext& ctx) {
+  auto options = std::make_shared<RunOptions>();
+  auto* cmd = app.add_subcommand("run", "run a scene file");
+  cmd->add_option("scene", options->scene, "scene .toml")->required();
+  cmd->add_option("--set", options->overrides, "override a scene key, e.g. --set bond.youngs_modulus=13e6");
+  cmd->add_option("--out", options->out_dir, "output folder");
+  cmd->add_option("--threads", options->threads, "OpenMP threads (default: all cores)");
+  cmd->add_flag("--quiet", options->quiet, "no progress line");
+  cmd->callback([options, &ctx] {
+    options->plugin_dirs = ctx.plugin_dirs;
+    run_scene(*options, std::cerr);
+    ctx.exit_code = 0;
+  });
+}
+
+void add_plugins_command(CLI::App& app, CommandContext& ctx) {
+  auto* cmd = app.add_subcommand("plugins", "list the plugins found, with their parameters");
+  cmd->callback([&ctx] {
+    PluginHost host;
+    load_plugins(host, ctx.plugin_dirs, std::cerr);
+    for (const auto* p : host.plugins()) {
+      fmt::print("{}/{} {}  ({})\n  {}\n", to_string(p->info.kind), p->info.name, p->info.version, p->file,
+                 p->info.doc);
+      for (const auto& s : p->info.params)
+        fmt::print("    {:<26} {:<7} [{}] default {}{}  {}\n", s.name, param_type(s.type), s.unit, default_text(s),
+                   s.neutral ? fmt::format(", neutral {}", *s.neutral) : "", s.doc);
+    }
+    ctx.exit_code = 0;
+  });
+}
+
+}  // namespace shard
