@@ -109,6 +109,8 @@ std::vector<std::int64_t> RunFile::frames() const {
     if (name.empty() || !std::all_of(name.begin(), name.end(), [](char c) { return c >= '0' && c <= '9'; })) {
       continue;
     }
+    // The writer sets step and time last: a frame without them was cut off by a crash.
+    if (H5Aexists_by_name(group.get(), name.c_str(), "time", H5P_DEFAULT) <= 0) continue;
     out.push_back(std::stoll(name));
   }
   std::sort(out.begin(), out.end());

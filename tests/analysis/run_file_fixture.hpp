@@ -20,6 +20,7 @@ struct FrameSpec {
   std::vector<std::int32_t> material;
   std::vector<std::int32_t> bonds;  // M*2 row indices
   std::vector<double> mass;         // written only if not empty
+  bool complete = true;             // false: no step/time attributes (a frame cut off by a crash)
 };
 
 inline void put_dataset(hid_t group, const char* name, hid_t type, std::vector<hsize_t> shape,
@@ -51,8 +52,10 @@ inline void write_run_file(const std::filesystem::path& path, const std::vector<
     char name[16];
     std::snprintf(name, sizeof name, "%06lld", static_cast<long long>(f.k));
     const hid_t g = H5Gcreate2(all, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    put_attribute(g, "step", H5T_NATIVE_INT64, &f.step);
-    put_attribute(g, "time", H5T_NATIVE_DOUBLE, &f.time);
+    if (f.complete) {
+      put_attribute(g, "step", H5T_NATIVE_INT64, &f.step);
+      put_attribute(g, "time", H5T_NATIVE_DOUBLE, &f.time);
+    }
     const hsize_t n = f.id.size();
     put_dataset(g, "id", H5T_NATIVE_INT32, {n}, f.id.data());
     put_dataset(g, "position", H5T_NATIVE_DOUBLE, {n, 3}, f.position.data());

@@ -106,6 +106,15 @@ TEST_CASE("labels and the fragment table are written back and read by HDF5") {
   std::filesystem::remove(path);
 }
 
+TEST_CASE("a frame cut off before its time attribute is not listed") {
+  auto frames = test::breaking_bar();
+  frames[1].complete = false;
+  const auto path = scratch("partial");
+  test::write_run_file(path, frames, 2500.0);
+  CHECK(RunFile(path).frames() == std::vector<std::int64_t>{0});
+  std::filesystem::remove(path);
+}
+
 TEST_CASE("a missing or foreign file is reported by name") {
   CHECK_THROWS_AS(RunFile{scratch("does_not_exist")}, RunFileError);
   const auto text = std::filesystem::temp_directory_path() / "shard_test_not_hdf5.h5";

@@ -53,7 +53,8 @@ class RunFile {
   RunFile(const RunFile&) = delete;
   RunFile& operator=(const RunFile&) = delete;
 
-  // Frame numbers k present under /frames, ascending.
+  // Frame numbers k present under /frames, ascending; frames without their "time" attribute
+  // (written last by the kernel) are incomplete and left out.
   std::vector<std::int64_t> frames() const;
   Frame read_frame(std::int64_t k, std::optional<double> density = std::nullopt) const;
 

@@ -1,0 +1,72 @@
+#pragma once
+// A four-point bending run (run.h5) analysed: the set-up read back from the stored scene, the
+// load curve, the crack, the fragments, the network's stiffness and the quasi-static check.
+//
+// Set-up inference (each figure can be overridden):
+//  * the loading pins are the scene's [stop] load_walls (two cylinders), the supports the other
+//    two cylinder walls; the beam axis runs from the first pin to the second, with its component
+//    along the load direction removed; pin distance and span are measured along it between the
+//    cylinders' axes;
+//  * width and height are the extent of the spheres of the first frame across the beam axis
+//    (width) and along the load direction (height).
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "shard/bending/beam_theory.hpp"
+#include "shard/bending/crack_location.hpp"
+#include "shard/bending/curve_analysis.hpp"
+#include "shard/bending/network_stiffness.hpp"
+
+namespace shard::bending {
+
+struct BendingOptions {
+  CurveOptions curve;
+  std::optional<double> span, pin_distance, width, height;  // m, override the inferred set-up
+  double crack_window = 0;          // m; 0: two mean particle diameters
+  double major_fragment = 0.05;     // a fragment holding at least this mass fraction is "major"
+};
+
+struct FragmentSummary {
+  std::size_t count = 0;          // all fragments (single particles included)
+  std::size_t major = 0;          // fragments with >= major_fragment of the mass
+  std::vector<double> major_mass_fractions;
+  double frame_time = 0;          // s, the frame analysed (the last)
+};
+
+struct QuasiStaticCheck {
+  // max over rows before the first break with F >= 20 % F_max of kinetic / (bond + contact) energy
+  double max_kinetic_to_elastic = 0;
+  double loading_speed = 0;       // m/s, of the pins
+  double load_time = 0;           // s, from contact onset to F_max
+};
+
+struct BendingReport {
+  std::filesystem::path run;
+  BendingGeometry geometry;
+  std::string geometry_source;    // how each figure was obtained
+  Vec3 centre = Vec3::Zero(), axis = Vec3::UnitX(), down = -Vec3::UnitZ();
+  std::size_t particles = 0, bonds = 0;
+  double mean_diameter = 0;       // m
+  double length = 0;              // m, extent of the spheres along the beam axis
+  BeamBondParameters bond;
+  bool breakage = true;           // [simulation] breakage and the bond's own flag
+  Curve curve;
+  CurveAnalysis analysis;
+  CrackLocation crack;
+  FragmentSummary fragments;
+  VoigtEstimate voigt;
+  CurvatureModulus local;         // E from the curvature between the pins
+  QuasiStaticCheck quasi_static;
+  double shear_correction = 0;    // Timoshenko shear / bending deflection for E/G of the Voigt estimate's nu
+};
+
+// Throws std::runtime_error with the path and the missing item when the run is not a bending run.
+BendingReport analyse_bending_run(const std::filesystem::path& run, const BendingOptions& options = {});
+
+// Human-readable summary (several lines) and a JSON object with the same figures.
+std::string format_report(const BendingReport& r);
+std::string report_json(const BendingReport& r);
+
+}  // namespace shard::bending

@@ -1,0 +1,71 @@
+#pragma once
+// The load curve of a four-point bending test, F (total force on the pins, N) over w (pin
+// displacement, m), reduced to the figures the seed compares (sec. IV, Fig. 4 and 6).
+//
+// Definitions (the same for simulated and measured curves, so calibration compares like with like):
+//  * F_max: the largest force; its row is the peak.
+//  * initial stiffness k: least-squares line F = k w + c through the rising part before the peak
+//    with fit_low F_max <= F <= fit_high F_max (default 10-40 %): past the seating of the pins and
+//    before any damage. The line's w-intercept w0 = -c / k is the contact onset (toe correction).
+//  * w_s,max = w(F_max) - w0: the deflection at failure, counted from the contact onset.
+//  * E (eq. 14) from k; E_secant (eq. 14) from F_max / w_s,max, the seed's own way (sec. V.2);
+//  * sigma_b (eq. 15) at F_max.
+//  * failed: the force fell below failure_drop F_max after the peak (a brittle failure).
+#include <cstddef>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "shard/bending/beam_theory.hpp"
+
+namespace shard::bending {
+
+struct CurveOptions {
+  double fit_low = 0.10;   // fraction of F_max where the stiffness fit starts
+  double fit_high = 0.40;  // ... and ends
+  double failure_drop = 0.5;  // the curve failed when F fell below this fraction of F_max after the peak
+};
+
+struct LinearFit {
+  double slope = 0, intercept = 0;
+  double r_squared = 0;
+  std::size_t points = 0;
+};
+
+// Ordinary least squares y = slope x + intercept. Throws std::invalid_argument for fewer than
+// two points, mismatched lengths or all x equal.
+LinearFit fit_line(std::span<const double> x, std::span<const double> y);
+
+struct CurveAnalysis {
+  std::size_t rows = 0;
+  std::size_t peak_row = 0;
+  double force_max = 0;             // F_max, N
+  double displacement_at_peak = 0;  // w(F_max) as recorded, m
+  LinearFit fit;                    // F = k w + c over the fit window
+  double stiffness = 0;             // k, N/m
+  double onset = 0;                 // w0 = -c / k, m
+  double deflection_at_peak = 0;    // w_s,max = w(F_max) - w0, m
+  double youngs_modulus = 0;        // E from k by eq. 14, Pa
+  double youngs_modulus_secant = 0; // E from F_max / w_s,max by eq. 14, Pa
+  double flexural_strength = 0;     // sigma_b at F_max by eq. 15, Pa
+  bool failed = false;              // the force dropped below failure_drop F_max after the peak
+  double final_force = 0;           // N, the last row
+};
+
+// Throws std::invalid_argument naming the problem when the curve is empty, the columns differ
+// in length, the force never rises above zero, or the fit window holds fewer than 3 points.
+CurveAnalysis analyse_curve(std::span<const double> displacement, std::span<const double> force,
+                            const BendingGeometry& geometry, const CurveOptions& options = {});
+
+struct Curve {
+  std::vector<double> time, displacement, force;  // time may be empty
+};
+
+// Reads a CSV with a header naming its columns: the displacement column is the first whose name
+// starts with "displacement" or "w", the force column the first starting with "force" or "F"
+// (units: m and N; a name ending in "_mm" is converted from mm, "_kN" from kN). Lines starting
+// with '#' are comments. Throws std::runtime_error naming file and line on bad input.
+Curve read_curve_csv(const std::string& path);
+void write_curve_csv(const std::string& path, const Curve& curve);
+
+}  // namespace shard::bending
