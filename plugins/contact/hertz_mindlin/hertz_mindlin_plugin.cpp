@@ -24,7 +24,7 @@ shard::PluginInfo hertz_mindlin_info() {
                     .min = -1.0,
                     .max = 0.5,
                     .min_exclusive = true,
-                  .neutral = std::nullopt};
+                    .neutral = std::nullopt};
   ParamSpec friction{.name = "friction",
                      .unit = "1",
                      .doc = "Coulomb sliding friction coefficient mu, |F_t| <= mu F_n",

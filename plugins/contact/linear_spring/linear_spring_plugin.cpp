@@ -16,7 +16,7 @@ shard::PluginInfo linear_spring_info() {
                    .default_value = defaults.normal_stiffness,
                    .min = 0.0,
                    .min_exclusive = true,
-                  .neutral = std::nullopt};
+                   .neutral = std::nullopt};
   ParamSpec ratio{.name = "tangential_stiffness_ratio",
                   .unit = "1",
                   .doc = "k_t / k_n; 2/7 makes the tangential and normal oscillations of spheres equally fast",
