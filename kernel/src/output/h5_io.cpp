@@ -124,8 +124,10 @@ std::vector<std::string> attribute_names(hid_t object) {
   return names;
 }
 
-Handle create_group(hid_t parent, const std::string& name) {
+Handle create_group(hid_t parent, const std::string& name, LinkStorage storage) {
   Handle properties = plist_handle(H5Pcreate(H5P_GROUP_CREATE), "creating group properties");
+  if (storage == LinkStorage::Dense)
+    check(H5Pset_link_phase_change(properties.get(), 0, 0), "selecting dense link storage");
   // Keep attributes in the order they were written (plugins, quality figures, notes).
   check(H5Pset_attr_creation_order(properties.get(), H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED),
         "tracking attribute order");
@@ -208,6 +210,47 @@ void read_dataset(hid_t parent, const std::string& path, hid_t memory_type, void
   check(H5Dread(dataset.get(), memory_type, memory_space.get(), file_space.get(), H5P_DEFAULT,
                 out),
         "reading dataset '" + path + "'");
+}
+
+Handle create_frame_index(hid_t file, std::size_t capacity) {
+  const hsize_t dims = capacity;
+  Handle space = space_handle(H5Screate_simple(1, &dims, nullptr), "creating the frame index");
+  Handle properties =
+      plist_handle(H5Pcreate(H5P_DATASET_CREATE), "creating frame index properties");
+  // Early allocation with zeros: later writes change bytes only, never the file's structure.
+  check(H5Pset_layout(properties.get(), H5D_CONTIGUOUS), "laying out the frame index");
+  check(H5Pset_alloc_time(properties.get(), H5D_ALLOC_TIME_EARLY), "allocating the frame index");
+  const std::uint64_t zero = 0;
+  check(H5Pset_fill_value(properties.get(), H5T_NATIVE_UINT64, &zero), "zeroing the frame index");
+  check(H5Pset_fill_time(properties.get(), H5D_FILL_TIME_ALLOC), "zeroing the frame index");
+  return dataset_handle(H5Dcreate2(file, "frame_index", H5T_STD_U64LE, space.get(), H5P_DEFAULT,
+                                   properties.get(), H5P_DEFAULT),
+                        "creating dataset 'frame_index'");
+}
+
+void record_frame_address(hid_t index, std::size_t k, hid_t group) {
+  H5O_info_t info{};
+  check(H5Oget_info2(group, &info, H5O_INFO_BASIC), "locating frame " + std::to_string(k));
+  const std::uint64_t address = info.addr;
+  Handle file_space = space_handle(H5Dget_space(index), "selecting in the frame index");
+  const hsize_t start = k, count = 1;
+  check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, &start, nullptr, &count, nullptr),
+        "selecting frame index entry " + std::to_string(k));
+  Handle memory_space = space_handle(H5Screate_simple(1, &count, nullptr), "frame index entry");
+  check(H5Dwrite(index, H5T_NATIVE_UINT64, memory_space.get(), file_space.get(), H5P_DEFAULT,
+                 &address),
+        "recording frame " + std::to_string(k) + " in the frame index");
+}
+
+std::vector<haddr_t> read_frame_addresses(hid_t file) {
+  std::vector<haddr_t> addresses;
+  if (!path_exists(file, "frame_index")) return addresses;
+  const std::vector<std::uint64_t> entries = read_dataset<std::uint64_t>(file, "frame_index", 0);
+  for (std::uint64_t entry : entries) {
+    if (entry == 0) break;
+    addresses.push_back(static_cast<haddr_t>(entry));
+  }
+  return addresses;
 }
 
 Column::Column(hid_t parent, const std::string& name, hid_t file_type, hid_t memory_type,

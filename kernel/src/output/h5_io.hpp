@@ -57,7 +57,12 @@ std::uint64_t read_uint_attribute(hid_t object, const std::string& name);
 std::vector<std::string> attribute_names(hid_t object);
 
 // --- groups and links ---------------------------------------------------------------------
-Handle create_group(hid_t parent, const std::string& name);
+// Compact: links live in the group's object header (small groups). Dense: in a fractal heap
+// indexed by a B-tree from the first link, so adding a link never rewrites or grows the header;
+// used for /frames, which gains a link per frame.
+enum class LinkStorage { Compact, Dense };
+Handle create_group(hid_t parent, const std::string& name,
+                    LinkStorage storage = LinkStorage::Compact);
 Handle open_group(hid_t parent, const std::string& path);
 // True when every component of `path` exists (H5Lexists on each prefix, as HDF5 requires).
 bool path_exists(hid_t parent, const std::string& path);
@@ -96,6 +101,14 @@ std::vector<T> read_dataset(hid_t parent, const std::string& path, std::size_t e
   read_dataset(parent, path, TypeOf<T>::memory(), out.data(), rows, shape.cols);
   return out;
 }
+
+// --- the frame index -----------------------------------------------------------------------
+// /frame_index: uint64 [capacity], contiguous and allocated at creation, 0 = no frame. Entry k
+// is the object address of /frames/<k:06d>.
+Handle create_frame_index(hid_t file, std::size_t capacity);
+void record_frame_address(hid_t index, std::size_t k, hid_t group);
+// Object addresses of the recorded frames, up to the first empty entry.
+std::vector<haddr_t> read_frame_addresses(hid_t file);
 
 // --- extensible datasets ------------------------------------------------------------------
 // A chunked dataset with an unlimited first dimension, grown by append().

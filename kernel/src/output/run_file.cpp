@@ -75,6 +75,8 @@ struct RunFile::Impl {
   std::size_t series_rows = 0;
   std::size_t event_rows = 0;
   std::vector<std::string> walls;
+  std::vector<haddr_t> addresses;  // of frames [0, addresses.size())
+  std::string series_error, event_error;
 
   hid_t id() const { return file.get(); }
 
@@ -82,25 +84,81 @@ struct RunFile::Impl {
     return h5::dataset_shape(id(), dataset).rows;
   }
 
-  // Columns are written one after another; a killed run may hold a block in some and not in
-  // others, so every reader sees the rows they all hold.
-  void scan() {
-    while (h5::path_exists(id(), frame_path(frames))) {
-      h5::Handle group = h5::open_group(id(), frame_path(frames));
-      if (!h5::has_attribute(group.get(), "time")) break;
-      ++frames;
+  // A frame counts once its group opens and holds every attribute and dataset: a kill may have
+  // torn the last one.
+  static bool frame_complete(hid_t group) {
+    try {
+      if (!h5::has_attribute(group, "time") || !h5::has_attribute(group, "step")) return false;
+      for (const char* name : {"id", "position", "velocity", "omega", "radius", "material", "bonds"})
+        if (!h5::path_exists(group, name)) return false;
+      return true;
+    } catch (const OutputError&) {
+      return false;
     }
-    if (h5::path_exists(id(), "series/walls"))
-      walls = h5::child_names(h5::open_group(id(), "series/walls").get());
-    series_rows = kAll;
-    for (const std::string& name : scalar_series_names())
-      series_rows = std::min(series_rows, rows_of("series/" + name));
-    for (const std::string& wall : walls)
-      for (const char* quantity : kWallQuantities)
-        series_rows = std::min(series_rows, rows_of("series/walls/" + wall + "/" + quantity));
-    event_rows = kAll;
-    for (const std::string& name : event_column_names())
-      event_rows = std::min(event_rows, rows_of("events/bond_breaks/" + name));
+  }
+
+  h5::Handle open_frame(std::size_t k) const {
+    if (k < addresses.size())
+      return h5::check(H5Oopen_by_addr(id(), addresses[k]), H5Oclose,
+                       fmt::format("opening frame {} by address", k));
+    return h5::open_group(id(), frame_path(k));
+  }
+
+  // Frames through /frame_index (written so that a kill cannot tear it), then through /frames
+  // for any beyond the index's capacity or in files without one.
+  void scan_frames() {
+    try {
+      addresses = h5::read_frame_addresses(id());
+    } catch (const OutputError&) {
+      addresses.clear();
+    }
+    for (frames = 0; frames < addresses.size(); ++frames) {
+      try {
+        if (!frame_complete(open_frame(frames).get())) break;
+      } catch (const OutputError&) {
+        break;
+      }
+    }
+    addresses.resize(frames);
+    try {
+      while (h5::path_exists(id(), frame_path(frames)) &&
+             frame_complete(h5::open_group(id(), frame_path(frames)).get()))
+        ++frames;
+    } catch (const OutputError&) {
+      // A torn link index ends the frames found by name; those found by address remain.
+    }
+  }
+
+  // Columns are written one after another; a killed run may hold a block in some and not in
+  // others, so every reader sees the rows they all hold. A torn column makes the series
+  // unreadable (the error is kept for read_series) without hiding the frames.
+  void scan_series() {
+    try {
+      if (h5::path_exists(id(), "series/walls"))
+        walls = h5::child_names(h5::open_group(id(), "series/walls").get());
+      series_rows = kAll;
+      for (const std::string& name : scalar_series_names())
+        series_rows = std::min(series_rows, rows_of("series/" + name));
+      for (const std::string& wall : walls)
+        for (const char* quantity : kWallQuantities)
+          series_rows = std::min(series_rows, rows_of("series/walls/" + wall + "/" + quantity));
+    } catch (const OutputError& error) {
+      series_rows = 0;
+      series_error = error.what();
+    }
+    try {
+      event_rows = kAll;
+      for (const std::string& name : event_column_names())
+        event_rows = std::min(event_rows, rows_of("events/bond_breaks/" + name));
+    } catch (const OutputError& error) {
+      event_rows = 0;
+      event_error = error.what();
+    }
+  }
+
+  void require_series() const {
+    if (!series_error.empty())
+      throw OutputError("the series of '" + path.string() + "' are damaged: " + series_error);
   }
 };
 
@@ -109,7 +167,8 @@ RunFile::RunFile(const std::filesystem::path& path) {
   impl_ = std::make_unique<Impl>();
   impl_->path = path;
   impl_->file = open_file(path);
-  impl_->scan();
+  impl_->scan_frames();
+  impl_->scan_series();
 }
 
 RunFile::~RunFile() = default;
@@ -151,30 +210,28 @@ FrameData RunFile::read_frame(std::size_t k) const {
     throw OutputError(fmt::format("frame {} is not in '{}', which holds {} frames", k,
                                   impl_->path.string(), impl_->frames));
   const h5::QuietErrors quiet;
-  const hid_t f = impl_->id();
-  const std::string g = frame_path(k);
-  h5::Handle group = h5::open_group(f, g);
+  h5::Handle group = impl_->open_frame(k);
+  const hid_t g = group.get();
   FrameData frame;
-  frame.step = h5::read_int_attribute(group.get(), "step");
-  frame.time = h5::read_double_attribute(group.get(), "time");
-  frame.id = h5::read_dataset<Index>(f, g + "/id", 0);
+  frame.step = h5::read_int_attribute(g, "step");
+  frame.time = h5::read_double_attribute(g, "time");
+  frame.id = h5::read_dataset<Index>(g, "id", 0);
   const std::size_t n = frame.id.size();
-  frame.position = read_vec3(f, g + "/position");
-  frame.velocity = read_vec3(f, g + "/velocity");
-  frame.omega = read_vec3(f, g + "/omega");
-  frame.radius = h5::read_dataset<double>(f, g + "/radius", 0);
-  frame.material = h5::read_dataset<std::int32_t>(f, g + "/material", 0);
+  frame.position = read_vec3(g, "position");
+  frame.velocity = read_vec3(g, "velocity");
+  frame.omega = read_vec3(g, "omega");
+  frame.radius = h5::read_dataset<double>(g, "radius", 0);
+  frame.material = h5::read_dataset<std::int32_t>(g, "material", 0);
   for (std::size_t size : {frame.position.size(), frame.velocity.size(), frame.omega.size(),
                            frame.radius.size(), frame.material.size()})
     if (size != n)
       throw OutputError(fmt::format("frame {} of '{}' has arrays of different lengths", k,
                                     impl_->path.string()));
-  const std::vector<Index> pairs = h5::read_dataset<Index>(f, g + "/bonds", 2);
+  const std::vector<Index> pairs = h5::read_dataset<Index>(g, "bonds", 2);
   frame.bonds.resize(pairs.size() / 2);
   for (std::size_t b = 0; b < frame.bonds.size(); ++b)
     frame.bonds[b] = {pairs[2 * b], pairs[2 * b + 1]};
-  if (h5::path_exists(f, g + "/fragment"))
-    frame.fragment = h5::read_dataset<Index>(f, g + "/fragment", 0);
+  if (h5::path_exists(g, "fragment")) frame.fragment = h5::read_dataset<Index>(g, "fragment", 0);
   return frame;
 }
 
@@ -185,6 +242,7 @@ std::vector<double> RunFile::read_series(const std::string& name) const {
   if (std::find(names.begin(), names.end(), name) == names.end())
     throw OutputError(fmt::format("no series '{}' in a run file; the series are: {}", name,
                                   fmt::join(names, ", ")));
+  impl_->require_series();
   const h5::QuietErrors quiet;
   return h5::read_dataset<double>(impl_->id(), "series/" + name, 0, impl_->series_rows);
 }
@@ -194,6 +252,7 @@ std::vector<std::int64_t> RunFile::read_integer_series(const std::string& name) 
   if (std::find(names.begin(), names.end(), name) == names.end())
     throw OutputError(fmt::format("no series '{}' in a run file; the series are: {}", name,
                                   fmt::join(names, ", ")));
+  impl_->require_series();
   const h5::QuietErrors quiet;
   return h5::read_dataset<std::int64_t>(impl_->id(), "series/" + name, 0, impl_->series_rows);
 }
@@ -209,11 +268,15 @@ std::vector<Vec3> RunFile::read_wall_series(const std::string& wall,
       kWallQuantities.end())
     throw OutputError(fmt::format("no wall quantity '{}'; use force, torque or displacement",
                                   quantity));
+  impl_->require_series();
   const h5::QuietErrors quiet;
   return read_vec3(impl_->id(), "series/walls/" + wall + "/" + quantity, impl_->series_rows);
 }
 
 std::vector<BondBreakEvent> RunFile::read_break_events() const {
+  if (!impl_->event_error.empty())
+    throw OutputError("the bond-break log of '" + impl_->path.string() +
+                      "' is damaged: " + impl_->event_error);
   const h5::QuietErrors quiet;
   const hid_t f = impl_->id();
   const std::size_t rows = impl_->event_rows;
