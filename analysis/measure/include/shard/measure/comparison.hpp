@@ -1,0 +1,96 @@
+#pragma once
+// Measured against simulated four-point bending curves (issue 7, `shard compare`).
+//
+// Common grid. Every curve is sampled at the same loading-pin displacements w = xi w_ref, with
+// w_ref the mean measured displacement at peak, xi in [0, xi_end] (xi_end: the shortest measured
+// curve, at most CompareOptions::max_xi). A simulated curve that stopped earlier (the run ends
+// once the load has dropped after breakage) is continued with its last force.
+//
+// Bands. Measured: mean over the specimens, standard uncertainty of that mean
+//   u_m^2 = s^2 / n + (u_F^2 + (dF/dw u_w)^2) / n      (specimen scatter + sensor noise)
+// Simulated: mean over the packing-seed replicates, u_s^2 = s^2 / n. The standardised residual is
+//   r = (F_sim - F_meas) / sqrt(u_m^2 + u_s^2).
+//
+// Regimes, on the measured mean curve: toe (F < 10 % F_max on the rise), elastic (10-60 %),
+// pre-peak (60-90 %), peak (the points around the maximum with F >= 90 % F_max), post-peak.
+// Neighbouring residuals share the specimen scatter, so a regime's mean residual is treated as
+// one standard-normal score: a regime fails "beyond noise" when |mean r| > noise_threshold (2).
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "shard/measure/features.hpp"
+#include "shard/measure/measurements.hpp"
+
+namespace shard::measure {
+
+enum class Regime : std::size_t { Toe, Elastic, PrePeak, Peak, PostPeak };
+inline constexpr std::size_t kRegimeCount = 5;
+std::string_view regime_name(Regime r);
+
+struct CompareOptions {
+  std::size_t grid_points = 120;
+  double max_xi = 3;             // post-peak beyond 3 w_ref carries no information on the model
+  double noise_threshold = 2;    // |score| beyond which a difference is not noise
+};
+
+struct Band {
+  std::vector<double> mean, u;
+};
+
+struct RegimeResult {
+  Regime regime = Regime::Toe;
+  std::size_t first = 0, last = 0;  // grid indices [first, last)
+  double mean_residual = 0;         // mean standardised residual
+  double rms_residual = 0;
+  double chi_square = 0;            // sum r^2 (points treated as independent: an upper bound)
+  double relative_error = 0;        // (sum F_sim - sum F_meas) / sum F_meas
+  bool beyond_noise = false;
+  std::size_t points() const { return last - first; }
+};
+
+struct FeatureComparison {
+  Feature feature = Feature::Stiffness;
+  std::size_t measured_count = 0, simulated_count = 0;
+  double measured = 0, u_measured = 0, simulated = 0, u_simulated = 0;
+  double error = 0, relative_error = 0;
+  double score = 0;  // error / combined uncertainty; NaN when the uncertainty is zero
+  bool beyond_noise = false;
+};
+
+// Named standardised residual components (regime means, then feature scores): what
+// `shard diagnose` explains.
+struct ResidualVector {
+  std::vector<std::string> names;
+  std::vector<double> values;
+};
+
+struct Comparison {
+  double reference_displacement = 0;  // w_ref, m
+  double measured_peak_force = 0;     // of the mean curve, N
+  std::vector<double> xi;
+  std::vector<std::vector<double>> measured_curves, simulated_curves;  // force on the grid, per curve
+  Band measured, simulated;
+  std::vector<double> residual;  // standardised, per grid point
+  std::array<RegimeResult, kRegimeCount> regimes{};
+  std::vector<FeatureComparison> features;
+  double nrmse = 0;  // RMS(F_sim - F_meas) / F_max,meas on the grid
+  std::string verdict;
+  bool adequate = false;
+
+  ResidualVector residual_vector() const;
+};
+
+// Feature values of an observation (a measured specimen or a simulated replicate).
+FeatureValues observation_features(const Specimen& s, const Metadata& metadata);
+
+// Force of a curve at displacement w: linear interpolation on its rising-displacement envelope,
+// its last force beyond the end.
+double force_at(const Curve& c, double w);
+
+Comparison compare(const std::vector<Specimen>& measured, const Metadata& metadata,
+                   const std::vector<Specimen>& simulated, const CompareOptions& options = {});
+
+}  // namespace shard::measure

@@ -1,0 +1,144 @@
+#include "shard/measure/features.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+namespace shard::measure {
+namespace {
+
+constexpr double kElasticLow = 0.10, kElasticHigh = 0.60;  // fractions of F_max bounding the elastic fit
+
+// Trapezoidal integral of F dw over rows [first, last].
+double work(const Curve& c, std::size_t first, std::size_t last) {
+  double w = 0;
+  for (std::size_t k = first + 1; k <= last && k < c.size(); ++k)
+    w += 0.5 * (c.force[k] + c.force[k - 1]) * (c.displacement[k] - c.displacement[k - 1]);
+  return w;
+}
+
+double work_uncertainty(const Curve& c, std::size_t first, std::size_t last) {
+  // Independent force readings: each enters with the width of its trapezoid strip.
+  double var = 0;
+  for (std::size_t k = first; k <= last && k < c.size(); ++k) {
+    const double left = k > first ? c.displacement[k] - c.displacement[k - 1] : 0;
+    const double right = k < last ? c.displacement[k + 1] - c.displacement[k] : 0;
+    const double strip = 0.5 * (left + right);
+    var += strip * strip * c.u_force[k] * c.u_force[k];
+  }
+  return std::sqrt(var);
+}
+
+}  // namespace
+
+std::string_view feature_name(Feature f) {
+  switch (f) {
+    case Feature::Stiffness: return "stiffness";
+    case Feature::PeakForce: return "peak_force";
+    case Feature::PeakDisplacement: return "peak_displacement";
+    case Feature::WorkToPeak: return "work_to_peak";
+    case Feature::Nonlinearity: return "nonlinearity";
+    case Feature::PostPeakWork: return "post_peak_work";
+    case Feature::CrackPosition: return "crack_position";
+    case Feature::FragmentX50: return "fragment_x50";
+    case Feature::FragmentCount: return "fragment_count";
+  }
+  return "?";
+}
+
+std::string_view feature_unit(Feature f) {
+  switch (f) {
+    case Feature::Stiffness: return "N/m";
+    case Feature::PeakForce: return "N";
+    case Feature::PeakDisplacement: return "m";
+    case Feature::WorkToPeak: return "J";
+    case Feature::Nonlinearity: return "1";
+    case Feature::PostPeakWork: return "J";
+    case Feature::CrackPosition: return "m";
+    case Feature::FragmentX50: return "m";
+    case Feature::FragmentCount: return "1";
+  }
+  return "?";
+}
+
+Feature feature_at(std::size_t index) {
+  if (index >= kFeatureCount) throw std::out_of_range("feature index");
+  return static_cast<Feature>(index);
+}
+
+std::size_t peak_index(const Curve& c) {
+  if (c.size() == 0) throw std::invalid_argument("empty curve");
+  return static_cast<std::size_t>(std::max_element(c.force.begin(), c.force.end()) - c.force.begin());
+}
+
+ElasticFit elastic_fit(const Curve& c) {
+  const std::size_t p = peak_index(c);
+  const double f_max = c.force[p];
+  std::vector<std::size_t> rows;
+  for (std::size_t k = 0; k <= p; ++k)
+    if (c.force[k] >= kElasticLow * f_max && c.force[k] <= kElasticHigh * f_max) rows.push_back(k);
+  if (rows.size() < 2) {
+    // A coarse curve: take the secant between the last point below and the first point above the
+    // middle of the window, so that the fit is still a slope of the rising branch.
+    std::size_t above = 0;
+    while (above < p && c.force[above] < 0.5 * f_max) ++above;
+    rows = {above > 0 ? above - 1 : 0, std::max<std::size_t>(above, 1)};
+  }
+  const double n = static_cast<double>(rows.size());
+  double mw = 0, mf = 0;
+  for (auto k : rows) mw += c.displacement[k] / n, mf += c.force[k] / n;
+  double sww = 0, swf = 0, uf2 = 0;
+  for (auto k : rows) {
+    sww += (c.displacement[k] - mw) * (c.displacement[k] - mw);
+    swf += (c.displacement[k] - mw) * (c.force[k] - mf);
+    uf2 += c.u_force[k] * c.u_force[k] / n;
+  }
+  ElasticFit fit;
+  if (!(sww > 0)) return fit;
+  fit.stiffness = swf / sww;
+  fit.toe_offset = fit.stiffness != 0 ? mw - mf / fit.stiffness : 0;
+  fit.u_stiffness = std::sqrt(uf2 / sww);
+  return fit;
+}
+
+FeatureValues curve_features(const Curve& c) {
+  FeatureValues f;
+  const std::size_t p = peak_index(c);
+  const ElasticFit fit = elastic_fit(c);
+  const double f_max = c.force[p];
+  const double w_peak = c.displacement[p];
+  f[Feature::Stiffness] = fit.stiffness;
+  f.sensor_uncertainty[0] = fit.u_stiffness;
+  f[Feature::PeakForce] = f_max;
+  f.sensor_uncertainty[1] = c.u_force[p];
+  f[Feature::PeakDisplacement] = w_peak;
+  f.sensor_uncertainty[2] = c.u_displacement[p];
+  f[Feature::WorkToPeak] = work(c, 0, p);
+  f.sensor_uncertainty[3] = work_uncertainty(c, 0, p);
+  const double elastic_force_at_peak = fit.stiffness * (w_peak - fit.toe_offset);
+  f[Feature::Nonlinearity] = elastic_force_at_peak > 0 ? 1 - f_max / elastic_force_at_peak : 0.0;
+  // d(nonlinearity) / dF_max = -1 / (k (w_peak - w0)); the stiffness term is a second-order effect.
+  f.sensor_uncertainty[4] = elastic_force_at_peak > 0 ? c.u_force[p] / elastic_force_at_peak : 0.0;
+  f[Feature::PostPeakWork] = work(c, p, c.size() - 1);
+  f.sensor_uncertainty[5] = work_uncertainty(c, p, c.size() - 1);
+  return f;
+}
+
+double fragment_x50(const std::vector<double>& sizes, const std::vector<double>& masses) {
+  if (sizes.empty()) throw std::invalid_argument("no fragments");
+  std::vector<std::size_t> order(sizes.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](auto a, auto b) { return sizes[a] < sizes[b]; });
+  auto mass = [&](std::size_t k) { return masses.empty() ? sizes[k] * sizes[k] * sizes[k] : masses[k]; };
+  double total = 0;
+  for (auto k : order) total += mass(k);
+  double below = 0;
+  for (auto k : order) {
+    below += mass(k);
+    if (below >= 0.5 * total) return sizes[k];
+  }
+  return sizes[order.back()];
+}
+
+}  // namespace shard::measure
