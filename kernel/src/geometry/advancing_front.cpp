@@ -146,17 +146,21 @@ class FrontFiller {
     return std::nullopt;
   }
 
-  // The deepest point of a probe lattice hosts the seed; three touching spheres are tried in
-  // random orientations around it.
+  // The seed goes to the deepest points of a probe lattice (ties: nearest the box centre; beyond
+  // the narrow band depths are clamped, so several candidates are tried). At each, the first
+  // sphere sits on the probe point and the other two touch it in random orientations.
   void place_seed() {
     const double spacing = options_.probe_spacing * psd_.d_max();
     const Vec3 middle = 0.5 * (bounds_.lower + bounds_.upper);
-    double deepest = std::numeric_limits<double>::infinity();
-    Vec3 best = middle;
-    double best_offset = std::numeric_limits<double>::infinity();
     const Vec3 extent = bounds_.upper - bounds_.lower;
     std::array<long, 3> count{};
     for (int k = 0; k < 3; ++k) count[k] = std::max(1L, static_cast<long>(extent[k] / spacing));
+    struct Probe {
+      double depth_key;  // signed distance: smaller is deeper
+      double offset;
+      Vec3 point;
+    };
+    std::vector<Probe> probes;
     for (long i = 0; i < count[0]; ++i)
       for (long j = 0; j < count[1]; ++j)
         for (long k = 0; k < count[2]; ++k) {
@@ -164,36 +168,37 @@ class FrontFiller {
                                               (static_cast<double>(j) + 0.5) * extent.y() / static_cast<double>(count[1]),
                                               (static_cast<double>(k) + 0.5) * extent.z() / static_cast<double>(count[2]));
           const double d = distance_(p);
-          const double offset = (p - middle).squaredNorm();
-          if (d < deepest || (d == deepest && offset < best_offset)) {
-            deepest = d;
-            best = p;
-            best_offset = offset;
-          }
+          if (d <= -psd_.d_min() / 2.0) probes.push_back({d, (p - middle).squaredNorm(), p});
         }
-    seed_point_ = best;
-    constexpr int kOrientations = 64;
-    for (int attempt = 0; attempt < kOrientations; ++attempt) {
-      const std::array<double, 3> r{draw_radius(), draw_radius(), draw_radius()};
-      const Vec3 e1 = rng_.direction();
-      const Vec3 e2 = e1.cross(rng_.direction()).normalized();
-      const double c = r[0] + r[1];
-      const double a = r[0] + r[2];
-      const double b = r[1] + r[2];
-      const double x = (a * a - b * b + c * c) / (2.0 * c);
-      const std::array<Vec3, 3> local{Vec3::Zero(), Vec3(c * e1), Vec3(x * e1 + std::sqrt(a * a - x * x) * e2)};
-      const Vec3 shift = seed_point_ - (local[0] + local[1] + local[2]) / 3.0;
-      bool inside = true;
-      for (int s = 0; s < 3; ++s) inside = inside && distance_(local[s] + shift) <= -r[s];
-      if (!inside) continue;
-      for (int s = 0; s < 3; ++s) add(local[s] + shift, r[s]);
-      return;
+    const auto deeper = [](const Probe& a, const Probe& b) {
+      return a.depth_key < b.depth_key || (a.depth_key == b.depth_key && a.offset < b.offset);
+    };
+    const std::size_t tried = std::min<std::size_t>(probes.size(), 16);
+    std::partial_sort(probes.begin(), probes.begin() + static_cast<std::ptrdiff_t>(tried), probes.end(), deeper);
+    for (std::size_t n = 0; n < tried; ++n) {
+      seed_point_ = probes[n].point;
+      constexpr int kOrientations = 64;
+      for (int attempt = 0; attempt < kOrientations; ++attempt) {
+        const std::array<double, 3> r{draw_radius(), draw_radius(), draw_radius()};
+        const Vec3 e1 = rng_.direction();
+        const Vec3 e2 = e1.cross(rng_.direction()).normalized();
+        const double c = r[0] + r[1];
+        const double a = r[0] + r[2];
+        const double b = r[1] + r[2];
+        const double x = (a * a - b * b + c * c) / (2.0 * c);
+        const std::array<Vec3, 3> at{seed_point_, Vec3(seed_point_ + c * e1),
+                                     Vec3(seed_point_ + x * e1 + std::sqrt(a * a - x * x) * e2)};
+        bool inside = true;
+        for (int s = 0; s < 3; ++s) inside = inside && distance_(at[s]) <= -r[s];
+        if (!inside) continue;
+        for (int s = 0; s < 3; ++s) add(at[s], r[s]);
+        return;
+      }
     }
     throw FillError(fmt::format("the body is too thin for the particle size: its deepest probed point lies "
-                                "{:.4g} m inside the surface, but a seed of three touching spheres of "
-                                "diameter up to d_max = {:.4g} m does not fit there. Reduce diameter_max or "
-                                "check the STL scale",
-                                -deepest, psd_.d_max()));
+                                "{:.4g} m inside the surface, and no seed of three touching spheres of diameter "
+                                "{:.4g}..{:.4g} m fits there. Reduce the diameters or check the STL scale",
+                                probes.empty() ? 0.0 : -probes.front().depth_key, psd_.d_min(), psd_.d_max()));
   }
 
   const SignedDistance& distance_;

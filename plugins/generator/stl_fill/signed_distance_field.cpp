@@ -1,11 +1,12 @@
 #include "signed_distance_field.hpp"
 
 #include <openvdb/openvdb.h>
-#include <openvdb/tools/ChangeBackground.h>
 #include <openvdb/tools/Interpolation.h>
 #include <openvdb/tools/MeshToVolume.h>
 
 #include <cmath>
+
+#include "shard/geometry/inside_test.hpp"
 #include <stdexcept>
 
 namespace shard::stl_fill {
@@ -14,7 +15,10 @@ struct SignedDistanceField::Impl {
   openvdb::FloatGrid::Ptr grid;
   openvdb::FloatGrid::ConstAccessor accessor;
   Vec3 origin;  // the mesh is voxelized relative to its lower corner: small float32 coordinates
-  Impl(openvdb::FloatGrid::Ptr g, const Vec3& o) : grid(std::move(g)), accessor(grid->getConstAccessor()), origin(o) {}
+  geometry::TriangleMesh mesh;
+  geometry::InsideTest inside;
+  Impl(openvdb::FloatGrid::Ptr g, const Vec3& o, const geometry::TriangleMesh& m)
+      : grid(std::move(g)), accessor(grid->getConstAccessor()), origin(o), mesh(m), inside(mesh) {}
 };
 
 SignedDistanceField::SignedDistanceField(const geometry::TriangleMesh& mesh, double voxel, double band)
@@ -35,17 +39,13 @@ SignedDistanceField::SignedDistanceField(const geometry::TriangleMesh& mesh, dou
     triangles.emplace_back(static_cast<openvdb::Index32>(f[0]), static_cast<openvdb::Index32>(f[1]),
                            static_cast<openvdb::Index32>(f[2]));
   const auto transform = openvdb::math::Transform::createLinearTransform(voxel);
-  // Only the inside needs the full band (is a sphere of radius r at least r deep?); outside, two
-  // voxels give the sign and a correct interpolation at the surface.
-  const float inside = static_cast<float>(std::ceil(band / voxel));
-  constexpr float outside = 2.0f;
-  auto grid = openvdb::tools::meshToSignedDistanceField<openvdb::FloatGrid>(*transform, points, triangles, {},
-                                                                             outside, inside);
-  // OpenVDB marks inactive interior space with -background = -(exterior width): reset it to
-  // -band so "deep inside" reads as deep.
-  openvdb::tools::changeAsymmetricLevelSetBackground(grid->tree(), static_cast<float>(outside * voxel),
-                                                     static_cast<float>(-inside * voxel));
-  impl_ = std::make_unique<Impl>(std::move(grid), origin);
+  // OpenVDB decides the sign by flooding from outside, which makes an enclosed cavity solid and
+  // corrupts the values next to it. So OpenVDB provides the unsigned distance and the sign comes
+  // from an exact ray-parity test. Interpolating |d| is exact wherever all eight corners lie on
+  // one side, i.e. deeper than ~1.7 voxels, and spheres are at least two voxels in radius.
+  const auto width = static_cast<float>(std::ceil(band / voxel));
+  auto grid = openvdb::tools::meshToUnsignedDistanceField<openvdb::FloatGrid>(*transform, points, triangles, {}, width);
+  impl_ = std::make_unique<Impl>(std::move(grid), origin, mesh);
 }
 
 SignedDistanceField::~SignedDistanceField() = default;
@@ -53,7 +53,8 @@ SignedDistanceField::~SignedDistanceField() = default;
 double SignedDistanceField::distance(const Vec3& point) const {
   const Vec3 local = point - impl_->origin;
   const openvdb::Vec3d index = impl_->grid->transform().worldToIndex(openvdb::Vec3d(local.x(), local.y(), local.z()));
-  return static_cast<double>(openvdb::tools::BoxSampler::sample(impl_->accessor, index));
+  const auto value = static_cast<double>(openvdb::tools::BoxSampler::sample(impl_->accessor, index));
+  return impl_->inside.inside(point) ? -value : value;
 }
 
 std::size_t SignedDistanceField::active_voxels() const { return static_cast<std::size_t>(impl_->grid->activeVoxelCount()); }

@@ -11,9 +11,9 @@ namespace shard::stl_fill {
 
 class SignedDistanceField {
  public:
-  // Narrow band of `band` [m] inside the surface and two voxels outside; beyond it distance()
-  // returns about -band inside and +2 voxels outside (exact sign, clamped magnitude). `voxel` is
-  // the grid spacing [m].
+  // Unsigned distance voxelized by OpenVDB in a band of `band` [m] around the surface, signed by
+  // an exact ray-parity test (so enclosed cavities stay empty); beyond the band distance()
+  // returns -band inside and +band outside. `voxel` is the grid spacing [m].
   SignedDistanceField(const geometry::TriangleMesh& mesh, double voxel, double band);
   ~SignedDistanceField();
   SignedDistanceField(const SignedDistanceField&) = delete;
