@@ -1,0 +1,62 @@
+#pragma once
+// The statistics of `shard diagnose` (issue 7), on standardised residual vectors r (Comparison::
+// residual_vector: regime mean residuals and feature scores, each ~ N(0, 1) when the model is
+// right).
+//
+// Linearised model around the calibrated base:  r(theta, a) = r0 + J dtheta + a s,
+//   J  (m x p) the base-parameter Jacobian by finite differences,
+//   s  the effect's signature: r(effect on at its trial size) - r(base), on the same packing
+//      seeds (common random numbers) so that packing noise cancels in the difference,
+//   a  the effect size in units of the trial size.
+// What the existing parameters can absorb is removed by projecting onto the orthogonal
+// complement of J: P = I - J (J^T J)^-1 J^T, y = P r0, t = P s. The score (Lagrange multiplier)
+// statistic for a = 0 with theta profiled out is
+//   LM = (t . y)^2 / (t . t)  ~ chi-square(1) under "the effect is absent",
+// and the least-squares size a* = -(t . y) / (t . t) (the effect must cancel the residual).
+// Refitting that one effect lowers chi^2 = |y|^2 by exactly LM; AIC = chi^2 + 2k and BIC =
+// chi^2 + k ln m compare the base model (k = p) with base + effect (k = p + 1).
+#include <string>
+#include <vector>
+
+namespace shard::measure {
+
+struct EffectSignature {
+  std::string name;
+  double trial_size = 0;          // the effect parameter value used for the signature
+  std::vector<double> signature;  // s, same components as the residual
+};
+
+struct EffectScore {
+  std::string name;
+  double score = 0;           // LM statistic
+  double p_value = 1;         // chi-square(1)
+  double explained = 0;       // LM / |y|^2: share of the unabsorbed weighted residual it explains
+  double size = 0;            // estimated effect parameter value, a* trial_size
+  double chi_square_after = 0;
+  double delta_aic = 0;       // AIC(with effect) - AIC(base) = -LM + 2
+  double delta_bic = 0;
+  std::vector<std::string> explains;  // residual components it reduces the most
+};
+
+struct Diagnosis {
+  double chi_square = 0;            // |r0|^2
+  double chi_square_unabsorbed = 0; // |y|^2 after the base parameters
+  double p_value = 1;               // of |y|^2 against chi-square(m - p)
+  std::vector<EffectScore> ranking; // best first
+  // Pairs whose absorbed-out signatures are nearly parallel (|cos| > collinear_cosine).
+  std::vector<std::pair<std::string, std::string>> indistinguishable;
+  std::string verdict;  // "adequate", "<effect>", or "unexplained structured residual"
+};
+
+struct DiagnoseOptions {
+  double adequate_p = 0.05;        // residual compatible with noise above this p-value
+  double significant_p = 0.01;     // an effect counts below this p-value ...
+  double min_explained = 0.5;      // ... and only if it explains at least this share
+  double collinear_cosine = 0.95;
+};
+
+Diagnosis diagnose(const std::vector<std::string>& component_names, const std::vector<double>& residual,
+                   const std::vector<std::vector<double>>& base_jacobian_columns,
+                   const std::vector<EffectSignature>& effects, const DiagnoseOptions& options = {});
+
+}  // namespace shard::measure

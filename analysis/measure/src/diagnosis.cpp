@@ -1,0 +1,101 @@
+#include "shard/measure/diagnosis.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+#include "shard/measure/statistics.hpp"
+
+namespace shard::measure {
+namespace {
+
+Eigen::VectorXd to_vector(const std::vector<double>& v) {
+  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
+}  // namespace
+
+Diagnosis diagnose(const std::vector<std::string>& names, const std::vector<double>& residual,
+                   const std::vector<std::vector<double>>& jacobian, const std::vector<EffectSignature>& effects,
+                   const DiagnoseOptions& options) {
+  const auto m = static_cast<Eigen::Index>(residual.size());
+  if (names.size() != residual.size()) throw std::invalid_argument("diagnose: names and residual differ in length");
+  const auto p = static_cast<Eigen::Index>(jacobian.size());
+  if (p >= m) throw std::invalid_argument("diagnose: more base parameters than residual components");
+  Eigen::MatrixXd J(m, p);
+  for (Eigen::Index c = 0; c < p; ++c) {
+    if (static_cast<Eigen::Index>(jacobian[static_cast<std::size_t>(c)].size()) != m)
+      throw std::invalid_argument("diagnose: a Jacobian column has the wrong length");
+    J.col(c) = to_vector(jacobian[static_cast<std::size_t>(c)]);
+  }
+  // Orthonormal basis of the base parameters' column space (QR is stable when they are nearly
+  // collinear, where (J^T J)^-1 would not be).
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(J);
+  const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(m, p);
+  auto project = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd { return v - Q * (Q.transpose() * v); };
+
+  Diagnosis d;
+  const Eigen::VectorXd r0 = to_vector(residual);
+  const Eigen::VectorXd y = project(r0);
+  d.chi_square = r0.squaredNorm();
+  d.chi_square_unabsorbed = y.squaredNorm();
+  d.p_value = chi_square_survival(d.chi_square_unabsorbed, static_cast<double>(m - p));
+  const double log_m = std::log(static_cast<double>(m));
+
+  std::vector<Eigen::VectorXd> projected;
+  for (const auto& e : effects) {
+    if (static_cast<Eigen::Index>(e.signature.size()) != m)
+      throw std::invalid_argument(fmt::format("diagnose: signature of '{}' has the wrong length", e.name));
+    const Eigen::VectorXd t = project(to_vector(e.signature));
+    projected.push_back(t);
+    EffectScore s;
+    s.name = e.name;
+    const double tt = t.squaredNorm();
+    if (tt > 1e-12 * std::max(1.0, to_vector(e.signature).squaredNorm())) {
+      const double ty = t.dot(y);
+      s.score = ty * ty / tt;
+      const double a = -ty / tt;
+      s.size = a * e.trial_size;
+      // Components whose |residual| drops most when the fitted effect is added.
+      const Eigen::VectorXd after = y + a * t;
+      std::vector<std::size_t> order(static_cast<std::size_t>(m));
+      std::iota(order.begin(), order.end(), 0);
+      auto gain = [&](std::size_t i) {
+        const auto k = static_cast<Eigen::Index>(i);
+        return y[k] * y[k] - after[k] * after[k];
+      };
+      std::sort(order.begin(), order.end(), [&](auto x, auto z) { return gain(x) > gain(z); });
+      for (auto i : order)
+        if (gain(i) > 0.1 * s.score && s.explains.size() < 4) s.explains.push_back(names[i]);
+    }
+    s.p_value = chi_square_survival(s.score, 1);
+    s.explained = d.chi_square_unabsorbed > 0 ? s.score / d.chi_square_unabsorbed : 0;
+    s.chi_square_after = d.chi_square_unabsorbed - s.score;
+    s.delta_aic = -s.score + 2;
+    s.delta_bic = -s.score + log_m;
+    d.ranking.push_back(s);
+  }
+  for (std::size_t a = 0; a < projected.size(); ++a)
+    for (std::size_t b = a + 1; b < projected.size(); ++b) {
+      const double na = projected[a].norm(), nb = projected[b].norm();
+      if (na > 0 && nb > 0 && std::abs(projected[a].dot(projected[b])) / (na * nb) > options.collinear_cosine)
+        d.indistinguishable.emplace_back(effects[a].name, effects[b].name);
+    }
+  std::stable_sort(d.ranking.begin(), d.ranking.end(), [](const auto& x, const auto& z) { return x.score > z.score; });
+
+  if (d.p_value > options.adequate_p) {
+    d.verdict = "adequate";
+  } else if (!d.ranking.empty() && d.ranking.front().p_value < options.significant_p &&
+             d.ranking.front().explained >= options.min_explained) {
+    d.verdict = d.ranking.front().name;
+  } else {
+    d.verdict = "unexplained structured residual";
+  }
+  return d;
+}
+
+}  // namespace shard::measure

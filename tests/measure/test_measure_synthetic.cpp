@@ -1,0 +1,60 @@
+// The sensor model of `shard synth`: each effect does what its equation says.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+
+#include "shard/measure/features.hpp"
+#include "shard/measure/statistics.hpp"
+#include "shard/measure/synthetic.hpp"
+
+using namespace shard::measure;
+
+namespace {
+Curve linear_truth(double k) {
+  Curve c;
+  for (int i = 0; i <= 1000; ++i) {
+    c.time.push_back(i);
+    c.displacement.push_back(1e-6 * i);
+    c.force.push_back(k * 1e-6 * i);
+  }
+  return c;
+}
+}  // namespace
+
+TEST_CASE("machine compliance: a series spring, 1/k_rec = 1/k + C") {
+  const double k = 2e5, C = 2e-6;
+  std::mt19937_64 rng(1);
+  SensorModel s;
+  s.machine_compliance = C;
+  const Curve rec = record(linear_truth(k), s, rng);
+  CHECK(*curve_features(rec)[Feature::Stiffness] == doctest::Approx(1 / (1 / k + C)).epsilon(1e-9));
+}
+
+TEST_CASE("noise, offset and quantisation have the requested sizes") {
+  std::mt19937_64 rng(2);
+  SensorModel s;
+  s.force_noise = 0.3;
+  s.displacement_step = 5e-6;
+  const Curve truth = linear_truth(1e5);
+  const Curve rec = record(truth, s, rng);
+  std::vector<double> err;
+  for (std::size_t k = 0; k < rec.size(); ++k) {
+    err.push_back(rec.force[k] - truth.force[k]);
+    const double steps = rec.displacement[k] / s.displacement_step;
+    CHECK(std::abs(steps - std::round(steps)) < 1e-9);
+    CHECK(std::abs(rec.displacement[k] - truth.displacement[k]) <= 0.5 * s.displacement_step + 1e-12);
+  }
+  // 1001 readings: the sample sd is within 3 x 0.3 / sqrt(2 x 1000) of 0.3.
+  CHECK(sample_sd(err) == doctest::Approx(0.3).epsilon(0.07));
+  CHECK(std::abs(mean(err)) < 3 * 0.3 / std::sqrt(1000.0));
+  CHECK(rec.u_force[0] == doctest::Approx(0.3));
+  CHECK(rec.u_displacement[0] == doctest::Approx(5e-6 / std::sqrt(12.0)));
+
+  // Specimen scatter: force scale sd over many specimens.
+  SensorModel scatter;
+  scatter.specimen_scatter = 0.05;
+  std::vector<double> scales;
+  for (int i = 0; i < 400; ++i) scales.push_back(record(truth, scatter, rng).force.back() / truth.force.back());
+  CHECK(sample_sd(scales) == doctest::Approx(0.05).epsilon(0.15));  // sd of an sd estimate: 1/sqrt(2 x 400) = 3.5 %
+}
