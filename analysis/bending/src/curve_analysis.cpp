@@ -43,6 +43,8 @@ CurveAnalysis analyse_curve(std::span<const double> w, std::span<const double> f
                                             options.fit_low, options.fit_high));
   CurveAnalysis a;
   a.rows = w.size();
+  a.fit_low = options.fit_low;
+  a.fit_high = options.fit_high;
   a.peak_row = static_cast<std::size_t>(std::max_element(f.begin(), f.end()) - f.begin());
   a.force_max = f[a.peak_row];
   if (!(a.force_max > 0)) throw std::invalid_argument("load curve: the force never rises above zero");

@@ -41,6 +41,7 @@ struct CurveAnalysis {
   std::size_t peak_row = 0;
   double force_max = 0;             // F_max, N
   double displacement_at_peak = 0;  // w(F_max) as recorded, m
+  double fit_low = 0, fit_high = 0;  // the fit window, fractions of F_max
   LinearFit fit;                    // F = k w + c over the fit window
   double stiffness = 0;             // k, N/m
   double onset = 0;                 // w0 = -c / k, m

@@ -1,0 +1,87 @@
+// The bending report as text for the terminal and as JSON for scripts.
+#include <fmt/format.h>
+
+#include "shard/bending/bending_run.hpp"
+
+namespace shard::bending {
+
+std::string format_report(const BendingReport& r) {
+  const auto& g = r.geometry;
+  const auto& a = r.analysis;
+  std::string s;
+  s += fmt::format("four-point bending: {}\n", r.run.string());
+  s += fmt::format("  set-up: span {:.1f} mm, pin distance {:.1f} mm, width {:.2f} mm, height {:.2f} mm ({})\n",
+                   1e3 * g.span, 1e3 * g.pin_distance, 1e3 * g.width, 1e3 * g.height, r.geometry_source);
+  s += fmt::format("  specimen: {} particles, {} bonds, mean diameter {:.3f} mm, L/d = {:.1f} (length), "
+                   "{:.1f} (smallest side)\n",
+                   r.particles, r.bonds, 1e3 * r.mean_diameter, r.length / r.mean_diameter,
+                   std::min(g.width, g.height) / r.mean_diameter);
+  s += fmt::format("  bonds: E_b = {:.4g} MPa, sigma_crit = {:.4g} MPa, breakage {}\n", 1e-6 * r.bond.youngs_modulus,
+                   1e-6 * r.bond.critical_stress, r.breakage ? "on" : "off");
+  s += fmt::format("  stiffness k = {:.5g} N/mm (fit {:.0f}-{:.0f} % of F_max, {} rows, R^2 = {:.5f}), onset w0 = {:.4f} mm\n",
+                   1e-3 * a.stiffness, 100 * a.fit_low, 100 * a.fit_high, a.fit.points, a.fit.r_squared, 1e3 * a.onset);
+  s += fmt::format("  F_max = {:.5g} N at w_s,max = {:.4f} mm (from onset){}\n", a.force_max, 1e3 * a.deflection_at_peak,
+                   a.failed ? ", then failed" : ", no failure (force did not drop)");
+  s += fmt::format("  E (eq. 14, fitted stiffness) = {:.4g} MPa; secant at F_max = {:.4g} MPa\n", 1e-6 * a.youngs_modulus,
+                   1e-6 * a.youngs_modulus_secant);
+  s += fmt::format("  sigma_b (eq. 15) at F_max = {:.4g} MPa\n", 1e-6 * a.flexural_strength);
+  if (r.crack.found)
+    s += fmt::format("  crack at s = {:+.1f} mm from the centre ({} of {} breaks within {:.1f} mm; IQR of all breaks "
+                     "{:.1f} mm): {} the pins (+-{:.0f} mm)\n",
+                     1e3 * r.crack.position, r.crack.cluster_breaks, r.crack.breaks, 1e3 * r.crack.window,
+                     1e3 * r.crack.spread, r.crack.between_pins ? "between" : "OUTSIDE", 0.5e3 * g.pin_distance);
+  else
+    s += "  crack: no bond broke\n";
+  std::string fr;
+  for (double m : r.fragments.major_mass_fractions) fr += fmt::format("{}{:.1f} %", fr.empty() ? "" : ", ", 100 * m);
+  s += fmt::format("  fragments at t = {:.4g} s: {} in all, {} holding >= 5 % of the mass ({})\n", r.fragments.frame_time,
+                   r.fragments.count, r.fragments.major, fr);
+  s += fmt::format("  network: Voigt (affine) E = {:.4g} MPa, nu = {:.3f}; ", 1e-6 * r.voigt.youngs_modulus,
+                   r.voigt.poisson_ratio);
+  if (r.local.valid)
+    s += fmt::format("E from the curvature between the pins = {:.4g} MPa (F = {:.4g} N, {} particles, R^2 = {:.4f})\n",
+                     1e-6 * r.local.youngs_modulus, r.local.force, r.local.particles, r.local.r_squared);
+  else
+    s += "no frame in the elastic part for the curvature modulus\n";
+  s += fmt::format("  eq. 14 / curvature E = {:.3f}; Timoshenko shear adds {:.1f} % to the pin deflection\n",
+                   r.local.valid ? a.youngs_modulus / r.local.youngs_modulus : 0.0, 100 * r.shear_correction);
+  s += fmt::format("  quasi-static: loading {:.4g} mm/s, {:.3g} s to F_max, kinetic/elastic energy <= {:.3g} before damage\n",
+                   1e3 * r.quasi_static.loading_speed, r.quasi_static.load_time, r.quasi_static.max_kinetic_to_elastic);
+  return s;
+}
+
+std::string report_json(const BendingReport& r) {
+  const auto& g = r.geometry;
+  const auto& a = r.analysis;
+  std::string fr;
+  for (double m : r.fragments.major_mass_fractions) fr += fmt::format("{}{:.6g}", fr.empty() ? "" : ", ", m);
+  std::string s = "{\n";
+  s += fmt::format("  \"run\": \"{}\",\n", r.run.string());
+  s += fmt::format("  \"span_m\": {:.9g}, \"pin_distance_m\": {:.9g}, \"width_m\": {:.9g}, \"height_m\": {:.9g},\n", g.span,
+                   g.pin_distance, g.width, g.height);
+  s += fmt::format("  \"particles\": {}, \"bonds\": {}, \"mean_diameter_m\": {:.9g}, \"length_m\": {:.9g},\n", r.particles,
+                   r.bonds, r.mean_diameter, r.length);
+  s += fmt::format("  \"bond_youngs_modulus_Pa\": {:.9g}, \"bond_critical_stress_Pa\": {:.9g}, \"breakage\": {},\n",
+                   r.bond.youngs_modulus, r.bond.critical_stress, r.breakage);
+  s += fmt::format("  \"stiffness_N_per_m\": {:.9g}, \"fit_r_squared\": {:.9g}, \"fit_points\": {}, \"onset_m\": {:.9g},\n",
+                   a.stiffness, a.fit.r_squared, a.fit.points, a.onset);
+  s += fmt::format("  \"force_max_N\": {:.9g}, \"deflection_at_peak_m\": {:.9g}, \"failed\": {},\n", a.force_max,
+                   a.deflection_at_peak, a.failed);
+  s += fmt::format("  \"youngs_modulus_Pa\": {:.9g}, \"youngs_modulus_secant_Pa\": {:.9g}, \"flexural_strength_Pa\": {:.9g},\n",
+                   a.youngs_modulus, a.youngs_modulus_secant, a.flexural_strength);
+  s += fmt::format("  \"crack_found\": {}, \"crack_position_m\": {:.9g}, \"crack_between_pins\": {}, \"crack_breaks\": {}, "
+                   "\"breaks\": {},\n",
+                   r.crack.found, r.crack.position, r.crack.between_pins, r.crack.cluster_breaks, r.crack.breaks);
+  s += fmt::format("  \"fragments\": {}, \"major_fragments\": {}, \"major_mass_fractions\": [{}],\n", r.fragments.count,
+                   r.fragments.major, fr);
+  s += fmt::format("  \"voigt_youngs_modulus_Pa\": {:.9g}, \"voigt_poisson_ratio\": {:.9g},\n", r.voigt.youngs_modulus,
+                   r.voigt.poisson_ratio);
+  s += fmt::format("  \"curvature_youngs_modulus_Pa\": {:.9g}, \"curvature_valid\": {}, \"shear_to_bending_deflection\": {:.9g},\n",
+                   r.local.youngs_modulus, r.local.valid, r.shear_correction);
+  s += fmt::format("  \"loading_speed_m_per_s\": {:.9g}, \"max_kinetic_to_elastic\": {:.9g}\n", r.quasi_static.loading_speed,
+                   r.quasi_static.max_kinetic_to_elastic);
+  s += "}\n";
+  return s;
+}
+
+}  // namespace shard::bending

@@ -1,0 +1,250 @@
+#include "shard/bending/bending_run.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <stdexcept>
+#include <toml++/toml.h>
+
+#include "shard/analysis/fragment_table.hpp"
+#include "shard/run_file.hpp"
+
+namespace shard::bending {
+namespace {
+
+struct CylinderWall {
+  std::string name;
+  Vec3 point = Vec3::Zero();
+};
+
+Vec3 toml_vec3(const toml::node* n, const Vec3& fallback) {
+  const auto* a = n ? n->as_array() : nullptr;
+  if (!a || a->size() != 3) return fallback;
+  Vec3 v;
+  for (std::size_t k = 0; k < 3; ++k) v[static_cast<Eigen::Index>(k)] = (*a)[k].value<double>().value_or(0.0);
+  return v;
+}
+
+// "name=value; name=value" from the run's plugin record.
+std::map<std::string, std::string> plugin_values(const std::string& record) {
+  std::map<std::string, std::string> out;
+  std::size_t pos = 0;
+  while (pos < record.size()) {
+    auto end = record.find("; ", pos);
+    if (end == std::string::npos) end = record.size();
+    const std::string item = record.substr(pos, end - pos);
+    if (const auto eq = item.find('='); eq != std::string::npos) out[item.substr(0, eq)] = item.substr(eq + 1);
+    pos = end + 2;
+  }
+  return out;
+}
+
+BeamBondParameters bond_parameters(const RunMetadata& meta) {
+  BeamBondParameters p;
+  for (const auto& [kind, record] : meta.plugins) {
+    if (kind != "bond/beam_bond") continue;
+    const auto v = plugin_values(record);
+    auto number = [&](const char* key, double& target) {
+      if (auto it = v.find(key); it != v.end()) target = std::stod(it->second);
+    };
+    number("youngs_modulus", p.youngs_modulus);
+    number("shear_modulus", p.shear_modulus);
+    number("poisson_ratio", p.poisson_ratio);
+    number("shear_coefficient", p.shear_coefficient);
+    number("radius_ratio", p.radius_ratio);
+    number("critical_stress", p.critical_stress);
+    if (auto it = v.find("breakage"); it != v.end()) p.breakage = it->second == "true";
+  }
+  return p;
+}
+
+double interpolate(const std::vector<double>& t, const std::vector<double>& y, double at) {
+  if (t.empty()) return 0;
+  const auto it = std::lower_bound(t.begin(), t.end(), at);
+  if (it == t.begin()) return y.front();
+  if (it == t.end()) return y.back();
+  const auto k = static_cast<std::size_t>(it - t.begin());
+  const double f = (at - t[k - 1]) / std::max(1e-300, t[k] - t[k - 1]);
+  return y[k - 1] + f * (y[k] - y[k - 1]);
+}
+
+}  // namespace
+
+BendingReport analyse_bending_run(const std::filesystem::path& path, const BendingOptions& options) {
+  const RunFile file(path);
+  BendingReport r;
+  r.run = path;
+  const RunMetadata meta = file.metadata();
+  toml::table scene;
+  try {
+    scene = toml::parse(meta.scene_text);
+  } catch (const toml::parse_error& e) {
+    throw std::runtime_error(fmt::format("{}: the stored scene does not parse: {}", path.string(), e.what()));
+  }
+  r.bond = bond_parameters(meta);
+  r.breakage = scene["simulation"]["breakage"].value_or(true) && r.bond.breakage;
+  const double density = scene["material"]["density"].value_or(0.0);
+
+  // Loading pins and supports.
+  std::vector<std::string> load_walls;
+  if (const auto* a = scene["stop"]["load_walls"].as_array())
+    for (const auto& n : *a) load_walls.push_back(n.value_or(std::string()));
+  r.down = toml_vec3(scene["stop"]["load_direction"].node(), -Vec3::UnitZ()).normalized();
+  std::vector<CylinderWall> pins, supports;
+  if (const auto* walls = scene["wall"].as_array())
+    for (const auto& w : *walls) {
+      const auto* t = w.as_table();
+      if (!t || (*t)["shape"].value_or(std::string()) != "cylinder") continue;
+      CylinderWall c{(*t)["name"].value_or(std::string()), toml_vec3((*t)["point"].node(), Vec3::Zero())};
+      (std::find(load_walls.begin(), load_walls.end(), c.name) != load_walls.end() ? pins : supports).push_back(c);
+    }
+  if (pins.size() != 2)
+    throw std::runtime_error(fmt::format("{}: a four-point bending run needs two cylinder walls in [stop] load_walls; "
+                                         "found {}", path.string(), pins.size()));
+  Vec3 axis = pins[1].point - pins[0].point;
+  axis -= axis.dot(r.down) * r.down;
+  if (axis.norm() == 0) throw std::runtime_error(fmt::format("{}: the two loading pins coincide", path.string()));
+  r.axis = axis.normalized();
+  if (r.axis.dot(Vec3::UnitX() + Vec3::UnitY() + Vec3::UnitZ()) < 0) r.axis = -r.axis;  // deterministic sign
+  r.centre = 0.5 * (pins[0].point + pins[1].point);
+  std::string source;
+  BendingGeometry& g = r.geometry;
+  g.pin_distance = options.pin_distance.value_or(std::abs((pins[1].point - pins[0].point).dot(r.axis)));
+  source += options.pin_distance ? "pin distance: given; " : "pin distance: pin walls; ";
+  if (options.span) {
+    g.span = *options.span;
+    source += "span: given; ";
+  } else if (supports.size() == 2) {
+    g.span = std::abs((supports[1].point - supports[0].point).dot(r.axis));
+    source += "span: support walls; ";
+  } else {
+    throw std::runtime_error(fmt::format("{}: cannot infer the span: {} cylinder walls besides the pins (need 2); "
+                                         "give it explicitly", path.string(), supports.size()));
+  }
+
+  // The specimen from the first frame.
+  if (file.frame_count() == 0) throw std::runtime_error(fmt::format("{}: no frames", path.string()));
+  const FrameData first = file.read_frame(0);
+  r.particles = first.id.size();
+  r.bonds = first.bonds.size();
+  const Vec3 across = r.down.cross(r.axis).normalized();
+  double lo_h = 1e300, hi_h = -1e300, lo_w = 1e300, hi_w = -1e300, lo_l = 1e300, hi_l = -1e300, dsum = 0;
+  for (std::size_t k = 0; k < first.position.size(); ++k) {
+    const Vec3 p = first.position[k] - r.centre;
+    const double rad = first.radius[k];
+    lo_h = std::min(lo_h, p.dot(r.down) - rad), hi_h = std::max(hi_h, p.dot(r.down) + rad);
+    lo_w = std::min(lo_w, p.dot(across) - rad), hi_w = std::max(hi_w, p.dot(across) + rad);
+    lo_l = std::min(lo_l, p.dot(r.axis) - rad), hi_l = std::max(hi_l, p.dot(r.axis) + rad);
+    dsum += 2 * rad;
+  }
+  if (r.particles == 0) throw std::runtime_error(fmt::format("{}: the first frame holds no particles", path.string()));
+  r.mean_diameter = dsum / static_cast<double>(r.particles);
+  r.length = hi_l - lo_l;
+  g.width = options.width.value_or(hi_w - lo_w);
+  g.height = options.height.value_or(hi_h - lo_h);
+  source += options.width ? "width: given; " : "width: sphere extent; ";
+  source += options.height ? "height: given" : "height: sphere extent";
+  r.geometry_source = source;
+  g.check();
+
+  // The load curve, as the run's load sensor sees it.
+  const auto time = file.read_series("time");
+  r.curve.time = time;
+  r.curve.force.assign(time.size(), 0.0);
+  r.curve.displacement.assign(time.size(), 0.0);
+  for (const auto& name : load_walls) {
+    const auto f = file.read_wall_series(name, "force");
+    const auto d = file.read_wall_series(name, "displacement");
+    for (std::size_t k = 0; k < time.size() && k < f.size() && k < d.size(); ++k) {
+      r.curve.force[k] -= f[k].dot(r.down);
+      r.curve.displacement[k] += d[k].dot(r.down) / static_cast<double>(load_walls.size());
+    }
+  }
+  r.analysis = analyse_curve(r.curve.displacement, r.curve.force, g, options.curve);
+
+  // Crack.
+  const auto events = file.read_break_events();
+  std::vector<Vec3> mids;
+  mids.reserve(events.size());
+  for (const auto& e : events) mids.push_back(e.midpoint);
+  const double window = options.crack_window > 0 ? options.crack_window : 2 * r.mean_diameter;
+  r.crack = locate_crack(mids, r.centre, r.axis, window, g.pin_distance);
+
+  // Fragments in the last frame.
+  const FrameData last = file.read_frame(file.frame_count() - 1);
+  {
+    std::vector<double> mass(last.radius.size());
+    for (std::size_t k = 0; k < mass.size(); ++k) mass[k] = density * analysis::sphere_volume(last.radius[k]);
+    std::vector<Index> bi, bj;
+    for (const auto& b : last.bonds) bi.push_back(b[0]), bj.push_back(b[1]);
+    const analysis::ParticleSample sample{last.id, last.position, last.velocity, last.radius, mass, {}};
+    const auto fa = analysis::analyse_fragments(sample, {bi, bj});
+    double total = 0;
+    for (const auto& f : fa.fragments) total += f.mass;
+    r.fragments.count = fa.fragments.size();
+    r.fragments.frame_time = last.time;
+    for (const auto& f : fa.fragments)
+      if (total > 0 && f.mass >= options.major_fragment * total) r.fragments.major_mass_fractions.push_back(f.mass / total);
+    r.fragments.major = r.fragments.major_mass_fractions.size();
+  }
+
+  // The network's own stiffness: the Voigt estimate of the first frame's bonds.
+  {
+    std::vector<Index> bi, bj;
+    for (const auto& b : first.bonds) bi.push_back(b[0]), bj.push_back(b[1]);
+    const double volume = r.length * g.width * g.height;
+    r.voigt = voigt_modulus(first.position, first.radius, bi, bj, r.bond, volume, r.axis);
+    const double e_over_g = 2.0 * (1.0 + std::clamp(r.voigt.poisson_ratio, 0.0, 0.49));
+    r.shear_correction = shear_to_bending_deflection(g, e_over_g);
+  }
+
+  // Local curvature modulus: the frame before the first break and the peak carrying the most
+  // load below 60 % of F_max (the linear part), against frame 0.
+  const double t_first_break = events.empty() ? 1e300 : events.front().time;
+  const double t_peak = time.empty() ? 0 : time[r.analysis.peak_row];
+  std::size_t best = 0;
+  double best_force = 0;
+  for (std::size_t k = 1; k < file.frame_count(); ++k) {
+    const FrameData f = file.read_frame(k);  // only its time is needed; frames are small at these sizes
+    if (f.time > t_first_break || f.time > t_peak) break;
+    const double force = interpolate(time, r.curve.force, f.time);
+    if (force <= 0.6 * r.analysis.force_max && force > best_force) {
+      best = k;
+      best_force = force;
+    }
+  }
+  if (best > 0) {
+    const FrameData f = file.read_frame(best);
+    std::map<Index, std::size_t> row_of;
+    for (std::size_t k = 0; k < first.id.size(); ++k) row_of[first.id[k]] = k;
+    std::vector<Vec3> ref, def;
+    for (std::size_t k = 0; k < f.id.size(); ++k)
+      if (auto it = row_of.find(f.id[k]); it != row_of.end()) {
+        ref.push_back(first.position[it->second]);
+        def.push_back(f.position[k]);
+      }
+    r.local = curvature_modulus(ref, def, r.centre, r.axis, r.down, g, best_force);
+  }
+
+  // Quasi-static check: kinetic against stored elastic energy while loading, before damage.
+  const auto ke = file.read_series("kinetic_energy");
+  const auto eb = file.read_series("bond_energy");
+  const auto ec = file.read_series("contact_energy");
+  const auto broken = file.read_series("bonds_broken");
+  for (std::size_t k = 0; k < time.size() && k < ke.size(); ++k) {
+    if (broken[k] > 0 || k > r.analysis.peak_row) break;
+    if (r.curve.force[k] < 0.2 * r.analysis.force_max) continue;
+    const double elastic = eb[k] + ec[k];
+    if (elastic > 0) r.quasi_static.max_kinetic_to_elastic = std::max(r.quasi_static.max_kinetic_to_elastic, ke[k] / elastic);
+  }
+  if (time.size() >= 2 && time.back() > time.front())
+    r.quasi_static.loading_speed = (r.curve.displacement.back() - r.curve.displacement.front()) / (time.back() - time.front());
+  if (r.quasi_static.loading_speed > 0)
+    r.quasi_static.load_time = r.analysis.deflection_at_peak / r.quasi_static.loading_speed;
+  return r;
+}
+
+}  // namespace shard::bending
