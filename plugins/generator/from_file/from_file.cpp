@@ -1,0 +1,73 @@
+#include "from_file.hpp"
+
+#include <fmt/core.h>
+
+#include <chrono>
+#include <stdexcept>
+
+#include "shard/geometry/generator_params.hpp"
+#include "shard/geometry/packing_io.hpp"
+#include "shard/geometry/packing_quality.hpp"
+#include "shard/geometry/stl.hpp"
+
+namespace shard::from_file {
+
+std::vector<ParamSpec> from_file_params() {
+  using geometry::param;
+  return {
+      param("spheres", ParamType::String, "", "CSV x,y,z,r[,material] in m, one sphere per line", std::monostate{}),
+      param("bonds", ParamType::String, "",
+            "CSV i,j (0-based rows); \"auto\" = <spheres>.bonds.csv if present, \"\" = no bonds", std::string("auto")),
+      param("body", ParamType::String, "", "optional closed STL of the body, for the solid fraction", std::string()),
+      param("scale", ParamType::Number, "1", "STL units to m (0.001 for mm)", 1.0, geometry::kPositive),
+      param("max_overlap", ParamType::Number, "1", "refuse overlaps above this fraction of the smaller radius", 0.01,
+            geometry::kNonNegative),
+  };
+}
+
+FromFileSettings from_file_settings(const ParamSet& params) {
+  FromFileSettings s;
+  s.spheres = params.text("spheres");
+  s.bonds = params.text("bonds");
+  s.body = params.text("body");
+  s.scale = params.number("scale");
+  s.max_overlap = params.number("max_overlap");
+  return s;
+}
+
+GeneratedBody FromFile::generate(const GeneratorContext& context) const {
+  const auto start = std::chrono::steady_clock::now();
+  const auto spheres_path = geometry::resolve_against(context.scene_dir, settings_.spheres);
+  geometry::StoredPacking stored = geometry::read_spheres_csv(spheres_path);
+  const std::size_t n = stored.spheres.centre.size();
+  std::filesystem::path bonds_path;
+  if (settings_.bonds == "auto") {
+    if (std::filesystem::exists(geometry::bonds_path_for(spheres_path))) bonds_path = geometry::bonds_path_for(spheres_path);
+  } else if (!settings_.bonds.empty()) {
+    bonds_path = geometry::resolve_against(context.scene_dir, settings_.bonds);
+  }
+  if (!bonds_path.empty()) stored.bonds = geometry::read_bonds_csv(bonds_path, n);
+
+  geometry::QualityInputs inputs;
+  if (!settings_.body.empty()) {
+    const auto body_path = geometry::resolve_against(context.scene_dir, settings_.body);
+    const auto mesh = geometry::read_stl(body_path, settings_.scale);
+    geometry::require_closed_solid(mesh, body_path);
+    inputs.body_volume = geometry::signed_volume(mesh);
+  }
+  inputs.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  auto quality = geometry::packing_quality(stored.spheres, stored.bonds, inputs);
+  for (const auto& [name, value] : quality)
+    if (name == "max_overlap" && value > settings_.max_overlap)
+      throw std::runtime_error(fmt::format("spheres file '{}': two spheres overlap by {:.3g} of the smaller radius "
+                                           "(limit max_overlap = {:.3g}); the packing is not a valid initial state",
+                                           spheres_path.string(), value, settings_.max_overlap));
+  if (context.log)
+    context.log(fmt::format("from_file: '{}'{}: {}", spheres_path.string(),
+                            bonds_path.empty() ? std::string(" (no bonds)") : " + '" + bonds_path.string() + "'",
+                            geometry::format_quality(quality)));
+  return geometry::to_generated_body(std::move(stored.spheres), std::move(stored.bonds), std::move(stored.material),
+                                     std::move(quality));
+}
+
+}  // namespace shard::from_file
