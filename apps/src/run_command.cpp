@@ -4,10 +4,13 @@
 #include <fmt/ostream.h>
 #include <omp.h>
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
 #include <csignal>
 #include <fstream>
+#include <iostream>
 #include <ostream>
 
 #include "shard/analysis/components.hpp"
@@ -202,14 +205,16 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
         break;
       }
       const auto now = std::chrono::steady_clock::now();
-      if (!options.quiet && now - last_progress > std::chrono::seconds(1)) {
+      // On a terminal the line rewrites itself every second; in a log file it appears every 10 s.
+      const bool tty = &log_stream == &std::cerr && isatty(STDERR_FILENO);
+      if (!options.quiet && now - last_progress > std::chrono::seconds(tty ? 1 : 10)) {
         last_progress = now;
         const double elapsed = std::chrono::duration<double>(now - wall_start).count();
         const double rate = static_cast<double>(s - start_step) / std::max(1e-9, elapsed);
         fmt::print(log_stream,
-                   "step {:>9} t={:.4e}s KE={:.3e}J load={:.4g}N bonds {}/{} broken {} {:.0f} steps/s ETA {}\r",
+                   "step {:>9} t={:.4e}s KE={:.3e}J load={:.4g}N bonds {}/{} broken {} {:.0f} steps/s ETA {}{}",
                    s, sim.time(), e.kinetic, sensor.load(sim), sim.bonds().size(), summary.bonds_initial,
-                   sim.bonds_broken(), rate, seconds_text(static_cast<double>(total_steps - s) / rate));
+                   sim.bonds_broken(), rate, seconds_text(static_cast<double>(total_steps - s) / rate), tty ? "\r" : "\n");
         log_stream.flush();
       }
     }

@@ -17,5 +17,6 @@ struct CommandContext {
 
 void add_run_command(CLI::App& app, CommandContext& ctx);
 void add_plugins_command(CLI::App& app, CommandContext& ctx);
+void add_measure_command(CLI::App& app, CommandContext& ctx);  // compare, synth, diagnose
 
 }  // namespace shard
