@@ -4,7 +4,6 @@
 #include <hdf5.h>
 
 #include <fstream>
-#include <regex>
 #include <sstream>
 
 #include "run_fixtures.hpp"
@@ -21,22 +20,51 @@ std::string read_text(const std::filesystem::path& path) {
   return text.str();
 }
 
-// Every opening tag is closed in order (self-closing tags, <?...?> and <!...> aside).
+// The tags of an XML text: name, closing ("</x>") and self-closing ("<x/>") flags; <?...?> and
+// <!...> are skipped. (String scanning, not std::regex: GCC 12 warns inside <regex> under the
+// sanitizers, and warnings are errors.)
+struct Tag {
+  std::string name, text;  // text: everything between '<' and '>'
+  bool closing = false, self_closing = false;
+};
+
+std::vector<Tag> tags(const std::string& xml) {
+  std::vector<Tag> out;
+  for (auto open = xml.find('<'); open != std::string::npos; open = xml.find('<', open + 1)) {
+    const auto close = xml.find('>', open);
+    if (close == std::string::npos) break;
+    Tag tag;
+    tag.text = xml.substr(open + 1, close - open - 1);
+    if (tag.text.empty() || tag.text[0] == '?' || tag.text[0] == '!') continue;
+    tag.closing = tag.text[0] == '/';
+    tag.self_closing = tag.text.back() == '/';
+    const auto name_start = tag.closing ? 1u : 0u;
+    tag.name = tag.text.substr(name_start, tag.text.find_first_of(" /", name_start) - name_start);
+    out.push_back(tag);
+  }
+  return out;
+}
+
 bool tags_balanced(const std::string& xml) {
   std::vector<std::string> open;
-  const std::regex tag(R"(<(/?)([A-Za-z]+)[^>]*?(/?)>)");
-  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), tag); it != std::sregex_iterator();
-       ++it) {
-    const auto& m = *it;
-    if (m[3] == "/") continue;
-    if (m[1] == "/") {
-      if (open.empty() || open.back() != m[2]) return false;
+  for (const Tag& tag : tags(xml)) {
+    if (tag.self_closing) continue;
+    if (tag.closing) {
+      if (open.empty() || open.back() != tag.name) return false;
       open.pop_back();
     } else {
-      open.push_back(m[2]);
+      open.push_back(tag.name);
     }
   }
   return open.empty();
+}
+
+// The value of attribute `name` in a tag's text.
+std::string attribute_value(const std::string& tag_text, const std::string& name) {
+  const auto start = tag_text.find(" " + name + "=\"");
+  if (start == std::string::npos) return {};
+  const auto value = start + name.size() + 3;
+  return tag_text.substr(value, tag_text.find('"', value) - value);
 }
 
 struct DataItem {
@@ -46,14 +74,18 @@ struct DataItem {
 
 std::vector<DataItem> data_items(const std::string& xml) {
   std::vector<DataItem> items;
-  const std::regex item(R"re(<DataItem Dimensions="([0-9 ]+)"[^>]*Format="HDF">([^:<]+):([^<]+)</DataItem>)re");
-  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), item); it != std::sregex_iterator();
-       ++it) {
+  for (auto pos = xml.find("<DataItem "); pos != std::string::npos;
+       pos = xml.find("<DataItem ", pos + 1)) {
+    const auto tag_end = xml.find('>', pos);
+    const auto body_end = xml.find("</DataItem>", tag_end);
+    const std::string tag = xml.substr(pos + 1, tag_end - pos - 1);
+    if (attribute_value(tag, "Format") != "HDF") continue;
+    const std::string body = xml.substr(tag_end + 1, body_end - tag_end - 1);
     DataItem d;
-    std::istringstream dims((*it)[1].str());
+    std::istringstream dims(attribute_value(tag, "Dimensions"));
     for (hsize_t v; dims >> v;) d.dims.push_back(v);
-    d.file = (*it)[2];
-    d.dataset = (*it)[3];
+    d.file = body.substr(0, body.find(':'));
+    d.dataset = body.substr(body.find(':') + 1);
     items.push_back(d);
   }
   return items;
@@ -61,10 +93,8 @@ std::vector<DataItem> data_items(const std::string& xml) {
 
 std::vector<double> times(const std::string& xml) {
   std::vector<double> out;
-  const std::regex time(R"re(<Time Value="([^"]+)"/>)re");
-  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), time); it != std::sregex_iterator();
-       ++it)
-    out.push_back(std::stod((*it)[1]));
+  for (const Tag& tag : tags(xml))
+    if (tag.name == "Time") out.push_back(std::stod(attribute_value(tag.text, "Value")));
   return out;
 }
 
