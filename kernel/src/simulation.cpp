@@ -144,9 +144,11 @@ void Simulation::integrate_first_half() {
 #pragma omp parallel for schedule(static) if (n > 4096)
   for (std::size_t k = 0; k < n; ++k) {
     if (p.flags[k] & kFixed) continue;
-    p.velocity[k] += h * p.force[k] / p.mass[k];
+    if (!(p.flags[k] & kPrescribed)) {
+      p.velocity[k] += h * p.force[k] / p.mass[k];
+      p.omega[k] += h * p.torque[k] / p.inertia[k];
+    }
     p.position[k] += dt_ * p.velocity[k];
-    p.omega[k] += h * p.torque[k] / p.inertia[k];
     // Spheres have isotropic inertia: the lab-frame angular velocity is constant over the drift,
     // so the exact rotation is one turn of |omega| dt about omega.
     const double angle = p.omega[k].norm() * dt_;
@@ -164,7 +166,7 @@ void Simulation::integrate_second_half() {
   auto& p = particles_;
 #pragma omp parallel for schedule(static) if (n > 4096)
   for (std::size_t k = 0; k < n; ++k) {
-    if (p.flags[k] & kFixed) continue;
+    if (p.flags[k] & (kFixed | kPrescribed)) continue;
     p.velocity[k] += h * p.force[k] / p.mass[k];
     p.omega[k] += h * p.torque[k] / p.inertia[k];
   }

@@ -11,6 +11,9 @@ namespace shard {
 
 enum ParticleFlag : std::uint8_t {
   kFixed = 1u << 0,  // position and orientation held; forces still recorded
+  // Velocity and angular velocity held at their set values, position and orientation integrated:
+  // a loading platen made of particles. Forces still recorded.
+  kPrescribed = 1u << 1,
 };
 
 struct Particles {

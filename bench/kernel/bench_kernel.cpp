@@ -1,0 +1,102 @@
+// Step-loop benchmarks of issue 8 (docs/performance.md). One summary line per benchmark, so a
+// later change can be compared line by line:
+//   bench_kernel bonded  [particles=20000] [pull_speed=0.2] [max_steps=20000]
+//   bench_kernel settle  [particles=100000] [steps=1000]
+//   bench_kernel scaling [steps=200]   (dense pack at 1e4, 1e5, 3e5 spheres)
+// Threads come from OMP_NUM_THREADS; pin with taskset for stable figures.
+#include <omp.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+#include "bench_scenes.hpp"
+
+using namespace shard;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+double arg(int argc, char** argv, int k, double fallback) { return argc > k ? std::atof(argv[k]) : fallback; }
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Tension of the block: the x force the bonds pull the +x slab back with.
+double slab_force(const Simulation& sim) {
+  const Particles& p = sim.particles();
+  double f = 0;
+  for (std::size_t k = 0; k < p.size(); ++k)
+    if ((p.flags[k] & kPrescribed) && p.velocity[k].x() > 0) f -= p.force[k].x();
+  return f;
+}
+
+void bonded(int argc, char** argv) {
+  const auto target = static_cast<std::size_t>(arg(argc, argv, 2, 20000));
+  const double speed = arg(argc, argv, 3, 0.2);
+  const auto max_steps = static_cast<std::int64_t>(arg(argc, argv, 4, 20000));
+  const bench::Models models = bench::default_models();
+  Simulation sim(bench::bonded_block(target, speed, models));
+  const std::size_t bonds0 = sim.bonds().size();
+  double bond_steps = 0, peak = 0, force = 0;
+  std::int64_t steps = 0;
+  double busy = 0;
+  // Until the block has parted: tension below 5 % of its peak after bonds started to break.
+  while (steps < max_steps) {
+    const auto t0 = Clock::now();
+    for (int s = 0; s < 100; ++s) {
+      bond_steps += static_cast<double>(sim.bonds().size());
+      sim.step();
+    }
+    busy += seconds_since(t0);
+    steps += 100;
+    force = slab_force(sim);
+    peak = std::max(peak, force);
+    if (sim.bonds_broken() > 0 && force < 0.05 * peak) break;
+  }
+  std::printf(
+      "bench_kernel bonded: particles=%zu bonds=%zu threads=%d steps=%lld dt=%.3e broken=%lld peak_force_N=%.4g "
+      "rebuilds=%lld seconds=%.3f bond_steps_per_s=%.4g ns_per_bond_step=%.2f parted=%s\n",
+      sim.particles().size(), bonds0, omp_get_max_threads(), static_cast<long long>(steps), sim.dt(),
+      static_cast<long long>(sim.bonds_broken()), peak, static_cast<long long>(sim.neighbour_rebuilds()), busy,
+      bond_steps / busy, 1e9 * busy / bond_steps, steps < max_steps ? "yes" : "no");
+}
+
+void pack_run(const char* name, std::size_t target, std::int64_t steps) {
+  const bench::Models models = bench::default_models();
+  Simulation sim(bench::dense_pack(target, models));
+  const auto t0 = Clock::now();
+  sim.run(steps);
+  const double busy = seconds_since(t0);
+  const double n = static_cast<double>(sim.particles().size());
+  std::printf(
+      "bench_kernel %s: particles=%zu threads=%d steps=%lld dt=%.3e contacts=%zu rebuilds=%lld seconds=%.3f "
+      "ms_per_step=%.3f particle_steps_per_s=%.4g ns_per_particle_step=%.1f\n",
+      name, sim.particles().size(), omp_get_max_threads(), static_cast<long long>(steps), sim.dt(),
+      sim.contact_count(), static_cast<long long>(sim.neighbour_rebuilds()), busy, 1e3 * busy / static_cast<double>(steps),
+      n * static_cast<double>(steps) / busy, 1e9 * busy / (n * static_cast<double>(steps)));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string which = argc > 1 ? argv[1] : "";
+  try {
+    if (which == "bonded") {
+      bonded(argc, argv);
+    } else if (which == "settle") {
+      pack_run("settle", static_cast<std::size_t>(arg(argc, argv, 2, 1e5)), static_cast<std::int64_t>(arg(argc, argv, 3, 1000)));
+    } else if (which == "scaling") {
+      const auto steps = static_cast<std::int64_t>(arg(argc, argv, 2, 200));
+      for (double n : {1e4, 1e5, 3e5}) pack_run("scaling", static_cast<std::size_t>(n), steps);
+    } else {
+      std::fprintf(stderr, "usage: bench_kernel bonded|settle|scaling [args]  (see the file header)\n");
+      return 2;
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_kernel: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
