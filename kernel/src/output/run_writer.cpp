@@ -32,7 +32,7 @@ namespace shard {
 namespace {
 
 // Rows buffered before a block is handed to HDF5.
-constexpr std::size_t kBlockRows = 64;
+constexpr std::size_t kBlockRows = 1024;
 // Frames addressable through /frame_index (8 bytes each, allocated at creation); later frames
 // are reachable through /frames only.
 constexpr std::size_t kFrameIndexCapacity = 65536;
