@@ -11,6 +11,8 @@ int main(int argc, char** argv) {
   app.add_option("--plugin-dir", ctx.plugin_dirs, "extra folder to search for plugins (repeatable)");
   shard::add_run_command(app, ctx);
   shard::add_plugins_command(app, ctx);
+  shard::add_bending_command(app, ctx);  // bending, calibrate
+  shard::add_fragments_command(app, ctx);
   shard::add_measure_command(app, ctx);
   try {
     app.parse(argc, argv);

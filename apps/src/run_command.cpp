@@ -11,10 +11,15 @@
 #include <csignal>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <ostream>
 
+#include "numerical_health.hpp"
+#include "run_restart.hpp"
 #include "shard/analysis/components.hpp"
+#include "shard/checkpoint.hpp"
 #include "shard/output.hpp"
+#include "shard/run_file.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
 
@@ -25,16 +30,53 @@ namespace {
 volatile std::sig_atomic_t g_interrupted = 0;
 extern "C" void on_interrupt(int) { g_interrupted = 1; }
 
-class InterruptGuard {
+class SignalGuard {
  public:
-  InterruptGuard() { previous_ = std::signal(SIGINT, on_interrupt); }
-  ~InterruptGuard() { std::signal(SIGINT, previous_); }
-  InterruptGuard(const InterruptGuard&) = delete;
-  InterruptGuard& operator=(const InterruptGuard&) = delete;
+  SignalGuard(int signal, void (*handler)(int)) : signal_(signal), previous_(std::signal(signal, handler)) {}
+  ~SignalGuard() { std::signal(signal_, previous_); }
+  SignalGuard(const SignalGuard&) = delete;
+  SignalGuard& operator=(const SignalGuard&) = delete;
 
  private:
+  int signal_;
   void (*previous_)(int);
 };
+
+// The run loop's own state that a checkpoint must carry besides the simulation's.
+void save_loop_state(Checkpoint& c, const RunSummary& summary, int frames_written, const NumericalHealth& health) {
+  c.numbers = {{"frames_written", frames_written},
+               {"peak_load", summary.peak_load},
+               {"displacement_at_peak", summary.displacement_at_peak},
+               {"max_kinetic_to_elastic", summary.max_kinetic_to_elastic}};
+  c.arrays = {{"load", summary.load},
+              {"displacement", summary.displacement},
+              {"time_series", summary.time_series},
+              {"health", health.state()}};
+}
+
+void restore_loop_state(const Checkpoint& c, RunSummary& summary, int& frames_written, NumericalHealth& health) {
+  frames_written = static_cast<int>(c.number("frames_written"));
+  summary.peak_load = c.number("peak_load");
+  summary.displacement_at_peak = c.number("displacement_at_peak");
+  summary.max_kinetic_to_elastic = c.number("max_kinetic_to_elastic");
+  summary.load = c.array("load");
+  summary.displacement = c.array("displacement");
+  summary.time_series = c.array("time_series");
+  health.restore(c.array("health"));
+}
+
+// Writes the curve CSV and says so if the disk refused it.
+void write_curve_csv(const std::filesystem::path& csv, const RunSummary& summary) {
+  std::ofstream out(csv);
+  out << "time_s,displacement_m,force_N\n";
+  for (std::size_t k = 0; k < summary.load.size(); ++k)
+    out << fmt::format("{:.9g},{:.9g},{:.9g}\n", summary.time_series[k], summary.displacement[k], summary.load[k]);
+  out.close();
+  if (!out)
+    throw OutputError(fmt::format("cannot write the load curve '{}' (disk full or folder not writable); the run "
+                                  "file {} is complete",
+                                  csv.string(), summary.output.string()));
+}
 
 std::string seconds_text(double s) {
   if (!std::isfinite(s)) return "--";
@@ -75,9 +117,30 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
   };
   PluginHost host;
   load_plugins(host, options.plugin_dirs, log_stream);
-  const Scene scene = load_scene(options.scene, options.overrides, host);
+  const bool restarting = !options.restart.empty();
+  std::optional<Checkpoint> restart_point;
+  RunMetadata old_meta;
+  if (restarting) {
+    // Both are read before anything is built, so a missing checkpoint fails at once.
+    if (!std::filesystem::is_regular_file(options.restart))
+      throw OutputError(fmt::format("--restart {}: no such run file; give the run.h5 of the run to continue",
+                                    options.restart.string()));
+    restart_point = read_checkpoint(checkpoint_path_for(options.restart));
+    old_meta = RunFile(options.restart).metadata();
+  }
+  const Scene scene = restarting ? load_scene_text(old_meta.scene_text, old_meta.scene_file, {}, host)
+                                 : load_scene(options.scene, options.overrides, host);
   SceneInstance inst = instantiate(scene, host, log);
   Simulation& sim = *inst.simulation;
+  NumericalHealth health(sim);
+  if (restart_point) {
+    try {
+      sim.import_state(restart_point->simulation);
+    } catch (const std::invalid_argument& e) {
+      throw CheckpointError(fmt::format("cannot continue from {}: {}", checkpoint_path_for(options.restart).string(),
+                                        e.what()));
+    }
+  }
 
   RunSummary summary;
   summary.particles = sim.particles().size();
@@ -114,11 +177,49 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
   if (scene.contact) record("contact", *scene.contact);
   if (scene.bond) record("bond", *scene.bond);
 
-  std::filesystem::create_directories(options.out_dir);
-  summary.output = options.out_dir / scene.output_file;
   std::vector<std::string> wall_names;
   for (const auto& w : sim.walls()) wall_names.push_back(w.name);
-  RunWriter writer(summary.output, meta, wall_names);
+  const auto series_every = std::max<std::int64_t>(1, std::llround(scene.series_interval / sim.dt()));
+  const auto frame_every = std::max<std::int64_t>(1, std::llround(scene.frame_interval / sim.dt()));
+  std::filesystem::path moved_aside;  // the interrupted run file, while its content is copied
+  if (restarting) {
+    summary.output = options.restart;
+    meta = old_meta;
+    moved_aside = options.restart;
+    moved_aside.replace_extension(".interrupted.h5");
+    std::filesystem::rename(options.restart, moved_aside);
+  } else {
+    std::error_code error;
+    std::filesystem::create_directories(options.out_dir, error);
+    if (error)
+      throw OutputError(fmt::format("cannot create the output folder '{}': {}. Choose a folder you can write to "
+                                    "with --out",
+                                    options.out_dir.string(), error.message()));
+    summary.output = options.out_dir / scene.output_file;
+  }
+  const std::filesystem::path checkpoint_file = checkpoint_path_for(summary.output);
+  std::optional<RunWriter> writer_slot;
+  try {
+    writer_slot.emplace(summary.output, meta, wall_names);
+    if (restarting) {
+      const auto copied = copy_run_prefix(moved_aside, *writer_slot, *restart_point, {series_every, frame_every});
+      writer_slot->flush();
+      log(fmt::format("restart: continuing {} from step {} (t = {:.6g} s); {} frames and the series up to it kept",
+                      summary.output.string(), sim.step_count(), sim.time(), copied));
+    }
+  } catch (...) {
+    // Put the interrupted run back as it was: a failed restart must not cost the user the run.
+    if (restarting) {
+      writer_slot.reset();
+      std::error_code ignored;
+      std::filesystem::rename(moved_aside, options.restart, ignored);
+    }
+    throw;
+  }
+  if (restarting) std::filesystem::remove(moved_aside);
+  RunWriter& writer = *writer_slot;
+  // A full disk or a file-size limit must surface as a write error, not kill the process.
+  const SignalGuard file_size_guard(SIGXFSZ, SIG_IGN);
 
   LoadSensor sensor;
   sensor.direction = scene.stop.load_direction;
@@ -129,6 +230,25 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
   analysis::UnionFindLabeller labeller;
   std::vector<Index> labels;
   int frames_written = 0;
+  if (restart_point) {
+    restore_loop_state(*restart_point, summary, frames_written, health);
+    summary.restarted_from = sim.step_count();
+  }
+  auto checkpoint = [&] {
+    Checkpoint c;
+    c.simulation = sim.export_state();
+    save_loop_state(c, summary, frames_written, health);
+    write_checkpoint(checkpoint_file, c);
+    summary.checkpoint = checkpoint_file;
+    summary.checkpoint_step = sim.step_count();
+  };
+  auto last_good = [&] {
+    return summary.checkpoint_step < 0
+               ? std::string("No checkpoint was written before it.")
+               : fmt::format("The last good state is the checkpoint {} (step {}); after fixing the cause, start "
+                             "again from the scene (a restart continues with the same settings)",
+                             summary.checkpoint.string(), summary.checkpoint_step);
+  };
   auto write_frame = [&] {
     const bool label = scene.fragments_every > 0 && frames_written % scene.fragments_every == 0;
     if (label) {
@@ -140,10 +260,8 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
     ++frames_written;
   };
 
-  const auto series_every = std::max<std::int64_t>(1, std::llround(scene.series_interval / sim.dt()));
-  const auto frame_every = std::max<std::int64_t>(1, std::llround(scene.frame_interval / sim.dt()));
   const auto total_steps = static_cast<std::int64_t>(std::ceil(scene.duration / sim.dt() - 1e-9));
-  InterruptGuard interrupt_guard;
+  const SignalGuard interrupt_guard(SIGINT, on_interrupt);
   g_interrupted = 0;
 
   auto series_row = [&] {
@@ -164,11 +282,7 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
     }
     writer.append_series(row);
     writer.append_break_events(sim.take_new_break_events());
-    if (!std::isfinite(e.kinetic))
-      throw std::runtime_error(fmt::format(
-          "step {} (t = {:.6g} s): the kinetic energy is not finite: the run blew up. Likely causes: a time step "
-          "above the stiffest bond's limit (dt = {:.4g} s) or overlapping initial particles",
-          sim.step_count(), sim.time(), sim.dt()));
+    if (!std::isfinite(e.kinetic)) health.check(sim, last_good());
     const double load = sensor.load(sim);
     const double disp = sensor.displacement(sim);
     summary.load.push_back(load);
@@ -185,13 +299,20 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
     return e;
   };
 
-  write_frame();
-  series_row();
+  if (!restarting) {
+    health.check(sim, last_good());
+    write_frame();
+    series_row();
+    checkpoint();
+  }
   auto last_progress = std::chrono::steady_clock::now();
   const std::int64_t start_step = sim.step_count();
+  const std::int64_t health_every = std::max(1, options.health_every);
   while (sim.step_count() < total_steps) {
     sim.step();
+    health.after_step(sim);
     const std::int64_t s = sim.step_count();
+    if (s % health_every == 0 || s % frame_every == 0) health.check(sim, last_good());
     if (s % series_every == 0) {
       const Energies e = series_row();
       if (scene.stop.after_peak_fraction > 0 && sim.bonds_broken() > 0 &&
@@ -218,15 +339,26 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
         log_stream.flush();
       }
     }
-    if (s % frame_every == 0) write_frame();
+    if (s % frame_every == 0) {
+      write_frame();
+      if (options.checkpoint_every > 0 && (frames_written - 1) % options.checkpoint_every == 0) checkpoint();
+    }
+    if (s == options.interrupt_at_step) g_interrupted = 1;
     if (g_interrupted) {
-      summary.stop_reason = "interrupted (SIGINT): state written, file complete";
+      // The checkpoint first: the closing row and frame below take break events from the
+      // simulation, and the checkpoint must hold the state the loop would have continued with.
+      if (summary.checkpoint_step != s) checkpoint();
+      summary.interrupted = true;
+      summary.stop_reason = fmt::format("interrupted (SIGINT) at step {}: checkpoint written; continue with shard "
+                                        "run --restart {}",
+                                        s, summary.output.string());
       break;
     }
   }
   if (summary.stop_reason.empty()) summary.stop_reason = "reached the scene's duration";
   if (sim.step_count() % series_every != 0) series_row();
   if (sim.step_count() % frame_every != 0) write_frame();
+  if (!summary.interrupted && summary.checkpoint_step != sim.step_count()) checkpoint();
   writer.flush();
 
   summary.steps = sim.step_count();
@@ -241,10 +373,7 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
     log(fmt::format("peak load {:.5g} N at displacement {:.5g} m; kinetic/elastic energy before breakage <= {:.3g}",
                     summary.peak_load, summary.displacement_at_peak, summary.max_kinetic_to_elastic));
     const auto csv = summary.output.parent_path() / (summary.output.stem().string() + "_curve.csv");
-    std::ofstream out(csv);
-    out << "time_s,displacement_m,force_N\n";
-    for (std::size_t k = 0; k < summary.load.size(); ++k)
-      out << fmt::format("{:.9g},{:.9g},{:.9g}\n", summary.time_series[k], summary.displacement[k], summary.load[k]);
+    write_curve_csv(csv, summary);
     log(fmt::format("load curve: {}", csv.string()));
   }
   return summary;

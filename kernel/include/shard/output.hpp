@@ -53,7 +53,7 @@ class RunWriter {
 
   void append_series(const SeriesRow& row);
   void append_break_events(const std::vector<BondBreakEvent>& events);
-  // A snapshot: particles, surviving bonds (as stable-id pairs) and optional fragment labels.
+  // A snapshot: particles, surviving bonds (as row-index pairs into this frame) and optional fragment labels.
   // Rewrites the .xmf index and flushes the file.
   void write_frame(std::int64_t step, double time, const Particles& particles, const Bonds& bonds,
                    const std::vector<Index>* fragment_labels = nullptr);

@@ -53,6 +53,8 @@ void write_frame_datasets(hid_t group, const Particles& particles, const std::ve
   h5::write_dataset(group, "velocity", flat(particles.velocity), n, 3);
   h5::write_dataset(group, "omega", flat(particles.omega), n, 3);
   h5::write_dataset(group, "radius", particles.radius.data(), n);
+  // Masses are stored so that fragment masses need no density from the user.
+  h5::write_dataset(group, "mass", particles.mass.data(), n);
   h5::write_dataset(group, "material", particles.material.data(), n);
   h5::write_dataset(group, "bonds", pairs.data(), pairs.size() / 2, 2);
   if (fragment_labels != nullptr) h5::write_dataset(group, "fragment", fragment_labels->data(), n);

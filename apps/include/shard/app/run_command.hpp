@@ -18,6 +18,12 @@ struct RunOptions {
   std::vector<std::filesystem::path> plugin_dirs;
   int threads = 0;  // 0: OpenMP default
   bool quiet = false;
+  // --restart run.h5: continue the run in that file from its checkpoint (run.checkpoint.h5);
+  // `scene` and `overrides` are then ignored (the run file holds the resolved scene).
+  std::filesystem::path restart;
+  int checkpoint_every = 1;            // frames between checkpoints; 0: only when stopping
+  int health_every = 10;               // steps between checks for a numerical blow-up
+  std::int64_t interrupt_at_step = -1;  // >= 0: behave as if SIGINT arrived at that step (tests)
 };
 
 struct RunSummary {
@@ -35,6 +41,10 @@ struct RunSummary {
   std::string stop_reason;
   std::vector<double> load, displacement, time_series;  // the load curve, one row per series row
   double max_kinetic_to_elastic = 0;    // quasi-static check over the loading part
+  std::filesystem::path checkpoint;     // the last checkpoint written (empty: none)
+  std::int64_t checkpoint_step = -1;
+  bool interrupted = false;             // SIGINT: stopped after writing a checkpoint
+  std::int64_t restarted_from = -1;     // the checkpoint step a --restart continued from
 };
 
 // Runs the scene; progress and log lines go to `log` (nothing when quiet).

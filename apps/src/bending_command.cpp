@@ -1,0 +1,235 @@
+// `shard bending run.h5`: the four-point bending report and plot (seed sec. IV-V).
+// `shard calibrate scene.toml`: E_b then sigma_crit tuned until E and F_max meet their targets.
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+#include "shard/app/commands.hpp"
+#include "shard/app/run_command.hpp"
+#include "shard/bending/bending_plot.hpp"
+#include "shard/bending/bending_run.hpp"
+#include "shard/bending/calibration.hpp"
+#include "shard/plugin_host.hpp"
+#include "shard/scene.hpp"
+
+namespace shard {
+namespace {
+
+struct BendingCliOptions {
+  std::filesystem::path run;
+  std::string plot;     // default: <run stem>_bending.png beside the run
+  bool no_plot = false;
+  std::string json;     // default: <run stem>_bending.json
+  bending::BendingOptions analysis;
+  double span_mm = 0, pins_mm = 0, width_mm = 0, height_mm = 0;
+};
+
+void write_text(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
+  out << text;
+}
+
+std::filesystem::path beside(const std::filesystem::path& run, const std::string& suffix) {
+  return run.parent_path() / (run.stem().string() + suffix);
+}
+
+void add_geometry_options(CLI::App& cmd, BendingCliOptions& o) {
+  cmd.add_option("--span", o.span_mm, "support span in mm (default: from the support walls)");
+  cmd.add_option("--pin-distance", o.pins_mm, "loading-pin distance in mm (default: from the pin walls)");
+  cmd.add_option("--width", o.width_mm, "specimen width in mm (default: sphere extent)");
+  cmd.add_option("--height", o.height_mm, "specimen height in mm (default: sphere extent)");
+  cmd.add_option("--fit-low", o.analysis.curve.fit_low, "stiffness fit from this fraction of F_max (default 0.1)");
+  cmd.add_option("--fit-high", o.analysis.curve.fit_high, "... to this fraction (default 0.4)");
+}
+
+void apply_geometry(BendingCliOptions& o) {
+  if (o.span_mm > 0) o.analysis.span = 1e-3 * o.span_mm;
+  if (o.pins_mm > 0) o.analysis.pin_distance = 1e-3 * o.pins_mm;
+  if (o.width_mm > 0) o.analysis.width = 1e-3 * o.width_mm;
+  if (o.height_mm > 0) o.analysis.height = 1e-3 * o.height_mm;
+}
+
+int bending_command(BendingCliOptions& o) {
+  apply_geometry(o);
+  const auto report = bending::analyse_bending_run(o.run, o.analysis);
+  fmt::print("{}", bending::format_report(report));
+  const auto json = o.json.empty() ? beside(o.run, "_bending.json") : std::filesystem::path(o.json);
+  write_text(json, bending::report_json(report));
+  const auto csv = beside(o.run, "_bending_curve.csv");
+  bending::write_curve_csv(csv.string(), report.curve);
+  fmt::print("  wrote {} and {}\n", json.string(), csv.string());
+  if (!o.no_plot) {
+    const auto image = o.plot.empty() ? beside(o.run, "_bending.png") : std::filesystem::path(o.plot);
+    bending::plot_bending_curve(report.curve, report.analysis, image,
+                                fmt::format("four-point bending: {}", o.run.string()));
+    fmt::print("  plot {}\n", image.string());
+  }
+  return 0;
+}
+
+struct CalibrateCliOptions {
+  std::filesystem::path scene;
+  std::vector<std::string> overrides;
+  std::filesystem::path out_dir = "calibration";
+  double target_e = 13.2e6;
+  double target_strength = 0, target_fmax = 0;
+  std::string measurement;
+  double tolerance = 0.03;
+  int max_runs = 20;
+  int threads = 0;
+  double lab_span_mm = 180.0;       // span of the measured specimen (--measurement)
+  double stiffness_fraction = 0.6;  // stiffness runs stop at this fraction of the expected failure deflection
+  BendingCliOptions geometry;
+};
+
+// The bond's current parameters, from the scene as it would run.
+std::pair<double, double> scene_bond_parameters(const CalibrateCliOptions& o, const PluginHost& host) {
+  const Scene scene = load_scene(o.scene, o.overrides, host);
+  if (!scene.bond || scene.bond->name != "beam_bond")
+    throw std::runtime_error(fmt::format("{}: calibration needs a [bond] section with plugin = \"beam_bond\"",
+                                         o.scene.string()));
+  return {scene.bond->params.number("youngs_modulus"), scene.bond->params.number("critical_stress")};
+}
+
+int calibrate_command(CalibrateCliOptions& o, const CommandContext& ctx) {
+  apply_geometry(o.geometry);
+  std::filesystem::create_directories(o.out_dir);
+  PluginHost host;
+  load_plugins(host, ctx.plugin_dirs, std::cerr);
+  auto [e_b, sigma] = scene_bond_parameters(o, host);
+
+  bending::CalibrationTargets targets;
+  targets.youngs_modulus = o.target_e;
+  targets.tolerance = o.tolerance;
+  targets.max_runs = o.max_runs;
+  // The strength target needs the specimen's geometry: taken from a first (stiffness) run when
+  // given as a stress, so it is converted after that run.
+  std::optional<double> target_strength;
+  if (!o.measurement.empty()) {
+    // A measured curve is reduced with the same definitions as the runs, on the lab's geometry
+    // (default: the seed's, span 180 mm). Its strength, not its force, is the target: the
+    // simulated span may differ from the lab's, and sigma_b (eq. 15) is the material's figure.
+    const auto curve = bending::read_curve_csv(o.measurement);
+    const bending::BendingGeometry lab{1e-3 * o.lab_span_mm, 0.080, 0.030, 0.035};
+    const auto a = bending::analyse_curve(curve.displacement, curve.force, lab, o.geometry.analysis.curve);
+    targets.youngs_modulus = a.youngs_modulus;
+    target_strength = a.flexural_strength;
+    fmt::print("measurement {}: E = {:.4g} MPa (eq. 14, lab span {:.0f} mm), F_max = {:.4g} N, sigma_b = {:.4g} MPa, "
+               "w_s,max = {:.3f} mm\n",
+               o.measurement, 1e-6 * a.youngs_modulus, 1e3 * lab.span, a.force_max, 1e-6 * a.flexural_strength,
+               1e3 * a.deflection_at_peak);
+  } else if (o.target_fmax > 0) {
+    targets.force_max = o.target_fmax;
+  } else if (o.target_strength > 0) {
+    target_strength = o.target_strength;
+  }
+
+  std::ofstream log_file(o.out_dir / "calibration.log");
+  double stiffness_stop = 0;  // m, pin travel of the stiffness runs
+  auto evaluate = [&](double eb, double sc, bool breakage, const std::string& stage, int index) {
+    RunOptions run;
+    run.scene = o.scene;
+    run.overrides = o.overrides;
+    run.overrides.push_back(fmt::format("bond.youngs_modulus={:.9g}", eb));
+    run.overrides.push_back(fmt::format("bond.critical_stress={:.9g}", sc));
+    run.overrides.push_back(fmt::format("simulation.breakage={}", breakage ? "true" : "false"));
+    if (!breakage && stiffness_stop > 0) run.overrides.push_back(fmt::format("stop.max_displacement={:.9g}", stiffness_stop));
+    run.out_dir = o.out_dir / fmt::format("run_{:02d}_{}", index, stage);
+    run.plugin_dirs = ctx.plugin_dirs;
+    run.threads = o.threads;
+    run.quiet = true;
+    const RunSummary s = run_scene(run, log_file);
+    const auto report = bending::analyse_bending_run(s.output, o.geometry.analysis);
+    write_text(beside(s.output, "_bending.json"), bending::report_json(report));
+    bending::CalibrationRun c;
+    c.youngs_modulus = report.analysis.youngs_modulus;
+    c.force_max = report.analysis.force_max;
+    c.failed = report.analysis.failed;
+    c.wall_seconds = s.wall_seconds;
+    c.output = s.output.string();
+    if (target_strength && !targets.force_max) {
+      targets.force_max = bending::force_from_flexural_stress(report.geometry, *target_strength);
+      fmt::print("target strength {:.4g} MPa -> F_max = {:.4g} N (eq. 15, {:.0f} x {:.0f} x {:.0f} mm, span {:.0f} mm)\n",
+                 1e-6 * *target_strength, *targets.force_max, 1e3 * report.length, 1e3 * report.geometry.width,
+                 1e3 * report.geometry.height, 1e3 * report.geometry.span);
+    }
+    if (stiffness_stop == 0 && targets.force_max) {
+      // Later stiffness runs only need the elastic part: stop at a fraction of the expected
+      // failure deflection (the target F_max over the target stiffness, plus the contact onset).
+      const double k = bending::stiffness_from_youngs_modulus(report.geometry, targets.youngs_modulus);
+      stiffness_stop = report.analysis.onset + o.stiffness_fraction * *targets.force_max / k;
+    }
+    return c;
+  };
+  std::ofstream csv_live(o.out_dir / "calibration_runs.csv");
+  csv_live << "run,stage,bond_youngs_modulus_Pa,bond_critical_stress_Pa,breakage,youngs_modulus_Pa,force_max_N,failed,wall_seconds\n";
+  auto observer = [&](const bending::CalibrationRun& c) {
+    fmt::print("run {:2d} {:<9} E_b = {:9.4g} MPa  sigma_crit = {:7.4g} MPa  ->  E = {:7.4g} MPa ({:+.1f} %)  F_max = {:7.4g} N{}  "
+               "{:.0f} s\n",
+               c.index, c.stage, 1e-6 * c.bond_youngs_modulus, 1e-6 * c.bond_critical_stress, 1e-6 * c.youngs_modulus,
+               100 * (c.youngs_modulus / targets.youngs_modulus - 1), c.force_max,
+               targets.force_max ? fmt::format(" ({:+.1f} %)", 100 * (c.force_max / *targets.force_max - 1)) : "",
+               c.wall_seconds);
+    std::fflush(stdout);
+    csv_live << fmt::format("{},{},{:.9g},{:.9g},{},{:.9g},{:.9g},{},{:.3f}\n", c.index, c.stage, c.bond_youngs_modulus,
+                            c.bond_critical_stress, c.breakage, c.youngs_modulus, c.force_max, c.failed, c.wall_seconds);
+    csv_live.flush();
+  };
+  fmt::print("calibrating {}: target E = {:.4g} MPa{}, tolerance {:.1f} %, at most {} runs; output in {}\n",
+             o.scene.string(), 1e-6 * targets.youngs_modulus,
+             targets.force_max ? fmt::format(", F_max = {:.4g} N", *targets.force_max)
+             : target_strength ? fmt::format(", sigma_b = {:.4g} MPa", 1e-6 * *target_strength)
+                               : std::string(", no strength target"),
+             100 * targets.tolerance, targets.max_runs, o.out_dir.string());
+  const auto result = bending::calibrate(targets, e_b, sigma, evaluate, observer);
+  write_text(o.out_dir / "calibration.csv", bending::calibration_csv(result));
+  write_text(o.out_dir / "calibration.json", bending::calibration_json(result, targets));
+  fmt::print("{}: {}\nfinal: bond.youngs_modulus = {:.6g} Pa, bond.critical_stress = {:.6g} Pa\n",
+             result.converged ? "converged" : "NOT converged", result.message, result.bond_youngs_modulus,
+             result.bond_critical_stress);
+  fmt::print("iterations: {}, {}\n", (o.out_dir / "calibration.csv").string(), (o.out_dir / "calibration.json").string());
+  return result.converged ? 0 : 2;
+}
+
+}  // namespace
+
+void add_bending_command(CLI::App& app, CommandContext& ctx) {
+  auto bo = std::make_shared<BendingCliOptions>();
+  auto* b = app.add_subcommand("bending", "four-point bending report of a run: E (eq. 14), F_max, sigma_b (eq. 15), "
+                                          "crack position, fragments, quasi-static check, plot");
+  b->add_option("run_file", bo->run, "run.h5 of a four-point bending scene")->required()->check(CLI::ExistingFile);
+  b->add_option("--plot", bo->plot, "force-displacement figure (.png or .svg; default <run>_bending.png)");
+  b->add_flag("--no-plot", bo->no_plot, "skip the figure");
+  b->add_option("--json", bo->json, "report as JSON (default <run>_bending.json)");
+  b->add_option("--crack-window", bo->analysis.crack_window, "crack cluster width in m (default: 2 mean diameters)");
+  add_geometry_options(*b, *bo);
+  b->callback([bo, &ctx] { ctx.exit_code = bending_command(*bo); });
+
+  auto co = std::make_shared<CalibrateCliOptions>();
+  auto* c = app.add_subcommand("calibrate", "tune bond.youngs_modulus (breakage off) until E matches, then "
+                                            "bond.critical_stress until F_max matches (seed sec. V)");
+  c->add_option("scene", co->scene, "four-point bending scene .toml")->required()->check(CLI::ExistingFile);
+  c->add_option("--set", co->overrides, "scene overrides applied to every run");
+  c->add_option("--out", co->out_dir, "output folder (default ./calibration)");
+  c->add_option("--target-E", co->target_e, "target Young's modulus in Pa (default 13.2e6, the seed)");
+  auto* ts = c->add_option("--target-strength", co->target_strength, "target flexural strength sigma_b in Pa (eq. 15)");
+  auto* tf = c->add_option("--target-Fmax", co->target_fmax, "target peak force in N");
+  auto* tm = c->add_option("--measurement", co->measurement, "measured curve CSV: E and F_max targets from it");
+  ts->excludes(tf)->excludes(tm);
+  tf->excludes(tm);
+  c->add_option("--lab-span", co->lab_span_mm, "span of the measured specimen in mm (default 180, the seed)");
+  c->add_option("--tolerance", co->tolerance, "relative tolerance on E and F_max (default 0.03)");
+  c->add_option("--max-runs", co->max_runs, "give up after this many runs (default 20)");
+  c->add_option("--threads", co->threads, "OpenMP threads per run");
+  add_geometry_options(*c, co->geometry);
+  c->callback([co, &ctx] { ctx.exit_code = calibrate_command(*co, ctx); });
+}
+
+}  // namespace shard
