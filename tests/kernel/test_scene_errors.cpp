@@ -74,7 +74,7 @@ TEST_CASE("scene errors name the file, line, column and key, with a hint") {
   CHECK(misspelt.find("did you mean 'gravity'") != std::string::npos);
   // Misspelt plugin parameter.
   const auto param = error_of(replace(kGood, "normal_stiffness = 1e4", "normal_stifness = 1e4"));
-  CHECK(param.find("scene.toml:22:") != std::string::npos);
+  CHECK(param.find("scene.toml:21:") != std::string::npos);
   CHECK(param.find("did you mean 'normal_stiffness'") != std::string::npos);
   // Wrong type.
   CHECK(error_of(replace(kGood, "normal_stiffness = 1e4", "normal_stiffness = \"stiff\"")).find("must be a number") !=
