@@ -4,21 +4,39 @@
 #include <cmath>
 #include <numeric>
 
+#include "parallel.hpp"
+
 namespace shard {
+namespace {
+
+// The pair (a, b), a < b by index, oriented so that first has the smaller stable id.
+inline void push_pair(std::vector<Index>& out_i, std::vector<Index>& out_j, const Index* id, Index a, Index b) {
+  const bool swap = id[b] < id[a];
+  out_i.push_back(swap ? b : a);
+  out_j.push_back(swap ? a : b);
+}
+
+// Group key of a listed pair: its smaller particle index (the particle, for a wall pair).
+inline Index key_of(Index i, Index j) { return j < 0 ? i : std::min(i, j); }
+
+}  // namespace
 
 NeighbourList::NeighbourList(double skin, std::size_t history_stride) : skin_(skin), stride_(history_stride) {}
 
 bool NeighbourList::update(const Particles& particles, const std::vector<Wall>& walls) {
-  if (position_at_build_.size() == particles.size() && !needs_rebuild(particles, walls)) return false;
+  if (!needs_rebuild(particles, walls)) return false;
   rebuild(particles, walls);
   return true;
 }
 
 bool NeighbourList::needs_rebuild(const Particles& particles, const std::vector<Wall>& walls) const {
-  double max_particle = 0;
   const std::size_t n = particles.size();
-  for (std::size_t k = 0; k < n; ++k)
-    max_particle = std::max(max_particle, (particles.position[k] - position_at_build_[k]).squaredNorm());
+  if (position_at_build_.size() != n || wall_displacement_at_build_.size() != walls.size()) return true;
+  double max_particle = 0;  // max is order-independent: the same answer on any thread count
+  const Vec3* x = particles.position.data();
+  const Vec3* x0 = position_at_build_.data();
+#pragma omp parallel for schedule(static) reduction(max : max_particle) num_threads(team_for(n))
+  for (std::size_t k = 0; k < n; ++k) max_particle = std::max(max_particle, (x[k] - x0[k]).squaredNorm());
   max_particle = std::sqrt(max_particle);
   double max_wall = 0;
   for (std::size_t w = 0; w < walls.size(); ++w)
@@ -27,98 +45,156 @@ bool NeighbourList::needs_rebuild(const Particles& particles, const std::vector<
   return 2 * max_particle > skin_ || max_particle + max_wall > skin_;
 }
 
+void NeighbourList::remap(const std::vector<Index>& new_index) {
+  const std::size_t m = i_.size();
+#pragma omp parallel for schedule(static) num_threads(team_for(m))
+  for (std::size_t k = 0; k < m; ++k) {
+    i_[k] = new_index[static_cast<std::size_t>(i_[k])];
+    if (j_[k] >= 0) j_[k] = new_index[static_cast<std::size_t>(j_[k])];
+  }
+  position_at_build_.clear();  // forces the next update to rebuild
+}
+
+void NeighbourList::bin_particles(const Particles& particles) {
+  const std::size_t n = particles.size();
+  double r_max = 0;
+  Vec3 lo = particles.position[0], hi = particles.position[0];
+  for (std::size_t k = 0; k < n; ++k) {
+    r_max = std::max(r_max, particles.radius[k]);
+    lo = lo.cwiseMin(particles.position[k]);
+    hi = hi.cwiseMax(particles.position[k]);
+  }
+  double cell = 2 * r_max + skin_;
+  // Keep the grid at most a few cells per particle, however far the particles spread.
+  const Eigen::Array3d extent = (hi - lo).array() + cell;
+  const auto cells_for = [&](double c) { return (extent / c).ceil().prod(); };
+  while (cells_for(cell) > 8.0 * static_cast<double>(n) + 64) cell *= 1.5;
+  const Eigen::Array3i dims = (extent / cell).ceil().cast<int>().max(1);
+  lo_ = lo;
+  cell_ = cell;
+  for (int a = 0; a < 3; ++a) dims_[a] = dims[a];
+  const std::size_t total = static_cast<std::size_t>(dims.x()) * static_cast<std::size_t>(dims.y()) *
+                            static_cast<std::size_t>(dims.z());
+  cell_of_.resize(n);
+#pragma omp parallel for schedule(static) num_threads(team_for(n))
+  for (std::size_t k = 0; k < n; ++k) {
+    const Eigen::Array3i c = ((particles.position[k] - lo).array() / cell).floor().cast<int>().min(dims - 1).max(0);
+    cell_of_[k] = (static_cast<std::int64_t>(c.z()) * dims.y() + c.y()) * dims.x() + c.x();
+  }
+  // Counting sort by cell; within a cell particles stay in index order.
+  cell_start_.assign(total + 1, 0);
+  for (std::size_t k = 0; k < n; ++k) ++cell_start_[static_cast<std::size_t>(cell_of_[k]) + 1];
+  std::partial_sum(cell_start_.begin(), cell_start_.end(), cell_start_.begin());
+  cursor_.assign(cell_start_.begin(), cell_start_.end() - 1);
+  sorted_.resize(n);
+  for (std::size_t k = 0; k < n; ++k)
+    sorted_[static_cast<std::size_t>(cursor_[static_cast<std::size_t>(cell_of_[k])]++)] = static_cast<Index>(k);
+}
+
+void NeighbourList::find_pairs(const Particles& particles, const std::vector<Wall>& walls) {
+  const std::size_t n = particles.size();
+  const int team = team_for(n);
+  if (threads_.size() < static_cast<std::size_t>(team)) threads_.resize(static_cast<std::size_t>(team));
+  const Index* id = particles.id.data();
+#pragma omp parallel num_threads(team)
+  {
+    const int t = omp_get_thread_num();
+    ThreadPairs& out = threads_[static_cast<std::size_t>(t)];
+    out.i.clear();
+    out.j.clear();
+    const Range r = range_of(n, t, omp_get_num_threads());
+    for (std::size_t a = r.begin; a < r.end; ++a) {
+      const Vec3& xa = particles.position[a];
+      const double ra = particles.radius[a];
+      const auto cell = cell_of_[a];
+      const int cx = static_cast<int>(cell % dims_[0]);
+      const int cy = static_cast<int>((cell / dims_[0]) % dims_[1]);
+      const int cz = static_cast<int>(cell / (static_cast<std::int64_t>(dims_[0]) * dims_[1]));
+      out.candidates.clear();
+      for (int z = std::max(cz - 1, 0); z <= std::min(cz + 1, dims_[2] - 1); ++z) {
+        for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, dims_[1] - 1); ++y) {
+          const auto row = (static_cast<std::int64_t>(z) * dims_[1] + y) * dims_[0];
+          // The three cells of a row are contiguous in the sorted array.
+          const auto from = cell_start_[static_cast<std::size_t>(row + std::max(cx - 1, 0))];
+          const auto to = cell_start_[static_cast<std::size_t>(row + std::min(cx + 1, dims_[0] - 1)) + 1];
+          for (auto s = from; s < to; ++s) {
+            const Index b = sorted_[static_cast<std::size_t>(s)];
+            if (static_cast<std::size_t>(b) <= a) continue;
+            const double reach = ra + particles.radius[b] + skin_;
+            if ((particles.position[b] - xa).squaredNorm() < reach * reach) out.candidates.push_back(b);
+          }
+        }
+      }
+      // Walls first (negative j), then particles in ascending order.
+      for (std::size_t w = walls.size(); w-- > 0;) {
+        Vec3 normal;
+        double distance;
+        if (wall_contact(walls[w], xa, ra + skin_, normal, distance)) {
+          out.i.push_back(static_cast<Index>(a));
+          out.j.push_back(-1 - static_cast<Index>(w));
+        }
+      }
+      std::sort(out.candidates.begin(), out.candidates.end());
+      for (Index b : out.candidates) push_pair(out.i, out.j, id, static_cast<Index>(a), b);
+    }
+  }
+  // Concatenate in thread order: the same list as one thread would have made.
+  std::size_t total = 0;
+  for (int t = 0; t < team; ++t) total += threads_[static_cast<std::size_t>(t)].i.size();
+  new_i_.resize(total);
+  new_j_.resize(total);
+  std::size_t offset = 0;
+  for (int t = 0; t < team; ++t) {
+    const ThreadPairs& p = threads_[static_cast<std::size_t>(t)];
+    std::copy(p.i.begin(), p.i.end(), new_i_.begin() + static_cast<std::ptrdiff_t>(offset));
+    std::copy(p.j.begin(), p.j.end(), new_j_.begin() + static_cast<std::ptrdiff_t>(offset));
+    offset += p.i.size();
+  }
+}
+
+void NeighbourList::carry_history(std::size_t particle_count) {
+  new_history_.assign(new_i_.size() * stride_, 0.0);
+  if (stride_ == 0 || i_.empty()) return;
+  // Group the old pairs by their smaller index (counting sort), then look each new pair up in
+  // its group of at most a dozen.
+  // A restored list may name particles that no longer exist: those pairs carry nothing.
+  const std::size_t old = i_.size();
+  const auto group = [&](std::size_t k) { return static_cast<std::size_t>(key_of(i_[k], j_[k])); };
+  old_start_.assign(particle_count + 1, 0);
+  for (std::size_t k = 0; k < old; ++k)
+    if (group(k) < particle_count) ++old_start_[group(k) + 1];
+  std::partial_sum(old_start_.begin(), old_start_.end(), old_start_.begin());
+  cursor_.assign(old_start_.begin(), old_start_.end() - 1);
+  old_slot_.resize(static_cast<std::size_t>(old_start_.back()));
+  for (std::size_t k = 0; k < old; ++k)
+    if (group(k) < particle_count)
+      old_slot_[static_cast<std::size_t>(cursor_[group(k)]++)] = static_cast<std::int64_t>(k);
+  const std::size_t m = new_i_.size();
+#pragma omp parallel for schedule(static) num_threads(team_for(m))
+  for (std::size_t k = 0; k < m; ++k) {
+    const Index a = new_i_[k], b = new_j_[k];
+    const auto key = static_cast<std::size_t>(key_of(a, b));
+    for (auto s = old_start_[key]; s < old_start_[key + 1]; ++s) {
+      const auto o = static_cast<std::size_t>(old_slot_[static_cast<std::size_t>(s)]);
+      if (i_[o] == a && j_[o] == b) {
+        std::copy_n(history_.begin() + static_cast<std::ptrdiff_t>(o * stride_), stride_,
+                    new_history_.begin() + static_cast<std::ptrdiff_t>(k * stride_));
+        break;
+      }
+    }
+  }
+}
+
 void NeighbourList::rebuild(const Particles& particles, const std::vector<Wall>& walls) {
   ++rebuilds_;
   const std::size_t n = particles.size();
   new_i_.clear();
   new_j_.clear();
-  new_history_.clear();
   if (n > 0) {
-    double r_max = 0;
-    Vec3 lo = particles.position[0], hi = particles.position[0];
-    for (std::size_t k = 0; k < n; ++k) {
-      r_max = std::max(r_max, particles.radius[k]);
-      lo = lo.cwiseMin(particles.position[k]);
-      hi = hi.cwiseMax(particles.position[k]);
-    }
-    double cell = 2 * r_max + skin_;
-    // Keep the grid at most a few cells per particle, however far the particles spread.
-    Eigen::Array3d extent = (hi - lo).array() + cell;
-    auto cells_for = [&](double c) {
-      return ((extent / c).ceil()).cast<double>().prod();
-    };
-    while (cells_for(cell) > 8.0 * static_cast<double>(n) + 64) cell *= 1.5;
-    const Eigen::Array3i dims = (extent / cell).ceil().cast<int>().max(1);
-    const auto cell_index = [&](const Vec3& x, Eigen::Array3i& c) {
-      c = ((x - lo).array() / cell).floor().cast<int>().min(dims - 1).max(0);
-      return (static_cast<std::int64_t>(c.z()) * dims.y() + c.y()) * dims.x() + c.x();
-    };
-    const std::int64_t total = static_cast<std::int64_t>(dims.x()) * dims.y() * dims.z();
-    cell_of_.resize(n);
-    cell_start_.assign(static_cast<std::size_t>(total) + 1, 0);
-    Eigen::Array3i c;
-    for (std::size_t k = 0; k < n; ++k) {
-      cell_of_[k] = cell_index(particles.position[k], c);
-      ++cell_start_[static_cast<std::size_t>(cell_of_[k]) + 1];
-    }
-    std::partial_sum(cell_start_.begin(), cell_start_.end(), cell_start_.begin());
-    sorted_.resize(n);
-    {
-      std::vector<std::int64_t>& fill = cell_of_;  // reuse: counting sort cursor per particle
-      std::vector<std::int64_t> cursor(cell_start_.begin(), cell_start_.end() - 1);
-      for (std::size_t k = 0; k < n; ++k) sorted_[static_cast<std::size_t>(cursor[static_cast<std::size_t>(fill[k])]++)] = static_cast<Index>(k);
-    }
-    for (std::size_t a = 0; a < n; ++a) {
-      const Vec3& xa = particles.position[a];
-      const double ra = particles.radius[a];
-      cell_index(xa, c);
-      candidates_.clear();
-      for (int dz = -1; dz <= 1; ++dz) {
-        const int z = c.z() + dz;
-        if (z < 0 || z >= dims.z()) continue;
-        for (int dy = -1; dy <= 1; ++dy) {
-          const int y = c.y() + dy;
-          if (y < 0 || y >= dims.y()) continue;
-          for (int dx = -1; dx <= 1; ++dx) {
-            const int x = c.x() + dx;
-            if (x < 0 || x >= dims.x()) continue;
-            const auto id = static_cast<std::size_t>((static_cast<std::int64_t>(z) * dims.y() + y) * dims.x() + x);
-            for (auto s = cell_start_[id]; s < cell_start_[id + 1]; ++s) {
-              const Index b = sorted_[static_cast<std::size_t>(s)];
-              if (static_cast<std::size_t>(b) <= a) continue;
-              const double reach = ra + particles.radius[b] + skin_;
-              if ((particles.position[b] - xa).squaredNorm() < reach * reach) candidates_.push_back(b);
-            }
-          }
-        }
-      }
-      // Walls first (negative j), then particles in ascending order: the list is sorted by (i, j).
-      for (std::size_t w = walls.size(); w-- > 0;) {
-        Vec3 normal;
-        double distance;
-        if (wall_contact(walls[w], xa, ra + skin_, normal, distance)) {
-          new_i_.push_back(static_cast<Index>(a));
-          new_j_.push_back(-1 - static_cast<Index>(w));
-        }
-      }
-      std::sort(candidates_.begin(), candidates_.end());
-      for (Index b : candidates_) {
-        new_i_.push_back(static_cast<Index>(a));
-        new_j_.push_back(b);
-      }
-    }
+    bin_particles(particles);
+    find_pairs(particles, walls);
   }
-  // Carry the history of pairs that stay listed (both lists are sorted by (i, j)).
-  new_history_.assign(new_i_.size() * stride_, 0.0);
-  if (stride_ > 0) {
-    std::size_t old = 0;
-    for (std::size_t k = 0; k < new_i_.size(); ++k) {
-      while (old < i_.size() && (i_[old] < new_i_[k] || (i_[old] == new_i_[k] && j_[old] < new_j_[k]))) ++old;
-      if (old < i_.size() && i_[old] == new_i_[k] && j_[old] == new_j_[k])
-        std::copy_n(history_.begin() + static_cast<std::ptrdiff_t>(old * stride_), stride_,
-                    new_history_.begin() + static_cast<std::ptrdiff_t>(k * stride_));
-    }
-  }
+  carry_history(n);
   std::swap(i_, new_i_);
   std::swap(j_, new_j_);
   std::swap(history_, new_history_);

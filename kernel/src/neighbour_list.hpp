@@ -1,7 +1,12 @@
 #pragma once
 // Verlet neighbour list built from a cell list. Pairs (particle-particle and particle-wall) within
 // the interaction range plus a skin are kept until some particle or wall has moved more than half
-// the skin. Contact history lives here, per listed pair, and is carried across rebuilds.
+// the skin. Contact history lives here, per listed pair, and is carried across rebuilds and
+// across reorderings of the particles.
+//
+// Pair orientation: `first` is the particle with the smaller stable id (Particles::id), so a pair
+// keeps its orientation, and its history its sign, when the kernel renumbers particles. Pairs are
+// listed by their smaller index, walls (second < 0) before particles, then by the larger index.
 #include <cstdint>
 #include <vector>
 
@@ -16,6 +21,12 @@ class NeighbourList {
 
   // Rebuilds when needed; returns true if it did.
   bool update(const Particles& particles, const std::vector<Wall>& walls);
+  bool needs_rebuild(const Particles& particles, const std::vector<Wall>& walls) const;
+  void rebuild(const Particles& particles, const std::vector<Wall>& walls);
+  // The particles were renumbered: old index k is now new_index[k]. Pairs and history follow;
+  // call rebuild() next (the build positions are stale).
+  void remap(const std::vector<Index>& new_index);
+
   std::size_t size() const { return i_.size(); }
   const std::vector<Index>& first() const { return i_; }
   const std::vector<Index>& second() const { return j_; }  // j < 0: wall -1 - j
@@ -25,8 +36,14 @@ class NeighbourList {
   double skin() const { return skin_; }
 
  private:
-  bool needs_rebuild(const Particles& particles, const std::vector<Wall>& walls) const;
-  void rebuild(const Particles& particles, const std::vector<Wall>& walls);
+  void bin_particles(const Particles& particles);
+  void find_pairs(const Particles& particles, const std::vector<Wall>& walls);
+  void carry_history(std::size_t particle_count);
+
+  // Pairs found by one thread for its range of particles; reused from rebuild to rebuild.
+  struct ThreadPairs {
+    std::vector<Index> i, j, candidates;
+  };
 
   double skin_;
   std::size_t stride_;
@@ -37,10 +54,17 @@ class NeighbourList {
   std::vector<double> new_history_;
   std::vector<Vec3> position_at_build_;
   std::vector<Vec3> wall_displacement_at_build_;
+  // Cell list: particles sorted by cell (counting sort), grid geometry of the last build.
   std::vector<std::int64_t> cell_of_;
   std::vector<Index> sorted_;
-  std::vector<std::int64_t> cell_start_;
-  std::vector<Index> candidates_;
+  std::vector<std::int64_t> cell_start_, cursor_;
+  Vec3 lo_ = Vec3::Zero();
+  double cell_ = 1;
+  std::int32_t dims_[3] = {1, 1, 1};
+  std::vector<ThreadPairs> threads_;
+  // Old pairs grouped by their smaller index, to find a new pair's history in O(1).
+  std::vector<std::int64_t> old_start_;
+  std::vector<std::int64_t> old_slot_;
   std::int64_t rebuilds_ = 0;
 };
 

@@ -10,17 +10,21 @@
 
 #include "neighbour_list.hpp"
 #include "parallel.hpp"
+#include "spatial_order.hpp"
 
 namespace shard {
 namespace {
 
 // Per-step contact arrays, sized to the neighbour list and reused (no allocation per step).
+// Thread t compacts the contacts of its pair range [begin, end) to [begin, begin + count).
 struct ContactArrays {
   std::vector<Index> i, j;
   std::vector<std::size_t> pair;
   std::vector<Vec3> normal, velocity, omega_rel, force, couple;
   std::vector<double> overlap, r_eff, m_eff, energy, history;
   void reserve(std::size_t n, std::size_t stride) {
+    if (i.size() >= n) return;
+    n += n / 4 + 16;
     i.resize(n);
     j.resize(n);
     pair.resize(n);
@@ -37,14 +41,53 @@ struct ContactArrays {
   }
 };
 
+// One thread's share of a force pass. Thread 0 adds straight into the particle arrays, thread
+// t > 0 into its own buffers, which are summed into the particles in thread order afterwards
+// (and left zero again): no atomics, no locks, and a fixed order of every sum.
+struct alignas(64) ThreadShare {
+  std::vector<Vec3> force, torque;
+  std::vector<Vec3> wall_force, wall_torque;
+  double contact_energy = 0;
+  std::size_t contacts = 0;
+  bool bond_broke = false;
+};
+
 double density_of(const Particles& p, std::size_t k) {
   const double r = p.radius[k];
   return p.mass[k] / (4.0 / 3.0 * std::numbers::pi * r * r * r);
 }
 
+double sign_of(double v) { return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0); }
+
+// Below this many particles everything fits in cache and renumbering would only cost time (and
+// move particles that small hand-built scenes address by index).
+constexpr std::size_t kReorderMinParticles = 10000;
+
 }  // namespace
 
-struct ContactWorkspace : ContactArrays {};
+struct ContactWorkspace {
+  ContactArrays contacts;
+  std::vector<ThreadShare> threads;
+  SpatialOrder order;
+  double order_cell = 1;  // m: the Morton grid, one neighbour-search cell
+
+  // Buffers for `team` threads over n particles; allocates only when the team or n changes.
+  void prepare(int team, std::size_t n, std::size_t walls) {
+    if (threads.size() < static_cast<std::size_t>(team)) threads.resize(static_cast<std::size_t>(team));
+    for (std::size_t t = 0; t < threads.size(); ++t) {
+      ThreadShare& s = threads[t];
+      const std::size_t size = t == 0 ? 0 : n;
+      if (s.force.size() != size) {
+        s.force.assign(size, Vec3::Zero());
+        s.torque.assign(size, Vec3::Zero());
+      }
+      if (s.wall_force.size() != walls) {
+        s.wall_force.resize(walls);
+        s.wall_torque.resize(walls);
+      }
+    }
+  }
+};
 
 Simulation::Simulation(SimulationSetup setup)
     : particles_(std::move(setup.particles)),
@@ -99,6 +142,7 @@ Simulation::Simulation(SimulationSetup setup)
   const double skin = setup.skin > 0 ? setup.skin : 0.2 * std::max(r_max, 1e-12);
   neighbours_ = std::make_unique<NeighbourList>(skin, contact_ ? contact_->history_size() : 0);
   workspace_ = std::make_unique<ContactWorkspace>();
+  workspace_->order_cell = 2 * std::max(r_max, 1e-12) + skin;
   for (auto& w : walls_) {
     if (w.shape != WallShape::Mesh) w.axis.normalize();
   }
@@ -141,7 +185,7 @@ void Simulation::integrate_first_half() {
   const std::size_t n = particles_.size();
   const double h = 0.5 * dt_;
   auto& p = particles_;
-#pragma omp parallel for schedule(static) if (n > 4096)
+#pragma omp parallel for schedule(static) num_threads(team_for(n))
   for (std::size_t k = 0; k < n; ++k) {
     if (p.flags[k] & kFixed) continue;
     if (!(p.flags[k] & kPrescribed)) {
@@ -164,7 +208,7 @@ void Simulation::integrate_second_half() {
   const std::size_t n = particles_.size();
   const double h = 0.5 * dt_;
   auto& p = particles_;
-#pragma omp parallel for schedule(static) if (n > 4096)
+#pragma omp parallel for schedule(static) num_threads(team_for(n))
   for (std::size_t k = 0; k < n; ++k) {
     if (p.flags[k] & (kFixed | kPrescribed)) continue;
     p.velocity[k] += h * p.force[k] / p.mass[k];
@@ -172,51 +216,116 @@ void Simulation::integrate_second_half() {
   }
 }
 
+void Simulation::update_neighbours() {
+  NeighbourList& list = *neighbours_;
+  if (!list.needs_rebuild(particles_, walls_)) return;
+  // Renumber along the Morton curve while the list is rebuilt anyway.
+  SpatialOrder& order = workspace_->order;
+  if (particles_.size() >= kReorderMinParticles && order.compute(particles_, workspace_->order_cell)) {
+    order.apply(particles_, bonds_);
+    list.remap(order.new_index());
+  }
+  list.rebuild(particles_, walls_);
+}
+
+// One pass over all forces: each thread takes its range of contact pairs and of bonds, computes
+// them with one batch call each, and adds the results to its share (see ThreadShare); then each
+// thread sums the shares over its range of particles and adds gravity and damping.
 void Simulation::compute_forces() {
   auto& p = particles_;
   const std::size_t n = p.size();
-  std::fill(p.force.begin(), p.force.end(), Vec3::Zero());
-  std::fill(p.torque.begin(), p.torque.end(), Vec3::Zero());
+  auto& ws = *workspace_;
+  std::size_t pairs = 0;
+  if (contact_) {
+    update_neighbours();
+    pairs = neighbours_->size();
+    ws.contacts.reserve(pairs, neighbours_->history_stride());
+  }
+  const std::size_t m = bond_ ? bonds_.size() : 0;
+  const int team = team_for(n + pairs + m);
+  ws.prepare(team, n, walls_.size());
+  const bool gravity = !gravity_.isZero();
+  int used = 1;
+#pragma omp parallel num_threads(team)
+  {
+    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+    ThreadShare& share = ws.threads[static_cast<std::size_t>(t)];
+    const Range own = range_of(n, t, nt);
+    std::fill(p.force.begin() + static_cast<std::ptrdiff_t>(own.begin), p.force.begin() + static_cast<std::ptrdiff_t>(own.end), Vec3::Zero());
+    std::fill(p.torque.begin() + static_cast<std::ptrdiff_t>(own.begin), p.torque.begin() + static_cast<std::ptrdiff_t>(own.end), Vec3::Zero());
+    std::fill(share.wall_force.begin(), share.wall_force.end(), Vec3::Zero());
+    std::fill(share.wall_torque.begin(), share.wall_torque.end(), Vec3::Zero());
+    share.contact_energy = 0;
+    share.contacts = 0;
+    share.bond_broke = false;
+    if (t == 0) used = nt;
+#pragma omp barrier
+    Vec3* force = t == 0 ? p.force.data() : share.force.data();
+    Vec3* torque = t == 0 ? p.torque.data() : share.torque.data();
+    if (contact_) {
+      const Range r = range_of(pairs, t, nt);
+      contact_chunk(r.begin, r.end, force, torque, t);
+    }
+    if (m > 0) {
+      const Range r = range_of(m, t, nt);
+      bond_chunk(r.begin, r.end, force, torque, t);
+    }
+#pragma omp barrier
+    for (std::size_t k = own.begin; k < own.end; ++k) {
+      for (int u = 1; u < nt; ++u) {
+        ThreadShare& other = ws.threads[static_cast<std::size_t>(u)];
+        p.force[k] += other.force[k];
+        p.torque[k] += other.torque[k];
+        other.force[k].setZero();
+        other.torque[k].setZero();
+      }
+      if (gravity) p.force[k] += p.mass[k] * gravity_;
+      if (global_damping_ > 0) {
+        // Cundall's local non-viscous damping: opposes the motion with a fraction of the force.
+        for (int c = 0; c < 3; ++c) {
+          p.force[k][c] -= global_damping_ * std::abs(p.force[k][c]) * sign_of(p.velocity[k][c]);
+          p.torque[k][c] -= global_damping_ * std::abs(p.torque[k][c]) * sign_of(p.omega[k][c]);
+        }
+      }
+    }
+  }
+  double energy = 0;
+  std::size_t contacts = 0;
+  bool bond_broke = false;
   for (auto& w : walls_) {
     w.force.setZero();
     w.torque.setZero();
   }
-  if (contact_) apply_contacts();
-  if (bond_ && bonds_.size() > 0) apply_bonds();
-  apply_gravity();
-  if (global_damping_ > 0) {
-    // Cundall's local non-viscous damping: opposes the motion with a fraction of the force.
-    for (std::size_t k = 0; k < n; ++k) {
-      for (int c = 0; c < 3; ++c) {
-        const double v = p.velocity[k][c], w = p.omega[k][c];
-        p.force[k][c] -= global_damping_ * std::abs(p.force[k][c]) * (v > 0 ? 1 : (v < 0 ? -1 : 0));
-        p.torque[k][c] -= global_damping_ * std::abs(p.torque[k][c]) * (w > 0 ? 1 : (w < 0 ? -1 : 0));
-      }
+  for (int t = 0; t < used; ++t) {
+    const ThreadShare& share = ws.threads[static_cast<std::size_t>(t)];
+    energy += share.contact_energy;
+    contacts += share.contacts;
+    bond_broke = bond_broke || share.bond_broke;
+    for (std::size_t w = 0; w < walls_.size(); ++w) {
+      walls_[w].force += share.wall_force[w];
+      walls_[w].torque += share.wall_torque[w];
     }
   }
+  if (contact_) {
+    contacts_ = contacts;
+    contact_energy_ = energy;
+  }
+  if (bond_broke) record_broken_bonds();
 }
 
-void Simulation::apply_gravity() {
-  if (gravity_.isZero()) return;
-  auto& p = particles_;
-  const std::size_t n = p.size();
-  for (std::size_t k = 0; k < n; ++k) p.force[k] += p.mass[k] * gravity_;
-}
-
-void Simulation::apply_contacts() {
-  auto& p = particles_;
-  neighbours_->update(p, walls_);
-  const std::size_t pairs = neighbours_->size();
+void Simulation::contact_chunk(std::size_t begin, std::size_t end, Vec3* force, Vec3* torque, int thread) {
+  const auto& p = particles_;
+  ContactArrays& ws = workspace_->contacts;
+  ThreadShare& share = workspace_->threads[static_cast<std::size_t>(thread)];
   const std::size_t stride = neighbours_->history_stride();
-  auto& ws = *workspace_;
-  if (ws.i.size() < pairs) ws.reserve(pairs + pairs / 4 + 16, stride);
   const auto& first = neighbours_->first();
   const auto& second = neighbours_->second();
   auto& history = neighbours_->history();
+  const auto slot = [stride](std::size_t k) { return static_cast<std::ptrdiff_t>(k * stride); };
 
   // Geometry of the touching pairs; pairs that stopped touching lose their history.
-  std::size_t c = 0;
-  for (std::size_t k = 0; k < pairs; ++k) {
+  std::size_t c = begin;
+  for (std::size_t k = begin; k < end; ++k) {
     const Index a = first[k], b = second[k];
     const double ra = p.radius[a];
     Vec3 n;
@@ -228,7 +337,7 @@ void Simulation::apply_contacts() {
       const double dist2 = d.squaredNorm();
       const double reach = ra + p.radius[b];
       if (dist2 >= reach * reach || dist2 == 0.0) {
-        std::fill_n(history.begin() + static_cast<std::ptrdiff_t>(k * stride), stride, 0.0);
+        std::fill_n(history.begin() + slot(k), stride, 0.0);
         continue;
       }
       const double dist = std::sqrt(dist2);
@@ -244,7 +353,7 @@ void Simulation::apply_contacts() {
       const Wall& w = walls_[static_cast<std::size_t>(-1 - b)];
       double distance;
       if (!wall_contact(w, p.position[a], ra, n, distance) || distance >= ra) {
-        std::fill_n(history.begin() + static_cast<std::ptrdiff_t>(k * stride), stride, 0.0);
+        std::fill_n(history.begin() + slot(k), stride, 0.0);
         continue;
       }
       overlap = ra - distance;
@@ -263,107 +372,113 @@ void Simulation::apply_contacts() {
     ws.omega_rel[c] = p.omega[a] - omega_b;
     ws.r_eff[c] = r_eff;
     ws.m_eff[c] = m_eff;
-    std::copy_n(history.begin() + static_cast<std::ptrdiff_t>(k * stride), stride,
-                ws.history.begin() + static_cast<std::ptrdiff_t>(c * stride));
+    std::copy_n(history.begin() + slot(k), stride, ws.history.begin() + slot(c));
     ++c;
   }
-  contacts_ = c;
+  const std::size_t count = c - begin;
+  share.contacts = count;
+  if (count == 0) return;
 
-  for_each_chunk(c, [&](std::size_t begin, std::size_t end) {
-    ContactBatch batch;
-    batch.count = end - begin;
-    batch.dt = dt_;
-    batch.i = ws.i.data() + begin;
-    batch.j = ws.j.data() + begin;
-    batch.normal = ws.normal.data() + begin;
-    batch.overlap = ws.overlap.data() + begin;
-    batch.velocity = ws.velocity.data() + begin;
-    batch.omega_rel = ws.omega_rel.data() + begin;
-    batch.r_eff = ws.r_eff.data() + begin;
-    batch.m_eff = ws.m_eff.data() + begin;
-    batch.history = ws.history.data() + begin * stride;
-    batch.force = ws.force.data() + begin;
-    batch.couple = ws.couple.data() + begin;
-    batch.energy = ws.energy.data() + begin;
-    std::fill_n(batch.force, batch.count, Vec3::Zero());
-    std::fill_n(batch.couple, batch.count, Vec3::Zero());
-    std::fill_n(batch.energy, batch.count, 0.0);
-    contact_->compute(batch);
-  });
+  ContactBatch batch;
+  batch.count = count;
+  batch.dt = dt_;
+  batch.i = ws.i.data() + begin;
+  batch.j = ws.j.data() + begin;
+  batch.normal = ws.normal.data() + begin;
+  batch.overlap = ws.overlap.data() + begin;
+  batch.velocity = ws.velocity.data() + begin;
+  batch.omega_rel = ws.omega_rel.data() + begin;
+  batch.r_eff = ws.r_eff.data() + begin;
+  batch.m_eff = ws.m_eff.data() + begin;
+  batch.history = ws.history.data() + begin * stride;
+  batch.force = ws.force.data() + begin;
+  batch.couple = ws.couple.data() + begin;
+  batch.energy = ws.energy.data() + begin;
+  std::fill_n(batch.force, count, Vec3::Zero());
+  std::fill_n(batch.couple, count, Vec3::Zero());
+  std::fill_n(batch.energy, count, 0.0);
+  contact_->compute(batch);
 
-  // Scatter in contact order: deterministic whatever the thread count.
+  // Scatter in contact order into this thread's share.
   double energy = 0;
-  for (std::size_t k = 0; k < c; ++k) {
+  for (std::size_t k = begin; k < c; ++k) {
     const Index a = ws.i[k], b = ws.j[k];
     const Vec3& f = ws.force[k];
     const Vec3& n = ws.normal[k];
     const double overlap = ws.overlap[k];
     energy += ws.energy[k];
-    p.force[a] += f;
+    force[a] += f;
     const Vec3 arm_a = b >= 0 ? Vec3(-(p.radius[a] - 0.5 * overlap) * n) : Vec3(-(p.radius[a] - overlap) * n);
-    p.torque[a] += arm_a.cross(f) + ws.couple[k];
+    torque[a] += arm_a.cross(f) + ws.couple[k];
     if (b >= 0) {
       const Vec3 arm_b = (p.radius[b] - 0.5 * overlap) * n;
-      p.force[b] -= f;
-      p.torque[b] += arm_b.cross(-f) - ws.couple[k];
+      force[b] -= f;
+      torque[b] += arm_b.cross(-f) - ws.couple[k];
     } else {
-      Wall& w = walls_[static_cast<std::size_t>(-1 - b)];
+      const auto w = static_cast<std::size_t>(-1 - b);
+      const Wall& wall = walls_[w];
       const Vec3 contact_point = p.position[a] + arm_a;
-      w.force -= f;
-      w.torque += (contact_point - (w.point + w.displacement)).cross(-f) - ws.couple[k];
+      share.wall_force[w] -= f;
+      share.wall_torque[w] += (contact_point - (wall.point + wall.displacement)).cross(-f) - ws.couple[k];
     }
-    std::copy_n(ws.history.begin() + static_cast<std::ptrdiff_t>(k * stride), stride,
-                history.begin() + static_cast<std::ptrdiff_t>(ws.pair[k] * stride));
+    std::copy_n(ws.history.begin() + slot(k), stride, history.begin() + slot(ws.pair[k]));
   }
-  contact_energy_ = energy;
+  share.contact_energy = energy;
 }
 
-void Simulation::apply_bonds() {
-  auto& p = particles_;
-  BondBatch all = bond_batch();
-  const std::size_t stride = bonds_.stride;
-  for_each_chunk(all.count, [&](std::size_t begin, std::size_t end) {
-    BondBatch b = all;
-    b.count = end - begin;
-    b.i += begin;
-    b.j += begin;
-    b.state += begin * stride;
-    b.force += begin;
-    b.torque_i += begin;
-    b.torque_j += begin;
-    b.energy += begin;
-    b.broken += begin;
-    b.stress += begin;
-    std::fill_n(b.force, b.count, Vec3::Zero());
-    std::fill_n(b.torque_i, b.count, Vec3::Zero());
-    std::fill_n(b.torque_j, b.count, Vec3::Zero());
-    std::fill_n(b.energy, b.count, 0.0);
-    std::fill_n(b.broken, b.count, std::uint8_t{0});
-    bond_->compute(b);
-  });
-  bool any_broken = false;
+void Simulation::bond_chunk(std::size_t begin, std::size_t end, Vec3* force, Vec3* torque, int thread) {
+  if (end <= begin) return;
+  BondBatch b = bond_batch();
+  b.count = end - begin;
+  b.i += begin;
+  b.j += begin;
+  b.state += begin * bonds_.stride;
+  b.force += begin;
+  b.torque_i += begin;
+  b.torque_j += begin;
+  b.energy += begin;
+  b.broken += begin;
+  b.stress += begin;
+  std::fill_n(b.force, b.count, Vec3::Zero());
+  std::fill_n(b.torque_i, b.count, Vec3::Zero());
+  std::fill_n(b.torque_j, b.count, Vec3::Zero());
+  std::fill_n(b.energy, b.count, 0.0);
+  std::fill_n(b.broken, b.count, std::uint8_t{0});
+  bond_->compute(b);
+  bool broke = false;
+  for (std::size_t k = 0; k < b.count; ++k) {
+    if (b.broken[k]) {
+      if (breakage_) {
+        broke = true;
+        continue;  // a bond that fails this step transmits nothing
+      }
+      b.broken[k] = 0;
+    }
+    const Index i = b.i[k], j = b.j[k];
+    force[i] += b.force[k];
+    force[j] -= b.force[k];
+    torque[i] += b.torque_i[k];
+    torque[j] += b.torque_j[k];
+  }
+  workspace_->threads[static_cast<std::size_t>(thread)].bond_broke = broke;
+}
+
+// Break events in bond order, whatever the thread count; then the broken bonds are dropped.
+void Simulation::record_broken_bonds() {
+  const auto& p = particles_;
   const std::size_t m = bonds_.size();
   for (std::size_t k = 0; k < m; ++k) {
-    if (breakage_ && bonds_.broken[k]) {
-      any_broken = true;
-      BondBreakEvent e;
-      e.time = time_;
-      e.step = step_;
-      e.id_i = p.id[bonds_.i[k]];
-      e.id_j = p.id[bonds_.j[k]];
-      e.midpoint = 0.5 * (p.position[bonds_.i[k]] + p.position[bonds_.j[k]]);
-      e.stress = bonds_.stress[k];
-      events_.push_back(e);
-      continue;  // a bond that fails this step transmits nothing
-    }
-    const Index a = bonds_.i[k], b = bonds_.j[k];
-    p.force[a] += bonds_.force[k];
-    p.force[b] -= bonds_.force[k];
-    p.torque[a] += bonds_.torque_i[k];
-    p.torque[b] += bonds_.torque_j[k];
+    if (!bonds_.broken[k]) continue;
+    BondBreakEvent e;
+    e.time = time_;
+    e.step = step_;
+    e.id_i = p.id[bonds_.i[k]];
+    e.id_j = p.id[bonds_.j[k]];
+    e.midpoint = 0.5 * (p.position[bonds_.i[k]] + p.position[bonds_.j[k]]);
+    e.stress = bonds_.stress[k];
+    events_.push_back(e);
   }
-  if (!breakage_) std::fill(bonds_.broken.begin(), bonds_.broken.end(), std::uint8_t{0});
-  if (any_broken) bonds_broken_ += static_cast<std::int64_t>(bonds_.remove_broken());
+  bonds_broken_ += static_cast<std::int64_t>(bonds_.remove_broken());
 }
 
 std::vector<BondBreakEvent> Simulation::take_new_break_events() {

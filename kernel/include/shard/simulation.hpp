@@ -70,9 +70,12 @@ class Simulation {
   void compute_forces();
   void integrate_first_half();
   void integrate_second_half();
-  void apply_bonds();
-  void apply_contacts();
-  void apply_gravity();
+  void update_neighbours();
+  // Thread `thread`'s part of the force pass (simulation.cpp): pairs or bonds [begin, end),
+  // results added to force and torque.
+  void contact_chunk(std::size_t begin, std::size_t end, Vec3* force, Vec3* torque, int thread);
+  void bond_chunk(std::size_t begin, std::size_t end, Vec3* force, Vec3* torque, int thread);
+  void record_broken_bonds();
   BondBatch bond_batch();
 
   Particles particles_;
