@@ -15,6 +15,8 @@
 
 namespace shard {
 
+struct NeighbourState;
+
 class NeighbourList {
  public:
   NeighbourList(double skin, std::size_t history_stride);
@@ -34,6 +36,8 @@ class NeighbourList {
   std::size_t history_stride() const { return stride_; }
   std::int64_t rebuilds() const { return rebuilds_; }
   double skin() const { return skin_; }
+  NeighbourState state() const;  // neighbour_list_restore.cpp: checkpoints
+  void restore(const NeighbourState& state);
 
  private:
   void bin_particles(const Particles& particles);

@@ -37,6 +37,7 @@ struct Energies {
 
 class NeighbourList;
 struct ContactWorkspace;
+struct SimulationState;
 
 class Simulation {
  public:
@@ -65,6 +66,10 @@ class Simulation {
   const std::vector<BondBreakEvent>& break_events() const { return events_; }
   Energies energies() const;
   std::int64_t neighbour_rebuilds() const;
+  // Checkpoint/restart (simulation_state.cpp): import_state continues bit-identically from an
+  // exported state; the models, walls' geometry and settings come from this Simulation's setup.
+  SimulationState export_state() const;
+  void import_state(const SimulationState& state);
 
  private:
   void compute_forces();

@@ -1,0 +1,78 @@
+#pragma once
+// Everything a run needs to continue exactly where it stopped: a restarted run steps through the
+// same floating-point operations in the same order as an uninterrupted one, so its final state
+// is bit-identical. That means more than positions and velocities: the forces of the last step
+// (the next half-kick uses them), the contact history and the neighbour list it is attached to
+// (including where the list was built, which decides when it is rebuilt), the bonds' model state
+// (reference frames), the break log, the walls' displacement, time and step.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "shard/bonds.hpp"
+#include "shard/particles.hpp"
+#include "shard/types.hpp"
+
+namespace shard {
+
+struct WallState {
+  Vec3 velocity = Vec3::Zero();      // m/s
+  Vec3 displacement = Vec3::Zero();  // m
+  Vec3 force = Vec3::Zero();         // N, of the last step
+  Vec3 torque = Vec3::Zero();        // N m
+};
+
+struct NeighbourState {
+  double skin = 0;          // m
+  std::size_t history_stride = 0;
+  std::vector<Index> first, second;  // listed pairs; second < 0: wall -1 - second
+  std::vector<double> history;       // history_stride per pair
+  std::vector<Vec3> position_at_build;
+  std::vector<Vec3> wall_displacement_at_build;
+  std::int64_t rebuilds = 0;
+};
+
+struct SimulationState {
+  std::int64_t step = 0;
+  double time = 0;  // s
+  double dt = 0;    // s
+  Particles particles;
+  Bonds bonds;
+  std::int64_t bonds_broken = 0;
+  std::vector<BondBreakEvent> events;
+  std::size_t events_taken = 0;  // events already handed to the output
+  std::vector<WallState> walls;
+  NeighbourState neighbours;
+  std::size_t contacts = 0;
+  double contact_energy = 0;  // J
+};
+
+// A checkpoint: the simulation state plus the run loop's own counters and load curve, stored as
+// named numbers and named arrays so the application decides what it keeps.
+struct Checkpoint {
+  SimulationState simulation;
+  std::vector<std::pair<std::string, double>> numbers;
+  std::vector<std::pair<std::string, std::vector<double>>> arrays;
+
+  double number(const std::string& name) const;  // throws CheckpointError when absent
+  const std::vector<double>& array(const std::string& name) const;
+};
+
+class CheckpointError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// run.h5 -> run.checkpoint.h5, beside it.
+std::filesystem::path checkpoint_path_for(const std::filesystem::path& run_file);
+
+// Writes to a temporary file, flushes it to disk and renames it over `path`: a kill at any
+// moment leaves either the previous checkpoint or the new one, never a torn one.
+// Throws CheckpointError naming the path and the cause (disk full, read-only folder, ...).
+void write_checkpoint(const std::filesystem::path& path, const Checkpoint& checkpoint);
+// Throws CheckpointError naming the path when it is missing, unreadable or not a checkpoint.
+Checkpoint read_checkpoint(const std::filesystem::path& path);
+
+}  // namespace shard

@@ -1,0 +1,43 @@
+// The neighbour list's part of a checkpoint. The build positions are kept, not just the pairs:
+// they decide when the list is next rebuilt, and a restart must rebuild at the same steps as
+// the uninterrupted run for its history arrays to match entry for entry.
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "neighbour_list.hpp"
+#include "shard/checkpoint.hpp"
+
+namespace shard {
+
+NeighbourState NeighbourList::state() const {
+  NeighbourState s;
+  s.skin = skin_;
+  s.history_stride = stride_;
+  s.first = i_;
+  s.second = j_;
+  s.history = history_;
+  s.position_at_build = position_at_build_;
+  s.wall_displacement_at_build = wall_displacement_at_build_;
+  s.rebuilds = rebuilds_;
+  return s;
+}
+
+void NeighbourList::restore(const NeighbourState& s) {
+  if (s.history_stride != stride_)
+    throw std::invalid_argument(fmt::format(
+        "the checkpoint's contact history has {} values per pair, the contact model {}: restart with the "
+        "contact model the run was started with",
+        s.history_stride, stride_));
+  if (s.first.size() != s.second.size() || s.history.size() != s.first.size() * stride_)
+    throw std::invalid_argument("the checkpoint's neighbour list is inconsistent (pair and history sizes differ)");
+  skin_ = s.skin;
+  i_ = s.first;
+  j_ = s.second;
+  history_ = s.history;
+  position_at_build_ = s.position_at_build;
+  wall_displacement_at_build_ = s.wall_displacement_at_build;
+  rebuilds_ = s.rebuilds;
+}
+
+}  // namespace shard

@@ -1,0 +1,89 @@
+// Simulation::export_state / import_state: the whole mutable state of a run, so a restart
+// continues with the same floating-point operations in the same order (see checkpoint.hpp).
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+#include "neighbour_list.hpp"
+#include "shard/checkpoint.hpp"
+#include "shard/simulation.hpp"
+
+namespace shard {
+namespace {
+
+void require_consistent(const Particles& p) {
+  const std::size_t n = p.size();
+  const bool ok = p.velocity.size() == n && p.orientation.size() == n && p.omega.size() == n &&
+                  p.force.size() == n && p.torque.size() == n && p.radius.size() == n && p.mass.size() == n &&
+                  p.inertia.size() == n && p.material.size() == n && p.flags.size() == n && p.id.size() == n;
+  if (!ok) throw std::invalid_argument("the checkpoint's particle arrays have different lengths");
+}
+
+void require_consistent(const Bonds& b, std::size_t particles, std::size_t stride) {
+  const std::size_t m = b.size();
+  if (b.stride != stride)
+    throw std::invalid_argument(fmt::format(
+        "the checkpoint's bonds carry {} state values each, the bond model {}: restart with the bond model the "
+        "run was started with",
+        b.stride, stride));
+  const bool ok = b.j.size() == m && b.state.size() == m * stride && b.force.size() == m &&
+                  b.torque_i.size() == m && b.torque_j.size() == m && b.energy.size() == m &&
+                  b.broken.size() == m && b.stress.size() == m;
+  if (!ok) throw std::invalid_argument("the checkpoint's bond arrays have different lengths");
+  for (std::size_t k = 0; k < m; ++k)
+    if (b.i[k] < 0 || b.j[k] < 0 || static_cast<std::size_t>(b.i[k]) >= particles ||
+        static_cast<std::size_t>(b.j[k]) >= particles)
+      throw std::invalid_argument(fmt::format("the checkpoint's bond {} names a particle that does not exist", k));
+}
+
+}  // namespace
+
+SimulationState Simulation::export_state() const {
+  SimulationState s;
+  s.step = step_;
+  s.time = time_;
+  s.dt = dt_;
+  s.particles = particles_;
+  s.bonds = bonds_;
+  s.bonds_broken = bonds_broken_;
+  s.events = events_;
+  s.events_taken = events_taken_;
+  s.walls.reserve(walls_.size());
+  for (const Wall& w : walls_) s.walls.push_back({w.velocity, w.displacement, w.force, w.torque});
+  s.neighbours = neighbours_->state();
+  s.contacts = contacts_;
+  s.contact_energy = contact_energy_;
+  return s;
+}
+
+void Simulation::import_state(const SimulationState& s) {
+  require_consistent(s.particles);
+  require_consistent(s.bonds, s.particles.size(), bonds_.stride);
+  if (s.walls.size() != walls_.size())
+    throw std::invalid_argument(fmt::format("the checkpoint has {} walls, the scene {}: restart with the scene the run "
+                                            "was started with",
+                                            s.walls.size(), walls_.size()));
+  if (s.events_taken > s.events.size())
+    throw std::invalid_argument("the checkpoint's break log is shorter than the part already written");
+  if (!(s.dt > 0)) throw std::invalid_argument("the checkpoint's time step is not positive");
+  // Everything is checked before anything is replaced: a refused checkpoint leaves this intact.
+  neighbours_->restore(s.neighbours);
+  step_ = s.step;
+  time_ = s.time;
+  dt_ = s.dt;
+  particles_ = s.particles;
+  bonds_ = s.bonds;
+  bonds_broken_ = s.bonds_broken;
+  events_ = s.events;
+  events_taken_ = s.events_taken;
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    walls_[w].velocity = s.walls[w].velocity;
+    walls_[w].displacement = s.walls[w].displacement;
+    walls_[w].force = s.walls[w].force;
+    walls_[w].torque = s.walls[w].torque;
+  }
+  contacts_ = s.contacts;
+  contact_energy_ = s.contact_energy;
+}
+
+}  // namespace shard
