@@ -45,7 +45,16 @@ NumericalHealth::NumericalHealth(const Simulation& reference)
   const Energies e = reference.energies();
   energy0_ = e.kinetic + e.bond + e.contact;
   potential0_ = e.gravity;
-  scale_ = std::abs(energy0_);
+  // Floor: a body at rest holds only round-off energy (1e-30 J), whose growth is no blow-up. The
+  // kinetic energy of every particle moving 1e-6 of its radius per step is negligible physics, and
+  // a real instability passes it within a few steps.
+  double round_off_floor = 0;
+  const Particles& p = reference.particles();
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const double v = 1e-6 * p.radius[k] / reference.dt();
+    round_off_floor += 0.5 * p.mass[k] * v * v;
+  }
+  scale_ = std::max(std::abs(energy0_), round_off_floor);
 }
 
 void NumericalHealth::after_step(const Simulation& sim) {
