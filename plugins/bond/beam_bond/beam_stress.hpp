@@ -22,8 +22,8 @@ inline BondStress stress_of(const Vec3& strain, const Vec3& curvature, double yo
                             double radius) {
   BondStress s;
   s.tension = std::max(youngs * strain.x(), 0.0);
-  s.bending = youngs * radius * std::hypot(curvature.y(), curvature.z());
-  s.shear = shear_modulus * std::hypot(strain.y(), strain.z());
+  s.bending = youngs * radius * std::sqrt(curvature.y() * curvature.y() + curvature.z() * curvature.z());
+  s.shear = shear_modulus * std::sqrt(strain.y() * strain.y() + strain.z() * strain.z());
   s.torsion = shear_modulus * radius * std::abs(curvature.x());
   s.sigma_axial = s.tension + s.bending;
   s.tau = s.shear + s.torsion;
