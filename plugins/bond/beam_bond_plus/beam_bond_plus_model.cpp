@@ -1,0 +1,235 @@
+#include "beam_bond_plus_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+#include "beam_geometry.hpp"
+#include "beam_stress.hpp"
+#include "cohesive_softening.hpp"
+#include "weibull_strength.hpp"
+
+namespace shard::beam_plus {
+namespace {
+
+// As in beam_bond: the bond's first particle is the one with the smaller stable id, so the state
+// survives reordering and a swapped bond runs the same arithmetic.
+struct Ends {
+  Index first, second;
+  bool swapped;
+};
+
+Ends ends_of(const ParticleView& p, Index i, Index j) {
+  const bool swapped = p.id ? p.id[j] < p.id[i] : j < i;
+  return swapped ? Ends{j, i, true} : Ends{i, j, false};
+}
+
+struct Section {
+  double radius, area, second_moment;  // r_b, A_b = pi r_b^2, J_b = pi r_b^4 / 4
+};
+
+Section section_of(double lambda, double r1, double r2) {
+  const double r = lambda * std::min(r1, r2);
+  return {r, std::numbers::pi * r * r, std::numbers::pi * r * r * r * r / 4};
+}
+
+void write_broken(BondBatch& batch, std::size_t k, const BondStress& s) {
+  batch.broken[k] = 1;
+  batch.stress[k] = s;
+  batch.force[k].setZero();
+  batch.torque_i[k].setZero();
+  batch.torque_j[k].setZero();
+  batch.energy[k] = 0;
+}
+
+}  // namespace
+
+BeamBondPlusParams BeamBondPlusParams::from(const ParamSet& p) {
+  BeamBondPlusParams b;
+  b.base = beam::BeamBondParams::from(p);
+  b.strength_weibull_modulus = p.number("strength_weibull_modulus");
+  b.strength_seed = static_cast<std::uint64_t>(p.integer("strength_seed"));
+  b.softening_ratio = p.number("softening_ratio");
+  b.viscosity_time = p.number("viscosity_time");
+  b.compression_stiffness_ratio = p.number("compression_stiffness_ratio");
+  return b;
+}
+
+BeamBondPlus::BeamBondPlus(const BeamBondPlusParams& params)
+    : p_(params),
+      shear_modulus_(params.base.effective_shear_modulus()),
+      compression_modulus_(params.compression_stiffness_ratio * params.base.youngs_modulus),
+      weibull_scale_(params.strength_weibull_modulus > 0
+                         ? weibull_scale(params.base.critical_stress, params.strength_weibull_modulus)
+                         : 0) {
+  const auto& b = p_.base;
+  if (!(b.youngs_modulus > 0) || !(shear_modulus_ > 0) || !(b.shear_coefficient > 0) || !(b.radius_ratio > 0))
+    throw std::invalid_argument(
+        "beam_bond_plus: youngs_modulus, shear modulus, shear_coefficient and radius_ratio must be > 0");
+  if (!(p_.strength_weibull_modulus >= 0) || !(p_.softening_ratio >= 0) || !(p_.viscosity_time >= 0))
+    throw std::invalid_argument("beam_bond_plus: strength_weibull_modulus, softening_ratio, viscosity_time must be >= 0");
+  if (!(p_.compression_stiffness_ratio > 0))
+    throw std::invalid_argument("beam_bond_plus: compression_stiffness_ratio must be > 0");
+}
+
+double BeamBondPlus::strength_of(std::int64_t id_a, std::int64_t id_b) const {
+  if (!(p_.strength_weibull_modulus > 0)) return p_.base.critical_stress;
+  return weibull_quantile(bond_uniform(p_.strength_seed, id_a, id_b), weibull_scale_, p_.strength_weibull_modulus);
+}
+
+void BeamBondPlus::initialize(BondBatch& batch) const {
+  const ParticleView& p = batch.particles;
+  for (std::size_t k = 0; k < batch.count; ++k) {
+    const Ends e = ends_of(p, batch.i[k], batch.j[k]);
+    const beam::Reference ref = beam::reference_of(p.position[e.first], p.position[e.second],
+                                                   p.orientation[e.first], p.orientation[e.second]);
+    if (!(ref.l0 > 0)) throw std::invalid_argument("beam_bond_plus: a bond joins two particles at the same position");
+    double* s = batch.state + k * kStateSize;
+    beam::store(s, ref);
+    const std::int64_t id1 = p.id ? p.id[e.first] : e.first;
+    const std::int64_t id2 = p.id ? p.id[e.second] : e.second;
+    s[kStrengthSlot] = strength_of(id1, id2);
+    s[kDamageSlot] = 0;
+  }
+}
+
+// Eq. 12 with the stiffer of the tensile and compressive axial springs. A Kelvin-Voigt dashpot
+// c = tau_v K shrinks the stable step of the explicit integrator by sqrt(1 + z^2) - z, with the
+// damping ratio z = tau_v omega / 2, omega = sqrt(K / m).
+TimeStepLimit BeamBondPlus::time_step_limit(const BondBatch& batch) const {
+  const ParticleView& p = batch.particles;
+  const double axial_modulus = std::max(1.0, p_.compression_stiffness_ratio) * p_.base.youngs_modulus;
+  double lightest = std::numeric_limits<double>::infinity();
+  double stiffest = 0;
+  for (std::size_t k = 0; k < batch.count; ++k) {
+    const Index i = batch.i[k], j = batch.j[k];
+    const double l0 = batch.state[k * kStateSize];
+    const Section sec = section_of(p_.base.radius_ratio, p.radius[i], p.radius[j]);
+    stiffest = std::max(stiffest, axial_modulus * sec.area / l0);
+    lightest = std::min({lightest, p.mass[i], p.mass[j]});
+  }
+  TimeStepLimit limit;
+  limit.name = "beam_bond_plus t_bond (eq. 12)";
+  if (stiffest > 0) {
+    limit.critical = 0.17 * std::sqrt(lightest / stiffest);
+    if (p_.viscosity_time > 0) {
+      const double z = 0.5 * p_.viscosity_time * std::sqrt(stiffest / lightest);
+      limit.critical *= std::sqrt(1 + z * z) - z;
+    }
+  } else {
+    limit.critical = std::numeric_limits<double>::infinity();
+  }
+  limit.recommended = limit.critical;
+  return limit;
+}
+
+void BeamBondPlus::compute(BondBatch& batch) const {
+  const ParticleView& p = batch.particles;
+  const beam::BeamBondParams& b = p_.base;
+  const double E = b.youngs_modulus;
+  const double G = shear_modulus_;
+  const double a_s = b.shear_coefficient;
+  const double tau_v = p_.viscosity_time;
+  const bool viscous = tau_v > 0;
+
+  for (std::size_t k = 0; k < batch.count; ++k) {
+    const Ends e = ends_of(p, batch.i[k], batch.j[k]);
+    const Index n1 = e.first, n2 = e.second;
+    double* state = batch.state + k * kStateSize;
+    const beam::Reference ref = beam::load(state);
+    const double l0 = ref.l0;
+    const Section sec = section_of(b.radius_ratio, p.radius[n1], p.radius[n2]);
+    const beam::Deformation g =
+        beam::deform(ref, p.position[n1], p.position[n2], p.orientation[n1], p.orientation[n2]);
+
+    const Vec3 strain = g.d_local / l0 - Vec3::UnitX();  // Gamma
+    const Vec3 curvature = g.theta / l0;                 // kappa
+
+    // Rates conjugate to Gamma and kappa (beam_geometry.hpp): v12 = l0 dGamma/dt,
+    // omega_rel = d theta/dt = l0 dkappa/dt. Zero for rigid motion of the pair.
+    const Mat3& R = g.frame;
+    const Vec3 w1 = R.transpose() * p.omega[n1];
+    const Vec3 w2 = R.transpose() * p.omega[n2];
+    const Vec3 frame_spin = 0.5 * (w1 + w2) + g.skew_axis.cross(w1 - w2);
+    const Vec3 v12 = R.transpose() * (p.velocity[n2] - p.velocity[n1]) - frame_spin.cross(g.d_local);
+    const Vec3 omega_rel = g.apply_m(w2 - w1);
+
+    // Kelvin-Voigt: the material stress follows Gamma + tau_v dGamma/dt (and likewise kappa).
+    Vec3 strain_kv = strain, curvature_kv = curvature;
+    if (viscous) {
+      strain_kv += (tau_v / l0) * v12;
+      curvature_kv += (tau_v / l0) * omega_rel;
+    }
+
+    double damage = state[kDamageSlot];
+    if (b.breakage) {
+      const BondStress s = beam::stress_of(strain_kv, curvature_kv, E, G, sec.radius);
+      const double strength = state[kStrengthSlot];
+      if (s.sigma_vm >= strength) {
+        if (!(p_.softening_ratio > 0)) {
+          write_broken(batch, k, s);
+          continue;
+        }
+        damage = std::max(damage, softening_damage(s.sigma_vm, strength, p_.softening_ratio));
+        if (damage >= 1) {
+          write_broken(batch, k, s);
+          continue;
+        }
+        state[kDamageSlot] = damage;
+      }
+    }
+
+    // Eq. 3 and 5, with the compressive axial modulus when the bond is shortened.
+    const double axial_modulus = strain.x() < 0 ? compression_modulus_ : E;
+    Vec3 material_force(axial_modulus * sec.area * strain.x(), a_s * G * sec.area * strain.y(),
+                        a_s * G * sec.area * strain.z());
+    Vec3 material_torque(2 * G * sec.second_moment * curvature.x(), E * sec.second_moment * curvature.y(),
+                         E * sec.second_moment * curvature.z());
+    double energy = 0.5 * l0 * (strain.dot(material_force) + curvature.dot(material_torque));
+    if (viscous) {
+      // eta = E_b tau_v on the axial and bending rates, G_b tau_v on the shear and twist rates.
+      const Vec3 rate = (tau_v / l0) * v12;
+      const Vec3 twist_rate = (tau_v / l0) * omega_rel;
+      material_force += Vec3(E * sec.area * rate.x(), a_s * G * sec.area * rate.y(), a_s * G * sec.area * rate.z());
+      material_torque += Vec3(2 * G * sec.second_moment * twist_rate.x(), E * sec.second_moment * twist_rate.y(),
+                              E * sec.second_moment * twist_rate.z());
+    }
+    if (damage > 0) {
+      const double intact = 1 - damage;
+      material_force *= intact;
+      material_torque *= intact;
+      energy *= intact;
+    }
+    batch.energy[k] = energy;
+
+    // Eq. 4 and 6-7: the numerical damping of beam_bond, unchanged by the effects.
+    const Vec3 damping_force = b.damping * v12;
+    const double inertia_r = p.inertia[n1] * p.inertia[n2] / (p.inertia[n1] + p.inertia[n2]);
+    const double c_twist = b.rotational_damping * std::sqrt(2 * G * sec.second_moment / l0 * inertia_r);
+    const double c_bend = b.rotational_damping * std::sqrt(E * sec.second_moment / l0 * inertia_r);
+    const Vec3 damping_torque(c_twist * omega_rel.x(), c_bend * omega_rel.y(), c_bend * omega_rel.z());
+
+    // Generalised forces of the pair (beam_geometry.hpp).
+    const Vec3 force = material_force + damping_force;
+    const Vec3 couple = g.d_local.cross(force);
+    const Vec3 couple_skew = g.skew_axis.cross(couple);
+    const Vec3 bend_twist = g.apply_m(material_torque + damping_torque);
+    const Vec3 force_on_first = R * force;
+    const Vec3 torque_on_first = R * (0.5 * couple - couple_skew + bend_twist);
+    const Vec3 torque_on_second = R * (0.5 * couple + couple_skew - bend_twist);
+
+    if (e.swapped) {
+      batch.force[k] = -force_on_first;
+      batch.torque_i[k] = torque_on_second;
+      batch.torque_j[k] = torque_on_first;
+    } else {
+      batch.force[k] = force_on_first;
+      batch.torque_i[k] = torque_on_first;
+      batch.torque_j[k] = torque_on_second;
+    }
+  }
+}
+
+}  // namespace shard::beam_plus

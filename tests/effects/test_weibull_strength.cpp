@@ -1,0 +1,124 @@
+// Weibull strength scatter: 1e4 bond strengths drawn by the model follow the Weibull law of the
+// given modulus and mean (Kolmogorov-Smirnov), are reproducible and order-independent, and each
+// bond breaks at its own strength.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "beam_plus_setup.hpp"
+#include "weibull_strength.hpp"
+
+namespace shard::effects_test {
+namespace {
+
+// A chain of n + 1 spheres, n bonds; returns the strengths the model stored.
+std::vector<double> chain_strengths(const beam_plus::BeamBondPlus& model, std::size_t n, bool reversed = false) {
+  BondScene s;
+  for (std::size_t k = 0; k <= n; ++k) s.add_sphere(Vec3(0.7e-3 * static_cast<double>(k), 0, 0), 0.35e-3);
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto a = static_cast<Index>(k), b = static_cast<Index>(k + 1);
+    if (reversed) s.add_bond(b, a);
+    else s.add_bond(a, b);
+  }
+  s.initialize(model);
+  std::vector<double> out(n);
+  for (std::size_t k = 0; k < n; ++k) out[k] = s.state[k * beam_plus::kStateSize + beam_plus::kStrengthSlot];
+  return out;
+}
+
+// Two-sided Kolmogorov-Smirnov statistic of a sample against a CDF.
+template <class Cdf>
+double ks_statistic(std::vector<double> x, Cdf cdf) {
+  std::sort(x.begin(), x.end());
+  const double n = static_cast<double>(x.size());
+  double d = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    const double f = cdf(x[k]);
+    d = std::max({d, f - static_cast<double>(k) / n, static_cast<double>(k + 1) / n - f});
+  }
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("1e4 bond strengths follow the Weibull law with the set mean and modulus") {
+  const std::size_t n = 10000;
+  // Critical value of D at significance 0.001: 1.95 / sqrt(n) = 0.0195.
+  const double d_critical = 1.95 / std::sqrt(static_cast<double>(n));
+  for (const double m : {2.0, 5.0, 12.0}) {
+    auto p = table_one_plus();
+    p.strength_weibull_modulus = m;
+    p.strength_seed = 42;
+    const beam_plus::BeamBondPlus model(p);
+    const std::vector<double> strengths = chain_strengths(model, n);
+    const double scale = beam_plus::weibull_scale(p.base.critical_stress, m);
+    const double d = ks_statistic(strengths, [&](double s) { return beam_plus::weibull_cdf(s, scale, m); });
+    MESSAGE("m = ", m, ": KS D = ", d, " (critical ", d_critical, ")");
+    CHECK(d < d_critical);
+    // Power of the test: the law with the scale mistaken for the mean is rejected.
+    const double d_wrong = ks_statistic(strengths, [&](double s) {
+      return beam_plus::weibull_cdf(s, p.base.critical_stress, m);
+    });
+    CHECK(d_wrong > d_critical);
+
+    // Sample mean within 4 standard errors of critical_stress; std = mean sqrt(G(1+2/m)/G(1+1/m)^2 - 1).
+    double sum = 0;
+    for (double s : strengths) sum += s;
+    const double mean = sum / static_cast<double>(n);
+    const double g1 = std::tgamma(1 + 1 / m), g2 = std::tgamma(1 + 2 / m);
+    const double stddev = p.base.critical_stress * std::sqrt(g2 / (g1 * g1) - 1);
+    CHECK(std::abs(mean - p.base.critical_stress) < 4 * stddev / std::sqrt(static_cast<double>(n)));
+  }
+}
+
+TEST_CASE("strengths are common random numbers: same per bond whatever the listing order, new with a new seed") {
+  auto p = table_one_plus();
+  p.strength_weibull_modulus = 5;
+  p.strength_seed = 3;
+  const beam_plus::BeamBondPlus model(p);
+  const auto forward = chain_strengths(model, 1000);
+  const auto again = chain_strengths(model, 1000);
+  const auto reversed = chain_strengths(model, 1000, true);
+  CHECK(forward == again);
+  CHECK(forward == reversed);
+
+  p.strength_seed = 4;
+  const auto other = chain_strengths(beam_plus::BeamBondPlus(p), 1000);
+  // Independent draws: the sample correlation of the two seeds is O(1/sqrt(n)) = 0.03.
+  double ma = 0, mb = 0;
+  for (std::size_t k = 0; k < 1000; ++k) ma += forward[k] / 1000, mb += other[k] / 1000;
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t k = 0; k < 1000; ++k) {
+    sab += (forward[k] - ma) * (other[k] - mb);
+    saa += (forward[k] - ma) * (forward[k] - ma);
+    sbb += (other[k] - mb) * (other[k] - mb);
+  }
+  CHECK(std::abs(sab / std::sqrt(saa * sbb)) < 0.12);  // 4 sigma of a zero correlation
+}
+
+TEST_CASE("modulus 0 gives every bond exactly critical_stress") {
+  const beam_plus::BeamBondPlus model(table_one_plus());
+  for (double s : chain_strengths(model, 100)) CHECK(s == 0.24e6);
+}
+
+TEST_CASE("a pulled bond breaks at its own drawn strength") {
+  auto p = table_one_plus();
+  p.strength_weibull_modulus = 3;
+  p.strength_seed = 11;
+  const beam_plus::BeamBondPlus model(p);
+  Pair pair(model);
+  const double strength = pair.scene.state[beam_plus::kStrengthSlot];
+  CHECK(strength != doctest::Approx(p.base.critical_stress).epsilon(1e-3));
+  const double E = p.base.youngs_modulus;
+  pair.set(strength / E * (1 - 1e-9));
+  pair.axial_force(model);
+  CHECK_FALSE(pair.broken());
+  pair.set(strength / E * (1 + 1e-9));
+  pair.axial_force(model);
+  CHECK(pair.broken());
+  CHECK(pair.scene.stress[0].sigma_vm == doctest::Approx(strength).epsilon(1e-8));
+}
+
+}  // namespace shard::effects_test
