@@ -1,0 +1,158 @@
+// Contact effects of hertz_mindlin_plus: friction of its own at walls, and cohesion between
+// touching particles (pull per contact area; pull-off force of the Hertz + cohesion law).
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "contact_batch.hpp"
+#include "contact_cohesion.hpp"
+#include "hertz_mindlin_plus_model.hpp"
+#include "shard/simulation.hpp"
+
+namespace shard::effects_test {
+namespace {
+
+// A sphere launched along x without spin on a horizontal plane, resting at its Hertz equilibrium
+// overlap under gravity. Returns its x velocity after `time`.
+struct SlidingSphere {
+  static constexpr double radius = 1e-3, density = 3720, g = 9.81, v0 = 0.05;
+  double mass = 0;
+  std::unique_ptr<Simulation> sim;
+
+  explicit SlidingSphere(const ContactModel& model, double e_star) {
+    Particles p;
+    p.add(Vec3::Zero(), radius, density);
+    mass = p.mass[0];
+    // 4/3 E* sqrt(r) delta^1.5 = m g
+    const double delta = std::pow(3 * mass * g / (4 * e_star * std::sqrt(radius)), 2.0 / 3.0);
+    p.position[0] = Vec3(0, 0, radius - delta);
+    p.velocity[0] = Vec3(v0, 0, 0);
+    SimulationSetup s;
+    s.particles = std::move(p);
+    s.contact = &model;
+    Wall floor;
+    floor.name = "floor";
+    floor.shape = WallShape::Plane;
+    floor.point = Vec3::Zero();
+    floor.axis = Vec3::UnitZ();
+    s.walls.push_back(floor);
+    s.gravity = Vec3(0, 0, -g);
+    sim = std::make_unique<Simulation>(std::move(s));
+  }
+  double velocity_at(double time) {
+    sim->run(static_cast<std::int64_t>(std::llround((time - sim->time()) / sim->dt())));
+    return sim->particles().velocity[0].x();
+  }
+};
+
+}  // namespace
+
+TEST_CASE("a sphere sliding on a wall decelerates at mu_wall g, independent of the particle friction") {
+  hertz_plus::HertzMindlinPlusParams p;
+  p.friction = 0.67;
+  for (const double mu_wall : {0.2, -1.0}) {
+    p.wall_friction = mu_wall;
+    const hertz_plus::HertzMindlinPlus model(p);
+    const double mu = mu_wall < 0 ? p.friction : mu_wall;
+    SlidingSphere s(model, model.effective_young_modulus());
+    // Sliding lasts until v = 5/7 v0 at t = 2 v0 / (7 mu g): 7.3 ms for mu = 0.2, 2.2 ms for 0.67.
+    const double t_roll = 2 * SlidingSphere::v0 / (7 * mu * SlidingSphere::g);
+    const double t1 = 0.1 * t_roll, t2 = 0.8 * t_roll;
+    const double v1 = s.velocity_at(t1), v2 = s.velocity_at(t2);
+    const double deceleration = (v1 - v2) / (t2 - t1);
+    MESSAGE("mu_wall ", mu_wall, ": deceleration ", deceleration, " m/s^2 vs mu g = ", mu * SlidingSphere::g);
+    // The normal force rings around m g from the start (restitution 0.5 damps it); 1 % covers it.
+    CHECK(deceleration == doctest::Approx(mu * SlidingSphere::g).epsilon(0.01));
+    // And after rolling sets in: v = 5/7 v0 (rolling without slip; rolling friction absent).
+    CHECK(s.velocity_at(1.5 * t_roll) == doctest::Approx(5.0 / 7 * SlidingSphere::v0).epsilon(0.01));
+  }
+}
+
+TEST_CASE("wall friction at the batch level: |F_t| = mu_wall F_n at walls, mu F_n between particles") {
+  hertz_plus::HertzMindlinPlusParams p;
+  p.friction = 0.5;
+  p.wall_friction = 0.1;
+  const hertz_plus::HertzMindlinPlus model(p);
+  ContactScene c(2, model.history_size());
+  c.j = {-1, 1};
+  for (std::size_t k = 0; k < 2; ++k) {
+    c.overlap[k] = 1e-6;
+    c.r_eff[k] = 0.35e-3;
+    c.m_eff[k] = 1e-6;
+    c.velocity[k] = Vec3(0.01, 0, 0);  // steady sliding along x
+  }
+  for (int step = 0; step < 200; ++step) c.compute(model, 1e-6);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const double f_n = c.force[k].z();
+    const Vec3 f_t(c.force[k].x(), c.force[k].y(), 0);
+    CHECK(f_t.norm() / f_n == doctest::Approx(k == 0 ? 0.1 : 0.5).epsilon(1e-12));
+    CHECK(f_t.x() < 0);  // opposes the sliding
+  }
+}
+
+TEST_CASE("cohesion: pull sigma_c pi R delta between particles, none at walls, energy its potential") {
+  hertz_plus::HertzMindlinPlusParams p;
+  p.cohesion_stress = 20e3;  // Pa
+  const hertz_plus::HertzMindlinPlus model(p);
+  hertz_plus::HertzMindlinPlusParams q = p;
+  q.cohesion_stress = 0;
+  const hertz_plus::HertzMindlinPlus dry(q);
+  const double R = 0.175e-3, delta = 2e-7;
+  ContactScene c(2, model.history_size()), d(2, dry.history_size());
+  c.j = d.j = {1, -1};
+  for (auto* s : {&c, &d}) {
+    s->overlap = {delta, delta};
+    s->r_eff = {R, R};
+    s->m_eff = {1e-6, 1e-6};
+  }
+  c.compute(model, 1e-6);
+  d.compute(dry, 1e-6);
+  CHECK(d.force[0].z() - c.force[0].z() == doctest::Approx(20e3 * std::numbers::pi * R * delta).epsilon(1e-12));
+  CHECK(c.force[1].z() == d.force[1].z());  // wall: no cohesion
+  CHECK(d.energy[0] - c.energy[0] == doctest::Approx(0.5 * 20e3 * std::numbers::pi * R * delta * delta).epsilon(1e-12));
+
+  // The force is minus the derivative of the energy (central difference, zero velocity).
+  const double h = 1e-11;
+  c.overlap[0] = delta + h;
+  c.compute(model, 1e-6);
+  const double u_plus = c.energy[0];
+  c.overlap[0] = delta - h;
+  c.compute(model, 1e-6);
+  const double u_minus = c.energy[0];
+  c.overlap[0] = delta;
+  c.compute(model, 1e-6);
+  CHECK(c.force[0].z() == doctest::Approx((u_plus - u_minus) / (2 * h)).epsilon(1e-6));
+}
+
+TEST_CASE("cohesion: the most attractive force over the overlap is the pull-off force (pi sigma_c)^3 R^2 / (12 E*^2)") {
+  hertz_plus::HertzMindlinPlusParams p;
+  p.cohesion_stress = 50e3;
+  const hertz_plus::HertzMindlinPlus model(p);
+  const double R = 0.175e-3;
+  const double e_star = model.effective_young_modulus();
+  const double delta_star = std::pow(std::numbers::pi * p.cohesion_stress, 2) * R / (4 * e_star * e_star);
+  ContactScene c(1, model.history_size());
+  c.r_eff[0] = R;
+  c.m_eff[0] = 1e-6;
+  double most_attractive = 0, at = 0;
+  for (int n = 1; n <= 4000; ++n) {
+    c.overlap[0] = 4 * delta_star * n / 4000;
+    c.compute(model, 1e-6);
+    if (c.force[0].z() < most_attractive) most_attractive = c.force[0].z(), at = c.overlap[0];
+  }
+  const double pull_off = cohesion::pull_off_force(p.cohesion_stress, R, e_star);
+  MESSAGE("pull-off ", -most_attractive, " N at delta ", at, " m; theory ", pull_off, " N at ", delta_star, " m");
+  CHECK(-most_attractive == doctest::Approx(pull_off).epsilon(1e-6));  // flat minimum: grid error O(h^2)
+  CHECK(at == doctest::Approx(delta_star).epsilon(2e-3));
+  // Repulsive again beyond the equilibrium overlap (3 pi sigma_c sqrt(R) / (4 E*))^2 = 9/4 delta*.
+  c.overlap[0] = 2.25 * delta_star * 1.01;
+  c.compute(model, 1e-6);
+  CHECK(c.force[0].z() > 0);
+  c.overlap[0] = 2.25 * delta_star * 0.99;
+  c.compute(model, 1e-6);
+  CHECK(c.force[0].z() < 0);
+}
+
+}  // namespace shard::effects_test
