@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <fmt/ostream.h>
+#include <hdf5.h>
 #include <omp.h>
 
 #include <unistd.h>
@@ -12,6 +13,7 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <regex>
 #include <ostream>
 
 #include "numerical_health.hpp"
@@ -65,6 +67,11 @@ void restore_loop_state(const Checkpoint& c, RunSummary& summary, int& frames_wr
   health.restore(c.array("health"));
 }
 
+bool explicitly_sets_breakage(const std::string& scene_text) {
+  static const std::regex line(R"((^|\n)[ \t]*breakage[ \t]*=[ \t]*true)");
+  return std::regex_search(scene_text, line);
+}
+
 // Writes the curve CSV and says so if the disk refused it.
 void write_curve_csv(const std::filesystem::path& csv, const RunSummary& summary) {
   std::ofstream out(csv);
@@ -112,6 +119,13 @@ void load_plugins(PluginHost& host, const std::vector<std::filesystem::path>& di
 RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
   const auto wall_start = std::chrono::steady_clock::now();
   if (options.threads > 0) omp_set_num_threads(options.threads);
+  // A full disk or a file-size limit must surface as a write error, not kill the process.
+  const SignalGuard file_size_guard(SIGXFSZ, SIG_IGN);
+  // HDF5 1.10 closes its open files again at exit; a file whose flush failed (disk full) then
+  // crashes that second close (measured: SIGSEGV in H5F__close_cb after the error was printed).
+  // Shard closes every file through RAII, so the library's exit handler is not needed. It can only
+  // be switched off before the library's first use and simply refuses afterwards.
+  H5dont_atexit();
   auto log = [&](const std::string& line) {
     if (!options.quiet) fmt::print(log_stream, "{}\n", line);
   };
@@ -128,8 +142,17 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
     restart_point = read_checkpoint(checkpoint_path_for(options.restart));
     old_meta = RunFile(options.restart).metadata();
   }
+  if (!restarting && std::filesystem::is_directory(options.scene))
+    throw SceneError(fmt::format("{}: is a folder, not a scene file; give the .toml file (scenes/ has examples)",
+                                 options.scene.string()));
   const Scene scene = restarting ? load_scene_text(old_meta.scene_text, old_meta.scene_file, {}, host)
                                  : load_scene(options.scene, options.overrides, host);
+  // Breakage without a bond model is not an error (the default is on, and a contact-only scene
+  // is legitimate), but asking for it explicitly means a [bond] section was forgotten.
+  if (scene.breakage && !scene.bond && explicitly_sets_breakage(scene.resolved_text))
+    fmt::print(log_stream,
+               "warning: breakage = true but the scene has no [bond] section: nothing can break. Add [bond] "
+               "(plugin = \"beam_bond\") or remove breakage\n");
   SceneInstance inst = instantiate(scene, host, log);
   Simulation& sim = *inst.simulation;
   NumericalHealth health(sim);
@@ -218,8 +241,6 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
   }
   if (restarting) std::filesystem::remove(moved_aside);
   RunWriter& writer = *writer_slot;
-  // A full disk or a file-size limit must surface as a write error, not kill the process.
-  const SignalGuard file_size_guard(SIGXFSZ, SIG_IGN);
 
   LoadSensor sensor;
   sensor.direction = scene.stop.load_direction;

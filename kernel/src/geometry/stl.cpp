@@ -148,6 +148,13 @@ TriangleMesh read_stl(const std::filesystem::path& file, double scale) {
                                file.string(), bytes.size()));
   }
   TriangleMesh mesh = builder.take();
+  // A NaN or infinite coordinate (a corrupt float in a binary file, "nan" in an ASCII one) would
+  // poison every later test (found by fuzzing: tests/fuzz/fuzz_stl.cpp).
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+    if (!mesh.vertices[v].allFinite())
+      throw StlError(fmt::format("STL file '{}': vertex {} has a non-finite coordinate (NaN or infinity): the "
+                                 "file is corrupt; export the body again",
+                                 file.string(), v));
   if (mesh.faces.empty())
     throw StlError(fmt::format("STL file '{}' contains no triangles ({} degenerate ones read): export "
                                "the body as a triangulated surface",

@@ -7,7 +7,12 @@ namespace shard {
 SceneInstance instantiate(const Scene& scene, const PluginHost& host,
                           const std::function<void(const std::string&)>& log) {
   SceneInstance out;
-  auto generator = host.make_generator(scene.generator.name, scene.generator.params);
+  std::unique_ptr<Generator> generator;
+  try {
+    generator = host.make_generator(scene.generator.name, scene.generator.params);
+  } catch (const std::exception& e) {  // the plugin's own parameter checks (d_min > d_max, ...)
+    throw SceneError(fmt::format("{}: [generator] {}", scene.generator.where, e.what()));
+  }
   GeneratorContext ctx;
   ctx.scene_dir = scene.dir.string();
   ctx.seed = scene.seed;

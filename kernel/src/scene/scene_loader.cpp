@@ -1,5 +1,7 @@
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <sstream>
 #include <toml++/toml.h>
@@ -261,9 +263,39 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<std::strin
   return load_scene_text(ss.str(), file, overrides, host);
 }
 
+namespace {
+
+// toml++ 3.3 enters its key parser after a table header's "[" or "[[" without checking the next
+// character ("[?x]", "[[[", "[[="): a debug build aborts, a release build has undefined behaviour
+// (found by fuzzing: tests/fuzz/fuzz_scene.cpp; fixed upstream after 3.3). Such a header is
+// refused here first. A line of a multi-line array value starting with "[" followed by anything
+// but a key character ("[ ]", "[+1") is refused too: no Shard key takes such a value.
+void refuse_malformed_headers(const std::string& text, const std::string& file) {
+  std::size_t line = 1;
+  for (std::size_t start = 0; start < text.size(); ++line) {
+    const std::size_t end = std::min(text.find('\n', start), text.size());
+    const std::size_t k = text.find_first_not_of(" \t", start);
+    if (k < end && text[k] == '[') {
+      const std::size_t after = text.compare(k, 2, "[[") == 0 ? k + 2 : k + 1;
+      const std::size_t c = text.find_first_not_of(" \t", after);
+      const char next = c < end ? text[c] : '\n';
+      const bool key_start = std::isalnum(static_cast<unsigned char>(next)) || next == '_' || next == '-' ||
+                             next == '"' || next == '\'';
+      if (!key_start)
+        throw SceneError(fmt::format("{}:{}:{}: TOML syntax error: '[' must be followed by a section name, as in "
+                                     "[simulation] or [[wall]]",
+                                     file, line, k - start + 1));
+    }
+    start = end + 1;
+  }
+}
+
+}  // namespace
+
 Scene load_scene_text(const std::string& text, const std::filesystem::path& file_path,
                       const std::vector<std::string>& overrides, const PluginHost& host) {
   const std::string file = file_path.string();
+  refuse_malformed_headers(text, file);
   toml::table root;
   try {
     root = toml::parse(text, file);

@@ -1,0 +1,102 @@
+// Checkpoint/restart: a run stopped at step k and continued with --restart ends in the same
+// state, bit for bit, as a run that was never stopped, and its run file holds the same series,
+// break log and frames.
+#include <sstream>
+
+#include "reliability_fixtures.hpp"
+#include "shard/app/run_command.hpp"
+#include "shard/run_file.hpp"
+
+using namespace shard;
+using namespace shard::test;
+
+namespace {
+
+RunOptions options_for(const std::filesystem::path& out) {
+  RunOptions o;
+  o.scene = kScenes / "crush_cube.toml";
+  o.out_dir = out;
+  o.quiet = true;
+  return o;
+}
+
+void require_same_run_files(const std::filesystem::path& a_path, const std::filesystem::path& b_path) {
+  const RunFile a(a_path), b(b_path);
+  CHECK(a.series_rows() == b.series_rows());
+  for (const char* column : {"time", "kinetic_energy", "bond_energy", "contact_energy"})
+    CHECK(same_bits(a.read_series(column), b.read_series(column)));
+  for (const char* column : {"step", "bonds_intact", "bonds_broken", "contacts"})
+    CHECK(same_bits(a.read_integer_series(column), b.read_integer_series(column)));
+  CHECK(same_bits(a.read_wall_series("plate", "force"), b.read_wall_series("plate", "force")));
+  const auto ea = a.read_break_events(), eb = b.read_break_events();
+  REQUIRE(ea.size() == eb.size());
+  for (std::size_t k = 0; k < ea.size(); ++k) CHECK((ea[k].step == eb[k].step && ea[k].id_i == eb[k].id_i));
+  REQUIRE(a.frame_count() == b.frame_count());
+  for (std::size_t k = 0; k < a.frame_count(); ++k) {
+    const FrameData fa = a.read_frame(k), fb = b.read_frame(k);
+    CHECK(fa.step == fb.step);
+    CHECK(same_bits(fa.position, fb.position));
+    CHECK(same_bits(fa.velocity, fb.velocity));
+    CHECK(fa.bonds.size() == fb.bonds.size());
+  }
+}
+
+}  // namespace
+
+TEST_CASE("interrupted at step k and restarted: final state and run file bit-identical to an uninterrupted run") {
+  std::ostringstream log;
+  const auto reference_dir = scratch("reference");
+  const RunSummary reference = run_scene(options_for(reference_dir), log);
+  // The scene must exercise what a checkpoint carries: contacts, broken bonds, a moving wall.
+  REQUIRE(reference.bonds_broken > 10);
+  REQUIRE(reference.steps > 500);
+  const Checkpoint final_reference = read_checkpoint(reference_dir / "run.checkpoint.h5");
+  REQUIRE(final_reference.simulation.step == reference.steps);
+  REQUIRE(final_reference.simulation.contacts > 0);
+
+  // k between frames (the checkpoint is then written by the interruption itself), on a frame,
+  // before the first bond broke and after it.
+  const std::int64_t first_break = final_reference.simulation.events.front().step;
+  const std::int64_t second_frame = RunFile(reference_dir / "run.h5").read_frame(2).step;
+  for (const std::int64_t k : {std::int64_t{137}, second_frame, first_break - 3, first_break + 41}) {
+    CAPTURE(k);
+    REQUIRE(k < reference.steps);
+    const auto dir = scratch("interrupted_" + std::to_string(k));
+    RunOptions first = options_for(dir);
+    first.interrupt_at_step = k;
+    const RunSummary stopped = run_scene(first, log);
+    REQUIRE(stopped.interrupted);
+    CHECK(stopped.steps == k);
+    CHECK(stopped.checkpoint_step == k);
+
+    RunOptions second = options_for(dir);
+    second.scene.clear();
+    second.restart = dir / "run.h5";
+    const RunSummary resumed = run_scene(second, log);
+    CHECK(resumed.restarted_from == k);
+    CHECK(resumed.steps == reference.steps);
+    CHECK(resumed.bonds_broken == reference.bonds_broken);
+    CHECK(resumed.peak_load == reference.peak_load);
+    CHECK(same_bits(resumed.load, reference.load));
+    require_identical(read_checkpoint(dir / "run.checkpoint.h5").simulation, final_reference.simulation);
+    require_same_run_files(dir / "run.h5", reference_dir / "run.h5");
+    CHECK_FALSE(std::filesystem::exists(dir / "run.interrupted.h5"));
+  }
+}
+
+TEST_CASE("a restart that cannot proceed leaves the interrupted run untouched") {
+  std::ostringstream log;
+  const auto dir = scratch("no_checkpoint");
+  RunOptions first = options_for(dir);
+  first.interrupt_at_step = 50;
+  run_scene(first, log);
+  std::filesystem::remove(dir / "run.checkpoint.h5");
+  RunOptions second = options_for(dir);
+  second.restart = dir / "run.h5";
+  CHECK_THROWS_WITH_AS(run_scene(second, log), doctest::Contains("no checkpoint"), CheckpointError);
+  CHECK(RunFile(dir / "run.h5").frame_count() >= 1);
+
+  RunOptions missing = options_for(dir);
+  missing.restart = dir / "nothing.h5";
+  CHECK_THROWS_WITH(run_scene(missing, log), doctest::Contains("no such run file"));
+}
