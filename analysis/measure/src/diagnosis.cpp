@@ -55,6 +55,8 @@ Diagnosis diagnose(const std::vector<std::string>& names, const std::vector<doub
     EffectScore s;
     s.name = e.name;
     const double tt = t.squaredNorm();
+    const double ss = to_vector(e.signature).squaredNorm();
+    s.absorbed = ss > 0 ? 1 - tt / ss : 1;
     if (tt > 1e-12 * std::max(1.0, to_vector(e.signature).squaredNorm())) {
       const double ty = t.dot(y);
       s.score = ty * ty / tt;
@@ -96,6 +98,37 @@ Diagnosis diagnose(const std::vector<std::string>& names, const std::vector<doub
     d.verdict = "unexplained structured residual";
   }
   return d;
+}
+
+}  // namespace shard::measure
+
+namespace shard::measure {
+
+LinearRefit linear_refit(const std::vector<double>& residual, const std::vector<std::vector<double>>& jacobian,
+                         const std::vector<EffectSignature>& effects) {
+  const auto m = static_cast<Eigen::Index>(residual.size());
+  const auto p = static_cast<Eigen::Index>(jacobian.size());
+  const auto q = static_cast<Eigen::Index>(effects.size());
+  if (p + q >= m) throw std::invalid_argument("linear_refit: more unknowns than residual components");
+  Eigen::MatrixXd A(m, p + q);
+  for (Eigen::Index c = 0; c < p; ++c) {
+    if (static_cast<Eigen::Index>(jacobian[static_cast<std::size_t>(c)].size()) != m)
+      throw std::invalid_argument("linear_refit: a Jacobian column has the wrong length");
+    A.col(c) = to_vector(jacobian[static_cast<std::size_t>(c)]);
+  }
+  for (Eigen::Index c = 0; c < q; ++c) {
+    if (static_cast<Eigen::Index>(effects[static_cast<std::size_t>(c)].signature.size()) != m)
+      throw std::invalid_argument("linear_refit: a signature has the wrong length");
+    A.col(p + c) = to_vector(effects[static_cast<std::size_t>(c)].signature);
+  }
+  const Eigen::VectorXd r0 = to_vector(residual);
+  // Complete orthogonal decomposition: a minimum-norm answer when columns are (nearly) collinear.
+  const Eigen::VectorXd x = A.completeOrthogonalDecomposition().solve(-r0);
+  LinearRefit out;
+  for (Eigen::Index c = 0; c < p; ++c) out.base_step.push_back(x[c]);
+  for (Eigen::Index c = 0; c < q; ++c) out.effect_scale.push_back(x[p + c]);
+  out.chi_square = (r0 + A * x).squaredNorm();
+  return out;
 }
 
 }  // namespace shard::measure

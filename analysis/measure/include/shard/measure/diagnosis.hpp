@@ -33,6 +33,7 @@ struct EffectScore {
   double explained = 0;       // LM / |y|^2: share of the unabsorbed weighted residual it explains
   double size = 0;            // estimated effect parameter value, a* trial_size
   double chi_square_after = 0;
+  double absorbed = 0;        // share of |s|^2 the base parameters absorb (1 - |t|^2 / |s|^2)
   double delta_aic = 0;       // AIC(with effect) - AIC(base) = -LM + 2
   double delta_bic = 0;
   std::vector<std::string> explains;  // residual components it reduces the most
@@ -58,5 +59,21 @@ struct DiagnoseOptions {
 Diagnosis diagnose(const std::vector<std::string>& component_names, const std::vector<double>& residual,
                    const std::vector<std::vector<double>>& base_jacobian_columns,
                    const std::vector<EffectSignature>& effects, const DiagnoseOptions& options = {});
+
+}  // namespace shard::measure
+
+namespace shard::measure {
+
+// The linearised joint refit of the base parameters and some effects: minimises
+// |r0 + J dtheta + S a|^2 by least squares. dtheta is in the Jacobian's units (relative steps),
+// a in units of each effect's trial size; chi_square is the predicted minimum.
+struct LinearRefit {
+  std::vector<double> base_step;
+  std::vector<double> effect_scale;
+  double chi_square = 0;
+};
+
+LinearRefit linear_refit(const std::vector<double>& residual, const std::vector<std::vector<double>>& base_jacobian_columns,
+                         const std::vector<EffectSignature>& effects);
 
 }  // namespace shard::measure

@@ -1,0 +1,47 @@
+#pragma once
+// The candidate effects `shard diagnose` tries (scenes/measurements/effects.toml): each is one
+// parameter with a neutral value (the effect is off, the base model) and a plausible size (the
+// trial run that gives its signature). `set` switches on the plugin that carries the parameter;
+// `machine_compliance` is not a scene key but the series spring of the testing machine, applied
+// to the simulated curve (w + C F).
+//
+//   [[effect]]
+//   name = "bond_viscosity"
+//   parameter = "bond.damping"        # section.key, wall.NAME.key, or machine_compliance
+//   unit = "N s/m"
+//   neutral = 0.0
+//   plausible = 0.02
+//   set = []                          # e.g. ["bond.plugin=beam_bond_plus"]
+//   separated_by = "a second loading rate"
+//   doc = "viscous bond force on the strain rate: a rate-dependent stiffness and strength"
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace shard::measure {
+
+inline constexpr const char* kMachineCompliance = "machine_compliance";
+
+struct CandidateEffect {
+  std::string name;
+  std::string parameter;
+  std::string unit;
+  double neutral = 0;
+  double plausible = 0;
+  std::vector<std::string> set;  // extra overrides that switch the effect's plugin on
+  std::string separated_by;      // the measurement that tells it apart from look-alikes
+  std::string doc;
+
+  bool post_processing() const { return parameter == kMachineCompliance; }
+  // The overrides that put the effect at `value` into a scene (none for machine compliance).
+  std::vector<std::string> overrides(double value) const;
+};
+
+// Reads the library; errors name the file, line and column.
+std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& file);
+
+// The library entries named in `names` (all when empty); an unknown name lists the valid ones.
+std::vector<CandidateEffect> select_effects(const std::vector<CandidateEffect>& library,
+                                            const std::vector<std::string>& names);
+
+}  // namespace shard::measure

@@ -1,0 +1,184 @@
+// `shard calibrate-effect`: adds one library effect to the model and fits its parameter together
+// with chosen base parameters to the measurements (NLopt BOBYQA, derivative-free: each objective
+// value is a set of simulations). Objective: chi^2 of the standardised residual vector (regime
+// means and feature scores), on fixed packing seeds so that it is a deterministic function.
+// Start: the linearised refit (the runs `shard diagnose` made are cached and cost nothing).
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <nlopt.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <memory>
+
+#include "measure_commands.hpp"
+#include "measure_plan.hpp"
+#include "shard/app/commands.hpp"
+#include "shard/measure/report.hpp"
+
+namespace shard {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace measure;
+
+struct Fit {
+  std::vector<std::string> keys;
+  std::vector<double> base_values;
+  const CandidateEffect* effect = nullptr;
+  Simulator* simulator = nullptr;
+  const std::vector<Specimen>* measured = nullptr;
+  const Metadata* metadata = nullptr;
+  ModelPlan base;
+  int evaluations = 0;
+  double best = std::numeric_limits<double>::infinity();
+  std::vector<double> best_x;
+
+  // x: base parameters relative to their start values, then the effect in units of its
+  // plausible size above neutral.
+  ModelPlan model(const std::vector<double>& x) const {
+    std::vector<double> v;
+    for (std::size_t i = 0; i < keys.size(); ++i) v.push_back(base_values[i] * x[i]);
+    ModelPlan m = with_parameters(base, keys, v);
+    if (effect) m = with_effect(m, *effect, value_of(x));
+    return m;
+  }
+  double value_of(const std::vector<double>& x) const {
+    return effect->neutral + x.back() * (effect->plausible - effect->neutral);
+  }
+  double objective(const std::vector<double>& x) {
+    const auto sims = simulator->simulate(model(x), std::cerr);
+    const double chi2 = chi_square(compare(*measured, *metadata, sims));
+    ++evaluations;
+    fmt::print(stderr, "calibrate-effect: evaluation {} chi^2 {:.2f}\n", evaluations, chi2);
+    if (chi2 < best) best = chi2, best_x = x;
+    return chi2;
+  }
+};
+
+double nlopt_objective(unsigned n, const double* x, double* grad, void* data) {
+  (void)grad;  // derivative-free
+  return static_cast<Fit*>(data)->objective(std::vector<double>(x, x + n));
+}
+
+}  // namespace
+
+void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
+  struct Options {
+    fs::path measurements, out = "calibrate", library;
+    double rate = 0;
+    ModelPlan model;
+    SimulationOptions sim;
+    std::vector<std::string> params;
+    std::string effect;
+    int max_evaluations = 16;
+    std::string label;
+  };
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("calibrate-effect",
+                                 "add a library effect to the model and fit its size with chosen base parameters (NLopt BOBYQA)");
+  cmd->add_option("measurements", o->measurements, "measurement folder")->required();
+  add_simulation_options(cmd, o->model, o->sim);
+  cmd->get_option("--scene")->required();
+  cmd->add_option("--with", o->effect, "effect name from the library (none: refit the base parameters only)");
+  cmd->add_option("--param", o->params, "base parameter section.key fitted along (value read from the scene)");
+  cmd->add_option("--effects", o->library, "candidate-effect library (default: effects.toml next to the scene)");
+  cmd->add_option("--rate", o->rate, "loading rate to use (m/s)");
+  cmd->add_option("--max-evaluations", o->max_evaluations, "objective evaluations (each is one run per seed)");
+  cmd->add_option("--label", o->label, "name of the new model version in the history");
+  cmd->add_option("--out", o->out, "folder for calibrate.md, calibrate.json and compare plots");
+  cmd->callback([o, &ctx] {
+    const MeasurementSet set = read_measurements(o->measurements);
+    const auto measured = specimens_at_rate(set, o->rate);
+    const fs::path library = o->library.empty() ? o->model.scene.parent_path() / "effects.toml" : o->library;
+    std::vector<CandidateEffect> effects;
+    if (!o->effect.empty()) effects = select_effects(read_effect_library(library), {o->effect});
+    if (o->params.empty() && effects.empty()) throw std::runtime_error("calibrate-effect: give --with EFFECT and/or --param");
+    Fit fit;
+    fit.keys = o->params;
+    for (const auto& k : o->params) fit.base_values.push_back(scene_number(o->model, k, ctx.plugin_dirs));
+    fit.effect = effects.empty() ? nullptr : &effects.front();
+    Simulator simulator(o->sim, ctx.plugin_dirs);
+    fit.simulator = &simulator;
+    fit.measured = &measured;
+    fit.metadata = &set.metadata;
+    fit.base = o->model;
+
+    // Linearised start.
+    const Linearisation lin =
+        linearise(simulator, measured, set.metadata, o->model, o->params, fit.base_values, effects, std::cerr);
+    const LinearRefit lr = linear_refit(lin.base.values, lin.jacobian, lin.signatures);
+    const std::size_t n = fit.keys.size() + (fit.effect ? 1 : 0);
+    std::vector<double> lower(n), upper(n), x(n);
+    for (std::size_t i = 0; i < fit.keys.size(); ++i) {
+      lower[i] = 0.5, upper[i] = 2.0;
+      x[i] = std::clamp(1 + lr.base_step[i], 0.55, 1.9);
+    }
+    if (fit.effect) {
+      lower.back() = 0, upper.back() = 4;  // from neutral to four plausible sizes
+      x.back() = std::clamp(lr.effect_scale.front(), 0.05, 3.9);
+    }
+    const Comparison before = lin.base_comparison;
+    nlopt::opt opt(nlopt::LN_BOBYQA, static_cast<unsigned>(n));
+    opt.set_lower_bounds(lower);
+    opt.set_upper_bounds(upper);
+    opt.set_min_objective(nlopt_objective, &fit);
+    opt.set_maxeval(o->max_evaluations);
+    opt.set_xtol_rel(1e-3);
+    std::vector<double> step(n, 0.05);
+    if (fit.effect) step.back() = 0.25;
+    opt.set_initial_step(step);
+    double minimum = 0;
+    std::string stop = "converged";
+    try {
+      const auto result = opt.optimize(x, minimum);
+      if (result == nlopt::MAXEVAL_REACHED) stop = "evaluation budget reached";
+    } catch (const nlopt::roundoff_limited&) {
+      stop = "round-off limited";
+    }
+    const std::vector<double> best = fit.best_x.empty() ? x : fit.best_x;
+    const ModelPlan final_model = fit.model(best);
+    const Comparison after = compare(measured, set.metadata, simulator.simulate(final_model, std::cerr));
+
+    fs::create_directories(o->out);
+    plot_comparison(before, o->out / "before.png", "before: base model");
+    plot_comparison(after, o->out / "after.png", fmt::format("after: {}", o->effect.empty() ? "base refit" : o->effect));
+    HistoryEntry h = history_entry("calibrate-effect", o->label.empty() ? (o->effect.empty() ? "base refit" : "+ " + o->effect) : o->label, after);
+    if (fit.effect) h.effects.push_back(fit.effect->name);
+    for (std::size_t i = 0; i < fit.keys.size(); ++i) h.parameters[fit.keys[i]] = fit.base_values[i] * best[i];
+    if (fit.effect) h.parameters[fit.effect->parameter] = fit.value_of(best);
+    append_history(o->sim.work_dir, h);
+
+    std::string md = fmt::format("# calibrate-effect {}\n\n{} evaluations ({}); chi^2 {:.1f} -> {:.1f}; NRMSE {:.1f} % -> {:.1f} %\n\n",
+                                 o->effect.empty() ? "(base parameters only)" : o->effect, fit.evaluations, stop,
+                                 chi_square(before), chi_square(after), 100 * before.nrmse, 100 * after.nrmse);
+    md += "| parameter | start | fitted |\n|---|---|---|\n";
+    for (std::size_t i = 0; i < fit.keys.size(); ++i)
+      md += fmt::format("| {} | {:.5g} | {:.5g} |\n", fit.keys[i], fit.base_values[i], fit.base_values[i] * best[i]);
+    if (fit.effect)
+      md += fmt::format("| {} ({}) | {:.5g} (neutral) | {:.5g} {} |\n", fit.effect->parameter, fit.effect->name,
+                        fit.effect->neutral, fit.value_of(best), fit.effect->unit);
+    md += "\n| regime | mean residual before | after |\n|---|---|---|\n";
+    std::string json_regimes;
+    for (std::size_t r = 0; r < kRegimeCount; ++r) {
+      if (before.regimes[r].points() == 0 || after.regimes[r].points() == 0) continue;
+      md += fmt::format("| {} | {:+.2f} | {:+.2f} |\n", regime_name(before.regimes[r].regime), before.regimes[r].mean_residual,
+                        after.regimes[r].mean_residual);
+      json_regimes += fmt::format("{}\"{}\": [{:.9g}, {:.9g}]", json_regimes.empty() ? "" : ", ",
+                                  regime_name(before.regimes[r].regime), before.regimes[r].mean_residual,
+                                  after.regimes[r].mean_residual);
+    }
+    md += fmt::format("\nVerdict after: {}\n", after.verdict);
+    std::ofstream(o->out / "calibrate.md") << md;
+    std::ofstream(o->out / "calibrate.json")
+        << fmt::format("{{\"effect\": \"{}\", \"value\": {:.9g}, \"nrmse_before\": {:.9g}, \"nrmse_after\": {:.9g}, "
+                       "\"chi_square_before\": {:.9g}, \"chi_square_after\": {:.9g}, \"evaluations\": {}, \"regimes\": {{{}}}}}\n",
+                       json_escape(o->effect), fit.effect ? fit.value_of(best) : 0.0, before.nrmse, after.nrmse,
+                       chi_square(before), chi_square(after), fit.evaluations, json_regimes);
+    fmt::print("{}", md);
+    ctx.exit_code = 0;
+  });
+}
+
+}  // namespace shard

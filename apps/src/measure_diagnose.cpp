@@ -1,0 +1,195 @@
+// `shard diagnose`: which candidate effect explains what the calibrated base model misses.
+// 1. One parallel batch on the model's packing seeds (common random numbers): the base, each
+//    base parameter +5 % (the Jacobian), each library effect at its plausible size (signature).
+// 2. Score test on the part of the residual the base parameters cannot absorb (diagnosis.hpp).
+// 3. Confirmation: the base refit alone and the top effects refit with it (linear prediction of
+//    the sizes) are simulated; the real drop in chi-square and the information criteria decide.
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <memory>
+
+#include "measure_commands.hpp"
+#include "measure_plan.hpp"
+#include "shard/app/commands.hpp"
+#include "shard/measure/report.hpp"
+#include "shard/measure/statistics.hpp"
+
+namespace shard {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace measure;
+
+struct Confirmation {
+  std::string name;  // "base refit" or the effect
+  std::vector<double> parameters;
+  double effect_value = 0;
+  double chi_square = 0, nrmse = 0, delta_aic = 0, delta_bic = 0;
+};
+
+std::string join(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
+  return s;
+}
+
+}  // namespace
+
+void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
+  struct Options {
+    fs::path measurements, out = "diagnose", library;
+    double rate = 0;
+    ModelPlan model;
+    SimulationOptions sim;
+    std::vector<std::string> params;
+    std::vector<std::string> only;
+    int refit = 2;
+  };
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("diagnose", "rank candidate effects by how much of the model's residual each explains");
+  cmd->add_option("measurements", o->measurements, "measurement folder")->required();
+  add_simulation_options(cmd, o->model, o->sim);
+  cmd->get_option("--scene")->required();
+  cmd->add_option("--rate", o->rate, "loading rate to use (m/s)");
+  cmd->add_option("--param", o->params, "calibrated base parameter section.key (its value is read from the scene)")
+      ->required();
+  cmd->add_option("--effects", o->library, "candidate-effect library (default: effects.toml next to the scene)");
+  cmd->add_option("--only", o->only, "try only these effects of the library");
+  cmd->add_option("--refit", o->refit, "effects confirmed by a refit run (0: none)");
+  cmd->add_option("--out", o->out, "folder for diagnose.md and diagnose.json");
+  cmd->callback([o, &ctx] {
+    const MeasurementSet set = read_measurements(o->measurements);
+    const auto measured = specimens_at_rate(set, o->rate);
+    const fs::path library = o->library.empty() ? o->model.scene.parent_path() / "effects.toml" : o->library;
+    const auto effects = select_effects(read_effect_library(library), o->only);
+    std::vector<double> values;
+    for (const auto& k : o->params) values.push_back(scene_number(o->model, k, ctx.plugin_dirs));
+    Simulator simulator(o->sim, ctx.plugin_dirs);
+    fmt::print(stderr, "diagnose: base, {} parameter steps and {} effects on {} packing seeds\n", o->params.size(),
+               effects.size(), o->sim.seeds);
+    const Linearisation lin = linearise(simulator, measured, set.metadata, o->model, o->params, values, effects, std::cerr);
+    const Diagnosis d = diagnose(lin.base.names, lin.base.values, lin.jacobian, lin.signatures);
+    const double m = static_cast<double>(lin.base.values.size());
+
+    // Confirmation runs: base refit alone, then each of the top effects with the base refit.
+    std::vector<Confirmation> confirmations;
+    std::vector<ModelPlan> models;
+    auto refit_model = [&](const std::vector<EffectSignature>& sig, const CandidateEffect* effect) {
+      const LinearRefit lr = linear_refit(lin.base.values, lin.jacobian, sig);
+      Confirmation c;
+      c.name = effect ? effect->name : "base refit";
+      for (std::size_t i = 0; i < values.size(); ++i) c.parameters.push_back(values[i] * std::max(0.2, 1 + lr.base_step[i]));
+      ModelPlan plan = with_parameters(o->model, o->params, c.parameters);
+      if (effect) {
+        c.effect_value = effect->neutral + lr.effect_scale[0] * (effect->plausible - effect->neutral);
+        plan = with_effect(plan, *effect, c.effect_value);
+      }
+      confirmations.push_back(c);
+      models.push_back(plan);
+    };
+    const auto tops = static_cast<std::size_t>(std::max(0, o->refit));
+    if (tops > 0) {
+      refit_model({}, nullptr);
+      for (std::size_t k = 0; k < std::min(tops, d.ranking.size()); ++k)
+        for (std::size_t e = 0; e < effects.size(); ++e)
+          if (effects[e].name == d.ranking[k].name && d.ranking[k].score > 0) refit_model({lin.signatures[e]}, &effects[e]);
+      const auto sims = simulator.simulate(models, std::cerr);
+      for (std::size_t k = 0; k < models.size(); ++k) {
+        const Comparison c = compare(measured, set.metadata, sims[k]);
+        confirmations[k].chi_square = chi_square(c);
+        confirmations[k].nrmse = c.nrmse;
+        const double extra = k == 0 ? 0 : 1;
+        confirmations[k].delta_aic = confirmations[k].chi_square - confirmations[0].chi_square + 2 * extra;
+        confirmations[k].delta_bic = confirmations[k].chi_square - confirmations[0].chi_square + extra * std::log(m);
+      }
+    }
+    std::string verdict = d.verdict;
+    bool confirmed = true;
+    if (verdict != "adequate" && verdict != "unexplained structured residual" && confirmations.size() > 1 &&
+        confirmations[1].name == verdict && !(confirmations[1].delta_aic < 0)) {
+      confirmed = false;
+      verdict = "unexplained structured residual";
+    }
+
+    std::string md = fmt::format("# Diagnosis: {}\n\nmeasurements {}, model {}, {} packing seeds, base parameters {}.\n",
+                                 verdict, o->measurements.string(), o->model.scene.string(), o->sim.seeds, join(o->params));
+    md += fmt::format("Residual chi^2 {:.1f} over {} components; after what the base parameters can absorb {:.1f} "
+                      "(p = {:.3g} against chi^2({})); base NRMSE {:.1f} %.\n\n",
+                      d.chi_square, lin.base.values.size(), d.chi_square_unabsorbed, d.p_value,
+                      lin.base.values.size() - o->params.size(), 100 * lin.base_comparison.nrmse);
+    if (verdict == "adequate")
+      md += "The residual left after the base parameters is compatible with noise: no effect is needed.\n\n";
+    else if (verdict == "unexplained structured residual")
+      md += fmt::format("No candidate explains the structured residual{}: the missing physics is not in the library "
+                        "({}).\n\n",
+                        confirmed ? "" : " (the top effect's refit did not lower chi^2)", library.string());
+    md += "| effect | score (LM) | p-value | explains | absorbed by base | estimated value | dAIC | dBIC | regimes/features it explains |\n"
+          "|---|---|---|---|---|---|---|---|---|\n";
+    for (const auto& s : d.ranking) {
+      const CandidateEffect* e = nullptr;
+      for (const auto& x : effects)
+        if (x.name == s.name) e = &x;
+      md += fmt::format("| {} | {:.2f} | {:.3g} | {:.0f} % | {:.0f} % | {:.4g} {} | {:+.1f} | {:+.1f} | {} |\n", s.name,
+                        s.score, s.p_value, 100 * s.explained, 100 * s.absorbed, e->neutral + s.size, e->unit,
+                        s.delta_aic, s.delta_bic, join(s.explains));
+    }
+    if (!confirmations.empty()) {
+      md += "\nConfirmation runs (simulated, not predicted):\n\n| model | chi^2 | NRMSE | dAIC vs base refit | dBIC | values |\n|---|---|---|---|---|---|\n";
+      for (const auto& c : confirmations) {
+        std::string v;
+        for (std::size_t i = 0; i < c.parameters.size(); ++i) v += fmt::format("{}{}={:.4g}", v.empty() ? "" : ", ", o->params[i], c.parameters[i]);
+        if (c.name != "base refit") v += fmt::format(", {}={:.4g}", c.name, c.effect_value);
+        md += fmt::format("| {} | {:.1f} | {:.1f} % | {:+.1f} | {:+.1f} | {} |\n", c.name, c.chi_square, 100 * c.nrmse,
+                          c.delta_aic, c.delta_bic, v);
+      }
+    }
+    for (const auto& [a, b] : d.indistinguishable) {
+      std::string how;
+      for (const auto& x : effects)
+        if ((x.name == a || x.name == b) && !x.separated_by.empty())
+          how += fmt::format("{}{}: {}", how.empty() ? "" : "; ", x.name, x.separated_by);
+      md += fmt::format("\n{} and {} have nearly parallel signatures here: these data cannot tell them apart. "
+                        "Measurements that would: {}.\n",
+                        a, b, how.empty() ? "a second loading rate, an unloading cycle or fragment sizes" : how);
+    }
+    for (const auto& s : d.ranking)
+      if (s.absorbed > 0.9)
+        md += fmt::format("\n{}: {:.0f} % of its signature is absorbed by the base parameters: a calibration of {} "
+                          "alone would hide it.\n",
+                          s.name, 100 * s.absorbed, join(o->params));
+    md += fmt::format("\nLargest kinetic/elastic energy ratio of the runs before breakage: {:.2g}.\n",
+                      simulator.max_kinetic_to_elastic());
+
+    std::string json = fmt::format("{{\"verdict\": \"{}\", \"chi_square\": {:.9g}, \"chi_square_unabsorbed\": {:.9g}, "
+                                   "\"p_value\": {:.9g}, \"nrmse\": {:.9g}, \"ranking\": [",
+                                   json_escape(verdict), d.chi_square, d.chi_square_unabsorbed, d.p_value,
+                                   lin.base_comparison.nrmse);
+    for (std::size_t k = 0; k < d.ranking.size(); ++k) {
+      const auto& s = d.ranking[k];
+      const CandidateEffect* e = nullptr;
+      for (const auto& x : effects)
+        if (x.name == s.name) e = &x;
+      json += fmt::format("{}{{\"name\": \"{}\", \"score\": {:.9g}, \"p_value\": {:.9g}, \"explained\": {:.9g}, "
+                          "\"absorbed\": {:.9g}, \"value\": {:.9g}}}",
+                          k ? ", " : "", json_escape(s.name), s.score, s.p_value, s.explained, s.absorbed,
+                          e->neutral + s.size);
+    }
+    json += "], \"confirmations\": [";
+    for (std::size_t k = 0; k < confirmations.size(); ++k)
+      json += fmt::format("{}{{\"name\": \"{}\", \"chi_square\": {:.9g}, \"nrmse\": {:.9g}, \"delta_aic\": {:.9g}}}",
+                          k ? ", " : "", json_escape(confirmations[k].name), confirmations[k].chi_square,
+                          confirmations[k].nrmse, confirmations[k].delta_aic);
+    json += "]}\n";
+    fs::create_directories(o->out);
+    std::ofstream(o->out / "diagnose.md") << md;
+    std::ofstream(o->out / "diagnose.json") << json;
+    fmt::print("{}", md);
+    ctx.exit_code = 0;
+  });
+}
+
+}  // namespace shard

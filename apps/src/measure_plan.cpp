@@ -1,0 +1,224 @@
+#include "measure_plan.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <toml++/toml.h>
+
+#include "shard/measure/report.hpp"
+#include "shard/measure/synthetic.hpp"
+
+namespace shard {
+
+namespace fs = std::filesystem;
+using namespace measure;
+
+void add_simulation_options(CLI::App* cmd, ModelPlan& model, SimulationOptions& options) {
+  cmd->add_option("--scene", model.scene, "model scene (.toml)");
+  cmd->add_option("--set", model.overrides, "override a scene key, e.g. --set bond.youngs_modulus=13e6");
+  cmd->add_option("--seeds", options.seeds, "packing-seed replicates")->check(CLI::PositiveNumber);
+  cmd->add_option("--first-seed", options.first_seed, "first packing seed");
+  cmd->add_option("--work", options.work_dir, "folder for the run cache and history.jsonl");
+  cmd->add_option("--workers", options.workers, "simulations run at once (child processes)")->check(CLI::PositiveNumber);
+  cmd->add_flag("!--no-seat", options.seat, "do not bring pins and supports into contact before loading");
+  cmd->add_option("--machine-compliance", model.machine_compliance,
+                  "load-frame compliance C in m/N added to the simulated displacement (w + C F)");
+}
+
+Simulator::Simulator(const SimulationOptions& options, const std::vector<fs::path>& plugin_dirs)
+    : options_(options), pool_(options.work_dir, plugin_dirs, options.workers) {}
+
+std::vector<std::vector<Specimen>> Simulator::simulate(const std::vector<ModelPlan>& models, std::ostream& log) {
+  std::vector<RunRequest> requests;
+  for (const auto& m : models)
+    for (int k = 0; k < options_.seeds; ++k) requests.push_back({m.scene, m.overrides, options_.first_seed + k, options_.seat});
+  const auto results = pool_.run(requests, log);
+  std::vector<std::vector<Specimen>> out(models.size());
+  std::size_t i = 0;
+  for (std::size_t m = 0; m < models.size(); ++m)
+    for (int k = 0; k < options_.seeds; ++k, ++i) {
+      Specimen s;
+      s.id = fmt::format("sim_seed{}", options_.first_seed + k);
+      s.curve = models[m].machine_compliance > 0 ? with_machine_compliance(results[i].curve, models[m].machine_compliance)
+                                                 : results[i].curve;
+      max_ke_ = std::max(max_ke_, results[i].kinetic_to_elastic);
+      out[m].push_back(std::move(s));
+    }
+  return out;
+}
+
+std::vector<Specimen> Simulator::simulate(const ModelPlan& model, std::ostream& log) {
+  return simulate(std::vector<ModelPlan>{model}, log).front();
+}
+
+double scene_number(const ModelPlan& model, const std::string& key, const std::vector<fs::path>& plugin_dirs) {
+  (void)plugin_dirs;
+  // The last override of the key wins, as in the scene loader; otherwise the scene file's value.
+  for (auto it = model.overrides.rbegin(); it != model.overrides.rend(); ++it)
+    if (it->rfind(key + "=", 0) == 0) return std::stod(it->substr(key.size() + 1));
+  const toml::table root = toml::parse_file(model.scene.string());
+  const auto dot = key.find('.');
+  const auto v = root[key.substr(0, dot)][key.substr(dot + 1)].value<double>();
+  if (!v)
+    throw std::runtime_error(fmt::format("{}: no number {} in the scene: set it there or with --set {}=value",
+                                         model.scene.string(), key, key));
+  return *v;
+}
+
+std::vector<Specimen> specimens_at_rate(const MeasurementSet& set, double rate) {
+  std::vector<Specimen> out;
+  const auto rates = set.loading_rates();
+  if (rate <= 0 && rates.size() > 1)
+    throw std::runtime_error(fmt::format("the measurements have {} loading rates; choose one with --rate", rates.size()));
+  for (const auto& s : set.specimens)
+    if (rate <= 0 || std::abs(s.loading_rate - rate) <= 1e-9 * rate) out.push_back(s);
+  if (out.empty()) throw std::runtime_error(fmt::format("no specimen at loading rate {} m/s", rate));
+  return out;
+}
+
+HistoryEntry history_entry(const std::string& command, const std::string& label, const Comparison& c) {
+  HistoryEntry h;
+  h.command = command;
+  h.label = label;
+  h.nrmse = c.nrmse;
+  for (double r : c.residual_vector().values) h.chi_square += r * r;
+  for (const auto& g : c.regimes)
+    if (g.points() > 0) h.regimes[std::string(regime_name(g.regime))] = g.mean_residual;
+  for (const auto& f : c.features) h.features[std::string(feature_name(f.feature))] = f.relative_error;
+  return h;
+}
+
+namespace {
+
+std::string json_map(const std::map<std::string, double>& m) {
+  std::string s = "{";
+  for (const auto& [k, v] : m) s += fmt::format("{}\"{}\": {:.9g}", s.size() > 1 ? ", " : "", json_escape(k), v);
+  return s + "}";
+}
+
+std::map<std::string, double> map_of(const toml::table* t) {
+  std::map<std::string, double> m;
+  if (t)
+    for (const auto& [k, v] : *t)
+      if (auto d = v.value<double>()) m[std::string(k.str())] = *d;
+  return m;
+}
+
+}  // namespace
+
+void append_history(const fs::path& work_dir, const HistoryEntry& h) {
+  fs::create_directories(work_dir);
+  std::ofstream out(work_dir / "history.jsonl", std::ios::app);
+  std::string effects = "[";
+  for (const auto& e : h.effects) effects += fmt::format("{}\"{}\"", effects.size() > 1 ? ", " : "", json_escape(e));
+  effects += "]";
+  out << fmt::format(
+      "{{\"time\": {}, \"command\": \"{}\", \"label\": \"{}\", \"effects\": {}, \"parameters\": {}, \"nrmse\": {:.9g}, "
+      "\"chi_square\": {:.9g}, \"regimes\": {}, \"features\": {}}}\n",
+      static_cast<long long>(std::time(nullptr)), json_escape(h.command), json_escape(h.label), effects,
+      json_map(h.parameters), h.nrmse, h.chi_square, json_map(h.regimes), json_map(h.features));
+}
+
+std::vector<HistoryEntry> read_history(const fs::path& work_dir) {
+  std::ifstream in(work_dir / "history.jsonl");
+  if (!in)
+    throw std::runtime_error(fmt::format("{}: no history yet; `shard compare` and `shard calibrate-effect` with "
+                                         "--work {} write it",
+                                         (work_dir / "history.jsonl").string(), work_dir.string()));
+  std::vector<HistoryEntry> out;
+  std::string line;
+  for (long n = 1; std::getline(in, line); ++n) {
+    if (line.empty()) continue;
+    // A JSON object of strings, numbers, arrays of strings and flat objects is valid TOML inline
+    // table syntax once ':' becomes '=': toml++ reads it without a JSON dependency.
+    std::string t;
+    bool in_string = false;
+    for (char ch : line) {
+      if (ch == '"' && (t.empty() || t.back() != '\\')) in_string = !in_string;
+      t += (!in_string && ch == ':') ? '=' : ch;
+    }
+    toml::table row;
+    try {
+      row = toml::parse("v = " + t);
+    } catch (const toml::parse_error& e) {
+      throw std::runtime_error(fmt::format("{}:{}: not a history line: {}", (work_dir / "history.jsonl").string(), n,
+                                           e.description()));
+    }
+    const auto* v = row["v"].as_table();
+    HistoryEntry h;
+    h.command = (*v)["command"].value_or(std::string());
+    h.label = (*v)["label"].value_or(std::string());
+    if (const auto* a = (*v)["effects"].as_array())
+      for (const auto& e : *a) h.effects.push_back(e.value_or(std::string()));
+    h.parameters = map_of((*v)["parameters"].as_table());
+    h.nrmse = (*v)["nrmse"].value_or(0.0);
+    h.chi_square = (*v)["chi_square"].value_or(0.0);
+    h.regimes = map_of((*v)["regimes"].as_table());
+    h.features = map_of((*v)["features"].as_table());
+    out.push_back(std::move(h));
+  }
+  return out;
+}
+
+}  // namespace shard
+
+namespace shard {
+
+ModelPlan with_effect(ModelPlan model, const CandidateEffect& effect, double value) {
+  if (effect.post_processing()) {
+    model.machine_compliance += value;
+  } else {
+    for (auto& s : effect.overrides(value)) model.overrides.push_back(std::move(s));
+  }
+  return model;
+}
+
+ModelPlan with_parameters(ModelPlan model, const std::vector<std::string>& keys, const std::vector<double>& values) {
+  for (std::size_t i = 0; i < keys.size(); ++i) model.overrides.push_back(fmt::format("{}={:.12g}", keys[i], values[i]));
+  return model;
+}
+
+double chi_square(const Comparison& c) {
+  double x = 0;
+  for (double r : c.residual_vector().values) x += r * r;
+  return x;
+}
+
+Linearisation linearise(Simulator& simulator, const std::vector<Specimen>& measured, const Metadata& metadata,
+                        const ModelPlan& base, const std::vector<std::string>& keys, const std::vector<double>& values,
+                        const std::vector<CandidateEffect>& effects, std::ostream& log) {
+  constexpr double kStep = 0.05;  // relative step of the base parameters
+  std::vector<ModelPlan> models{with_parameters(base, keys, values)};
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    std::vector<double> stepped = values;
+    stepped[i] *= 1 + kStep;
+    models.push_back(with_parameters(base, keys, stepped));
+  }
+  for (const auto& e : effects) models.push_back(with_effect(models.front(), e, e.plausible));
+  const auto sims = simulator.simulate(models, log);
+  Linearisation l;
+  l.base_comparison = compare(measured, metadata, sims[0]);
+  l.base = l.base_comparison.residual_vector();
+  auto difference = [&](std::size_t m, const std::string& what, double scale) {
+    const ResidualVector r = compare(measured, metadata, sims[m]).residual_vector();
+    if (r.names != l.base.names)
+      throw std::runtime_error(fmt::format("{} changed which residual components exist (a regime or feature vanished); "
+                                           "use a smaller size",
+                                           what));
+    std::vector<double> d(r.values.size());
+    for (std::size_t i = 0; i < d.size(); ++i) d[i] = (r.values[i] - l.base.values[i]) / scale;
+    return d;
+  };
+  for (std::size_t i = 0; i < keys.size(); ++i) l.jacobian.push_back(difference(1 + i, keys[i], kStep));
+  for (std::size_t e = 0; e < effects.size(); ++e)
+    l.signatures.push_back({effects[e].name, effects[e].plausible - effects[e].neutral,
+                            difference(1 + keys.size() + e, effects[e].name, 1.0)});
+  return l;
+}
+
+}  // namespace shard

@@ -1,0 +1,96 @@
+#pragma once
+// What the measurement commands share: a model (scene + overrides + machine compliance), its
+// packing-seed replicates run through the RunPool, the options every command takes, and the
+// model-history file.
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <iosfwd>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "measure_runner.hpp"
+#include "shard/measure/comparison.hpp"
+#include "shard/measure/measurements.hpp"
+
+namespace shard {
+
+struct ModelPlan {
+  std::filesystem::path scene;
+  std::vector<std::string> overrides;
+  double machine_compliance = 0;  // m/N, series spring applied to the simulated curves
+};
+
+struct SimulationOptions {
+  int seeds = 3;
+  long first_seed = 1;
+  std::filesystem::path work_dir = "shard_work";
+  int workers = 2;
+  bool seat = true;
+};
+
+void add_simulation_options(CLI::App* cmd, ModelPlan& model, SimulationOptions& options);
+
+class Simulator {
+ public:
+  Simulator(const SimulationOptions& options, const std::vector<std::filesystem::path>& plugin_dirs);
+  // The replicates of every model, all runs in one parallel batch.
+  std::vector<std::vector<measure::Specimen>> simulate(const std::vector<ModelPlan>& models, std::ostream& log);
+  std::vector<measure::Specimen> simulate(const ModelPlan& model, std::ostream& log);
+  RunPool& pool() { return pool_; }
+  // Largest kinetic/elastic ratio of the runs simulated so far (the quasi-static check).
+  double max_kinetic_to_elastic() const { return max_ke_; }
+
+ private:
+  SimulationOptions options_;
+  RunPool pool_;
+  double max_ke_ = 0;
+};
+
+// The value of section.key in the resolved scene (overrides applied); throws when absent.
+double scene_number(const ModelPlan& model, const std::string& key, const std::vector<std::filesystem::path>& plugin_dirs);
+
+std::vector<measure::Specimen> specimens_at_rate(const measure::MeasurementSet& set, double rate);
+
+// One model version in <work>/history.jsonl: what `shard history` tabulates.
+struct HistoryEntry {
+  std::string command, label;
+  std::vector<std::string> effects;
+  std::map<std::string, double> parameters;
+  double nrmse = 0, chi_square = 0;
+  std::map<std::string, double> regimes;   // mean standardised residual per regime
+  std::map<std::string, double> features;  // relative error per feature
+};
+HistoryEntry history_entry(const std::string& command, const std::string& label, const measure::Comparison& c);
+void append_history(const std::filesystem::path& work_dir, const HistoryEntry& entry);
+std::vector<HistoryEntry> read_history(const std::filesystem::path& work_dir);
+
+}  // namespace shard
+
+#include "shard/measure/diagnosis.hpp"
+#include "shard/measure/effect_library.hpp"
+
+namespace shard {
+
+ModelPlan with_effect(ModelPlan model, const measure::CandidateEffect& effect, double value);
+ModelPlan with_parameters(ModelPlan model, const std::vector<std::string>& keys, const std::vector<double>& values);
+
+// The model linearised around `base` (section.key parameters `keys` at `values`): the residual,
+// the Jacobian per relative step (+5 % runs) and each effect's signature at its plausible size,
+// all on the same packing seeds, in one parallel batch.
+struct Linearisation {
+  measure::ResidualVector base;
+  measure::Comparison base_comparison;
+  std::vector<std::vector<double>> jacobian;
+  std::vector<measure::EffectSignature> signatures;
+};
+Linearisation linearise(Simulator& simulator, const std::vector<measure::Specimen>& measured,
+                        const measure::Metadata& metadata, const ModelPlan& base, const std::vector<std::string>& keys,
+                        const std::vector<double>& values, const std::vector<measure::CandidateEffect>& effects,
+                        std::ostream& log);
+
+// Chi-square of a comparison's residual vector.
+double chi_square(const measure::Comparison& c);
+
+}  // namespace shard

@@ -1,0 +1,71 @@
+#pragma once
+// Simulations for the measurement workflow (compare, synth, diagnose, calibrate-effect): each
+// request (scene, overrides, packing seed) is resolved to its full scene text, looked up in a run
+// cache keyed by that text, and otherwise run as a child `shard run` process, several at a time.
+// Runs are independent, so worker processes are the simplest parallelism that is safe whatever
+// the kernel and HDF5 do inside a run (each child uses one OpenMP thread).
+//
+// Seating: a testing machine brings the pins into contact before it records. With `seat`, the
+// loading walls ([stop] load_walls) and the resting cylinders (supports) are moved along the
+// loading direction until they just touch the generated packing, so a random packing's uneven
+// surface does not add a seed-dependent toe gap to the curve.
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "shard/measure/curve.hpp"
+
+namespace shard {
+
+class PluginHost;
+
+struct RunRequest {
+  std::filesystem::path scene;
+  std::vector<std::string> overrides;  // section.key=value, as --set
+  long seed = 1;
+  bool seat = true;
+};
+
+struct RunResult {
+  measure::Curve curve;
+  double kinetic_to_elastic = 0;  // max before breakage (quasi-static check)
+  double wall_seconds = 0;        // of the run itself (0 for a cached run that did not record it)
+  bool cached = false;
+  std::string key;
+};
+
+class RunPool {
+ public:
+  RunPool(std::filesystem::path work_dir, std::vector<std::filesystem::path> plugin_dirs, int workers);
+  ~RunPool();
+  RunPool(const RunPool&) = delete;
+  RunPool& operator=(const RunPool&) = delete;
+
+  // The overrides that seat the walls of `request` on its packing (empty without load walls).
+  std::vector<std::string> seating_overrides(const RunRequest& request) const;
+  // The full scene text a request runs (overrides, seed and seating applied).
+  std::string resolved_text(const RunRequest& request) const;
+  // Runs every request that is not cached, `workers` child processes at a time; results in the
+  // order of the requests. Throws with the child's log when a run fails.
+  std::vector<RunResult> run(const std::vector<RunRequest>& requests, std::ostream& log);
+
+  std::size_t runs_started() const { return runs_started_; }
+  const std::filesystem::path& work_dir() const { return work_dir_; }
+
+ private:
+  std::vector<std::string> full_overrides(const RunRequest& request) const;
+
+  std::filesystem::path work_dir_;
+  std::vector<std::filesystem::path> plugin_dirs_;
+  int workers_;
+  std::unique_ptr<PluginHost> host_;
+  std::size_t runs_started_ = 0;
+};
+
+// FNV-1a 64: a cache key that is the same in every build (std::hash need not be).
+std::string fnv1a_hex(const std::string& text);
+
+}  // namespace shard
