@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   shard::add_bending_command(app, ctx);  // bending, calibrate
   shard::add_fragments_command(app, ctx);
   shard::add_measure_command(app, ctx);
+  shard::add_new_plugin_command(app, ctx);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -20,5 +20,6 @@ void add_plugins_command(CLI::App& app, CommandContext& ctx);
 void add_bending_command(CLI::App& app, CommandContext& ctx);  // bending, calibrate
 void add_fragments_command(CLI::App& app, CommandContext& ctx);
 void add_measure_command(CLI::App& app, CommandContext& ctx);  // compare, synth, diagnose
+void add_new_plugin_command(CLI::App& app, CommandContext& ctx);
 
 }  // namespace shard

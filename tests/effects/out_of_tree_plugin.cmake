@@ -1,0 +1,74 @@
+# Out-of-tree plugin workflow, as a user runs it (docs/plugins.md):
+#   1. cmake --install the Shard build into a fresh prefix;
+#   2. the installed `shard new-plugin KIND NAME` writes a template, for each kind;
+#   3. each template is configured (find_package(Shard)) and built against the prefix only,
+#      with warnings as errors;
+#   4. the installed `shard --plugin-dir <build>/plugins plugins` loads and lists it, and the
+#      installed plugin folder holds the shipped plugins.
+# Run: cmake -DSHARD_BUILD_DIR=<build> -DWORK_DIR=<scratch> -P out_of_tree_plugin.cmake
+foreach(var SHARD_BUILD_DIR WORK_DIR)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "out_of_tree_plugin: -D${var}= is required")
+  endif()
+endforeach()
+
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    string(REPLACE ";" " " cmd "${ARGN}")
+    message(FATAL_ERROR "failed (${rc}): ${cmd}\n${out}\n${err}")
+  endif()
+  set(run_output "${out}" PARENT_SCOPE)
+endfunction()
+
+file(REMOVE_RECURSE "${WORK_DIR}")
+set(prefix "${WORK_DIR}/prefix")
+run(${CMAKE_COMMAND} --install "${SHARD_BUILD_DIR}" --prefix "${prefix}")
+
+set(shard "${prefix}/bin/shard")
+foreach(path bin/shard lib/libshard_kernel.so include/shard/plugin.hpp lib/cmake/Shard/ShardConfig.cmake
+             lib/cmake/Shard/ShardTargets.cmake lib/cmake/Shard/ShardPlugin.cmake
+             lib/shard/plugins/shard_beam_bond_plus.so lib/shard/plugins/shard_hertz_mindlin_plus.so
+             share/shard/templates/contact.cpp.in)
+  if(NOT EXISTS "${prefix}/${path}")
+    message(FATAL_ERROR "install is missing ${path}")
+  endif()
+endforeach()
+
+# The installed command runs from the prefix (its RPATH finds libshard_kernel there) and lists
+# the installed plugins when pointed at them.
+run("${shard}" --plugin-dir "${prefix}/lib/shard/plugins" plugins)
+if(NOT run_output MATCHES "bond/beam_bond_plus [^\n]*\\(${prefix}/lib/shard/plugins/shard_beam_bond_plus.so\\)")
+  message(FATAL_ERROR "installed beam_bond_plus not listed from the prefix:\n${run_output}")
+endif()
+
+set(strict_flags "-Wall -Wextra -Wpedantic -Wshadow -Wconversion -Werror")
+foreach(kind contact bond generator)
+  set(name "oot_${kind}")
+  set(src "${WORK_DIR}/${name}")
+  run("${shard}" new-plugin ${kind} ${name} --dir "${src}")
+  # Only the prefix is given: the package must bring the headers, Eigen and shard_add_plugin().
+  run(${CMAKE_COMMAND} -S "${src}" -B "${src}/build" -G Ninja "-DCMAKE_PREFIX_PATH=${prefix}"
+      "-DCMAKE_CXX_FLAGS=${strict_flags}")
+  run(${CMAKE_COMMAND} --build "${src}/build")
+  if(NOT EXISTS "${src}/build/plugins/shard_${name}.so")
+    message(FATAL_ERROR "${name}: no plugins/shard_${name}.so after the build")
+  endif()
+  run("${shard}" --plugin-dir "${src}/build/plugins" plugins)
+  if(NOT run_output MATCHES "${kind}/${name} 0.1.0  \\(${src}/build/plugins/shard_${name}.so\\)")
+    message(FATAL_ERROR "${name} not listed by shard plugins:\n${run_output}")
+  endif()
+  message(STATUS "${kind}/${name}: generated, built out of tree, loaded")
+endforeach()
+# Each template declares an effect with its neutral value; the listing shows it.
+run("${shard}" --plugin-dir "${WORK_DIR}/oot_contact/build/plugins" plugins)
+if(NOT run_output MATCHES "adhesion_force [^\n]*neutral 0")
+  message(FATAL_ERROR "the contact template's neutral value is not listed:\n${run_output}")
+endif()
+# A second new-plugin into the same folder refuses to overwrite.
+execute_process(COMMAND "${shard}" new-plugin contact oot_contact --dir "${WORK_DIR}/oot_contact"
+                RESULT_VARIABLE rc OUTPUT_QUIET ERROR_VARIABLE err)
+if(rc EQUAL 0 OR NOT err MATCHES "exists")
+  message(FATAL_ERROR "new-plugin overwrote an existing plugin (rc ${rc}): ${err}")
+endif()
+file(REMOVE_RECURSE "${WORK_DIR}")
