@@ -59,6 +59,12 @@ NumericalHealth::NumericalHealth(const Simulation& reference)
 
 void NumericalHealth::after_step(const Simulation& sim) {
   for (const Wall& w : sim.walls()) wall_work_ -= w.force.dot(w.velocity) * sim.dt();
+  // Gripped particles (held velocity) are driven too: their grip supplies the opposite of the
+  // force the body exerts on them, and that work enters the body.
+  const Particles& p = sim.particles();
+  for (std::size_t k = 0; k < p.size(); ++k)
+    if (p.flags[k] & kPrescribed)
+      wall_work_ -= (p.force[k].dot(p.velocity[k]) + p.torque[k].dot(p.omega[k])) * sim.dt();
 }
 
 void NumericalHealth::check(const Simulation& sim, const std::string& last_good) {
@@ -103,7 +109,7 @@ void NumericalHealth::check(const Simulation& sim, const std::string& last_good)
     std::vector<double> kinetic(n);
     for (std::size_t k = 0; k < n; ++k)
       kinetic[k] = p.mass[k] * p.velocity[k].squaredNorm() + p.inertia[k] * p.omega[k].squaredNorm();
-    fail(fmt::format("the mechanical energy grew by {:.4g} J without work from the walls (largest energy so far "
+    fail(fmt::format("the mechanical energy grew by {:.4g} J without work from the walls or grips (largest energy so far "
                      "{:.4g} J): the integration is unstable",
                      gain, scale_),
          worst(kinetic));

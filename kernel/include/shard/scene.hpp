@@ -37,6 +37,15 @@ struct StopRule {
   double max_displacement = 0;           // m; 0: off
 };
 
+// Particles whose centres lie in the box move at a held velocity: the clamps of a tensile test,
+// a loading platen made of the body's own spheres.
+struct Grip {
+  std::string name;
+  Vec3 min_corner = Vec3::Zero();
+  Vec3 max_corner = Vec3::Zero();
+  Vec3 velocity = Vec3::Zero();  // m/s; zero = clamped in place
+};
+
 struct Scene {
   std::filesystem::path file;
   std::filesystem::path dir;
@@ -57,6 +66,7 @@ struct Scene {
   std::optional<PluginChoice> contact;
   std::optional<PluginChoice> bond;
   std::vector<Wall> walls;
+  std::vector<Grip> grips;
   StopRule stop;
 };
 

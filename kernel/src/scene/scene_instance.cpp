@@ -39,6 +39,22 @@ SceneInstance instantiate(const Scene& scene, const PluginHost& host,
   for (std::size_t k = 0; k < n; ++k)
     setup.particles.add(out.body.position[k], out.body.radius[k], scene.density,
                         out.body.material.empty() ? 0 : out.body.material[k]);
+  for (const auto& grip : scene.grips) {
+    std::size_t held = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const Vec3& x = setup.particles.position[k];
+      if ((x.array() >= grip.min_corner.array()).all() && (x.array() <= grip.max_corner.array()).all()) {
+        setup.particles.flags[k] = kPrescribed;
+        setup.particles.velocity[k] = grip.velocity;
+        ++held;
+      }
+    }
+    if (held == 0)
+      throw SceneError(fmt::format("{}: [[grip]] '{}' holds no particle: its box contains no particle centre",
+                                   scene.file.string(), grip.name));
+    if (log) log(fmt::format("grip {}: {} particles at velocity [{}, {}, {}] m/s", grip.name, held, grip.velocity.x(),
+                             grip.velocity.y(), grip.velocity.z()));
+  }
   setup.bonds = out.body.bonds;
   setup.contact = out.contact.get();
   setup.bond = out.bond.get();
