@@ -58,7 +58,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
   cmd->add_option("--param", o->params, "calibrated base parameter section.key (its value is read from the scene)")
       ->required();
   cmd->add_option("--effects", o->library, "candidate-effect library (default: effects.toml next to the scene)");
-  cmd->add_option("--only", o->only, "try only these effects of the library");
+  cmd->add_option("--only", o->only, "try only these effects of the library (comma-separated)")->delimiter(',');
   cmd->add_option("--refit", o->refit, "effects confirmed by a refit run (0: none)");
   cmd->add_option("--out", o->out, "folder for diagnose.md and diagnose.json");
   cmd->callback([o, &ctx] {
