@@ -347,7 +347,6 @@ Scene load_scene_text(const std::string& text, const std::filesystem::path& file
   const std::string file = file_path.string();
   refuse_malformed_headers(text, file);
   refuse_unreadable_characters(text, file);
-  refuse_unreadable_characters(text, file);
   toml::table root;
   try {
     root = toml::parse(text, file);
