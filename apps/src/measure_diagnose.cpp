@@ -107,12 +107,17 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
         confirmations[k].delta_bic = confirmations[k].chi_square - confirmations[0].chi_square + extra * std::log(m);
       }
     }
+    // The score test ranks on the linearisation; the confirmation runs are the real refits, so
+    // among the effects refit the one with the lowest AIC below the base refit's is the answer.
     std::string verdict = d.verdict;
     bool confirmed = true;
-    if (verdict != "adequate" && verdict != "unexplained structured residual" && confirmations.size() > 1 &&
-        confirmations[1].name == verdict && !(confirmations[1].delta_aic < 0)) {
-      confirmed = false;
-      verdict = "unexplained structured residual";
+    if (verdict != "adequate" && confirmations.size() > 1) {
+      const Confirmation* best = nullptr;
+      for (std::size_t k = 1; k < confirmations.size(); ++k)
+        if (confirmations[k].delta_aic < 0 && (!best || confirmations[k].delta_aic < best->delta_aic))
+          best = &confirmations[k];
+      confirmed = best != nullptr;
+      verdict = best ? best->name : "unexplained structured residual";
     }
 
     std::string md = fmt::format("# Diagnosis: {}\n\nmeasurements {}, model {}, {} packing seeds, base parameters {}.\n",
