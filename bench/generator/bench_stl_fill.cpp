@@ -10,6 +10,7 @@
 #include <string>
 
 #include "shard/geometry/packing_quality.hpp"
+#include "filter_cake_body.hpp"
 #include "stl_fill.hpp"
 
 #ifndef SHARD_SOURCE_DIR
@@ -18,9 +19,6 @@
 
 namespace {
 
-// The filter-cake shard at d = 1.42..1.92 mm holds ~4e4 spheres (41,132), the size of the seed's
-// 41,788-sphere parent (1.5..2.0 mm gave 35,720).
-constexpr double kShardDMin = 1.42e-3, kShardDMax = 1.92e-3;
 constexpr double kBeamDMin = 0.7e-3, kBeamDMax = 1.0e-3;
 
 double cpu_seconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
@@ -57,7 +55,8 @@ int main(int argc, char** argv) {
   const double d_min = custom ? 1e-3 * std::stod(argv[3]) : 0.0;
   const double d_max = custom ? 1e-3 * std::stod(argv[4]) : 0.0;
   if (which == "shard" || which == "all")
-    run(folder, "filter_cake_shard.stl", custom ? d_min : kShardDMin, custom ? d_max : kShardDMax);
+    run(folder, "filter_cake_shard.stl", custom ? d_min : shard::bench::kShardDMin,
+        custom ? d_max : shard::bench::kShardDMax);
   if (which == "beam" || which == "all")
     run(folder, "beam_180x30x35.stl", custom ? d_min : kBeamDMin, custom ? d_max : kBeamDMax);
   return 0;
