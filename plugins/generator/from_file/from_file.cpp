@@ -9,13 +9,18 @@
 #include "shard/geometry/packing_io.hpp"
 #include "shard/geometry/packing_quality.hpp"
 #include "shard/geometry/stl.hpp"
+#include "run_frame.hpp"
 
 namespace shard::from_file {
 
 std::vector<ParamSpec> from_file_params() {
   using geometry::param;
   return {
-      param("spheres", ParamType::String, "", "CSV x,y,z,r[,material] in m, one sphere per line", std::monostate{}),
+      param("spheres", ParamType::String, "", "CSV x,y,z,r[,material] in m, one sphere per line (or give run)",
+            std::string()),
+      param("run", ParamType::String, "", "Shard run.h5 whose frame gives spheres and bonds (or give spheres)",
+            std::string()),
+      param("frame", ParamType::Integer, "1", "frame of run; negative counts from the end (-1 = last)", -1.0),
       param("bonds", ParamType::String, "",
             "CSV i,j (0-based rows); \"auto\" = <spheres>.bonds.csv if present, \"\" = no bonds", std::string("auto")),
       param("body", ParamType::String, "", "optional closed STL of the body, for the solid fraction", std::string()),
@@ -28,6 +33,8 @@ std::vector<ParamSpec> from_file_params() {
 FromFileSettings from_file_settings(const ParamSet& params) {
   FromFileSettings s;
   s.spheres = params.text("spheres");
+  s.run = params.text("run");
+  s.frame = params.integer("frame");
   s.bonds = params.text("bonds");
   s.body = params.text("body");
   s.scale = params.number("scale");
@@ -35,18 +42,50 @@ FromFileSettings from_file_settings(const ParamSet& params) {
   return s;
 }
 
+namespace {
+
+struct LoadedPacking {
+  geometry::StoredPacking stored;
+  std::string source;  // for the log line and the errors
+};
+
+LoadedPacking load_csv(const FromFileSettings& settings, const std::string& scene_dir) {
+  LoadedPacking out;
+  const auto spheres_path = geometry::resolve_against(scene_dir, settings.spheres);
+  out.stored = geometry::read_spheres_csv(spheres_path);
+  std::filesystem::path bonds_path;
+  if (settings.bonds == "auto") {
+    if (std::filesystem::exists(geometry::bonds_path_for(spheres_path))) bonds_path = geometry::bonds_path_for(spheres_path);
+  } else if (!settings.bonds.empty()) {
+    bonds_path = geometry::resolve_against(scene_dir, settings.bonds);
+  }
+  if (!bonds_path.empty()) out.stored.bonds = geometry::read_bonds_csv(bonds_path, out.stored.spheres.centre.size());
+  out.source = fmt::format("spheres file '{}'{}", spheres_path.string(),
+                           bonds_path.empty() ? std::string(" (no bonds)") : " + '" + bonds_path.string() + "'");
+  return out;
+}
+
+LoadedPacking load_run_frame(const FromFileSettings& settings, const std::string& scene_dir) {
+  const auto run_path = geometry::resolve_against(scene_dir, settings.run);
+  RunFrame frame = read_run_frame(run_path, settings.frame);
+  LoadedPacking out;
+  out.stored.spheres = {std::move(frame.position), std::move(frame.radius)};
+  out.stored.material = std::move(frame.material);
+  out.stored.bonds = std::move(frame.bonds);
+  out.source = fmt::format("run file '{}' frame {} of {} (step {}, t = {:.6g} s)", run_path.string(), frame.index,
+                           frame.frame_count, frame.step, frame.time);
+  return out;
+}
+
+}  // namespace
+
 GeneratedBody FromFile::generate(const GeneratorContext& context) const {
   const auto start = std::chrono::steady_clock::now();
-  const auto spheres_path = geometry::resolve_against(context.scene_dir, settings_.spheres);
-  geometry::StoredPacking stored = geometry::read_spheres_csv(spheres_path);
-  const std::size_t n = stored.spheres.centre.size();
-  std::filesystem::path bonds_path;
-  if (settings_.bonds == "auto") {
-    if (std::filesystem::exists(geometry::bonds_path_for(spheres_path))) bonds_path = geometry::bonds_path_for(spheres_path);
-  } else if (!settings_.bonds.empty()) {
-    bonds_path = geometry::resolve_against(context.scene_dir, settings_.bonds);
-  }
-  if (!bonds_path.empty()) stored.bonds = geometry::read_bonds_csv(bonds_path, n);
+  if (settings_.spheres.empty() == settings_.run.empty())
+    throw std::runtime_error("from_file: give exactly one of 'spheres' (CSV) and 'run' (Shard run.h5)");
+  LoadedPacking loaded = settings_.run.empty() ? load_csv(settings_, context.scene_dir)
+                                               : load_run_frame(settings_, context.scene_dir);
+  geometry::StoredPacking& stored = loaded.stored;
 
   geometry::QualityInputs inputs;
   if (!settings_.body.empty()) {
@@ -59,13 +98,10 @@ GeneratedBody FromFile::generate(const GeneratorContext& context) const {
   auto quality = geometry::packing_quality(stored.spheres, stored.bonds, inputs);
   for (const auto& [name, value] : quality)
     if (name == "max_overlap" && value > settings_.max_overlap)
-      throw std::runtime_error(fmt::format("spheres file '{}': two spheres overlap by {:.3g} of the smaller radius "
+      throw std::runtime_error(fmt::format("{}: two spheres overlap by {:.3g} of the smaller radius "
                                            "(limit max_overlap = {:.3g}); the packing is not a valid initial state",
-                                           spheres_path.string(), value, settings_.max_overlap));
-  if (context.log)
-    context.log(fmt::format("from_file: '{}'{}: {}", spheres_path.string(),
-                            bonds_path.empty() ? std::string(" (no bonds)") : " + '" + bonds_path.string() + "'",
-                            geometry::format_quality(quality)));
+                                           loaded.source, value, settings_.max_overlap));
+  if (context.log) context.log(fmt::format("from_file: {}: {}", loaded.source, geometry::format_quality(quality)));
   return geometry::to_generated_body(std::move(stored.spheres), std::move(stored.bonds), std::move(stored.material),
                                      std::move(quality));
 }

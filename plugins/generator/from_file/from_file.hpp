@@ -1,6 +1,7 @@
 #pragma once
-// Generator "from_file": a stored packing (CSV spheres x,y,z,r[,material] and bonds i,j, as written
-// by stl_fill's `save`), validated and reported like a generated one.
+// Generator "from_file": a stored packing, validated and reported like a generated one: either CSV
+// spheres x,y,z,r[,material] and bonds i,j (as written by stl_fill's `save`) or one frame of a
+// Shard run file (run.h5: positions, radii, materials and the surviving bonds of that frame).
 #include <string>
 #include <vector>
 
@@ -10,7 +11,9 @@
 namespace shard::from_file {
 
 struct FromFileSettings {
-  std::string spheres;
+  std::string spheres;         // CSV spheres file; exactly one of spheres and run is given
+  std::string run;             // Shard run.h5
+  long frame = -1;             // frame of `run`; negative counts from the end (-1 = last)
   std::string bonds = "auto";  // "auto": <spheres>.bonds.csv if present; "": no bonds
   std::string body;            // optional closed STL for the solid fraction
   double scale = 1.0;          // STL units -> m

@@ -1,0 +1,30 @@
+#pragma once
+// Reads the particles and bonds of one frame of a Shard run file (run.h5, layout in
+// docs/output-format.md) with the HDF5 C API. Plugins may not link the kernel library, whose
+// shard::RunFile does the same; this reader follows the documented layout instead.
+#include <cstdint>
+#include <filesystem>
+#include <utility>
+#include <vector>
+
+#include "shard/types.hpp"
+
+namespace shard::from_file {
+
+struct RunFrame {
+  std::size_t index = 0;  // k of /frames/<k:06d>
+  std::size_t frame_count = 0;
+  std::int64_t step = 0;
+  double time = 0;                 // s
+  std::vector<Vec3> position;      // m
+  std::vector<double> radius;      // m
+  std::vector<std::int32_t> material;
+  std::vector<std::pair<Index, Index>> bonds;  // row indices into this frame's arrays
+};
+
+// frame >= 0: that frame; frame < 0: counted from the end (-1 = the last complete frame).
+// Throws std::runtime_error naming the file and the defect (not HDF5, not a run file, no such
+// frame, inconsistent dataset shapes).
+RunFrame read_run_frame(const std::filesystem::path& path, long frame);
+
+}  // namespace shard::from_file
