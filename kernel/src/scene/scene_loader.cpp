@@ -294,13 +294,13 @@ void refuse_malformed_headers(const std::string& text, const std::string& file) 
 }
 
 // toml++ 3.3's is_non_ascii_horizontal_whitespace reaches TOML_UNREACHABLE (undefined behaviour)
-// for code points in U+00A1..U+0499, U+2CEE..U+30E7 (but U+3000) and U+FBE6..U+FEFE -- accented
+// for code points in U+00A1..U+0499, U+2C5E..U+3057 (but U+3000) and U+FB26..U+FEFE -- accented
 // letters, degree and micro signs, CJK commas -- wherever the parser tests them for blanks (found
 // by fuzzing). Comments are not tested that way, so there they stay allowed; elsewhere they are
 // refused before parsing.
 bool unsafe_for_toml(unsigned cp) {
-  return (cp >= 0xA1u && cp <= 0x499u) || (cp >= 0x2CEEu && cp <= 0x30E7u && cp != 0x3000u) ||
-         (cp >= 0xFBE6u && cp <= 0xFEFEu);
+  return (cp >= 0xA1u && cp <= 0x499u) || (cp >= 0x2C5Eu && cp <= 0x3057u && cp != 0x3000u) ||
+         (cp >= 0xFB26u && cp <= 0xFEFEu);
 }
 
 void refuse_unreadable_characters(const std::string& text, const std::string& file) {
