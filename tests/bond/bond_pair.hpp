@@ -23,7 +23,7 @@ struct HandBonds {
   std::vector<std::uint8_t> broken;
   std::vector<BondStress> stress;
 
-  Index add_sphere(const Vec3& x, double r, double density) {
+  Index add_sphere(const Vec3& x, double r, double density = 3720) {
     const double m = density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
     position.push_back(x);
     velocity.push_back(Vec3::Zero());
@@ -42,6 +42,9 @@ struct HandBonds {
     j.push_back(b);
   }
 
+  double dt = 0;  // s, handed to the model in every batch (rate-dependent models read it)
+
+  // A batch over all bonds; outputs zeroed as the kernel does; the model state is kept.
   BondBatch batch(const BondModel& model) {
     const std::size_t n = i.size();
     state.resize(n * model.state_size());
@@ -53,6 +56,7 @@ struct HandBonds {
     stress.assign(n, BondStress{});
     BondBatch b;
     b.count = n;
+    b.dt = dt;
     b.i = i.data();
     b.j = j.data();
     b.particles.count = position.size();
@@ -82,10 +86,7 @@ struct HandBonds {
 
   // Evaluates the bonds in the current configuration, keeping the recorded reference state.
   void compute(const BondModel& model) {
-    std::vector<double> kept = state;
     BondBatch b = batch(model);
-    state = kept;
-    b.state = state.data();
     model.compute(b);
   }
 };

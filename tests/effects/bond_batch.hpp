@@ -1,91 +1,12 @@
 #pragma once
-// Particles and bonds built by hand, for driving a BondModel without the kernel: the effect tests
-// set positions and velocities directly, so each force is a known function of the imposed motion.
-#include <cstdint>
-#include <numbers>
-#include <vector>
-
-#include "shard/bond_model.hpp"
-#include "shard/types.hpp"
+// The effect tests drive bond models by hand exactly as the beam_bond tests do.
+#include "../bond/bond_pair.hpp"
 
 namespace shard::effects_test {
 
-struct BondScene {
-  std::vector<Vec3> position, velocity, omega;
-  std::vector<Quat> orientation;
-  std::vector<double> radius, mass, inertia;
-  std::vector<std::int32_t> material;
-  std::vector<Index> id;
-  std::vector<Index> i, j;
-  std::vector<double> state;
-  std::vector<Vec3> force, torque_i, torque_j;
-  std::vector<double> energy;
-  std::vector<std::uint8_t> broken;
-  std::vector<BondStress> stress;
-
-  Index add_sphere(const Vec3& x, double r, double density = 3720) {
-    const double m = density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
-    position.push_back(x);
-    velocity.push_back(Vec3::Zero());
-    omega.push_back(Vec3::Zero());
-    orientation.push_back(Quat::Identity());
-    radius.push_back(r);
-    mass.push_back(m);
-    inertia.push_back(0.4 * m * r * r);
-    material.push_back(0);
-    id.push_back(static_cast<Index>(id.size()));
-    return id.back();
-  }
-
-  void add_bond(Index a, Index b) {
-    i.push_back(a);
-    j.push_back(b);
-  }
-
-  // A batch over all bonds; outputs zeroed as the kernel does. State is kept across calls.
-  BondBatch batch(const BondModel& model, double dt = 1e-6) {
-    const std::size_t n = i.size();
-    state.resize(n * model.state_size());
-    force.assign(n, Vec3::Zero());
-    torque_i.assign(n, Vec3::Zero());
-    torque_j.assign(n, Vec3::Zero());
-    energy.assign(n, 0.0);
-    broken.assign(n, 0);
-    stress.assign(n, BondStress{});
-    BondBatch b;
-    b.count = n;
-    b.dt = dt;
-    b.i = i.data();
-    b.j = j.data();
-    b.particles.count = position.size();
-    b.particles.position = position.data();
-    b.particles.velocity = velocity.data();
-    b.particles.orientation = orientation.data();
-    b.particles.omega = omega.data();
-    b.particles.radius = radius.data();
-    b.particles.mass = mass.data();
-    b.particles.inertia = inertia.data();
-    b.particles.material = material.data();
-    b.particles.id = id.data();
-    b.state = state.data();
-    b.force = force.data();
-    b.torque_i = torque_i.data();
-    b.torque_j = torque_j.data();
-    b.energy = energy.data();
-    b.broken = broken.data();
-    b.stress = stress.data();
-    return b;
-  }
-
-  void initialize(const BondModel& model) {
-    BondBatch b = batch(model);
-    model.initialize(b);
-  }
-
-  void compute(const BondModel& model) {
-    BondBatch b = batch(model);
-    model.compute(b);
-  }
+// A step of 1e-6 s: the viscous effect reads the step of the batch.
+struct BondScene : test::HandBonds {
+  BondScene() { dt = 1e-6; }
 };
 
 }  // namespace shard::effects_test
