@@ -8,10 +8,8 @@ if(SHARD_WERROR)
   target_compile_options(shard_flags INTERFACE -Werror)
 endif()
 if(SHARD_SANITIZE)
-  # GCC 12's instrumentation makes -Wmaybe-uninitialized fire inside libstdc++ (std::regex,
-  # std::function); the Release build keeps the warning, so nothing real is hidden.
   target_compile_options(shard_flags INTERFACE -fsanitize=address,undefined -fno-omit-frame-pointer
-                                               -fno-sanitize-recover=all -Wno-maybe-uninitialized)
+                                               -fno-sanitize-recover=all)
   target_link_options(shard_flags INTERFACE -fsanitize=address,undefined)
 endif()
 find_program(CCACHE_PROGRAM ccache)
