@@ -1,43 +1,16 @@
 #pragma once
-// Contacts built by hand, for calling a ContactModel the way the kernel does (outputs zeroed,
-// history kept between calls).
-#include <algorithm>
-#include <cstddef>
-#include <vector>
-
-#include "shard/contact_model.hpp"
+// The effect tests call contact models by hand exactly as the contact tests do (outputs zeroed,
+// history kept between calls); their contacts default to a vertical normal.
+#include "../contact/contact_arrays.hpp"
 
 namespace shard::effects_test {
 
-struct ContactScene {
-  ContactScene(std::size_t n, std::size_t history_stride)
-      : i(n, 0), j(n, 1), normal(n, Vec3::UnitZ()), velocity(n, Vec3::Zero()), omega_rel(n, Vec3::Zero()),
-        force(n), couple(n), overlap(n, 0.0), r_eff(n, 0.0), m_eff(n, 0.0), energy(n),
-        history(n * history_stride, 0.0) {}
-
-  std::vector<Index> i, j;
-  std::vector<Vec3> normal, velocity, omega_rel, force, couple;
-  std::vector<double> overlap, r_eff, m_eff, energy, history;
-
+struct ContactScene : test::ContactArrays {
+  ContactScene(std::size_t n, std::size_t history_stride) : ContactArrays(n, history_stride) {
+    normal.assign(n, Vec3::UnitZ());
+  }
   void compute(const ContactModel& model, double dt) {
-    std::fill(force.begin(), force.end(), Vec3::Zero());
-    std::fill(couple.begin(), couple.end(), Vec3::Zero());
-    std::fill(energy.begin(), energy.end(), 0.0);
-    ContactBatch b;
-    b.count = i.size();
-    b.dt = dt;
-    b.i = i.data();
-    b.j = j.data();
-    b.normal = normal.data();
-    b.overlap = overlap.data();
-    b.velocity = velocity.data();
-    b.omega_rel = omega_rel.data();
-    b.r_eff = r_eff.data();
-    b.m_eff = m_eff.data();
-    b.history = history.data();
-    b.force = force.data();
-    b.couple = couple.data();
-    b.energy = energy.data();
+    ContactBatch b = batch(dt);
     model.compute(b);
   }
 };
