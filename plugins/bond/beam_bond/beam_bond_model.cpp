@@ -125,40 +125,17 @@ void BeamBond::compute(BondBatch& batch) const {
                               E * sec.second_moment * curvature.z());
     batch.energy[k] = 0.5 * l0 * (strain.dot(elastic_force) + curvature.dot(elastic_torque));
 
-    // Eq. 4: viscous force on the objective strain rate v12 = l0 dGamma/dt (zero for rigid motion).
-    const Mat3& R = g.frame;
-    const Vec3 w1 = R.transpose() * p.omega[n1];
-    const Vec3 w2 = R.transpose() * p.omega[n2];
-    const Vec3 frame_spin = 0.5 * (w1 + w2) + g.skew_axis.cross(w1 - w2);
-    const Vec3 v12 = R.transpose() * (p.velocity[n2] - p.velocity[n1]) - frame_spin.cross(g.d_local);
-    const Vec3 damping_force = p_.damping * v12;
+    // Eq. 4: viscous force on the objective strain rate v12 = l0 dGamma/dt; eq. 6-7: viscous torque
+    // on Omega_rel = d theta / dt. Both zero for rigid motion.
+    const Rates r = rates_of(g, p.velocity[n1], p.velocity[n2], p.omega[n1], p.omega[n2]);
+    const Vec3 damping_force = p_.damping * r.v12;
+    const Vec3 damping_torque = rotational_damping_torque(p_.rotational_damping, E, G, sec.second_moment, l0,
+                                                          p.inertia[n1], p.inertia[n2], r.omega_rel);
 
-    // Eq. 6-7: viscous torque on Omega_rel = d theta / dt, reduced inertia I_r.
-    const Vec3 omega_rel = g.apply_m(w2 - w1);
-    const double inertia_r = p.inertia[n1] * p.inertia[n2] / (p.inertia[n1] + p.inertia[n2]);
-    const double c_twist = p_.rotational_damping * std::sqrt(2 * G * sec.second_moment / l0 * inertia_r);
-    const double c_bend = p_.rotational_damping * std::sqrt(E * sec.second_moment / l0 * inertia_r);
-    const Vec3 damping_torque(c_twist * omega_rel.x(), c_bend * omega_rel.y(), c_bend * omega_rel.z());
-
-    // Generalised forces of the pair (beam_geometry.hpp): the force pair's couple C is split
-    // between the ends so that no angular momentum is created.
-    const Vec3 force = elastic_force + damping_force;
-    const Vec3 couple = g.d_local.cross(force);
-    const Vec3 couple_skew = g.skew_axis.cross(couple);
-    const Vec3 bend_twist = g.apply_m(elastic_torque + damping_torque);
-    const Vec3 force_on_first = R * force;
-    const Vec3 torque_on_first = R * (0.5 * couple - couple_skew + bend_twist);
-    const Vec3 torque_on_second = R * (0.5 * couple + couple_skew - bend_twist);
-
-    if (e.swapped) {
-      batch.force[k] = -force_on_first;
-      batch.torque_i[k] = torque_on_second;
-      batch.torque_j[k] = torque_on_first;
-    } else {
-      batch.force[k] = force_on_first;
-      batch.torque_i[k] = torque_on_first;
-      batch.torque_j[k] = torque_on_second;
-    }
+    const PairLoads loads = pair_loads(g, elastic_force + damping_force, elastic_torque + damping_torque, e.swapped);
+    batch.force[k] = loads.force_on_i;
+    batch.torque_i[k] = loads.torque_on_i;
+    batch.torque_j[k] = loads.torque_on_j;
   }
 }
 

@@ -117,4 +117,48 @@ inline Deformation deform(const Reference& ref, const Vec3& x1, const Vec3& x2, 
   return g;
 }
 
+// Rates conjugate to Gamma and kappa: v12 = l0 dGamma/dt and omega_rel = d theta/dt, both in the
+// bond frame, from the lab velocities and spins of the two ends. Zero for rigid motion of the pair.
+struct Rates {
+  Vec3 v12;
+  Vec3 omega_rel;
+};
+
+inline Rates rates_of(const Deformation& g, const Vec3& v1, const Vec3& v2, const Vec3& omega1, const Vec3& omega2) {
+  const Mat3& R = g.frame;
+  const Vec3 w1 = R.transpose() * omega1;
+  const Vec3 w2 = R.transpose() * omega2;
+  const Vec3 frame_spin = 0.5 * (w1 + w2) + g.skew_axis.cross(w1 - w2);
+  return {R.transpose() * (v2 - v1) - frame_spin.cross(g.d_local), g.apply_m(w2 - w1)};
+}
+
+// Eq. 6-7: viscous torque on omega_rel with coefficients sqrt(k I_r), k the twist (2 G J / l0) and
+// bending (E J / l0) stiffness, I_r = I1 I2 / (I1 + I2); `factor` scales the seed's coefficients.
+inline Vec3 rotational_damping_torque(double factor, double youngs, double shear, double second_moment, double l0,
+                                      double inertia1, double inertia2, const Vec3& omega_rel) {
+  const double inertia_r = inertia1 * inertia2 / (inertia1 + inertia2);
+  const double c_twist = factor * std::sqrt(2 * shear * second_moment / l0 * inertia_r);
+  const double c_bend = factor * std::sqrt(youngs * second_moment / l0 * inertia_r);
+  return {c_twist * omega_rel.x(), c_bend * omega_rel.y(), c_bend * omega_rel.z()};
+}
+
+// Lab-frame loads on the two ends from the bond-frame force and bending/twisting torque: the force
+// pair's couple C = d x F is split between the ends (plus the skew correction) so that no angular
+// momentum is created. `swapped`: the batch lists the bond from its second end.
+struct PairLoads {
+  Vec3 force_on_i, torque_on_i, torque_on_j;
+};
+
+inline PairLoads pair_loads(const Deformation& g, const Vec3& force, const Vec3& torque, bool swapped) {
+  const Mat3& R = g.frame;
+  const Vec3 couple = g.d_local.cross(force);
+  const Vec3 couple_skew = g.skew_axis.cross(couple);
+  const Vec3 bend_twist = g.apply_m(torque);
+  const Vec3 force_on_first = R * force;
+  const Vec3 torque_on_first = R * (0.5 * couple - couple_skew + bend_twist);
+  const Vec3 torque_on_second = R * (0.5 * couple + couple_skew - bend_twist);
+  if (swapped) return {-force_on_first, torque_on_second, torque_on_first};
+  return {force_on_first, torque_on_first, torque_on_second};
+}
+
 }  // namespace shard::beam

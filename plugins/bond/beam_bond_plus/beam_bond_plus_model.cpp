@@ -149,12 +149,9 @@ void BeamBondPlus::compute(BondBatch& batch) const {
 
     // Rates conjugate to Gamma and kappa (beam_geometry.hpp): v12 = l0 dGamma/dt,
     // omega_rel = d theta/dt = l0 dkappa/dt. Zero for rigid motion of the pair.
-    const Mat3& R = g.frame;
-    const Vec3 w1 = R.transpose() * p.omega[n1];
-    const Vec3 w2 = R.transpose() * p.omega[n2];
-    const Vec3 frame_spin = 0.5 * (w1 + w2) + g.skew_axis.cross(w1 - w2);
-    const Vec3 v12 = R.transpose() * (p.velocity[n2] - p.velocity[n1]) - frame_spin.cross(g.d_local);
-    const Vec3 omega_rel = g.apply_m(w2 - w1);
+    const beam::Rates r = beam::rates_of(g, p.velocity[n1], p.velocity[n2], p.omega[n1], p.omega[n2]);
+    const Vec3& v12 = r.v12;
+    const Vec3& omega_rel = r.omega_rel;
 
     // Kelvin-Voigt: the material stress follows Gamma + tau_v dGamma/dt (and likewise kappa).
     Vec3 strain_kv = strain, curvature_kv = curvature;
@@ -206,29 +203,14 @@ void BeamBondPlus::compute(BondBatch& batch) const {
 
     // Eq. 4 and 6-7: the numerical damping of beam_bond, unchanged by the effects.
     const Vec3 damping_force = b.damping * v12;
-    const double inertia_r = p.inertia[n1] * p.inertia[n2] / (p.inertia[n1] + p.inertia[n2]);
-    const double c_twist = b.rotational_damping * std::sqrt(2 * G * sec.second_moment / l0 * inertia_r);
-    const double c_bend = b.rotational_damping * std::sqrt(E * sec.second_moment / l0 * inertia_r);
-    const Vec3 damping_torque(c_twist * omega_rel.x(), c_bend * omega_rel.y(), c_bend * omega_rel.z());
+    const Vec3 damping_torque = beam::rotational_damping_torque(b.rotational_damping, E, G, sec.second_moment, l0,
+                                                                p.inertia[n1], p.inertia[n2], omega_rel);
 
-    // Generalised forces of the pair (beam_geometry.hpp).
-    const Vec3 force = material_force + damping_force;
-    const Vec3 couple = g.d_local.cross(force);
-    const Vec3 couple_skew = g.skew_axis.cross(couple);
-    const Vec3 bend_twist = g.apply_m(material_torque + damping_torque);
-    const Vec3 force_on_first = R * force;
-    const Vec3 torque_on_first = R * (0.5 * couple - couple_skew + bend_twist);
-    const Vec3 torque_on_second = R * (0.5 * couple + couple_skew - bend_twist);
-
-    if (e.swapped) {
-      batch.force[k] = -force_on_first;
-      batch.torque_i[k] = torque_on_second;
-      batch.torque_j[k] = torque_on_first;
-    } else {
-      batch.force[k] = force_on_first;
-      batch.torque_i[k] = torque_on_first;
-      batch.torque_j[k] = torque_on_second;
-    }
+    const beam::PairLoads loads =
+        beam::pair_loads(g, material_force + damping_force, material_torque + damping_torque, e.swapped);
+    batch.force[k] = loads.force_on_i;
+    batch.torque_i[k] = loads.torque_on_i;
+    batch.torque_j[k] = loads.torque_on_j;
   }
 }
 

@@ -2,6 +2,7 @@
 #include <memory>
 #include <optional>
 
+#include "../common/contact_params.hpp"
 #include "hertz_mindlin_model.hpp"
 #include "shard/plugin.hpp"
 
@@ -10,36 +11,11 @@ namespace {
 shard::PluginInfo hertz_mindlin_info() {
   using shard::ParamSpec;
   const shard::HertzMindlinMaterial defaults;
-  ParamSpec shear{.name = "shear_modulus",
-                  .unit = "Pa",
-                  .doc = "shear modulus G of the particles (walls are taken of the same material)",
-                  .default_value = defaults.shear_modulus,
-                  .min = 0.0,
-                  .min_exclusive = true,
-                  .neutral = std::nullopt};
-  ParamSpec poisson{.name = "poisson_ratio",
-                    .unit = "1",
-                    .doc = "Poisson's ratio nu (not given in the seed; 0.25 is common)",
-                    .default_value = defaults.poisson_ratio,
-                    .min = -1.0,
-                    .max = 0.5,
-                    .min_exclusive = true,
-                    .neutral = std::nullopt};
-  ParamSpec friction{.name = "friction",
-                     .unit = "1",
-                     .doc = "Coulomb sliding friction coefficient mu, |F_t| <= mu F_n",
-                     .default_value = defaults.friction,
-                     .min = 0.0,
-                     .max = 10.0,
-                     .neutral = 0.0};
-  ParamSpec restitution{.name = "restitution",
-                        .unit = "1",
-                        .doc = "normal coefficient of restitution e, realised exactly for any impact speed",
-                        .default_value = defaults.restitution,
-                        .min = 0.0,
-                        .max = 1.0,
-                        .min_exclusive = true,
-                        .neutral = 1.0};
+  namespace cp = shard::contact_params;
+  const ParamSpec shear = cp::shear_modulus(defaults.shear_modulus);
+  const ParamSpec poisson = cp::poisson_ratio(defaults.poisson_ratio);
+  const ParamSpec friction = cp::friction(defaults.friction);
+  const ParamSpec restitution = cp::restitution(defaults.restitution);
   return {shard::PluginKind::Contact, "hertz_mindlin", "1.0.0",
           "Hertz normal and Mindlin tangential spring with restitution damping and Coulomb friction",
           {shear, poisson, friction, restitution}};

@@ -3,6 +3,7 @@
 #include <memory>
 #include <optional>
 
+#include "../common/contact_params.hpp"
 #include "hertz_mindlin_plus_model.hpp"
 #include "shard/plugin.hpp"
 
@@ -11,17 +12,11 @@ namespace {
 shard::PluginInfo hertz_mindlin_plus_info() {
   using shard::ParamSpec;
   const shard::hertz_plus::HertzMindlinPlusParams d;
-  ParamSpec shear{.name = "shear_modulus", .unit = "Pa",
-                  .doc = "shear modulus G of the particles (walls are taken of the same material)",
-                  .default_value = d.shear_modulus, .min = 0.0, .min_exclusive = true, .neutral = std::nullopt};
-  ParamSpec poisson{.name = "poisson_ratio", .unit = "1", .doc = "Poisson's ratio nu",
-                    .default_value = d.poisson_ratio, .min = -1.0, .max = 0.5, .min_exclusive = true,
-                    .neutral = std::nullopt};
-  ParamSpec friction{.name = "friction", .unit = "1", .doc = "Coulomb friction between particles, |F_t| <= mu F_n",
-                     .default_value = d.friction, .min = 0.0, .max = 10.0, .neutral = 0.0};
-  ParamSpec restitution{.name = "restitution", .unit = "1", .doc = "normal coefficient of restitution e",
-                        .default_value = d.restitution, .min = 0.0, .max = 1.0, .min_exclusive = true,
-                        .neutral = 1.0};
+  namespace cp = shard::contact_params;
+  const ParamSpec shear = cp::shear_modulus(d.shear_modulus);
+  const ParamSpec poisson = cp::poisson_ratio(d.poisson_ratio);
+  const ParamSpec friction = cp::friction(d.friction);
+  const ParamSpec restitution = cp::restitution(d.restitution);
   ParamSpec wall{.name = "wall_friction", .unit = "1",
                  .doc = "Coulomb friction at particle-wall contacts (supports, pins); -1 = same as friction",
                  .default_value = d.wall_friction, .min = -1.0, .max = 10.0, .neutral = -1.0};

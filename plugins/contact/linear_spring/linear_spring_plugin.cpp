@@ -2,6 +2,7 @@
 #include <memory>
 #include <optional>
 
+#include "../common/contact_params.hpp"
 #include "linear_spring_model.hpp"
 #include "shard/plugin.hpp"
 
@@ -24,21 +25,8 @@ shard::PluginInfo linear_spring_info() {
                   .min = 0.0,
                   .min_exclusive = true,
                   .neutral = std::nullopt};
-  ParamSpec friction{.name = "friction",
-                     .unit = "1",
-                     .doc = "Coulomb sliding friction coefficient mu, |F_t| <= mu F_n",
-                     .default_value = defaults.friction,
-                     .min = 0.0,
-                     .max = 10.0,
-                     .neutral = 0.0};
-  ParamSpec restitution{.name = "restitution",
-                        .unit = "1",
-                        .doc = "normal coefficient of restitution e, realised exactly for any impact speed",
-                        .default_value = defaults.restitution,
-                        .min = 0.0,
-                        .max = 1.0,
-                        .min_exclusive = true,
-                        .neutral = 1.0};
+  const ParamSpec friction = shard::contact_params::friction(defaults.friction);
+  const ParamSpec restitution = shard::contact_params::restitution(defaults.restitution);
   return {shard::PluginKind::Contact, "linear_spring", "1.0.0",
           "linear normal and tangential spring-dashpot with exact restitution and Coulomb friction",
           {normal, ratio, friction, restitution}};
