@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <toml++/toml.h>
@@ -303,27 +304,78 @@ bool unsafe_for_toml(unsigned cp) {
          (cp >= 0xFB26u && cp <= 0xFEFEu);
 }
 
+// Where a '#' starts a comment, TOML's string forms must be followed exactly (a '#' inside a
+// string is text): basic "..." and multi-line """...""" strings with backslash escapes, literal
+// '...' and multi-line '''...''' strings without. Unclosed strings stay open to the line end (single
+// line) or to the end of the text (multi-line), so in doubt a character counts as outside a
+// comment and is checked: the error is only ever "refused", never undefined behaviour.
+enum class TomlLexeme { plain, comment, basic, literal, multiline_basic, multiline_literal };
+
 void refuse_unreadable_characters(const std::string& text, const std::string& file) {
   std::size_t line = 1, line_start = 0;
-  bool comment = false;
-  char quote = 0;
+  TomlLexeme state = TomlLexeme::plain;
+  const auto starts = [&](std::size_t k, const char* token) { return text.compare(k, std::strlen(token), token) == 0; };
+  // A backslash consumes the next byte when it is ASCII (so \" does not close the string); a
+  // non-ASCII byte after it is still decoded and checked below.
+  const auto escaped_ascii = [&](std::size_t k) -> std::size_t {
+    return k + 1 < text.size() && text[k + 1] != '\n' && static_cast<unsigned char>(text[k + 1]) < 0x80u ? 1 : 0;
+  };
   for (std::size_t k = 0; k < text.size(); ++k) {
     const char ch = text[k];
     if (ch == '\n') {
       ++line;
       line_start = k + 1;
-      comment = false;
-      quote = 0;
+      if (state != TomlLexeme::multiline_basic && state != TomlLexeme::multiline_literal) state = TomlLexeme::plain;
       continue;
     }
-    if (comment) continue;
-    if (quote == 0 && ch == '#') {
-      comment = true;
-      continue;
+    std::size_t skip = 0;  // further ASCII bytes of a token consumed here
+    switch (state) {
+      case TomlLexeme::comment:
+        continue;
+      case TomlLexeme::plain:
+        if (ch == '#') {
+          state = TomlLexeme::comment;
+          continue;
+        }
+        if (starts(k, "\"\"\"")) {
+          state = TomlLexeme::multiline_basic;
+          skip = 2;
+        } else if (starts(k, "'''")) {
+          state = TomlLexeme::multiline_literal;
+          skip = 2;
+        } else if (ch == '"') {
+          state = TomlLexeme::basic;
+        } else if (ch == '\'') {
+          state = TomlLexeme::literal;
+        }
+        break;
+      case TomlLexeme::basic:
+        if (ch == '\\') skip = escaped_ascii(k);
+        else if (ch == '"') state = TomlLexeme::plain;
+        break;
+      case TomlLexeme::literal:
+        if (ch == '\'') state = TomlLexeme::plain;
+        break;
+      case TomlLexeme::multiline_basic:
+        if (ch == '\\') {
+          skip = escaped_ascii(k);
+        } else if (starts(k, "\"\"\"")) {
+          state = TomlLexeme::plain;
+          skip = 2;
+        }
+        break;
+      case TomlLexeme::multiline_literal:
+        if (starts(k, "'''")) {
+          state = TomlLexeme::plain;
+          skip = 2;
+        }
+        break;
     }
-    if (ch == '"' || ch == '\'') quote = quote == 0 ? ch : (quote == ch ? 0 : quote);
     const auto b0 = static_cast<unsigned char>(ch);
-    if (b0 < 0x80u) continue;
+    if (b0 < 0x80u) {
+      k += skip;
+      continue;
+    }
     unsigned cp = 0;
     const auto cont = [&](std::size_t i) {
       return i < text.size() && (static_cast<unsigned char>(text[i]) & 0xC0u) == 0x80u;
