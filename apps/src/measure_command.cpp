@@ -104,6 +104,9 @@ void add_synth(CLI::App& app, CommandContext& ctx) {
   cmd->add_option("--force-noise", o->sensor.force_noise, "load-cell noise sd per reading (N)");
   cmd->add_option("--force-offset", o->sensor.force_offset, "load-cell tare sd per specimen (N)");
   cmd->add_option("--displacement-step", o->sensor.displacement_step, "displacement resolution (m)");
+  cmd->add_option("--seating-gap", o->sensor.seating_gap,
+                  "closure gap of rough specimen faces (m): a toe w + g F / (F + F_h), outside the effect library");
+  cmd->add_option("--seating-half-force", o->sensor.seating_half_force, "force at half closure F_h (N)");
   cmd->add_option("--noise-seed", o->noise_seed, "seed of the sensor noise");
   cmd->add_option("--length", o->length, "specimen length in specimens.csv (m)");
   cmd->add_option("--width", o->width, "specimen width (m)");

@@ -15,6 +15,7 @@
 #include "measure_commands.hpp"
 #include "measure_plan.hpp"
 #include "shard/app/commands.hpp"
+#include "shard/measure/confirmation.hpp"
 #include "shard/measure/report.hpp"
 #include "shard/measure/statistics.hpp"
 
@@ -92,7 +93,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
       models.push_back(plan);
     };
     const auto tops = static_cast<std::size_t>(std::max(0, o->refit));
-    if (tops > 0) {
+    if (tops > 0 && d.verdict != "adequate") {  // noise needs no refit: its runs would be wasted
       refit_model({}, nullptr);
       for (std::size_t k = 0; k < std::min(tops, d.ranking.size()); ++k)
         for (std::size_t e = 0; e < effects.size(); ++e)
@@ -108,17 +109,17 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
       }
     }
     // The score test ranks on the linearisation; the confirmation runs are the real refits, so
-    // among the effects refit the one with the lowest AIC below the base refit's is the answer.
+    // they decide (confirmation.hpp): an effect is named only when its refit explains most of the
+    // structured excess, both information criteria prefer it and what remains is noise.
     std::string verdict = d.verdict;
-    bool confirmed = true;
+    ConfirmationDecision decision;
     if (verdict != "adequate" && confirmations.size() > 1) {
-      const Confirmation* best = nullptr;
-      for (std::size_t k = 1; k < confirmations.size(); ++k)
-        if (confirmations[k].delta_aic < 0 && (!best || confirmations[k].delta_aic < best->delta_aic))
-          best = &confirmations[k];
-      confirmed = best != nullptr;
-      verdict = best ? best->name : "unexplained structured residual";
+      std::vector<RefitOutcome> refits;
+      for (std::size_t k = 1; k < confirmations.size(); ++k) refits.push_back({confirmations[k].name, confirmations[k].chi_square});
+      decision = decide_from_refits(confirmations[0].chi_square, refits, lin.base.values.size(), o->params.size());
+      verdict = decision.verdict;
     }
+    const bool confirmed = decision.best_partial.empty();
 
     std::string md = fmt::format("# Diagnosis: {}\n\nmeasurements {}, model {}, {} packing seeds, base parameters {}.\n",
                                  verdict, o->measurements.string(), o->model.scene.string(), o->sim.seeds, join(o->params));
@@ -128,10 +129,18 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
                       lin.base.values.size() - o->params.size(), 100 * lin.base_comparison.nrmse);
     if (verdict == "adequate")
       md += "The residual left after the base parameters is compatible with noise: no effect is needed.\n\n";
-    else if (verdict == "unexplained structured residual")
-      md += fmt::format("No candidate explains the structured residual{}: the missing physics is not in the library "
-                        "({}).\n\n",
-                        confirmed ? "" : " (the top effect's refit did not lower chi^2)", library.string());
+    else if (verdict == kUnexplained) {
+      md += fmt::format("No candidate explains the structured residual: the missing physics is not in the library "
+                        "({}).",
+                        library.string());
+      if (!confirmed)
+        for (const auto& e : decision.effects)
+          if (e.name == decision.best_partial)
+            md += fmt::format(" The best refit, {}, explains {:.0f} % of the excess chi^2 over noise ({:.1f}) and "
+                              "leaves p = {:.2g}: not enough to name it.",
+                              e.name, 100 * e.share_explained, decision.excess, e.p_after);
+      md += "\n\n";
+    }
     md += "| effect | score (LM) | p-value | explains | absorbed by base | estimated value | dAIC | dBIC | regimes/features it explains |\n"
           "|---|---|---|---|---|---|---|---|---|\n";
     for (const auto& s : d.ranking) {
@@ -143,13 +152,19 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
                         s.delta_aic, s.delta_bic, join(s.explains));
     }
     if (!confirmations.empty()) {
-      md += "\nConfirmation runs (simulated, not predicted):\n\n| model | chi^2 | NRMSE | dAIC vs base refit | dBIC | values |\n|---|---|---|---|---|---|\n";
-      for (const auto& c : confirmations) {
+      md += fmt::format("\nConfirmation runs (simulated, not predicted; excess chi^2 of the base refit over its {} "
+                        "degrees of freedom: {:.1f}):\n\n| model | chi^2 | NRMSE | dAIC vs base refit | dBIC | share of "
+                        "excess | p after | values |\n|---|---|---|---|---|---|---|---|\n",
+                        lin.base.values.size() - o->params.size(), decision.excess);
+      for (std::size_t k = 0; k < confirmations.size(); ++k) {
+        const auto& c = confirmations[k];
+        const ConfirmedEffect* ce = k > 0 && k - 1 < decision.effects.size() ? &decision.effects[k - 1] : nullptr;
         std::string v;
         for (std::size_t i = 0; i < c.parameters.size(); ++i) v += fmt::format("{}{}={:.4g}", v.empty() ? "" : ", ", o->params[i], c.parameters[i]);
         if (c.name != "base refit") v += fmt::format(", {}={:.4g}", c.name, c.effect_value);
-        md += fmt::format("| {} | {:.1f} | {:.1f} % | {:+.1f} | {:+.1f} | {} |\n", c.name, c.chi_square, 100 * c.nrmse,
-                          c.delta_aic, c.delta_bic, v);
+        md += fmt::format("| {} | {:.1f} | {:.1f} % | {:+.1f} | {:+.1f} | {} | {} | {} |\n", c.name, c.chi_square,
+                          100 * c.nrmse, c.delta_aic, c.delta_bic, ce ? fmt::format("{:.0f} %", 100 * ce->share_explained) : "-",
+                          ce ? fmt::format("{:.2g}", ce->p_after) : "-", v);
       }
     }
     for (const auto& [a, b] : d.indistinguishable) {
@@ -185,10 +200,15 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
     }
     json += "], \"confirmations\": [";
     for (std::size_t k = 0; k < confirmations.size(); ++k)
-      json += fmt::format("{}{{\"name\": \"{}\", \"chi_square\": {:.9g}, \"nrmse\": {:.9g}, \"delta_aic\": {:.9g}}}",
+    {
+      const ConfirmedEffect* ce = k > 0 && k - 1 < decision.effects.size() ? &decision.effects[k - 1] : nullptr;
+      json += fmt::format("{}{{\"name\": \"{}\", \"chi_square\": {:.9g}, \"nrmse\": {:.9g}, \"delta_aic\": {:.9g}, "
+                          "\"delta_bic\": {:.9g}, \"share_explained\": {:.9g}, \"p_after\": {:.9g}, \"value\": {:.9g}}}",
                           k ? ", " : "", json_escape(confirmations[k].name), confirmations[k].chi_square,
-                          confirmations[k].nrmse, confirmations[k].delta_aic);
-    json += "]}\n";
+                          confirmations[k].nrmse, confirmations[k].delta_aic, confirmations[k].delta_bic,
+                          ce ? ce->share_explained : 0.0, ce ? ce->p_after : 1.0, confirmations[k].effect_value);
+    }
+    json += fmt::format("], \"excess\": {:.9g}, \"partial\": \"{}\"}}\n", decision.excess, json_escape(decision.best_partial));
     fs::create_directories(o->out);
     std::ofstream(o->out / "diagnose.md") << md;
     std::ofstream(o->out / "diagnose.json") << json;

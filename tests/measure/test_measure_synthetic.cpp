@@ -58,3 +58,25 @@ TEST_CASE("noise, offset and quantisation have the requested sizes") {
   for (int i = 0; i < 400; ++i) scales.push_back(record(truth, scatter, rng).force.back() / truth.force.back());
   CHECK(sample_sd(scales) == doctest::Approx(0.05).epsilon(0.15));  // sd of an sd estimate: 1/sqrt(2 x 400) = 3.5 %
 }
+
+TEST_CASE("seating closure: hyperbolic toe in series, half the gap at F_h, the full gap at large force") {
+  const double k = 2e5, g = 4e-5, fh = 50;  // the truth reaches 200 N
+  std::mt19937_64 rng(3);
+  SensorModel s;
+  s.seating_gap = g;
+  s.seating_half_force = fh;
+  const Curve truth = linear_truth(k);
+  const Curve rec = record(truth, s, rng);
+  for (std::size_t i = 0; i < rec.size(); ++i) {
+    const double f = truth.force[i];
+    CHECK(rec.displacement[i] - truth.displacement[i] == doctest::Approx(g * f / (f + fh)).epsilon(1e-12));
+  }
+  // Row 250 carries F = 50 N = F_h: half of the gap has closed; row 1000 (200 N = 4 F_h): 80 %.
+  REQUIRE(truth.force[250] == doctest::Approx(fh));
+  CHECK((rec.displacement[250] - truth.displacement[250]) / g == doctest::Approx(0.5).epsilon(1e-9));
+  const std::size_t last = rec.size() - 1;
+  CHECK((rec.displacement[last] - truth.displacement[last]) / g == doctest::Approx(0.8).epsilon(1e-9));
+  SensorModel no_force;
+  no_force.seating_gap = g;
+  CHECK_THROWS(record(truth, no_force, rng));
+}

@@ -91,7 +91,9 @@ Diagnosis diagnose(const std::vector<std::string>& names, const std::vector<doub
 
   if (d.p_value > options.adequate_p) {
     d.verdict = "adequate";
-  } else if (!d.ranking.empty() && d.ranking.front().p_value < options.significant_p &&
+  } else if (!d.ranking.empty() &&
+             // Bonferroni: the best of n candidates reaches p by chance n times as often.
+             d.ranking.front().p_value < options.significant_p / static_cast<double>(d.ranking.size()) &&
              d.ranking.front().explained >= options.min_explained) {
     d.verdict = d.ranking.front().name;
   } else {

@@ -51,7 +51,7 @@ struct Diagnosis {
 
 struct DiagnoseOptions {
   double adequate_p = 0.05;        // residual compatible with noise above this p-value
-  double significant_p = 0.01;     // an effect counts below this p-value ...
+  double significant_p = 0.01;     // an effect counts below this p-value over the candidates ...
   double min_explained = 0.5;      // ... and only if it explains at least this share
   double collinear_cosine = 0.95;
 };

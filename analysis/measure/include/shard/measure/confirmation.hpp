@@ -1,0 +1,51 @@
+#pragma once
+// The decision of `shard diagnose` once the refits have been simulated (issue 7): which effect,
+// if any, is named. The score test (diagnosis.hpp) ranks on a linearisation; the refit runs are
+// the real model, so they decide. With m residual components, p base parameters and chi^2_0 the
+// base refit's chi-square:
+//   structured excess   E = chi^2_0 - (m - p), what noise alone does not explain (the expected
+//                       chi^2 of a right model is its degrees of freedom);
+//   share explained     (chi^2_0 - chi^2_e) / E by the refit with effect e;
+//   information         dAIC = chi^2_e - chi^2_0 + 2, dBIC = chi^2_e - chi^2_0 + ln m (one extra
+//                       parameter);
+//   what remains        p_after = P(chi^2(m - p - 1) > chi^2_e).
+// An effect is named when it explains at least `min_explained` of the excess, both criteria
+// prefer it (dAIC < 0 and dBIC < 0) and what remains is compatible with noise (p_after >
+// `remaining_p`): then adding it is enough. A refit that improves the fit without meeting all
+// three is reported as a partial explanation and the verdict is "unexplained structured
+// residual": the data say something is missing, not that it is this candidate.
+#include <string>
+#include <vector>
+
+namespace shard::measure {
+
+struct RefitOutcome {
+  std::string name;
+  double chi_square = 0;  // simulated chi^2 of the refit with this effect
+};
+
+struct ConfirmedEffect {
+  std::string name;
+  double chi_square = 0, share_explained = 0, delta_aic = 0, delta_bic = 0, p_after = 0;
+  bool named = false;
+};
+
+struct ConfirmationRule {
+  double min_explained = 0.5;
+  double remaining_p = 0.01;
+};
+
+struct ConfirmationDecision {
+  double excess = 0;                     // E
+  std::vector<ConfirmedEffect> effects;  // in the order given
+  std::string verdict;                   // the named effect, or "unexplained structured residual"
+  std::string best_partial;              // the refit that lowered chi^2 most when none is named
+};
+
+inline constexpr const char* kUnexplained = "unexplained structured residual";
+
+ConfirmationDecision decide_from_refits(double base_refit_chi_square, const std::vector<RefitOutcome>& refits,
+                                        std::size_t components, std::size_t base_parameters,
+                                        const ConfirmationRule& rule = {});
+
+}  // namespace shard::measure

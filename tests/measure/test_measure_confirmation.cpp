@@ -1,0 +1,51 @@
+// The refit decision of `shard diagnose` (confirmation.hpp) on chi-square values whose meaning is
+// known: m = 11 components, p = 2 base parameters, so a right model has chi^2 ~ 9.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "shard/measure/confirmation.hpp"
+
+using namespace shard::measure;
+
+TEST_CASE("an effect whose refit leaves noise is named; the excess and criteria are as defined") {
+  // Base refit chi^2 60: excess 60 - 9 = 51. The effect brings it to 9.5 (p ~ 0.3 against chi^2(8)).
+  const auto d = decide_from_refits(60, {{"machine_compliance", 9.5}, {"bond_softening", 40}}, 11, 2);
+  CHECK(d.excess == doctest::Approx(51));
+  CHECK(d.verdict == "machine_compliance");
+  REQUIRE(d.effects.size() == 2);
+  CHECK(d.effects[0].share_explained == doctest::Approx(50.5 / 51));
+  CHECK(d.effects[0].delta_aic == doctest::Approx(9.5 - 60 + 2));
+  CHECK(d.effects[0].delta_bic == doctest::Approx(9.5 - 60 + std::log(11.0)));
+  CHECK(d.effects[0].p_after > 0.2);
+  CHECK(d.effects[0].named);
+  CHECK_FALSE(d.effects[1].named);  // explains 39 % of the excess only
+}
+
+TEST_CASE("a refit that helps but leaves structure is a partial explanation, not a name") {
+  // 60 -> 25: 69 % of the excess, dAIC -33, but chi^2 25 on 8 dof has p = 0.0016.
+  const auto d = decide_from_refits(60, {{"machine_compliance", 25}}, 11, 2);
+  CHECK(d.effects[0].share_explained > 0.5);
+  CHECK(d.effects[0].delta_aic < 0);
+  CHECK(d.effects[0].p_after < 0.01);
+  CHECK(d.verdict == kUnexplained);
+  CHECK(d.best_partial == "machine_compliance");
+}
+
+TEST_CASE("a refit that raises chi^2 or gains less than the penalty is neither named nor partial") {
+  const auto worse = decide_from_refits(30, {{"bond_softening", 31}}, 11, 2);
+  CHECK(worse.verdict == kUnexplained);
+  CHECK(worse.best_partial.empty());
+  // Excess 3 only (chi^2 12 on 9 dof): dropping to 10.5 explains 50 % but dBIC = -1.5 + ln 11 > 0.
+  const auto small = decide_from_refits(12, {{"bond_softening", 10.5}}, 11, 2);
+  CHECK(small.effects[0].share_explained == doctest::Approx(0.5));
+  CHECK(small.effects[0].delta_bic > 0);
+  CHECK_FALSE(small.effects[0].named);
+}
+
+TEST_CASE("of two effects that both qualify, the lower chi^2 is named") {
+  const auto d = decide_from_refits(80, {{"a", 12}, {"b", 8}}, 11, 2);
+  CHECK(d.effects[0].named);
+  CHECK(d.effects[1].named);
+  CHECK(d.verdict == "b");
+}
