@@ -426,39 +426,43 @@ void Simulation::contact_chunk(std::size_t begin, std::size_t end, Vec3* force, 
   share.contact_energy = energy;
 }
 
+// The bond range is run in blocks small enough that a block's outputs are still in L1 when they
+// are scattered (one sweep over the whole range would write them out to memory and read them back).
 void Simulation::bond_chunk(std::size_t begin, std::size_t end, Vec3* force, Vec3* torque, int thread) {
-  if (end <= begin) return;
-  BondBatch b = bond_batch();
-  b.count = end - begin;
-  b.i += begin;
-  b.j += begin;
-  b.state += begin * bonds_.stride;
-  b.force += begin;
-  b.torque_i += begin;
-  b.torque_j += begin;
-  b.energy += begin;
-  b.broken += begin;
-  b.stress += begin;
-  std::fill_n(b.force, b.count, Vec3::Zero());
-  std::fill_n(b.torque_i, b.count, Vec3::Zero());
-  std::fill_n(b.torque_j, b.count, Vec3::Zero());
-  std::fill_n(b.energy, b.count, 0.0);
-  std::fill_n(b.broken, b.count, std::uint8_t{0});
-  bond_->compute(b);
+  constexpr std::size_t kBlock = 256;
   bool broke = false;
-  for (std::size_t k = 0; k < b.count; ++k) {
-    if (b.broken[k]) {
-      if (breakage_) {
-        broke = true;
-        continue;  // a bond that fails this step transmits nothing
+  for (std::size_t first = begin; first < end; first += kBlock) {
+    BondBatch b = bond_batch();
+    b.count = std::min(kBlock, end - first);
+    b.i += first;
+    b.j += first;
+    b.state += first * bonds_.stride;
+    b.force += first;
+    b.torque_i += first;
+    b.torque_j += first;
+    b.energy += first;
+    b.broken += first;
+    b.stress += first;
+    std::fill_n(b.force, b.count, Vec3::Zero());
+    std::fill_n(b.torque_i, b.count, Vec3::Zero());
+    std::fill_n(b.torque_j, b.count, Vec3::Zero());
+    std::fill_n(b.energy, b.count, 0.0);
+    std::fill_n(b.broken, b.count, std::uint8_t{0});
+    bond_->compute(b);
+    for (std::size_t k = 0; k < b.count; ++k) {
+      if (b.broken[k]) {
+        if (breakage_) {
+          broke = true;
+          continue;  // a bond that fails this step transmits nothing
+        }
+        b.broken[k] = 0;
       }
-      b.broken[k] = 0;
+      const Index i = b.i[k], j = b.j[k];
+      force[i] += b.force[k];
+      force[j] -= b.force[k];
+      torque[i] += b.torque_i[k];
+      torque[j] += b.torque_j[k];
     }
-    const Index i = b.i[k], j = b.j[k];
-    force[i] += b.force[k];
-    force[j] -= b.force[k];
-    torque[i] += b.torque_i[k];
-    torque[j] += b.torque_j[k];
   }
   workspace_->threads[static_cast<std::size_t>(thread)].bond_broke = broke;
 }

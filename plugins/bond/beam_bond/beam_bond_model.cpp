@@ -93,20 +93,21 @@ void BeamBond::compute(BondBatch& batch) const {
   const double E = p_.youngs_modulus;
   const double G = shear_modulus_;
   const double a_s = p_.shear_coefficient;
+  const RotationalDamping rotational(p_.rotational_damping, E, G);
 
   for (std::size_t k = 0; k < batch.count; ++k) {
     const Ends e = ends_of(p, batch.i[k], batch.j[k]);
     const Index n1 = e.first, n2 = e.second;
     const Reference ref = load(batch.state + k * kStateSize);
     const double l0 = ref.l0;
+    const double inv_l0 = 1 / l0;
     const Section sec = section_of(p_.radius_ratio, p.radius[n1], p.radius[n2]);
     const Deformation g = deform(ref, p.position[n1], p.position[n2], p.orientation[n1], p.orientation[n2]);
 
     // Strain and curvature vectors, bond frame.
-    const Vec3 strain = g.d_local / l0 - Vec3::UnitX();  // Gamma
-    const Vec3 curvature = g.theta / l0;                 // kappa
+    const auto [strain, curvature] = strain_curvature(g, inv_l0);  // Gamma, kappa
 
-    if (p_.breakage) {
+    if (p_.breakage && may_reach(strain, curvature, E, G, sec.radius, p_.critical_stress)) {
       const BondStress s = stress_of(strain, curvature, E, G, sec.radius);
       if (s.sigma_vm >= p_.critical_stress) {
         batch.broken[k] = 1;
@@ -129,8 +130,7 @@ void BeamBond::compute(BondBatch& batch) const {
     // on Omega_rel = d theta / dt. Both zero for rigid motion.
     const Rates r = rates_of(g, p.velocity[n1], p.velocity[n2], p.omega[n1], p.omega[n2]);
     const Vec3 damping_force = p_.damping * r.v12;
-    const Vec3 damping_torque = rotational_damping_torque(p_.rotational_damping, E, G, sec.second_moment, l0,
-                                                          p.inertia[n1], p.inertia[n2], r.omega_rel);
+    const Vec3 damping_torque = rotational.torque(sec.second_moment, inv_l0, p.inertia[n1], p.inertia[n2], r.omega_rel);
 
     const PairLoads loads = pair_loads(g, elastic_force + damping_force, elastic_torque + damping_torque, e.swapped);
     batch.force[k] = loads.force_on_i;

@@ -18,6 +18,18 @@
 
 namespace shard::beam {
 
+// False only when sigma_vm < strength for certain: bounds |(a, b)| <= |a| + |b| for the bending and
+// shear magnitudes, with a margin of 1e-12 against round-off, so the three square roots of
+// stress_of are taken only near failure and the break decision is exactly that of stress_of.
+inline bool may_reach(const Vec3& strain, const Vec3& curvature, double youngs, double shear_modulus, double radius,
+                      double strength) {
+  const double axial = std::max(youngs * strain.x(), 0.0) +
+                       youngs * radius * (std::abs(curvature.y()) + std::abs(curvature.z()));
+  const double tau = shear_modulus * (std::abs(strain.y()) + std::abs(strain.z())) +
+                     shear_modulus * radius * std::abs(curvature.x());
+  return axial * axial + 3 * tau * tau >= (1 - 1e-12) * strength * strength;
+}
+
 inline BondStress stress_of(const Vec3& strain, const Vec3& curvature, double youngs, double shear_modulus,
                             double radius) {
   BondStress s;

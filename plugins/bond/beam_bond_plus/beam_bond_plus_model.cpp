@@ -133,6 +133,7 @@ void BeamBondPlus::compute(BondBatch& batch) const {
   const double a_s = b.shear_coefficient;
   const double tau_v = p_.viscosity_time;
   const bool viscous = tau_v > 0;
+  const beam::RotationalDamping rotational(b.rotational_damping, E, G);
 
   for (std::size_t k = 0; k < batch.count; ++k) {
     const Ends e = ends_of(p, batch.i[k], batch.j[k]);
@@ -140,12 +141,12 @@ void BeamBondPlus::compute(BondBatch& batch) const {
     double* state = batch.state + k * kStateSize;
     const beam::Reference ref = beam::load(state);
     const double l0 = ref.l0;
+    const double inv_l0 = 1 / l0;
     const Section sec = section_of(b.radius_ratio, p.radius[n1], p.radius[n2]);
     const beam::Deformation g =
         beam::deform(ref, p.position[n1], p.position[n2], p.orientation[n1], p.orientation[n2]);
 
-    const Vec3 strain = g.d_local / l0 - Vec3::UnitX();  // Gamma
-    const Vec3 curvature = g.theta / l0;                 // kappa
+    const auto [strain, curvature] = beam::strain_curvature(g, inv_l0);  // Gamma, kappa
 
     // Rates conjugate to Gamma and kappa (beam_geometry.hpp): v12 = l0 dGamma/dt,
     // omega_rel = d theta/dt = l0 dkappa/dt. Zero for rigid motion of the pair.
@@ -161,9 +162,9 @@ void BeamBondPlus::compute(BondBatch& batch) const {
     }
 
     double damage = state[kDamageSlot];
-    if (b.breakage) {
+    const double strength = state[kStrengthSlot];
+    if (b.breakage && beam::may_reach(strain_kv, curvature_kv, E, G, sec.radius, strength)) {
       const BondStress s = beam::stress_of(strain_kv, curvature_kv, E, G, sec.radius);
-      const double strength = state[kStrengthSlot];
       if (s.sigma_vm >= strength) {
         if (!(p_.softening_ratio > 0)) {
           write_broken(batch, k, s);
@@ -203,8 +204,7 @@ void BeamBondPlus::compute(BondBatch& batch) const {
 
     // Eq. 4 and 6-7: the numerical damping of beam_bond, unchanged by the effects.
     const Vec3 damping_force = b.damping * v12;
-    const Vec3 damping_torque = beam::rotational_damping_torque(b.rotational_damping, E, G, sec.second_moment, l0,
-                                                                p.inertia[n1], p.inertia[n2], omega_rel);
+    const Vec3 damping_torque = rotational.torque(sec.second_moment, inv_l0, p.inertia[n1], p.inertia[n2], omega_rel);
 
     const beam::PairLoads loads =
         beam::pair_loads(g, material_force + damping_force, material_torque + damping_torque, e.swapped);
