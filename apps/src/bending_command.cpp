@@ -10,6 +10,7 @@
 #include <optional>
 #include <sstream>
 
+#include "bending_commands.hpp"
 #include "shard/app/commands.hpp"
 #include "shard/app/run_command.hpp"
 #include "shard/bending/bending_plot.hpp"
@@ -64,7 +65,10 @@ int bending_command(BendingCliOptions& o) {
   write_text(json, bending::report_json(report));
   const auto csv = beside(o.run, "_bending_curve.csv");
   bending::write_curve_csv(csv.string(), report.curve);
-  fmt::print("  wrote {} and {}\n", json.string(), csv.string());
+  const auto local_csv = beside(o.run, "_local_curve.csv");
+  bending::write_curve_csv(local_csv.string(), report.local_curve);
+  fmt::print("  wrote {}, {} (pin travel) and {} (beam deflection under the pins)\n", json.string(), csv.string(),
+             local_csv.string());
   if (!o.no_plot) {
     const auto image = o.plot.empty() ? beside(o.run, "_bending.png") : std::filesystem::path(o.plot);
     bending::plot_bending_curve(report.curve, report.analysis, image,
@@ -85,7 +89,8 @@ struct CalibrateCliOptions {
   int max_runs = 20;
   int threads = 0;
   double lab_span_mm = 180.0;       // span of the measured specimen (--measurement)
-  double stiffness_fraction = 0.6;  // stiffness runs stop at this fraction of the expected failure deflection
+  double stiffness_fraction = 0.7;  // stiffness runs stop at this fraction of the target F_max's pin travel
+  std::string modulus = "local";    // which E is calibrated: local instrumentation or pin travel
   BendingCliOptions geometry;
 };
 
@@ -100,6 +105,10 @@ std::pair<double, double> scene_bond_parameters(const CalibrateCliOptions& o, co
 
 int calibrate_command(CalibrateCliOptions& o, const CommandContext& ctx) {
   apply_geometry(o.geometry);
+  if (o.modulus != "local" && o.modulus != "pins")
+    throw std::runtime_error(fmt::format("--modulus {}: expected local (the beam's own deflection under the pins, as "
+                                         "local instrumentation measures it) or pins (the pin travel)", o.modulus));
+  const bool use_local = o.modulus == "local";
   std::filesystem::create_directories(o.out_dir);
   PluginHost host;
   load_plugins(host, ctx.plugin_dirs, std::cerr);
@@ -117,11 +126,27 @@ int calibrate_command(CalibrateCliOptions& o, const CommandContext& ctx) {
     // (default: the seed's, span 180 mm). Its strength, not its force, is the target: the
     // simulated span may differ from the lab's, and sigma_b (eq. 15) is the material's figure.
     const auto curve = bending::read_curve_csv(o.measurement);
-    const bending::BendingGeometry lab{1e-3 * o.lab_span_mm, 0.080, 0.030, 0.035};
+    const auto meta = bending::read_curve_metadata(o.measurement);
+    auto number = [&](const char* key, double fallback) {
+      const auto it = meta.find(key);
+      if (it == meta.end()) return fallback;
+      try {
+        return std::stod(it->second);
+      } catch (const std::exception&) {
+        throw std::runtime_error(fmt::format("{}: '#! {} = {}' is not a number", o.measurement, key, it->second));
+      }
+    };
+    const bending::BendingGeometry lab{1e-3 * number("span_mm", o.lab_span_mm), 1e-3 * number("pin_distance_mm", 80.0),
+                                       1e-3 * number("width_mm", 30.0), 1e-3 * number("height_mm", 35.0)};
+    lab.check();
+    if (const auto it = meta.find("displacement"); it != meta.end() && it->second != o.modulus)
+      throw std::runtime_error(fmt::format("{}: its displacement column is '{}' but --modulus is '{}': the simulated E "
+                                           "would not measure the same thing (use --modulus {})",
+                                           o.measurement, it->second, o.modulus, it->second));
     const auto a = bending::analyse_curve(curve.displacement, curve.force, lab, o.geometry.analysis.curve);
     targets.youngs_modulus = a.youngs_modulus;
     target_strength = a.flexural_strength;
-    fmt::print("measurement {}: E = {:.4g} MPa (eq. 14, lab span {:.0f} mm), F_max = {:.4g} N, sigma_b = {:.4g} MPa, "
+    fmt::print("measurement {}: E = {:.4g} MPa (eq. 14, span {:.0f} mm), F_max = {:.4g} N, sigma_b = {:.4g} MPa, "
                "w_s,max = {:.3f} mm\n",
                o.measurement, 1e-6 * a.youngs_modulus, 1e3 * lab.span, a.force_max, 1e-6 * a.flexural_strength,
                1e3 * a.deflection_at_peak);
@@ -146,25 +171,36 @@ int calibrate_command(CalibrateCliOptions& o, const CommandContext& ctx) {
     run.threads = o.threads;
     run.quiet = true;
     const RunSummary s = run_scene(run, log_file);
-    const auto report = bending::analyse_bending_run(s.output, o.geometry.analysis);
-    write_text(beside(s.output, "_bending.json"), bending::report_json(report));
-    bending::CalibrationRun c;
-    c.youngs_modulus = report.analysis.youngs_modulus;
-    c.force_max = report.analysis.force_max;
-    c.failed = report.analysis.failed;
-    c.wall_seconds = s.wall_seconds;
-    c.output = s.output.string();
+    // Stiffness runs stop before failure: their fit window is taken on the target F_max.
+    auto analyse = [&] {
+      bending::BendingOptions options = o.geometry.analysis;
+      if (!breakage && targets.force_max) options.curve.reference_force = *targets.force_max;
+      return bending::analyse_bending_run(s.output, options);
+    };
+    auto report = analyse();
     if (target_strength && !targets.force_max) {
       targets.force_max = bending::force_from_flexural_stress(report.geometry, *target_strength);
       fmt::print("target strength {:.4g} MPa -> F_max = {:.4g} N (eq. 15, {:.0f} x {:.0f} x {:.0f} mm, span {:.0f} mm)\n",
                  1e-6 * *target_strength, *targets.force_max, 1e3 * report.length, 1e3 * report.geometry.width,
                  1e3 * report.geometry.height, 1e3 * report.geometry.span);
+      if (!breakage) report = analyse();
     }
-    if (stiffness_stop == 0 && targets.force_max) {
-      // Later stiffness runs only need the elastic part: stop at a fraction of the expected
-      // failure deflection (the target F_max over the target stiffness, plus the contact onset).
-      const double k = bending::stiffness_from_youngs_modulus(report.geometry, targets.youngs_modulus);
-      stiffness_stop = report.analysis.onset + o.stiffness_fraction * *targets.force_max / k;
+    write_text(beside(s.output, "_bending.json"), bending::report_json(report));
+    if (use_local && !report.gauges.valid)
+      throw std::runtime_error(fmt::format(
+          "calibration run {}: {}: only {} frames in the stiffness fit window, too few for the local instrumentation; "
+          "record frames more often (--set output.frame_interval=...) or use --modulus pins",
+          index, s.output.string(), report.gauges.fit_frames));
+    bending::CalibrationRun c;
+    c.youngs_modulus = use_local ? report.gauges.youngs_modulus : report.analysis.youngs_modulus;
+    c.force_max = report.analysis.force_max;
+    c.failed = report.analysis.failed;
+    c.wall_seconds = s.wall_seconds;
+    c.output = s.output.string();
+    if (stiffness_stop == 0 && targets.force_max && report.analysis.stiffness > 0) {
+      // Later stiffness runs only need the elastic part: stop at the pin travel that reaches a
+      // fraction of the target F_max at this run's pin stiffness (plus the contact onset).
+      stiffness_stop = report.analysis.onset + o.stiffness_fraction * *targets.force_max / report.analysis.stiffness;
     }
     return c;
   };
@@ -182,8 +218,9 @@ int calibrate_command(CalibrateCliOptions& o, const CommandContext& ctx) {
                             c.bond_critical_stress, c.breakage, c.youngs_modulus, c.force_max, c.failed, c.wall_seconds);
     csv_live.flush();
   };
-  fmt::print("calibrating {}: target E = {:.4g} MPa{}, tolerance {:.1f} %, at most {} runs; output in {}\n",
-             o.scene.string(), 1e-6 * targets.youngs_modulus,
+  fmt::print("calibrating {}: target E ({}) = {:.4g} MPa{}, tolerance {:.1f} %, at most {} runs; output in {}\n",
+             o.scene.string(), use_local ? "eq. 14 on the beam's own deflection" : "eq. 14 on the pin travel",
+             1e-6 * targets.youngs_modulus,
              targets.force_max ? fmt::format(", F_max = {:.4g} N", *targets.force_max)
              : target_strength ? fmt::format(", sigma_b = {:.4g} MPa", 1e-6 * *target_strength)
                                : std::string(", no strength target"),
@@ -224,12 +261,17 @@ void add_bending_command(CLI::App& app, CommandContext& ctx) {
   auto* tm = c->add_option("--measurement", co->measurement, "measured curve CSV: E and F_max targets from it");
   ts->excludes(tf)->excludes(tm);
   tf->excludes(tm);
-  c->add_option("--lab-span", co->lab_span_mm, "span of the measured specimen in mm (default 180, the seed)");
+  c->add_option("--lab-span", co->lab_span_mm, "span of the measured specimen in mm (default: the file's '#! span_mm', "
+                                               "else 180, the seed)");
+  c->add_option("--modulus", co->modulus, "E to match: local (eq. 14 on the beam's own deflection under the pins, the "
+                                          "seed's local instrumentation; default) or pins (eq. 14 on the pin travel)");
   c->add_option("--tolerance", co->tolerance, "relative tolerance on E and F_max (default 0.03)");
   c->add_option("--max-runs", co->max_runs, "give up after this many runs (default 20)");
   c->add_option("--threads", co->threads, "OpenMP threads per run");
   add_geometry_options(*c, co->geometry);
   c->callback([co, &ctx] { ctx.exit_code = calibrate_command(*co, ctx); });
+
+  add_bending_rate_check_command(app, ctx);
 }
 
 }  // namespace shard

@@ -24,7 +24,8 @@ std::string format_report(const BendingReport& r) {
                    a.failed ? ", then failed" : ", no failure (force did not drop)");
   s += fmt::format("  E (eq. 14, fitted stiffness) = {:.4g} MPa; secant at F_max = {:.4g} MPa\n", 1e-6 * a.youngs_modulus,
                    1e-6 * a.youngs_modulus_secant);
-  s += fmt::format("  sigma_b (eq. 15) at F_max = {:.4g} MPa\n", 1e-6 * a.flexural_strength);
+  s += fmt::format("  sigma_b (eq. 15) at F_max = {:.4g} MPa; {} bonds broken up to F_max\n", 1e-6 * a.flexural_strength,
+                   r.breaks_before_peak);
   if (r.crack.found)
     s += fmt::format("  crack at s = {:+.1f} mm from the centre ({} of {} breaks within {:.1f} mm; IQR of all breaks "
                      "{:.1f} mm): {} the pins (+-{:.0f} mm)\n",
@@ -36,15 +37,27 @@ std::string format_report(const BendingReport& r) {
   for (double m : r.fragments.major_mass_fractions) fr += fmt::format("{}{:.1f} %", fr.empty() ? "" : ", ", 100 * m);
   s += fmt::format("  fragments at t = {:.4g} s: {} in all, {} holding >= 5 % of the mass ({})\n", r.fragments.frame_time,
                    r.fragments.count, r.fragments.major, fr);
-  s += fmt::format("  network: Voigt (affine) E = {:.4g} MPa, nu = {:.3f}; ", 1e-6 * r.voigt.youngs_modulus,
-                   r.voigt.poisson_ratio);
-  if (r.local.valid)
-    s += fmt::format("E from the curvature between the pins = {:.4g} MPa (F = {:.4g} N, {} particles, R^2 = {:.4f})\n",
-                     1e-6 * r.local.youngs_modulus, r.local.force, r.local.particles, r.local.r_squared);
-  else
-    s += "no frame in the elastic part for the curvature modulus\n";
-  s += fmt::format("  eq. 14 / curvature E = {:.3f}; Timoshenko shear adds {:.1f} % to the pin deflection\n",
-                   r.local.valid ? a.youngs_modulus / r.local.youngs_modulus : 0.0, 100 * r.shear_correction);
+  s += fmt::format("  network: Voigt (affine, upper bound) E = {:.4g} MPa, nu = {:.3f}; Timoshenko shear adds {:.1f} % "
+                   "to the deflection under a pin\n",
+                   1e-6 * r.voigt.youngs_modulus, r.voigt.poisson_ratio, 100 * r.shear_correction);
+  const auto& lg = r.gauges;
+  if (lg.valid) {
+    s += fmt::format("  local instrumentation ({} frames in the fit window of {}): beam deflection under the pins "
+                     "k_local = {:.5g} N/mm (R^2 {:.4f}) -> E (eq. 14) = {:.4g} MPa\n",
+                     lg.fit_frames, lg.frames.size(), 1e-3 * lg.stiffness, lg.deflection_fit.r_squared,
+                     1e-6 * lg.youngs_modulus);
+    s += fmt::format("    curvature between the pins: E = M / (kappa I) = {:.4g} MPa (R^2 {:.4f}); beam theory on it "
+                     "(eq. 14 + shear) predicts k_local = {:.5g} N/mm: measured / predicted = {:.3f}\n",
+                     1e-6 * lg.curvature_modulus, lg.moment_fit.r_squared, 1e-3 * r.predicted_local_stiffness,
+                     r.predicted_local_stiffness > 0 ? lg.stiffness / r.predicted_local_stiffness : 0.0);
+    s += fmt::format("    pin travel / beam deflection: E (eq. 14, pins) / E (eq. 14, local) = {:.3f} (the rest is "
+                     "contact indentation at pins and supports)\n",
+                     a.youngs_modulus / lg.youngs_modulus);
+  } else {
+    s += fmt::format("  local instrumentation: {} frames before the first break, {} in the fit window: too few "
+                     "(output.frame_interval smaller)\n",
+                     lg.frames.size(), lg.fit_frames);
+  }
   s += fmt::format("  quasi-static: loading {:.4g} mm/s, {:.3g} s to F_max, kinetic/elastic energy <= {:.3g} before damage\n",
                    1e3 * r.quasi_static.loading_speed, r.quasi_static.load_time, r.quasi_static.max_kinetic_to_elastic);
   return s;
@@ -76,8 +89,12 @@ std::string report_json(const BendingReport& r) {
                    r.fragments.major, fr);
   s += fmt::format("  \"voigt_youngs_modulus_Pa\": {:.9g}, \"voigt_poisson_ratio\": {:.9g},\n", r.voigt.youngs_modulus,
                    r.voigt.poisson_ratio);
-  s += fmt::format("  \"curvature_youngs_modulus_Pa\": {:.9g}, \"curvature_valid\": {}, \"shear_to_bending_deflection\": {:.9g},\n",
-                   r.local.youngs_modulus, r.local.valid, r.shear_correction);
+  s += fmt::format("  \"local_valid\": {}, \"local_fit_frames\": {}, \"local_stiffness_N_per_m\": {:.9g}, "
+                   "\"local_youngs_modulus_Pa\": {:.9g},\n",
+                   r.gauges.valid, r.gauges.fit_frames, r.gauges.stiffness, r.gauges.youngs_modulus);
+  s += fmt::format("  \"curvature_youngs_modulus_Pa\": {:.9g}, \"predicted_local_stiffness_N_per_m\": {:.9g}, "
+                   "\"shear_to_bending_deflection\": {:.9g},\n",
+                   r.gauges.curvature_modulus, r.predicted_local_stiffness, r.shear_correction);
   s += fmt::format("  \"loading_speed_m_per_s\": {:.9g}, \"max_kinetic_to_elastic\": {:.9g}\n", r.quasi_static.loading_speed,
                    r.quasi_static.max_kinetic_to_elastic);
   s += "}\n";

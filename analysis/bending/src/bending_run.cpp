@@ -201,32 +201,45 @@ BendingReport analyse_bending_run(const std::filesystem::path& path, const Bendi
     r.shear_correction = shear_to_bending_deflection(g, e_over_g);
   }
 
-  // Local curvature modulus: the frame before the first break and the peak carrying the most
-  // load below 60 % of F_max (the linear part), against frame 0.
+  // Local instrumentation: the beam's own deflection under the pins relative to the supports,
+  // and the curvature between the pins, on every frame before the first break and the peak.
   const double t_first_break = events.empty() ? 1e300 : events.front().time;
   const double t_peak = time.empty() ? 0 : time[r.analysis.peak_row];
-  std::size_t best = 0;
-  double best_force = 0;
-  for (std::size_t k = 1; k < file.frame_count(); ++k) {
-    const FrameData f = file.read_frame(k);  // only its time is needed; frames are small at these sizes
-    if (f.time > t_first_break || f.time > t_peak) break;
-    const double force = interpolate(time, r.curve.force, f.time);
-    if (force <= 0.6 * r.analysis.force_max && force > best_force) {
-      best = k;
-      best_force = force;
-    }
-  }
-  if (best > 0) {
-    const FrameData f = file.read_frame(best);
+  {
+    SectionGauges gauges;
+    gauges.centre = r.centre + 0.5 * (lo_h + hi_h) * r.down;
+    gauges.axis = r.axis;
+    gauges.down = r.down;
+    gauges.section_width = options.gauge_section > 0 ? options.gauge_section : 2 * r.mean_diameter;
+    gauges.core_height = 0.5 * g.height;
     std::map<Index, std::size_t> row_of;
     for (std::size_t k = 0; k < first.id.size(); ++k) row_of[first.id[k]] = k;
+    std::vector<LocalFrame> rows;  // before the first break and the peak: the elastic part
     std::vector<Vec3> ref, def;
-    for (std::size_t k = 0; k < f.id.size(); ++k)
-      if (auto it = row_of.find(f.id[k]); it != row_of.end()) {
-        ref.push_back(first.position[it->second]);
-        def.push_back(f.position[k]);
-      }
-    r.local = curvature_modulus(ref, def, r.centre, r.axis, r.down, g, best_force);
+    for (std::size_t k = 1; k < file.frame_count(); ++k) {
+      const FrameData f = file.read_frame(k);
+      ref.clear(), def.clear();
+      for (std::size_t q = 0; q < f.id.size(); ++q)
+        if (auto it = row_of.find(f.id[q]); it != row_of.end()) {
+          ref.push_back(first.position[it->second]);
+          def.push_back(f.position[q]);
+        }
+      LocalFrame row;
+      row.time = f.time;
+      row.force = interpolate(time, r.curve.force, f.time);
+      row.deflection = local_deflection(ref, def, gauges, g);
+      r.local_curve.time.push_back(row.time);
+      r.local_curve.displacement.push_back(row.deflection);
+      r.local_curve.force.push_back(row.force);
+      if (f.time >= t_first_break || f.time > t_peak) continue;
+      row.curvature = curvature_modulus(ref, def, r.centre, r.axis, r.down, g, row.force).curvature;
+      rows.push_back(row);
+    }
+    r.gauges = fit_local_instrumentation(std::move(rows), g, r.analysis.force_max, options.curve);
+    r.predicted_local_stiffness =
+        r.gauges.curvature_modulus > 0
+            ? predicted_local_stiffness(g, r.gauges.curvature_modulus, std::clamp(r.voigt.poisson_ratio, 0.0, 0.49))
+            : 0.0;
   }
 
   // Quasi-static check: kinetic against stored elastic energy while loading, before damage.
@@ -234,6 +247,7 @@ BendingReport analyse_bending_run(const std::filesystem::path& path, const Bendi
   const auto eb = file.read_series("bond_energy");
   const auto ec = file.read_series("contact_energy");
   const auto broken = file.read_series("bonds_broken");
+  if (r.analysis.peak_row < broken.size()) r.breaks_before_peak = static_cast<std::size_t>(broken[r.analysis.peak_row]);
   for (std::size_t k = 0; k < time.size() && k < ke.size(); ++k) {
     if (broken[k] > 0 || k > r.analysis.peak_row) break;
     if (r.curve.force[k] < 0.2 * r.analysis.force_max) continue;

@@ -54,7 +54,8 @@ CurveAnalysis analyse_curve(std::span<const double> w, std::span<const double> f
   // The rising part: from the last row before the peak at which the force was still below the
   // window's lower bound (so seating chatter before it is ignored) up to the first row above the
   // upper bound.
-  const double lo = options.fit_low * a.force_max, hi = options.fit_high * a.force_max;
+  const double lo = options.fit_low * options.window_force(a.force_max);
+  const double hi = options.fit_high * options.window_force(a.force_max);
   std::size_t first = 0;
   for (std::size_t k = 0; k <= a.peak_row; ++k)
     if (f[k] < lo) first = k + 1;
@@ -65,9 +66,9 @@ CurveAnalysis analyse_curve(std::span<const double> w, std::span<const double> f
   }
   if (xs.size() < 3)
     throw std::invalid_argument(fmt::format(
-        "load curve: only {} rows between {:.0f} % and {:.0f} % of F_max = {:.4g} N on the rising part; record the "
+        "load curve: only {} rows between {:.0f} % and {:.0f} % of {:.4g} N on the rising part; record the "
         "series more often (output.series_interval) or load more slowly",
-        xs.size(), 100 * options.fit_low, 100 * options.fit_high, a.force_max));
+        xs.size(), 100 * options.fit_low, 100 * options.fit_high, options.window_force(a.force_max)));
   a.fit = fit_line(xs, ys);
   a.stiffness = a.fit.slope;
   if (!(a.stiffness > 0)) throw std::invalid_argument("load curve: the force does not rise with the displacement");

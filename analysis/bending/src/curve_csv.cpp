@@ -92,6 +92,22 @@ Curve read_curve_csv(const std::string& path) {
   return c;
 }
 
+std::map<std::string, std::string> read_curve_metadata(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(fmt::format("{}: cannot open the load curve", path));
+  std::map<std::string, std::string> out;
+  std::string line;
+  for (std::size_t line_no = 1; std::getline(in, line); ++line_no) {
+    const std::string t = trim(line);
+    if (t.rfind("#!", 0) != 0) continue;
+    const auto eq = t.find('=');
+    if (eq == std::string::npos)
+      throw std::runtime_error(fmt::format("{}:{}: a '#!' line is 'key = value', e.g. '#! span_mm = 180'", path, line_no));
+    out[trim(t.substr(2, eq - 2))] = trim(t.substr(eq + 1));
+  }
+  return out;
+}
+
 void write_curve_csv(const std::string& path, const Curve& curve) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(fmt::format("{}: cannot write the load curve", path));

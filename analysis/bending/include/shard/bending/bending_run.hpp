@@ -17,6 +17,7 @@
 #include "shard/bending/beam_theory.hpp"
 #include "shard/bending/crack_location.hpp"
 #include "shard/bending/curve_analysis.hpp"
+#include "shard/bending/local_deflection.hpp"
 #include "shard/bending/network_stiffness.hpp"
 
 namespace shard::bending {
@@ -26,6 +27,7 @@ struct BendingOptions {
   std::optional<double> span, pin_distance, width, height;  // m, override the inferred set-up
   double crack_window = 0;          // m; 0: two mean particle diameters
   double major_fragment = 0.05;     // a fragment holding at least this mass fraction is "major"
+  double gauge_section = 0;         // m, width of the local-deflection sections; 0: two mean diameters
 };
 
 struct FragmentSummary {
@@ -55,9 +57,12 @@ struct BendingReport {
   Curve curve;
   CurveAnalysis analysis;
   CrackLocation crack;
+  std::size_t breaks_before_peak = 0;  // bonds broken up to the F_max row (damage before failure)
   FragmentSummary fragments;
   VoigtEstimate voigt;
-  CurvatureModulus local;         // E from the curvature between the pins
+  Curve local_curve;              // every frame after the first: F against the beam's own deflection
+  LocalInstrumentation gauges;    // the beam's own deflection and curvature over the elastic frames
+  double predicted_local_stiffness = 0;  // N/m, beam theory (eq. 14 + Timoshenko) on the curvature E
   QuasiStaticCheck quasi_static;
   double shear_correction = 0;    // Timoshenko shear / bending deflection for E/G of the Voigt estimate's nu
 };

@@ -12,6 +12,7 @@
 //  * sigma_b (eq. 15) at F_max.
 //  * failed: the force fell below failure_drop F_max after the peak (a brittle failure).
 #include <cstddef>
+#include <map>
 #include <span>
 #include <string>
 #include <vector>
@@ -24,6 +25,11 @@ struct CurveOptions {
   double fit_low = 0.10;   // fraction of F_max where the stiffness fit starts
   double fit_high = 0.40;  // ... and ends
   double failure_drop = 0.5;  // the curve failed when F fell below this fraction of F_max after the peak
+  // > 0: the fit window is fit_low..fit_high of this force (N) instead of the curve's F_max, so
+  // that a run stopped before failure (calibration's stiffness runs) is fitted on the same force
+  // range as the test it stands for.
+  double reference_force = 0;
+  double window_force(double force_max) const { return reference_force > 0 ? reference_force : force_max; }
 };
 
 struct LinearFit {
@@ -67,6 +73,9 @@ struct Curve {
 // (units: m and N; a name ending in "_mm" is converted from mm, "_kN" from kN). Lines starting
 // with '#' are comments. Throws std::runtime_error naming file and line on bad input.
 Curve read_curve_csv(const std::string& path);
+// The file's "#! key = value" lines (a measurement file's set-up: span_mm, pin_distance_mm,
+// width_mm, height_mm, and displacement = local | pins, what the displacement column measured).
+std::map<std::string, std::string> read_curve_metadata(const std::string& path);
 void write_curve_csv(const std::string& path, const Curve& curve);
 
 }  // namespace shard::bending

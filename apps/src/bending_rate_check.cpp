@@ -1,0 +1,117 @@
+// `shard bending-rate-check scene.toml`: the four-point bending scene at its loading rate and at
+// a fraction of it (default half), same packing, and the change of F_max and of the initial
+// stiffness against the < 3 % / < 2 % criteria (model.md sec. 6: "result unchanged when the
+// rate is halved").
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <fstream>
+#include <iostream>
+#include <memory>
+
+#include "bending_commands.hpp"
+#include "shard/app/commands.hpp"
+#include "shard/app/run_command.hpp"
+#include "shard/bending/bending_run.hpp"
+#include "shard/bending/rate_check.hpp"
+#include "shard/plugin_host.hpp"
+#include "shard/scene.hpp"
+
+namespace shard {
+namespace {
+
+struct RateCheckCliOptions {
+  std::filesystem::path scene;
+  std::vector<std::string> overrides;
+  std::filesystem::path out_dir = "rate_check";
+  double factor = 0.5;
+  int threads = 0;
+  bending::RateCheckCriteria criteria;
+};
+
+std::string vec_text(const Vec3& v) { return fmt::format("[{:.9g}, {:.9g}, {:.9g}]", v.x(), v.y(), v.z()); }
+
+// The overrides that slow the loading walls by `factor` and stretch the duration to match (the
+// stop rule still ends the run at failure).
+std::vector<std::string> slowed_overrides(const RateCheckCliOptions& o, const Scene& scene) {
+  std::vector<std::string> out = o.overrides;
+  if (scene.stop.load_walls.empty())
+    throw std::runtime_error(fmt::format("{}: [stop] load_walls is empty: the rate check needs the loading walls named "
+                                         "there (e.g. load_walls = [\"pin_left\", \"pin_right\"])",
+                                         o.scene.string()));
+  for (const auto& name : scene.stop.load_walls) {
+    const auto it = std::find_if(scene.walls.begin(), scene.walls.end(), [&](const Wall& w) { return w.name == name; });
+    if (it == scene.walls.end())
+      throw std::runtime_error(fmt::format("{}: [stop] load_walls names '{}', which is no [[wall]]", o.scene.string(), name));
+    if (it->velocity.norm() == 0)
+      throw std::runtime_error(fmt::format("{}: loading wall '{}' does not move (velocity zero)", o.scene.string(), name));
+    out.push_back(fmt::format("wall.{}.velocity={}", name, vec_text(o.factor * it->velocity)));
+  }
+  out.push_back(fmt::format("simulation.duration={:.9g}", scene.duration / o.factor));
+  return out;
+}
+
+int rate_check_command(const RateCheckCliOptions& o, const CommandContext& ctx) {
+  if (!(o.factor > 0 && o.factor < 1))
+    throw std::runtime_error(fmt::format("--factor {}: the reduced rate is a fraction of the scene's, 0 < factor < 1", o.factor));
+  PluginHost host;
+  load_plugins(host, ctx.plugin_dirs, std::cerr);
+  const Scene scene = load_scene(o.scene, o.overrides, host);
+  std::filesystem::create_directories(o.out_dir);
+  std::ofstream log(o.out_dir / "rate_check.log");
+
+  auto run = [&](const std::vector<std::string>& overrides, const std::string& name) {
+    RunOptions r;
+    r.scene = o.scene;
+    r.overrides = overrides;
+    r.out_dir = o.out_dir / name;
+    r.plugin_dirs = ctx.plugin_dirs;
+    r.threads = o.threads;
+    r.quiet = true;
+    const RunSummary s = run_scene(r, log);
+    auto report = bending::analyse_bending_run(s.output);
+    fmt::print("  {} run: {} ({} steps, {:.0f} s wall): F_max = {:.5g} N, k = {:.5g} N/mm\n", name, s.output.string(),
+               s.steps, s.wall_seconds, report.analysis.force_max, 1e-3 * report.analysis.stiffness);
+    std::fflush(stdout);
+    return report;
+  };
+  fmt::print("rate check of {} (factor {:g}); runs in {}\n", o.scene.string(), o.factor, o.out_dir.string());
+  const auto fast = run(o.overrides, "rate");
+  const auto slow = run(slowed_overrides(o, scene), "slow");
+  const auto check = bending::compare_rates(fast.analysis, slow.analysis, o.criteria);
+  fmt::print("{}", bending::format_rate_check(fast.analysis, slow.analysis, fast.quasi_static.loading_speed,
+                                              slow.quasi_static.loading_speed, check, o.criteria));
+  fmt::print("  kinetic/elastic before damage: {:.3g} (rate), {:.3g} (slow); crack at {:+.1f} / {:+.1f} mm\n",
+             fast.quasi_static.max_kinetic_to_elastic, slow.quasi_static.max_kinetic_to_elastic,
+             1e3 * fast.crack.position, 1e3 * slow.crack.position);
+  std::ofstream json(o.out_dir / "rate_check.json");
+  json << fmt::format(
+      "{{\n  \"scene\": \"{}\",\n  \"factor\": {:.9g},\n  \"speed_m_per_s\": [{:.9g}, {:.9g}],\n"
+      "  \"force_max_N\": [{:.9g}, {:.9g}],\n  \"stiffness_N_per_m\": [{:.9g}, {:.9g}],\n"
+      "  \"youngs_modulus_Pa\": [{:.9g}, {:.9g}],\n  \"deflection_at_peak_m\": [{:.9g}, {:.9g}],\n"
+      "  \"force_max_change\": {:.9g},\n  \"stiffness_change\": {:.9g},\n  \"passed\": {}\n}}\n",
+      o.scene.string(), o.factor, fast.quasi_static.loading_speed, slow.quasi_static.loading_speed, fast.analysis.force_max,
+      slow.analysis.force_max, fast.analysis.stiffness, slow.analysis.stiffness, fast.analysis.youngs_modulus,
+      slow.analysis.youngs_modulus, fast.analysis.deflection_at_peak, slow.analysis.deflection_at_peak,
+      check.force_max_change, check.stiffness_change, check.passed());
+  return check.passed() ? 0 : 2;
+}
+
+}  // namespace
+
+void add_bending_rate_check_command(CLI::App& app, CommandContext& ctx) {
+  auto o = std::make_shared<RateCheckCliOptions>();
+  auto* c = app.add_subcommand("bending-rate-check", "run a four-point bending scene at its loading rate and at half of "
+                                                     "it (same packing); pass when F_max changes < 3 % and the "
+                                                     "stiffness < 2 %");
+  c->add_option("scene", o->scene, "four-point bending scene .toml")->required()->check(CLI::ExistingFile);
+  c->add_option("--set", o->overrides, "scene overrides applied to both runs");
+  c->add_option("--out", o->out_dir, "output folder (default ./rate_check)");
+  c->add_option("--factor", o->factor, "reduced rate as a fraction of the scene's (default 0.5)");
+  c->add_option("--max-force-change", o->criteria.force_max, "criterion on |F_max change| (default 0.03)");
+  c->add_option("--max-stiffness-change", o->criteria.stiffness, "criterion on |stiffness change| (default 0.02)");
+  c->add_option("--threads", o->threads, "OpenMP threads per run");
+  c->callback([o, &ctx] { ctx.exit_code = rate_check_command(*o, ctx); });
+}
+
+}  // namespace shard
