@@ -94,6 +94,7 @@ void BeamBond::compute(BondBatch& batch) const {
   const double G = shear_modulus_;
   const double a_s = p_.shear_coefficient;
   const RotationalDamping rotational(p_.rotational_damping, E, G);
+  const bool viscous_force = p_.damping != 0;
 
   for (std::size_t k = 0; k < batch.count; ++k) {
     const Ends e = ends_of(p, batch.i[k], batch.j[k]);
@@ -128,11 +129,12 @@ void BeamBond::compute(BondBatch& batch) const {
 
     // Eq. 4: viscous force on the objective strain rate v12 = l0 dGamma/dt; eq. 6-7: viscous torque
     // on Omega_rel = d theta / dt. Both zero for rigid motion.
-    const Rates r = rates_of(g, p.velocity[n1], p.velocity[n2], p.omega[n1], p.omega[n2]);
-    const Vec3 damping_force = p_.damping * r.v12;
+    const Rates r = rates_of(g, p.velocity[n1], p.velocity[n2], p.omega[n1], p.omega[n2], viscous_force);
+    Vec3 force = elastic_force;
+    if (viscous_force) force += p_.damping * r.v12;
     const Vec3 damping_torque = rotational.torque(sec.second_moment, inv_l0, p.inertia[n1], p.inertia[n2], r.omega_rel);
 
-    const PairLoads loads = pair_loads(g, elastic_force + damping_force, elastic_torque + damping_torque, e.swapped);
+    const PairLoads loads = pair_loads(g, force, elastic_torque + damping_torque, e.swapped);
     batch.force[k] = loads.force_on_i;
     batch.torque_i[k] = loads.torque_on_i;
     batch.torque_j[k] = loads.torque_on_j;

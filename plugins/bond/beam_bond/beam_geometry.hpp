@@ -152,17 +152,25 @@ inline StrainCurvature strain_curvature(const Deformation& g, double inv_l0) {
 
 // Rates conjugate to Gamma and kappa: v12 = l0 dGamma/dt and omega_rel = d theta/dt, both in the
 // bond frame, from the lab velocities and spins of the two ends. Zero for rigid motion of the pair.
+// v12 is only needed by a viscous force (eq. 4 with d > 0, Kelvin-Voigt); without `strain_rate` it
+// is left zero and its matrix product and two cross products are not spent.
 struct Rates {
-  Vec3 v12;
+  Vec3 v12 = Vec3::Zero();
   Vec3 omega_rel;
 };
 
-[[gnu::always_inline]] inline Rates rates_of(const Deformation& g, const Vec3& v1, const Vec3& v2, const Vec3& omega1, const Vec3& omega2) {
+[[gnu::always_inline]] inline Rates rates_of(const Deformation& g, const Vec3& v1, const Vec3& v2, const Vec3& omega1,
+                                             const Vec3& omega2, bool strain_rate = true) {
   const Mat3& R = g.frame;
   const Vec3 w1 = R.transpose() * omega1;
   const Vec3 w2 = R.transpose() * omega2;
-  const Vec3 frame_spin = 0.5 * (w1 + w2) + g.skew_axis.cross(w1 - w2);
-  return {R.transpose() * (v2 - v1) - frame_spin.cross(g.d_local), g.apply_m(w2 - w1)};
+  Rates r;
+  r.omega_rel = g.apply_m(w2 - w1);
+  if (strain_rate) {
+    const Vec3 frame_spin = 0.5 * (w1 + w2) + g.skew_axis.cross(w1 - w2);
+    r.v12 = R.transpose() * (v2 - v1) - frame_spin.cross(g.d_local);
+  }
+  return r;
 }
 
 // Eq. 6-7: viscous torque on omega_rel with coefficients sqrt(k I_r), k the twist (2 G J / l0) and
