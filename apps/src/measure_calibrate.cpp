@@ -113,11 +113,11 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
     std::vector<double> lower(n), upper(n), x(n);
     for (std::size_t i = 0; i < fit.keys.size(); ++i) {
       lower[i] = 0.5, upper[i] = 2.0;
-      x[i] = std::clamp(1 + lr.base_step[i], 0.55, 1.9);
+      x[i] = clamp_base_factor(1 + lr.base_step[i]);
     }
     if (fit.effect) {
       lower.back() = 0, upper.back() = 4;  // from neutral to four plausible sizes
-      x.back() = std::clamp(lr.effect_scale.front(), 0.05, 3.9);
+      x.back() = clamp_effect_scale(lr.effect_scale.front());
     }
     const Comparison before = lin.base_comparison;
     nlopt::opt opt(nlopt::LN_BOBYQA, static_cast<unsigned>(n));

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <iostream>
 #include <memory>
 
@@ -30,6 +31,7 @@ struct Confirmation {
   std::vector<double> parameters;
   double effect_value = 0;
   double chi_square = 0, nrmse = 0, delta_aic = 0, delta_bic = 0;
+  std::string failure;  // the refit's run failed: its first error line
 };
 
 std::string join(const std::vector<std::string>& v) {
@@ -83,10 +85,10 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
       const LinearRefit lr = linear_refit(lin.base.values, lin.jacobian, sig);
       Confirmation c;
       c.name = effect ? effect->name : "base refit";
-      for (std::size_t i = 0; i < values.size(); ++i) c.parameters.push_back(values[i] * std::max(0.2, 1 + lr.base_step[i]));
+      for (std::size_t i = 0; i < values.size(); ++i) c.parameters.push_back(values[i] * clamp_base_factor(1 + lr.base_step[i]));
       ModelPlan plan = with_parameters(o->model, o->params, c.parameters);
       if (effect) {
-        c.effect_value = effect->neutral + lr.effect_scale[0] * (effect->plausible - effect->neutral);
+        c.effect_value = effect->neutral + clamp_effect_scale(lr.effect_scale[0]) * (effect->plausible - effect->neutral);
         plan = with_effect(plan, *effect, c.effect_value);
       }
       confirmations.push_back(c);
@@ -98,8 +100,27 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
       for (std::size_t k = 0; k < std::min(tops, d.ranking.size()); ++k)
         for (std::size_t e = 0; e < effects.size(); ++e)
           if (effects[e].name == d.ranking[k].name && d.ranking[k].score > 0) refit_model({lin.signatures[e]}, &effects[e]);
-      const auto sims = simulator.simulate(models, std::cerr);
+      // One batch; when a run fails (a linear step can reach an unstable size), the models are
+      // retried one by one: finished runs are cached, and a failed effect refit is reported and
+      // left out of the decision instead of ending the diagnosis.
+      std::vector<std::vector<Specimen>> sims;
+      try {
+        sims = simulator.simulate(models, std::cerr);
+      } catch (const std::exception&) {
+        sims.assign(models.size(), {});
+        for (std::size_t k = 0; k < models.size(); ++k) try {
+            sims[k] = simulator.simulate(models[k], std::cerr);
+          } catch (const std::exception& e) {
+            if (k == 0) throw;  // without the base refit there is nothing to compare with
+            const std::string what = e.what();
+            confirmations[k].failure = what.substr(0, what.find('\n'));
+          }
+      }
       for (std::size_t k = 0; k < models.size(); ++k) {
+        if (!confirmations[k].failure.empty()) {
+          confirmations[k].chi_square = confirmations[k].nrmse = std::numeric_limits<double>::infinity();
+          continue;
+        }
         const Comparison c = compare(measured, set.metadata, sims[k]);
         confirmations[k].chi_square = chi_square(c);
         confirmations[k].nrmse = c.nrmse;
@@ -167,6 +188,9 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
                           ce ? fmt::format("{:.2g}", ce->p_after) : "-", v);
       }
     }
+    for (const auto& c : confirmations)
+      if (!c.failure.empty())
+        md += fmt::format("\nThe refit with {} did not run to the end and is left out: {}\n", c.name, c.failure);
     for (const auto& [a, b] : d.indistinguishable) {
       std::string how;
       for (const auto& x : effects)
@@ -199,14 +223,17 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
                           e->neutral + s.size);
     }
     json += "], \"confirmations\": [";
-    for (std::size_t k = 0; k < confirmations.size(); ++k)
-    {
+    // JSON has no infinity: a refit that failed has null numbers and its error.
+    auto number = [](double x) { return std::isfinite(x) ? fmt::format("{:.9g}", x) : std::string("null"); };
+    for (std::size_t k = 0; k < confirmations.size(); ++k) {
       const ConfirmedEffect* ce = k > 0 && k - 1 < decision.effects.size() ? &decision.effects[k - 1] : nullptr;
-      json += fmt::format("{}{{\"name\": \"{}\", \"chi_square\": {:.9g}, \"nrmse\": {:.9g}, \"delta_aic\": {:.9g}, "
-                          "\"delta_bic\": {:.9g}, \"share_explained\": {:.9g}, \"p_after\": {:.9g}, \"value\": {:.9g}}}",
-                          k ? ", " : "", json_escape(confirmations[k].name), confirmations[k].chi_square,
-                          confirmations[k].nrmse, confirmations[k].delta_aic, confirmations[k].delta_bic,
-                          ce ? ce->share_explained : 0.0, ce ? ce->p_after : 1.0, confirmations[k].effect_value);
+      const auto& c = confirmations[k];
+      json += fmt::format("{}{{\"name\": \"{}\", \"chi_square\": {}, \"nrmse\": {}, \"delta_aic\": {}, "
+                          "\"delta_bic\": {}, \"share_explained\": {}, \"p_after\": {}, \"value\": {:.9g}, "
+                          "\"failure\": \"{}\"}}",
+                          k ? ", " : "", json_escape(c.name), number(c.chi_square), number(c.nrmse),
+                          number(c.delta_aic), number(c.delta_bic), number(ce ? ce->share_explained : 0.0),
+                          number(ce ? ce->p_after : 1.0), c.effect_value, json_escape(c.failure));
     }
     json += fmt::format("], \"excess\": {:.9g}, \"partial\": \"{}\"}}\n", decision.excess, json_escape(decision.best_partial));
     fs::create_directories(o->out);

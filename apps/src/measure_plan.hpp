@@ -4,6 +4,7 @@
 // model-history file.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <iosfwd>
 #include <map>
@@ -92,5 +93,12 @@ Linearisation linearise(Simulator& simulator, const std::vector<measure::Specime
 
 // Chi-square of a comparison's residual vector.
 double chi_square(const measure::Comparison& c);
+
+// Where a linearised refit may take the model: base parameters within 0.55..1.9 x their start,
+// an effect within 0.05..3.9 plausible sizes above neutral (inside calibrate-effect's BOBYQA
+// bounds 0.5..2 and 0..4). A long linear step can reach a stiffness whose run is unstable; the
+// diagnosis's refit and calibrate-effect's start use the same clamps so that the start is cached.
+inline double clamp_base_factor(double factor) { return std::clamp(factor, 0.55, 1.9); }
+inline double clamp_effect_scale(double scale) { return std::clamp(scale, 0.05, 3.9); }
 
 }  // namespace shard

@@ -24,7 +24,8 @@ ConfirmationDecision decide_from_refits(double base_chi2, const std::vector<Refi
     e.share_explained = d.excess > 0 ? drop / d.excess : 0;
     e.delta_aic = -drop + 2;
     e.delta_bic = -drop + log_m;
-    e.p_after = chi_square_survival(r.chi_square, static_cast<double>(m - p - 1));
+    // A refit that could not be simulated (infinite chi^2) explains nothing.
+    e.p_after = std::isfinite(r.chi_square) ? chi_square_survival(r.chi_square, static_cast<double>(m - p - 1)) : 0;
     e.named = d.excess > 0 && e.share_explained >= rule.min_explained && e.delta_aic < 0 && e.delta_bic < 0 &&
               e.p_after > rule.remaining_p;
     d.effects.push_back(e);
