@@ -10,8 +10,9 @@
 //                       parameter);
 //   what remains        p_after = P(chi^2(m - p - 1) > chi^2_e).
 // An effect is named when it explains at least `min_explained` of the excess, both criteria
-// prefer it (dAIC < 0 and dBIC < 0) and what remains is compatible with noise (p_after >
-// `remaining_p`): then adding it is enough. A refit that improves the fit without meeting all
+// prefer it (dAIC < 0 and dBIC < 0) and what remains is compatible with noise at the level the
+// null case is judged by (p_after > `remaining_p` = 0.05, DiagnoseOptions::adequate_p): the
+// name means "the base model plus this effect is adequate". A refit that improves the fit without meeting all
 // three is reported as a partial explanation and the verdict is "unexplained structured
 // residual": the data say something is missing, not that it is this candidate.
 #include <string>
@@ -32,7 +33,7 @@ struct ConfirmedEffect {
 
 struct ConfirmationRule {
   double min_explained = 0.5;
-  double remaining_p = 0.01;
+  double remaining_p = 0.05;
 };
 
 struct ConfirmationDecision {

@@ -1,0 +1,170 @@
+// The measurement loop judged on hidden effects (issue 7), end to end through the shard binary on
+// the tiny bending beam. Each case hides something in synthetic measurements (packing seeds
+// 1001-1003, not the model's 1-3; 2 % specimen scatter, 0.01 N load-cell noise, 0.005 N tare,
+// 1 um displacement steps), then `shard diagnose` with the whole effect library must
+//   - null case: say "adequate" and claim nothing;
+//   - a library effect: name it (the confirmed verdict), with the right sign and order of size,
+//     and `shard calibrate-effect --with` it must cut the NRMSE by >= 50 % without any regime
+//     getting worse beyond noise;
+//   - a seating toe no candidate models: say "unexplained structured residual".
+// The cases share one work folder: the model side of every diagnosis (base, +5 % steps, effect
+// signatures on seeds 1-3) is the same runs, simulated once and then read from the run cache.
+// Slow (~100 simulations of 3-6 s, two at a time): see docs/measurements.md for the time.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kWork = fs::current_path() / "measure_hidden_work";
+const std::string kScene = std::string(SHARD_SOURCE_DIR) + "/scenes/measurements/tiny_bending.toml";
+const std::string kSensor = " --scatter 0.02 --force-noise 0.01 --force-offset 0.005 --displacement-step 1e-6";
+const std::string kParams = " --param bond.youngs_modulus --param bond.critical_stress";
+
+void shard(const std::string& args) {
+  fs::create_directories(kWork);
+  const std::string cmd = std::string(SHARD_BUILD_DIR) + "/bin/shard " + args + " >> " + (kWork / "log.txt").string() + " 2>&1";
+  INFO(cmd);
+  REQUIRE(std::system(cmd.c_str()) == 0);
+}
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::size_t find(const std::string& text, const std::string& key, std::size_t from = 0) {
+  const auto at = text.find(key, from);
+  INFO("missing " << key);
+  REQUIRE(at != std::string::npos);
+  return at;
+}
+
+double number_after(const std::string& text, const std::string& key, std::size_t from = 0) {
+  return std::stod(text.substr(find(text, key, from) + key.size()));
+}
+
+std::string string_after(const std::string& text, const std::string& key, std::size_t from = 0) {
+  const auto start = find(text, key, from) + key.size();
+  return text.substr(start, text.find('"', start) - start);
+}
+
+// synth + diagnose; returns diagnose.json.
+std::string diagnose_hidden(const std::string& tag, const std::string& hidden) {
+  const fs::path meas = kWork / ("meas_" + tag), out = kWork / ("diag_" + tag);
+  shard("synth --scene " + kScene + " --work " + kWork.string() + " --out " + meas.string() + kSensor + hidden);
+  shard("diagnose " + meas.string() + " --scene " + kScene + " --work " + kWork.string() + kParams + " --refit 2 --out " +
+        out.string());
+  return read(out / "diagnose.json");
+}
+
+// A regime gets worse beyond noise when, after the calibration, its mean standardised residual
+// is beyond noise and larger in size than before. A regime mean is read as one N(0, 1) score
+// (comparison.hpp), and five regimes are judged at once: at a family-wise level of 5 % each one
+// is beyond noise when |r| > z(1 - 0.05 / (2 x 5)) = 2.58 (Bonferroni). The comparison's own
+// per-regime flag (|r| > 2) is the single-regime test; with five regimes and seed-estimated
+// bands it is raised for one regime of a right model in about a quarter of the cases.
+constexpr double kRegimeNoise = 2.58;
+
+void check_no_regime_worse(const std::string& calibrate_json) {
+  const auto regimes = find(calibrate_json, "\"regimes\": {");
+  for (const std::string name : {"toe", "elastic", "pre-peak", "peak", "post-peak"}) {
+    const auto at = calibrate_json.find("\"" + name + "\": [", regimes);
+    if (at == std::string::npos) continue;  // the regime is empty on this grid
+    const double before = number_after(calibrate_json, "[", at);
+    const double after = number_after(calibrate_json, ", ", at);
+    INFO("regime " << name << ": mean residual " << before << " -> " << after);
+    CHECK_FALSE((std::abs(after) > kRegimeNoise && std::abs(after) > std::abs(before)));
+  }
+}
+
+struct Hidden {
+  std::string tag, synth, effect;
+  double truth = 0, neutral = 0;
+};
+
+// The library effect must be the confirmed verdict; its linearised size within 2/3..3/2 of the
+// truth (the signature is taken at the library's plausible size, not at the truth, and the
+// packing noise of three specimens moves it); calibrate-effect must halve the NRMSE.
+void check_found_and_calibrated(const Hidden& h) {
+  const std::string json = diagnose_hidden(h.tag, h.synth);
+  INFO(h.tag << ": " << json);
+  CHECK(string_after(json, "\"verdict\": \"") == h.effect);
+  CHECK(number_after(json, "\"p_value\": ") < 0.05);  // a structured residual, not noise
+  // The estimate of the named effect's size from its confirmation refit.
+  const auto conf = find(json, "{\"name\": \"" + h.effect + "\", \"chi_square\"", find(json, "\"confirmations\""));
+  const double estimate = number_after(json, "\"value\": ", conf);
+  const double ratio = (estimate - h.neutral) / (h.truth - h.neutral);
+  CHECK(ratio > 2.0 / 3.0);
+  CHECK(ratio < 1.5);
+
+  const fs::path out = kWork / ("cal_" + h.tag);
+  // Three evaluations: the linearised start (cached from the diagnosis) and two BOBYQA steps; the
+  // tutorial runs more (docs/tutorial.md).
+  shard("calibrate-effect " + (kWork / ("meas_" + h.tag)).string() + " --scene " + kScene + " --work " + kWork.string() +
+        kParams + " --with " + h.effect + " --max-evaluations 3 --out " + out.string());
+  const std::string cal = read(out / "calibrate.json");
+  INFO(cal);
+  const double before = number_after(cal, "\"nrmse_before\": "), after = number_after(cal, "\"nrmse_after\": ");
+  CHECK(after <= 0.5 * before);
+  check_no_regime_worse(cal);
+}
+
+}  // namespace
+
+TEST_CASE("null case: data from the base model itself are adequate and no effect is claimed") {
+  const std::string json = diagnose_hidden("null", "");
+  INFO(json);
+  CHECK(string_after(json, "\"verdict\": \"") == "adequate");
+  CHECK(number_after(json, "\"p_value\": ") > 0.05);
+  CHECK(json.find("\"confirmations\": []") != std::string::npos);  // nothing refit, nothing named
+}
+
+TEST_CASE("hidden machine compliance 1e-4 m/N: named, sized, calibrated") {
+  // A 5 N S-beam load cell deflects ~0.25 mm at full scale (5e-5 m/N); with the fixture's
+  // seating and the crosshead drive, 1e-4 m/N is what a small-force frame measured at the
+  // crosshead adds. The specimen's own compliance is ~4e-4 m/N: the frame is a quarter of it.
+  check_found_and_calibrated({"compliance", " --machine-compliance 1e-4", "machine_compliance", 1e-4, 0});
+  // The confirmation refit alone (linearised sizes, simulated) halves the base refit's NRMSE.
+  const std::string json = read(kWork / "diag_compliance" / "diagnose.json");
+  const auto conf = find(json, "\"confirmations\"");
+  const double base_nrmse = number_after(json, "\"nrmse\": ", conf);
+  const double with_nrmse = number_after(json, "\"nrmse\": ", find(json, "machine_compliance\", \"chi", conf));
+  CHECK(with_nrmse <= 0.5 * base_nrmse);
+}
+
+TEST_CASE("hidden bond softening (ratio 3): named, sized, calibrated") {
+  // Cemented bridges soften over a few times their elastic strain before they separate
+  // (quasi-brittle cohesive laws of mortars and sinter necks: softening strain / peak strain
+  // 2-5); 3 is the middle of that range.
+  check_found_and_calibrated(
+      {"softening", " --set bond.plugin=beam_bond_plus --set bond.softening_ratio=3", "bond_softening", 3, 0});
+}
+
+TEST_CASE("hidden compression asymmetry (bond stiffness ratio 4): named, sized, calibrated") {
+  // Granular and microcracked solids are bimodular: cracks and grain contacts close in
+  // compression and open in tension; compressive/tensile modulus ratios 1.5-4 are reported for
+  // sandstones and cemented sands. 4 is the upper end; at 2 the base refit of E_b and
+  // sigma_crit absorbs it (docs/measurements.md).
+  check_found_and_calibrated({"asymmetry", " --set bond.plugin=beam_bond_plus --set bond.compression_stiffness_ratio=4",
+                              "compression_asymmetry", 4, 1});
+}
+
+TEST_CASE("a seating toe outside the library is an unexplained structured residual, not a wrong name") {
+  // Rough sawn faces: the pins and rollers first close a gap of loose surface grains, a
+  // hyperbolic closure w + g F / (F + F_h) (synthetic.hpp). g = 0.3 mm, F_h = 0.3 N (15 % of the
+  // peak): the toe ASTM D790 tells the tester to compensate, on a soft 8 mm beam.
+  const std::string json = diagnose_hidden("toe", " --seating-gap 3e-4 --seating-half-force 0.3");
+  INFO(json);
+  CHECK(number_after(json, "\"p_value\": ") < 0.05);  // the model does fail ...
+  CHECK(string_after(json, "\"verdict\": \"") == "unexplained structured residual");  // ... and nothing is named
+}
