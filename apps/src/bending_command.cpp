@@ -83,6 +83,7 @@ struct CalibrateCliOptions {
   std::vector<std::string> overrides;
   std::filesystem::path out_dir = "calibration";
   double target_e = 13.2e6;
+  bool target_e_given = false;  // --target-E on the command line wins over a measurement's E
   double target_strength = 0, target_fmax = 0;
   std::string measurement;
   double tolerance = 0.03;
@@ -144,7 +145,7 @@ int calibrate_command(CalibrateCliOptions& o, const CommandContext& ctx) {
                                            "would not measure the same thing (use --modulus {})",
                                            o.measurement, it->second, o.modulus, it->second));
     const auto a = bending::analyse_curve(curve.displacement, curve.force, lab, o.geometry.analysis.curve);
-    targets.youngs_modulus = a.youngs_modulus;
+    if (!o.target_e_given) targets.youngs_modulus = a.youngs_modulus;
     target_strength = a.flexural_strength;
     fmt::print("measurement {}: E = {:.4g} MPa (eq. 14, span {:.0f} mm), F_max = {:.4g} N, sigma_b = {:.4g} MPa, "
                "w_s,max = {:.3f} mm\n",
@@ -255,7 +256,8 @@ void add_bending_command(CLI::App& app, CommandContext& ctx) {
   c->add_option("scene", co->scene, "four-point bending scene .toml")->required()->check(CLI::ExistingFile);
   c->add_option("--set", co->overrides, "scene overrides applied to every run");
   c->add_option("--out", co->out_dir, "output folder (default ./calibration)");
-  c->add_option("--target-E", co->target_e, "target Young's modulus in Pa (default 13.2e6, the seed)");
+  auto* te = c->add_option("--target-E", co->target_e, "target Young's modulus in Pa (default 13.2e6, the seed; with "
+                                                       "--measurement: the file's E unless given)");
   auto* ts = c->add_option("--target-strength", co->target_strength, "target flexural strength sigma_b in Pa (eq. 15)");
   auto* tf = c->add_option("--target-Fmax", co->target_fmax, "target peak force in N");
   auto* tm = c->add_option("--measurement", co->measurement, "measured curve CSV: E and F_max targets from it");
@@ -269,7 +271,10 @@ void add_bending_command(CLI::App& app, CommandContext& ctx) {
   c->add_option("--max-runs", co->max_runs, "give up after this many runs (default 20)");
   c->add_option("--threads", co->threads, "OpenMP threads per run");
   add_geometry_options(*c, co->geometry);
-  c->callback([co, &ctx] { ctx.exit_code = calibrate_command(*co, ctx); });
+  c->callback([co, te, &ctx] {
+    co->target_e_given = te->count() > 0;
+    ctx.exit_code = calibrate_command(*co, ctx);
+  });
 
   add_bending_rate_check_command(app, ctx);
 }
