@@ -28,7 +28,7 @@ struct Fit {
   std::vector<double> base_values;
   const CandidateEffect* effect = nullptr;
   Simulator* simulator = nullptr;
-  const std::vector<Specimen>* measured = nullptr;
+  const RateGroups* measured = nullptr;
   const Metadata* metadata = nullptr;
   ModelPlan base;
   int evaluations = 0;
@@ -48,8 +48,7 @@ struct Fit {
     return effect->neutral + x.back() * (effect->plausible - effect->neutral);
   }
   double objective(const std::vector<double>& x) {
-    const auto sims = simulator->simulate(model(x), std::cerr);
-    const double chi2 = chi_square(compare(*measured, *metadata, sims));
+    const double chi2 = simulate_and_compare(*simulator, *measured, *metadata, {model(x)}, std::cerr).front().chi_square();
     ++evaluations;
     fmt::print(stderr, "calibrate-effect: evaluation {} chi^2 {:.2f}\n", evaluations, chi2);
     if (chi2 < best) best = chi2, best_x = x;
@@ -90,7 +89,7 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
   cmd->add_option("--out", o->out, "folder for calibrate.md, calibrate.json and compare plots");
   cmd->callback([o, &ctx] {
     const MeasurementSet set = read_measurements(o->measurements);
-    const auto measured = specimens_at_rate(set, o->rate);
+    const RateGroups measured = rate_groups(set, o->rate);
     const fs::path library = o->library.empty() ? o->model.scene.parent_path() / "effects.toml" : o->library;
     std::vector<CandidateEffect> effects;
     if (!o->effect.empty()) effects = select_effects(read_effect_library(library), {o->effect});
@@ -119,7 +118,7 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
       lower.back() = 0, upper.back() = 4;  // from neutral to four plausible sizes
       x.back() = clamp_effect_scale(lr.effect_scale.front());
     }
-    const Comparison before = lin.base_comparison;
+    const RateComparison before = lin.base_comparison;
     nlopt::opt opt(nlopt::LN_BOBYQA, static_cast<unsigned>(n));
     opt.set_lower_bounds(lower);
     opt.set_upper_bounds(upper);
@@ -139,12 +138,19 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
     }
     const std::vector<double> best = fit.best_x.empty() ? x : fit.best_x;
     const ModelPlan final_model = fit.model(best);
-    const Comparison after = compare(measured, set.metadata, simulator.simulate(final_model, std::cerr));
+    const RateComparison after = simulate_and_compare(simulator, measured, set.metadata, {final_model}, std::cerr).front();
 
     fs::create_directories(o->out);
-    plot_comparison(before, o->out / "before.png", "before: base model");
-    plot_comparison(after, o->out / "after.png", fmt::format("after: {}", o->effect.empty() ? "base refit" : o->effect));
-    HistoryEntry h = history_entry("calibrate-effect", o->label.empty() ? (o->effect.empty() ? "base refit" : "+ " + o->effect) : o->label, after);
+    // One figure per loading rate: before.png, after.png (the slowest), then before@<rate>.png.
+    for (std::size_t k = 0; k < before.at.size(); ++k) {
+      const std::string suffix = k == 0 ? "" : fmt::format("@{:g}", before.rates[k]);
+      plot_comparison(before.at[k], o->out / ("before" + suffix + ".png"), fmt::format("before: base model ({:g} m/s)", before.rates[k]));
+      plot_comparison(after.at[k], o->out / ("after" + suffix + ".png"),
+                      fmt::format("after: {} ({:g} m/s)", o->effect.empty() ? "base refit" : o->effect, after.rates[k]));
+    }
+    HistoryEntry h = history_entry("calibrate-effect", o->label.empty() ? (o->effect.empty() ? "base refit" : "+ " + o->effect) : o->label, after.at.front());
+    h.nrmse = after.nrmse();
+    h.chi_square = after.chi_square();
     if (fit.effect) h.effects.push_back(fit.effect->name);
     for (std::size_t i = 0; i < fit.keys.size(); ++i) h.parameters[fit.keys[i]] = fit.base_values[i] * best[i];
     if (fit.effect) h.parameters[fit.effect->parameter] = fit.value_of(best);
@@ -152,7 +158,7 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
 
     std::string md = fmt::format("# calibrate-effect {}\n\n{} evaluations ({}); chi^2 {:.1f} -> {:.1f}; NRMSE {:.1f} % -> {:.1f} %\n\n",
                                  o->effect.empty() ? "(base parameters only)" : o->effect, fit.evaluations, stop,
-                                 chi_square(before), chi_square(after), 100 * before.nrmse, 100 * after.nrmse);
+                                 before.chi_square(), after.chi_square(), 100 * before.nrmse(), 100 * after.nrmse());
     md += "| parameter | start | fitted |\n|---|---|---|\n";
     for (std::size_t i = 0; i < fit.keys.size(); ++i)
       md += fmt::format("| {} | {:.5g} | {:.5g} |\n", fit.keys[i], fit.base_values[i], fit.base_values[i] * best[i]);
@@ -161,21 +167,26 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
                         fit.effect->neutral, fit.value_of(best), fit.effect->unit);
     md += "\n| regime | mean residual before | after |\n|---|---|---|\n";
     std::string json_regimes;
-    for (std::size_t r = 0; r < kRegimeCount; ++r) {
-      if (before.regimes[r].points() == 0 || after.regimes[r].points() == 0) continue;
-      md += fmt::format("| {} | {:+.2f} | {:+.2f} |\n", regime_name(before.regimes[r].regime), before.regimes[r].mean_residual,
-                        after.regimes[r].mean_residual);
-      json_regimes += fmt::format("{}\"{}\": [{:.9g}, {:.9g}]", json_regimes.empty() ? "" : ", ",
-                                  regime_name(before.regimes[r].regime), before.regimes[r].mean_residual,
-                                  after.regimes[r].mean_residual);
-    }
-    md += fmt::format("\nVerdict after: {}\n", after.verdict);
+    for (std::size_t k = 0; k < before.at.size(); ++k)
+      for (std::size_t r = 0; r < kRegimeCount; ++r) {
+        const auto& b = before.at[k].regimes[r];
+        const auto& a = after.at[k].regimes[r];
+        if (b.points() == 0 || a.points() == 0) continue;
+        const std::string name = before.at.size() > 1 ? fmt::format("{}@{:g}", regime_name(b.regime), before.rates[k])
+                                                      : std::string(regime_name(b.regime));
+        md += fmt::format("| {} | {:+.2f} | {:+.2f} |\n", name, b.mean_residual, a.mean_residual);
+        json_regimes += fmt::format("{}\"{}\": [{:.9g}, {:.9g}]", json_regimes.empty() ? "" : ", ", name, b.mean_residual,
+                                    a.mean_residual);
+      }
+    for (std::size_t k = 0; k < after.at.size(); ++k)
+      md += fmt::format("\nVerdict after{}: {}\n", after.at.size() > 1 ? fmt::format(" at {:g} m/s", after.rates[k]) : "",
+                        after.at[k].verdict);
     std::ofstream(o->out / "calibrate.md") << md;
     std::ofstream(o->out / "calibrate.json")
         << fmt::format("{{\"effect\": \"{}\", \"value\": {:.9g}, \"nrmse_before\": {:.9g}, \"nrmse_after\": {:.9g}, "
                        "\"chi_square_before\": {:.9g}, \"chi_square_after\": {:.9g}, \"evaluations\": {}, \"regimes\": {{{}}}}}\n",
-                       json_escape(o->effect), fit.effect ? fit.value_of(best) : 0.0, before.nrmse, after.nrmse,
-                       chi_square(before), chi_square(after), fit.evaluations, json_regimes);
+                       json_escape(o->effect), fit.effect ? fit.value_of(best) : 0.0, before.nrmse(), after.nrmse(),
+                       before.chi_square(), after.chi_square(), fit.evaluations, json_regimes);
     fmt::print("{}", md);
     ctx.exit_code = 0;
   });

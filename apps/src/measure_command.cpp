@@ -90,7 +90,8 @@ void add_synth(CLI::App& app, CommandContext& ctx) {
     SensorModel sensor;
     fs::path out = "synthetic";
     std::string name = "synthetic";
-    double length = 0.04, width = 0.008, height = 0.008, span = 0.036, pin_distance = 0.016, rate = 0.02;
+    double length = 0.04, width = 0.008, height = 0.008, span = 0.036, pin_distance = 0.016;
+    std::vector<double> rates{0.02};
     std::uint64_t noise_seed = 1;
   };
   auto o = std::make_shared<Options>();
@@ -113,7 +114,11 @@ void add_synth(CLI::App& app, CommandContext& ctx) {
   cmd->add_option("--height", o->height, "specimen height (m)");
   cmd->add_option("--span", o->span, "support distance (m)");
   cmd->add_option("--pin-distance", o->pin_distance, "loading-pin distance (m)");
-  cmd->add_option("--rate", o->rate, "loading rate written to specimens.csv (m/s)");
+  cmd->add_option("--rate,--rates", o->rates,
+                  "loading rate(s) of the pins (m/s), comma-separated: the truth is run at each, its specimens are "
+                  "replicates at that rate")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
   cmd->callback([o, &ctx] {
     MeasurementSet set;
     set.metadata.name = o->name;
@@ -124,14 +129,21 @@ void add_synth(CLI::App& app, CommandContext& ctx) {
     truth.machine_compliance = 0;  // the sensor model applies it to the true force
     o->sensor.machine_compliance = o->model.machine_compliance;
     Simulator simulator(o->sim, ctx.plugin_dirs);
-    for (auto& sim : simulator.simulate(truth, std::cerr)) {
-      Specimen s;
-      s.id = sim.id;
-      s.length = o->length, s.width = o->width, s.height = o->height;
-      s.span = o->span, s.pin_distance = o->pin_distance, s.loading_rate = o->rate;
-      s.curve = record(sim.curve, o->sensor, rng);
-      set.specimens.push_back(std::move(s));
+    std::vector<ModelPlan> at_rates;
+    for (double r : o->rates) {
+      at_rates.push_back(truth);
+      at_rates.back().loading_rate = r;
     }
+    const auto sims = simulator.simulate(at_rates, std::cerr);
+    for (std::size_t k = 0; k < sims.size(); ++k)
+      for (const auto& sim : sims[k]) {
+        Specimen s;
+        s.id = o->rates.size() > 1 ? fmt::format("{}_rate{:g}", sim.id, o->rates[k]) : sim.id;
+        s.length = o->length, s.width = o->width, s.height = o->height;
+        s.span = o->span, s.pin_distance = o->pin_distance, s.loading_rate = o->rates[k];
+        s.curve = record(sim.curve, o->sensor, rng);
+        set.specimens.push_back(std::move(s));
+      }
     write_measurements(set, o->out);
     fmt::print("wrote {} specimens to {} (largest kinetic/elastic ratio {:.2g})\n", set.specimens.size(),
                o->out.string(), simulator.max_kinetic_to_elastic());

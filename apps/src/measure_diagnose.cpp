@@ -66,7 +66,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
   cmd->add_option("--out", o->out, "folder for diagnose.md and diagnose.json");
   cmd->callback([o, &ctx] {
     const MeasurementSet set = read_measurements(o->measurements);
-    const auto measured = specimens_at_rate(set, o->rate);
+    const RateGroups measured = rate_groups(set, o->rate);
     const fs::path library = o->library.empty() ? o->model.scene.parent_path() / "effects.toml" : o->library;
     const auto effects = select_effects(read_effect_library(library), o->only);
     std::vector<double> values;
@@ -103,13 +103,13 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
       // One batch; when a run fails (a linear step can reach an unstable size), the models are
       // retried one by one: finished runs are cached, and a failed effect refit is reported and
       // left out of the decision instead of ending the diagnosis.
-      std::vector<std::vector<Specimen>> sims;
+      std::vector<RateComparison> sims;
       try {
-        sims = simulator.simulate(models, std::cerr);
+        sims = simulate_and_compare(simulator, measured, set.metadata, models, std::cerr);
       } catch (const std::exception&) {
         sims.assign(models.size(), {});
         for (std::size_t k = 0; k < models.size(); ++k) try {
-            sims[k] = simulator.simulate(models[k], std::cerr);
+            sims[k] = simulate_and_compare(simulator, measured, set.metadata, {models[k]}, std::cerr).front();
           } catch (const std::exception& e) {
             if (k == 0) throw;  // without the base refit there is nothing to compare with
             const std::string what = e.what();
@@ -121,9 +121,8 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
           confirmations[k].chi_square = confirmations[k].nrmse = std::numeric_limits<double>::infinity();
           continue;
         }
-        const Comparison c = compare(measured, set.metadata, sims[k]);
-        confirmations[k].chi_square = chi_square(c);
-        confirmations[k].nrmse = c.nrmse;
+        confirmations[k].chi_square = sims[k].chi_square();
+        confirmations[k].nrmse = sims[k].nrmse();
         const double extra = k == 0 ? 0 : 1;
         confirmations[k].delta_aic = confirmations[k].chi_square - confirmations[0].chi_square + 2 * extra;
         confirmations[k].delta_bic = confirmations[k].chi_square - confirmations[0].chi_square + extra * std::log(m);
@@ -147,7 +146,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
     md += fmt::format("Residual chi^2 {:.1f} over {} components; after what the base parameters can absorb {:.1f} "
                       "(p = {:.3g} against chi^2({})); base NRMSE {:.1f} %.\n\n",
                       d.chi_square, lin.base.values.size(), d.chi_square_unabsorbed, d.p_value,
-                      lin.base.values.size() - o->params.size(), 100 * lin.base_comparison.nrmse);
+                      lin.base.values.size() - o->params.size(), 100 * lin.base_comparison.nrmse());
     if (verdict == "adequate")
       md += "The residual left after the base parameters is compatible with noise: no effect is needed.\n\n";
     else if (verdict == kUnexplained) {
@@ -211,7 +210,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
     std::string json = fmt::format("{{\"verdict\": \"{}\", \"chi_square\": {:.9g}, \"chi_square_unabsorbed\": {:.9g}, "
                                    "\"p_value\": {:.9g}, \"nrmse\": {:.9g}, \"ranking\": [",
                                    json_escape(verdict), d.chi_square, d.chi_square_unabsorbed, d.p_value,
-                                   lin.base_comparison.nrmse);
+                                   lin.base_comparison.nrmse());
     for (std::size_t k = 0; k < d.ranking.size(); ++k) {
       const auto& s = d.ranking[k];
       const CandidateEffect* e = nullptr;

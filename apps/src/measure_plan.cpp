@@ -35,8 +35,12 @@ Simulator::Simulator(const SimulationOptions& options, const std::vector<fs::pat
 
 std::vector<std::vector<Specimen>> Simulator::simulate(const std::vector<ModelPlan>& models, std::ostream& log) {
   std::vector<RunRequest> requests;
-  for (const auto& m : models)
-    for (int k = 0; k < options_.seeds; ++k) requests.push_back({m.scene, m.overrides, options_.first_seed + k, options_.seat});
+  for (const auto& m : models) {
+    std::vector<std::string> overrides = m.overrides;
+    if (m.loading_rate > 0)
+      for (auto& r : pool_.rate_overrides(m.scene, m.overrides, m.loading_rate)) overrides.push_back(std::move(r));
+    for (int k = 0; k < options_.seeds; ++k) requests.push_back({m.scene, overrides, options_.first_seed + k, options_.seat});
+  }
   const auto results = pool_.run(requests, log);
   std::vector<std::vector<Specimen>> out(models.size());
   std::size_t i = 0;
@@ -78,6 +82,64 @@ std::vector<Specimen> specimens_at_rate(const MeasurementSet& set, double rate) 
   for (const auto& s : set.specimens)
     if (rate <= 0 || std::abs(s.loading_rate - rate) <= 1e-9 * rate) out.push_back(s);
   if (out.empty()) throw std::runtime_error(fmt::format("no specimen at loading rate {} m/s", rate));
+  return out;
+}
+
+RateGroups rate_groups(const MeasurementSet& set, double rate) {
+  RateGroups g;
+  const std::vector<double> rates = rate > 0 ? std::vector<double>{rate} : set.loading_rates();
+  for (double r : rates) {
+    std::vector<Specimen> at;
+    for (const auto& s : set.specimens)
+      if (std::abs(s.loading_rate - r) <= 1e-9 * r) at.push_back(s);
+    if (at.empty()) throw std::runtime_error(fmt::format("no specimen at loading rate {} m/s", r));
+    g.rates.push_back(r);
+    g.specimens.push_back(std::move(at));
+  }
+  return g;
+}
+
+ResidualVector RateComparison::residual_vector() const {
+  ResidualVector v;
+  for (std::size_t k = 0; k < at.size(); ++k) {
+    const ResidualVector r = at[k].residual_vector();
+    for (std::size_t i = 0; i < r.values.size(); ++i) {
+      v.names.push_back(at.size() > 1 ? fmt::format("{}@{:g}", r.names[i], rates[k]) : r.names[i]);
+      v.values.push_back(r.values[i]);
+    }
+  }
+  return v;
+}
+
+double RateComparison::nrmse() const {
+  double s = 0;
+  for (const auto& c : at) s += c.nrmse * c.nrmse;
+  return at.empty() ? 0 : std::sqrt(s / static_cast<double>(at.size()));
+}
+
+double RateComparison::chi_square() const {
+  double x = 0;
+  for (double r : residual_vector().values) x += r * r;
+  return x;
+}
+
+std::vector<RateComparison> simulate_and_compare(Simulator& simulator, const RateGroups& groups, const Metadata& metadata,
+                                                 const std::vector<ModelPlan>& models, std::ostream& log) {
+  // With one rate the model runs at the scene's own speed unless the data are at another one.
+  std::vector<ModelPlan> runs;
+  for (const auto& m : models)
+    for (double r : groups.rates) {
+      ModelPlan at = m;
+      at.loading_rate = r;
+      runs.push_back(std::move(at));
+    }
+  const auto sims = simulator.simulate(runs, log);
+  std::vector<RateComparison> out(models.size());
+  for (std::size_t m = 0; m < models.size(); ++m) {
+    out[m].rates = groups.rates;
+    for (std::size_t k = 0; k < groups.rates.size(); ++k)
+      out[m].at.push_back(compare(groups.specimens[k], metadata, sims[m * groups.rates.size() + k]));
+  }
   return out;
 }
 
@@ -189,7 +251,7 @@ double chi_square(const Comparison& c) {
   return x;
 }
 
-Linearisation linearise(Simulator& simulator, const std::vector<Specimen>& measured, const Metadata& metadata,
+Linearisation linearise(Simulator& simulator, const RateGroups& measured, const Metadata& metadata,
                         const ModelPlan& base, const std::vector<std::string>& keys, const std::vector<double>& values,
                         const std::vector<CandidateEffect>& effects, std::ostream& log) {
   constexpr double kStep = 0.05;  // relative step of the base parameters
@@ -200,12 +262,12 @@ Linearisation linearise(Simulator& simulator, const std::vector<Specimen>& measu
     models.push_back(with_parameters(base, keys, stepped));
   }
   for (const auto& e : effects) models.push_back(with_effect(models.front(), e, e.plausible));
-  const auto sims = simulator.simulate(models, log);
+  const auto comparisons = simulate_and_compare(simulator, measured, metadata, models, log);
   Linearisation l;
-  l.base_comparison = compare(measured, metadata, sims[0]);
+  l.base_comparison = comparisons[0];
   l.base = l.base_comparison.residual_vector();
   auto difference = [&](std::size_t m, const std::string& what, double scale) {
-    const ResidualVector r = compare(measured, metadata, sims[m]).residual_vector();
+    const ResidualVector r = comparisons[m].residual_vector();
     if (r.names != l.base.names)
       throw std::runtime_error(fmt::format("{} changed which residual components exist (a regime or feature vanished); "
                                            "use a smaller size",

@@ -21,6 +21,7 @@ struct ModelPlan {
   std::filesystem::path scene;
   std::vector<std::string> overrides;
   double machine_compliance = 0;  // m/N, series spring applied to the simulated curves
+  double loading_rate = 0;        // m/s of the loading pins; 0 = the scene's own
 };
 
 struct SimulationOptions {
@@ -54,6 +55,31 @@ double scene_number(const ModelPlan& model, const std::string& key, const std::v
 
 std::vector<measure::Specimen> specimens_at_rate(const measure::MeasurementSet& set, double rate);
 
+// The measured specimens grouped by loading rate (ascending): only `rate` when it is > 0,
+// otherwise every rate in the set. A model is simulated at each rate and judged on all of them,
+// so a rate effect (bond viscosity) shows as a difference between the groups.
+struct RateGroups {
+  std::vector<double> rates;
+  std::vector<std::vector<measure::Specimen>> specimens;
+};
+RateGroups rate_groups(const measure::MeasurementSet& set, double rate);
+
+// One model against every rate group: the joint residual vector is the per-rate vectors one
+// after the other (components named "<name>@<rate>" when there are several rates); the NRMSE
+// is the RMS of the per-rate NRMSEs.
+struct RateComparison {
+  std::vector<double> rates;
+  std::vector<measure::Comparison> at;
+  measure::ResidualVector residual_vector() const;
+  double nrmse() const;
+  double chi_square() const;
+};
+
+// Simulates every model at every rate of `groups` (one parallel batch) and compares.
+std::vector<RateComparison> simulate_and_compare(Simulator& simulator, const RateGroups& groups,
+                                                 const measure::Metadata& metadata, const std::vector<ModelPlan>& models,
+                                                 std::ostream& log);
+
 // One model version in <work>/history.jsonl: what `shard history` tabulates.
 struct HistoryEntry {
   std::string command, label;
@@ -82,11 +108,11 @@ ModelPlan with_parameters(ModelPlan model, const std::vector<std::string>& keys,
 // all on the same packing seeds, in one parallel batch.
 struct Linearisation {
   measure::ResidualVector base;
-  measure::Comparison base_comparison;
+  RateComparison base_comparison;
   std::vector<std::vector<double>> jacobian;
   std::vector<measure::EffectSignature> signatures;
 };
-Linearisation linearise(Simulator& simulator, const std::vector<measure::Specimen>& measured,
+Linearisation linearise(Simulator& simulator, const RateGroups& measured,
                         const measure::Metadata& metadata, const ModelPlan& base, const std::vector<std::string>& keys,
                         const std::vector<double>& values, const std::vector<measure::CandidateEffect>& effects,
                         std::ostream& log);

@@ -161,6 +161,35 @@ std::vector<std::string> RunPool::seating_overrides(const RunRequest& request) c
   return out;
 }
 
+double RunPool::scene_rate(const fs::path& scene_file, const std::vector<std::string>& overrides) const {
+  const Scene scene = load_scene(scene_file, overrides, *host_);
+  double rate = 0;
+  for (const Wall& w : scene.walls)
+    if (std::find(scene.stop.load_walls.begin(), scene.stop.load_walls.end(), w.name) != scene.stop.load_walls.end())
+      rate = std::max(rate, w.velocity.norm());
+  return rate;
+}
+
+std::vector<std::string> RunPool::rate_overrides(const fs::path& scene_file, const std::vector<std::string>& overrides,
+                                                 double rate) const {
+  const Scene scene = load_scene(scene_file, overrides, *host_);
+  const double own = scene_rate(scene_file, overrides);
+  if (!(own > 0))
+    throw std::runtime_error(fmt::format("{}: no moving [stop] load_walls, so the loading rate cannot be set to {} m/s",
+                                         scene_file.string(), rate));
+  if (std::abs(rate - own) <= 1e-9 * own) return {};
+  const double f = rate / own;
+  std::vector<std::string> out;
+  for (const Wall& w : scene.walls)
+    if (std::find(scene.stop.load_walls.begin(), scene.stop.load_walls.end(), w.name) != scene.stop.load_walls.end()) {
+      const Vec3 v = f * w.velocity;
+      out.push_back(fmt::format("wall.{}.velocity=[{:.12g}, {:.12g}, {:.12g}]", w.name, v.x(), v.y(), v.z()));
+    }
+  out.push_back(fmt::format("simulation.duration={:.12g}", scene.duration / f));
+  if (scene.series_interval > 0) out.push_back(fmt::format("output.series_interval={:.12g}", scene.series_interval / f));
+  return out;
+}
+
 std::string RunPool::resolved_text(const RunRequest& request) const {
   std::vector<std::string> o = full_overrides(request);
   if (request.seat)

@@ -46,6 +46,13 @@ class RunPool {
 
   // The overrides that seat the walls of `request` on its packing (empty without load walls).
   std::vector<std::string> seating_overrides(const RunRequest& request) const;
+  // The overrides that load `scene` (with `overrides`) at `rate` m/s instead of its own pin
+  // speed: the load walls' velocities scaled, and the duration and the series interval scaled
+  // inversely so that the same pin travel is simulated and recorded. Empty at the scene's rate.
+  std::vector<std::string> rate_overrides(const std::filesystem::path& scene, const std::vector<std::string>& overrides,
+                                          double rate) const;
+  // The pin speed of a scene, m/s: the largest speed of its [stop] load walls.
+  double scene_rate(const std::filesystem::path& scene, const std::vector<std::string>& overrides) const;
   // The full scene text a request runs (overrides, seed and seating applied).
   std::string resolved_text(const RunRequest& request) const;
   // Runs every request that is not cached, `workers` child processes at a time; results in the
