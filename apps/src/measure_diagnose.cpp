@@ -182,6 +182,10 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
         std::string v;
         for (std::size_t i = 0; i < c.parameters.size(); ++i) v += fmt::format("{}{}={:.4g}", v.empty() ? "" : ", ", o->params[i], c.parameters[i]);
         if (c.name != "base refit") v += fmt::format(", {}={:.4g}", c.name, c.effect_value);
+        if (!c.failure.empty()) {
+          md += fmt::format("| {} | run failed | - | - | - | - | - | {} |\n", c.name, v);
+          continue;
+        }
         md += fmt::format("| {} | {:.1f} | {:.1f} % | {:+.1f} | {:+.1f} | {} | {} | {} |\n", c.name, c.chi_square,
                           100 * c.nrmse, c.delta_aic, c.delta_bic, ce ? fmt::format("{:.0f} %", 100 * ce->share_explained) : "-",
                           ce ? fmt::format("{:.2g}", ce->p_after) : "-", v);
