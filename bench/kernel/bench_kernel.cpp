@@ -68,11 +68,11 @@ void bonded(int argc, char** argv) {
     if (sim.bonds_broken() > 0 && force < 0.05 * peak) break;
   }
   std::printf(
-      "bench_kernel bonded: particles=%zu bonds=%zu threads=%d steps=%lld dt=%.3e broken=%lld peak_force_N=%.4g "
+      "bench_kernel bonded: particles=%zu bonds=%zu threads=%d steps=%lld dt=%.3e contacts=%zu broken=%lld peak_force_N=%.4g "
       "rebuilds=%lld seconds=%.3f cpu_seconds=%.3f bond_steps_per_s=%.4g ns_per_bond_step=%.2f cpu_ns_per_bond_step=%.2f "
       "parted=%s\n",
       sim.particles().size(), bonds0, omp_get_max_threads(), static_cast<long long>(steps), sim.dt(),
-      static_cast<long long>(sim.bonds_broken()), peak, static_cast<long long>(sim.neighbour_rebuilds()), busy,
+      sim.contact_count(), static_cast<long long>(sim.bonds_broken()), peak, static_cast<long long>(sim.neighbour_rebuilds()), busy,
       cpu, bond_steps / busy, 1e9 * busy / bond_steps, 1e9 * cpu / bond_steps, steps < max_steps ? "yes" : "no");
 }
 

@@ -322,6 +322,16 @@ void Simulation::contact_chunk(std::size_t begin, std::size_t end, Vec3* force, 
   const auto& second = neighbours_->second();
   auto& history = neighbours_->history();
   const auto slot = [stride](std::size_t k) { return static_cast<std::ptrdiff_t>(k * stride); };
+  // A pair that is not touching keeps a zero history. Most listed pairs of a bonded solid are not
+  // touching and already zero: reading leaves their cache lines clean, rewriting would dirty them.
+  const auto forget = [&](std::size_t k) {
+    double* h = history.data() + slot(k);
+    for (std::size_t q = 0; q < stride; ++q)
+      if (h[q] != 0.0) {
+        std::fill_n(h, stride, 0.0);
+        return;
+      }
+  };
 
   // Geometry of the touching pairs; pairs that stopped touching lose their history.
   std::size_t c = begin;
@@ -337,7 +347,7 @@ void Simulation::contact_chunk(std::size_t begin, std::size_t end, Vec3* force, 
       const double dist2 = d.squaredNorm();
       const double reach = ra + p.radius[b];
       if (dist2 >= reach * reach || dist2 == 0.0) {
-        std::fill_n(history.begin() + slot(k), stride, 0.0);
+        forget(k);
         continue;
       }
       const double dist = std::sqrt(dist2);
@@ -353,7 +363,7 @@ void Simulation::contact_chunk(std::size_t begin, std::size_t end, Vec3* force, 
       const Wall& w = walls_[static_cast<std::size_t>(-1 - b)];
       double distance;
       if (!wall_contact(w, p.position[a], ra, n, distance) || distance >= ra) {
-        std::fill_n(history.begin() + slot(k), stride, 0.0);
+        forget(k);
         continue;
       }
       overlap = ra - distance;
