@@ -247,6 +247,10 @@ void add_bending_command(CLI::App& app, CommandContext& ctx) {
   b->add_flag("--no-plot", bo->no_plot, "skip the figure");
   b->add_option("--json", bo->json, "report as JSON (default <run>_bending.json)");
   b->add_option("--crack-window", bo->analysis.crack_window, "crack cluster width in m (default: 2 mean diameters)");
+  b->add_option("--gauge-section", bo->analysis.gauge_section,
+                "local instrumentation: section width along the beam in m (default: 2 mean diameters)");
+  b->add_option("--gauge-core", bo->analysis.gauge_core,
+                "local instrumentation: height band around mid-height in m (default: half the height)");
   add_geometry_options(*b, *bo);
   b->callback([bo, &ctx] { ctx.exit_code = bending_command(*bo); });
 

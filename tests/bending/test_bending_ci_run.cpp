@@ -1,6 +1,7 @@
 // The CI-size four-point bending beam through the whole pipeline (run_scene -> run.h5 ->
 // analyse_bending_run): it must fail, in the constant-moment zone between the pins, into two
-// major pieces, quasi-statically.
+// major pieces, quasi-statically; eq. 14 on the beam's own deflection must give the network's
+// own E (the curvature modulus between the pins) within 10 %.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -24,9 +25,16 @@ TEST_CASE("CI beam: brittle failure between the pins, two major fragments, quasi
   CHECK(r.crack.between_pins);                        // |s| <= 40 mm
   CHECK(r.fragments.major >= 2);                      // the beam parted
   CHECK(r.quasi_static.max_kinetic_to_elastic < 0.05);  // measured 0.0017 at 10 mm/s
-  // eq. 14 on the pin travel counts the contact indentation too: below the network's own
-  // (affine, upper-bound) modulus.
-  CHECK(r.analysis.youngs_modulus < r.voigt.youngs_modulus);
+  // Local instrumentation: eq. 14 on the beam's own deflection under the pins against the
+  // network's E from the curvature in the constant-moment zone (same packing, same run). The
+  // tolerance is the packing's heterogeneity: E_curv measures the middle 64 mm only, and the
+  // network E differs between packings of this beam by 7 % (sd, 4 seeds; 14 % on the default
+  // beam, 5 seeds). Measured 1.038 here; 0.94-1.06 over 9 packings (docs/four_point_bending.md).
+  REQUIRE(r.gauges.valid);
+  CHECK(r.gauges.deflection_fit.r_squared > 0.99);
+  CHECK(std::abs(r.gauges.youngs_modulus / r.gauges.curvature_modulus - 1) < 0.10);
+  // The pin travel adds the Hertz indentation at pins and supports: a softer apparent E.
+  CHECK(r.analysis.youngs_modulus < r.gauges.youngs_modulus);
   CHECK(std::abs(r.geometry.span - 0.170) < 1e-9);
   CHECK(std::abs(r.geometry.pin_distance - 0.080) < 1e-9);
 }

@@ -211,7 +211,7 @@ BendingReport analyse_bending_run(const std::filesystem::path& path, const Bendi
     gauges.axis = r.axis;
     gauges.down = r.down;
     gauges.section_width = options.gauge_section > 0 ? options.gauge_section : 2 * r.mean_diameter;
-    gauges.core_height = 0.5 * g.height;
+    gauges.core_height = options.gauge_core > 0 ? options.gauge_core : 0.5 * g.height;
     std::map<Index, std::size_t> row_of;
     for (std::size_t k = 0; k < first.id.size(); ++k) row_of[first.id[k]] = k;
     std::vector<LocalFrame> rows;  // before the first break and the peak: the elastic part

@@ -1,5 +1,6 @@
 #include "shard/bending/local_deflection.hpp"
 
+#include <Eigen/Dense>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -17,7 +18,13 @@ double local_deflection(std::span<const Vec3> reference, std::span<const Vec3> d
   const Vec3 e = gauges.axis.normalized(), dn = gauges.down.normalized();
   const std::array<double, 4> stations{-0.5 * geometry.pin_distance, 0.5 * geometry.pin_distance, -0.5 * geometry.span,
                                        0.5 * geometry.span};
-  std::array<double, 4> sum{}, count{};
+  // Per station, a least-squares line u = alpha + beta (s - station) through the band's
+  // particles: alpha is the deflection at the station itself. A plain mean would be biased where
+  // the band is one-sided, as over the supports 5 mm inside the beam's ends, by the slope there.
+  std::array<Eigen::Matrix2d, 4> ata;
+  std::array<Eigen::Vector2d, 4> atb;
+  std::array<double, 4> count{};
+  for (std::size_t j = 0; j < stations.size(); ++j) ata[j].setZero(), atb[j].setZero();
   for (std::size_t k = 0; k < reference.size(); ++k) {
     const Vec3 p = reference[k] - gauges.centre;
     if (std::abs(p.dot(dn)) > 0.5 * gauges.core_height) continue;
@@ -25,17 +32,24 @@ double local_deflection(std::span<const Vec3> reference, std::span<const Vec3> d
     const double u = (deformed[k] - reference[k]).dot(dn);
     for (std::size_t j = 0; j < stations.size(); ++j)
       if (std::abs(s - stations[j]) <= 0.5 * gauges.section_width) {
-        sum[j] += u;
+        const Eigen::Vector2d row(1.0, (s - stations[j]) / gauges.section_width);
+        ata[j] += row * row.transpose();
+        atb[j] += row * u;
         count[j] += 1;
       }
   }
-  for (std::size_t j = 0; j < stations.size(); ++j)
+  std::array<double, 4> at{};
+  for (std::size_t j = 0; j < stations.size(); ++j) {
     if (count[j] == 0)
       throw std::invalid_argument(fmt::format("local_deflection: no particle within {:.2f} mm of s = {:+.1f} mm at "
                                               "mid-height; widen the section",
                                               0.5e3 * gauges.section_width, 1e3 * stations[j]));
-  const double pins = 0.5 * (sum[0] / count[0] + sum[1] / count[1]);
-  const double supports = 0.5 * (sum[2] / count[2] + sum[3] / count[3]);
+    // All particles at one s (or one particle): the line is undetermined, the mean is the value.
+    const Eigen::FullPivLU<Eigen::Matrix2d> lu(ata[j]);
+    at[j] = lu.rank() == 2 ? lu.solve(atb[j])(0) : atb[j](0) / count[j];
+  }
+  const double pins = 0.5 * (at[0] + at[1]);
+  const double supports = 0.5 * (at[2] + at[3]);
   return pins - supports;
 }
 

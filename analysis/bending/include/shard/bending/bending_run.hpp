@@ -28,6 +28,7 @@ struct BendingOptions {
   double crack_window = 0;          // m; 0: two mean particle diameters
   double major_fragment = 0.05;     // a fragment holding at least this mass fraction is "major"
   double gauge_section = 0;         // m, width of the local-deflection sections; 0: two mean diameters
+  double gauge_core = 0;            // m, height band around mid-height the sections use; 0: half the height
 };
 
 struct FragmentSummary {

@@ -7,10 +7,11 @@
 // beam's deflection. The particles' displacements do not: a sphere is rigid, the indentation is
 // in the wall contact. So the deflection under a pin relative to the supports is measured on the
 // particles themselves:
-//   w_local = mean u over the two pin sections - mean u over the two support sections,
-// u the displacement along the load direction, a section being the particles within half a
-// `section_width` of s = +-d_S/2 (pins) or s = +-L/2 (supports) and within half a `core_height`
-// of mid-height (the neutral axis, away from the contact layers).
+//   w_local = mean u at the two pin stations - mean u at the two support stations,
+// u the displacement along the load direction, read at a station from a least-squares line
+// u(s) through the particles within half a `section_width` of s = +-d_S/2 (pins) or s = +-L/2
+// (supports) and within half a `core_height` of mid-height (the neutral axis, away from the
+// contact layers): a yoke-mounted LVDT.
 // For an Euler-Bernoulli beam w_local is eq. 14's w_s; a Timoshenko beam adds the shear
 // deflection F a / (2 k_s G A) of the outer spans.
 #include <cstddef>
