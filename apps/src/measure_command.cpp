@@ -57,6 +57,7 @@ void add_compare(CLI::App& app, CommandContext& ctx) {
     double ke = 0;
     if (!o->model.scene.empty()) {
       Simulator simulator(o->sim, ctx.plugin_dirs);
+      o->model.loading_rate = o->rate;  // the model runs at the compared specimens' rate (0: the scene's)
       for (auto& s : simulator.simulate(o->model, std::cerr)) sims.push_back(std::move(s));
       ke = simulator.max_kinetic_to_elastic();
     }
