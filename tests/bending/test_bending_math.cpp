@@ -111,3 +111,19 @@ TEST_CASE("curve reduction: an unbroken curve is reported as not failed; bad inp
   // Two rows only: too few in the fit window.
   CHECK_THROWS_AS(analyse_curve(std::vector<double>{0, 1e-3}, std::vector<double>{0, 1}, g), std::invalid_argument);
 }
+
+TEST_CASE("smoothed peak: a one-row spike at the snap is averaged over the peak window") {
+  const BendingGeometry g{0.180, 0.080, 0.030, 0.035};
+  // Rows every 5 um: a line of 10 N/mm up to 40 N at 4 mm, a 40 N plateau to 4.1 mm with one row
+  // at 50 N (the snap), then broken. The 25 um window holds 5 rows: (4 x 40 + 50) / 5 = 42 N.
+  std::vector<double> w, f;
+  for (int i = 0; i <= 800; ++i) w.push_back(5e-6 * i), f.push_back(1e4 * 5e-6 * i);
+  for (int i = 801; i <= 820; ++i) w.push_back(5e-6 * i), f.push_back(i == 810 ? 50.0 : 40.0);
+  for (int i = 821; i <= 830; ++i) w.push_back(5e-6 * i), f.push_back(5.0);
+  const auto a = analyse_curve(w, f, g);
+  CHECK(a.force_max == doctest::Approx(50.0));
+  CHECK(a.force_max_smoothed == doctest::Approx(42.0).epsilon(1e-9));
+  CurveOptions narrow;
+  narrow.peak_window = 1e-6;  // one row: the raw maximum
+  CHECK(analyse_curve(w, f, g, narrow).force_max_smoothed == doctest::Approx(50.0));
+}

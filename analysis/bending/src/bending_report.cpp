@@ -20,8 +20,10 @@ std::string format_report(const BendingReport& r) {
                    1e-6 * r.bond.critical_stress, r.breakage ? "on" : "off");
   s += fmt::format("  stiffness k = {:.5g} N/mm (fit {:.0f}-{:.0f} % of F_max, {} rows, R^2 = {:.5f}), onset w0 = {:.4f} mm\n",
                    1e-3 * a.stiffness, 100 * a.fit_low, 100 * a.fit_high, a.fit.points, a.fit.r_squared, 1e3 * a.onset);
-  s += fmt::format("  F_max = {:.5g} N at w_s,max = {:.4f} mm (from onset){}\n", a.force_max, 1e3 * a.deflection_at_peak,
-                   a.failed ? ", then failed" : ", no failure (force did not drop)");
+  s += fmt::format("  F_max = {:.5g} N at w_s,max = {:.4f} mm (from onset){}; mean over {:.0f} um of travel: at most "
+                   "{:.5g} N\n",
+                   a.force_max, 1e3 * a.deflection_at_peak, a.failed ? ", then failed" : ", no failure (force did not drop)",
+                   1e6 * a.peak_window, a.force_max_smoothed);
   s += fmt::format("  E (eq. 14, fitted stiffness) = {:.4g} MPa; secant at F_max = {:.4g} MPa\n", 1e-6 * a.youngs_modulus,
                    1e-6 * a.youngs_modulus_secant);
   s += fmt::format("  sigma_b (eq. 15) at F_max = {:.4g} MPa; {} bonds broken up to F_max\n", 1e-6 * a.flexural_strength,
@@ -78,8 +80,9 @@ std::string report_json(const BendingReport& r) {
                    r.bond.youngs_modulus, r.bond.critical_stress, r.breakage);
   s += fmt::format("  \"stiffness_N_per_m\": {:.9g}, \"fit_r_squared\": {:.9g}, \"fit_points\": {}, \"onset_m\": {:.9g},\n",
                    a.stiffness, a.fit.r_squared, a.fit.points, a.onset);
-  s += fmt::format("  \"force_max_N\": {:.9g}, \"deflection_at_peak_m\": {:.9g}, \"failed\": {},\n", a.force_max,
-                   a.deflection_at_peak, a.failed);
+  s += fmt::format("  \"force_max_N\": {:.9g}, \"force_max_smoothed_N\": {:.9g}, \"deflection_at_peak_m\": {:.9g}, "
+                   "\"failed\": {},\n",
+                   a.force_max, a.force_max_smoothed, a.deflection_at_peak, a.failed);
   s += fmt::format("  \"youngs_modulus_Pa\": {:.9g}, \"youngs_modulus_secant_Pa\": {:.9g}, \"flexural_strength_Pa\": {:.9g},\n",
                    a.youngs_modulus, a.youngs_modulus_secant, a.flexural_strength);
   s += fmt::format("  \"crack_found\": {}, \"crack_position_m\": {:.9g}, \"crack_between_pins\": {}, \"crack_breaks\": {}, "

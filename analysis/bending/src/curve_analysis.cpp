@@ -80,6 +80,15 @@ CurveAnalysis analyse_curve(std::span<const double> w, std::span<const double> f
   a.flexural_strength = flexural_stress(geometry, a.force_max);
   for (std::size_t k = a.peak_row; k < f.size(); ++k)
     if (f[k] < options.failure_drop * a.force_max) a.failed = true;
+  a.peak_window = options.peak_window;
+  // Centred window in travel, two pointers over rows of (mostly) increasing w.
+  std::size_t lo_row = 0, hi_row = 0;
+  double window_sum = 0;
+  for (std::size_t k = 0; k < w.size(); ++k) {
+    while (hi_row < w.size() && w[hi_row] <= w[k] + 0.5 * options.peak_window) window_sum += f[hi_row++];
+    while (lo_row < k && w[lo_row] < w[k] - 0.5 * options.peak_window) window_sum -= f[lo_row++];
+    if (hi_row > lo_row) a.force_max_smoothed = std::max(a.force_max_smoothed, window_sum / static_cast<double>(hi_row - lo_row));
+  }
   return a;
 }
 

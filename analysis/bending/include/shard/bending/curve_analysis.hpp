@@ -29,6 +29,8 @@ struct CurveOptions {
   // that a run stopped before failure (calibration's stiffness runs) is fitted on the same force
   // range as the test it stands for.
   double reference_force = 0;
+  // Pin travel over which the reported smoothed peak averages the force (a load cell's low pass).
+  double peak_window = 25e-6;  // m
   double window_force(double force_max) const { return reference_force > 0 ? reference_force : force_max; }
 };
 
@@ -57,6 +59,10 @@ struct CurveAnalysis {
   double flexural_strength = 0;     // sigma_b at F_max by eq. 15, Pa
   bool failed = false;              // the force dropped below failure_drop F_max after the peak
   double final_force = 0;           // N, the last row
+  // The largest mean force over peak_window of travel: at the final snap the raw curve often
+  // spikes for 2-3 rows (1-3 ms); this shows by how much (reported, not used by calibration).
+  double force_max_smoothed = 0;    // N
+  double peak_window = 0;           // m, the window used
 };
 
 // Throws std::invalid_argument naming the problem when the curve is empty, the columns differ
