@@ -53,6 +53,8 @@ void save_loop_state(Checkpoint& c, const RunSummary& summary, int frames_writte
   c.arrays = {{"load", summary.load},
               {"displacement", summary.displacement},
               {"time_series", summary.time_series},
+              {"kinetic_before_break", summary.kinetic_before_break},
+              {"elastic_before_break", summary.elastic_before_break},
               {"health", health.state()}};
 }
 
@@ -64,7 +66,17 @@ void restore_loop_state(const Checkpoint& c, RunSummary& summary, int& frames_wr
   summary.load = c.array("load");
   summary.displacement = c.array("displacement");
   summary.time_series = c.array("time_series");
+  summary.kinetic_before_break = c.array("kinetic_before_break");
+  summary.elastic_before_break = c.array("elastic_before_break");
   health.restore(c.array("health"));
+}
+
+double max_kinetic_to_elastic(const RunSummary& summary) {
+  double ratio = 0;
+  for (std::size_t k = 0; k < summary.kinetic_before_break.size() && k < summary.load.size(); ++k)
+    if (summary.load[k] >= 0.2 * summary.peak_load && summary.peak_load > 0 && summary.elastic_before_break[k] > 0)
+      ratio = std::max(ratio, summary.kinetic_before_break[k] / summary.elastic_before_break[k]);
+  return ratio;
 }
 
 // True when a line of the scene reads `breakage = true` (blanks allowed around the words).
@@ -321,9 +333,9 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
       summary.peak_load = load;
       summary.displacement_at_peak = disp;
     }
-    if (sim.bonds_broken() == 0 && load > 0.2 * summary.peak_load && summary.peak_load > 0) {
-      const double elastic = e.bond + e.contact;
-      if (elastic > 0) summary.max_kinetic_to_elastic = std::max(summary.max_kinetic_to_elastic, e.kinetic / elastic);
+    if (sim.bonds_broken() == 0) {
+      summary.kinetic_before_break.push_back(e.kinetic);
+      summary.elastic_before_break.push_back(e.bond + e.contact);
     }
     return e;
   };
@@ -399,6 +411,7 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
   log(fmt::format("done: {} ({}); {} steps, t = {:.4g} s, {} bonds broken, {:.1f} s wall", summary.output.string(),
                   summary.stop_reason, summary.steps, summary.time, summary.bonds_broken, summary.wall_seconds));
   if (!sensor.walls.empty()) {
+    summary.max_kinetic_to_elastic = max_kinetic_to_elastic(summary);
     log(fmt::format("peak load {:.5g} N at displacement {:.5g} m; kinetic/elastic energy before breakage <= {:.3g}",
                     summary.peak_load, summary.displacement_at_peak, summary.max_kinetic_to_elastic));
     const auto csv = summary.output.parent_path() / (summary.output.stem().string() + "_curve.csv");
