@@ -11,7 +11,7 @@ parameters E_b = TRUTH_EB, sigma_crit = TRUTH_SIGMA (Table I: 12.8 and 0.24 MPa)
   python3 scenes/data/make_example_measurement.py out/truth scenes/data/example_measurement.csv
 
 The displacement column is the beam's own deflection under the pins relative to the supports
-(local instrumentation, out/truth/run_local_curve.csv, one row per 5 ms frame), interpolated
+(local instrumentation, out/truth/run_local_curve.csv, one row per frame), interpolated
 linearly in time onto the force series rows (out/truth/run_bending_curve.csv, every 1 ms);
 the rows stop at 60 % of F_max after the peak. Noise: Gaussian, standard deviation 0.5 % of
 F_max on the force and 2 um on the deflection, Python random.Random(2026).
