@@ -1,6 +1,9 @@
-// Kelvin-Voigt rate dependence: at the same strain the force of a bond stretched at two rates
-// differs by eta A_b (rate2 - rate1), eta = E_b tau_v; the strength criterion sees the viscous
-// stress, so a fast pull breaks the bond at a smaller strain.
+// Rate dependence as a standard linear solid (maxwell_arm.hpp): the elastic beam E_b beside a
+// Maxwell arm (spring beta E_b, dashpot eta = E_b tau_v, relaxation time tau_r = tau_v / beta).
+// Pulled at a constant strain rate r from rest, the arm strain is exactly
+//   h(t) = tau_v r (1 - exp(-t / tau_r)),
+// so the force tends to the Kelvin-Voigt E_b A_b (eps + tau_v r); held, h relaxes as exp(-t / tau_r);
+// a jump fast against tau_r meets (1 + beta) E_b. The strength check sees eps + h.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -8,64 +11,126 @@
 #include "beam_plus_setup.hpp"
 
 namespace shard::effects_test {
+namespace {
 
-TEST_CASE("viscous bond: force difference between two strain rates is eta A rate difference") {
+constexpr double kTau = 2e-4;  // s, tau_v
+constexpr double kBeta = 1.0;  // tau_r = 2e-4 s
+
+beam_plus::BeamBondPlusParams viscous_params(double beta = kBeta) {
   auto p = table_one_plus();
-  p.viscosity_time = 2e-4;  // s
-  const beam_plus::BeamBondPlus model(p);
-  Pair pair(model);
-  const double E = p.base.youngs_modulus, A = Pair::area, l0 = Pair::l0;
-  const double eta = E * p.viscosity_time;
-  const double eps = 5e-3;
-  const double v1 = 0.002, v2 = 0.02;  // m/s: strain rates v / l0 = 2.9 and 29 1/s
-  pair.set(eps, Vec3(v1, 0, 0));
-  const double f1 = pair.axial_force(model);
-  pair.set(eps, Vec3(v2, 0, 0));
-  const double f2 = pair.axial_force(model);
-  pair.set(eps);
-  const double f0 = pair.axial_force(model);
-  CHECK(f0 == doctest::Approx(E * A * eps).epsilon(1e-10));
-  CHECK(f2 - f1 == doctest::Approx(eta * A * (v2 - v1) / l0).epsilon(1e-9));
-  CHECK(f1 - f0 == doctest::Approx(eta * A * v1 / l0).epsilon(1e-9));
-  // Stored energy is the elastic part only.
-  CHECK(pair.scene.energy[0] == doctest::Approx(0.5 * E * A * l0 * eps * eps).epsilon(1e-10));
-
-  // Shear: a transverse velocity adds a_s G_b tau_v A_b v_t / l0 on the shear force.
-  const double G = p.base.effective_shear_modulus();
-  pair.set(0, Vec3(0, v2, 0));
-  pair.axial_force(model);
-  CHECK(pair.scene.force[0].y() == doctest::Approx(p.base.shear_coefficient * G * p.viscosity_time * A * v2 / l0).epsilon(1e-9));
+  p.viscosity_time = kTau;
+  p.viscous_modulus_ratio = beta;
+  return p;
 }
 
-TEST_CASE("viscous bond: the breakage criterion sees E_b (eps + tau_v d eps/dt)") {
-  auto p = table_one_plus();
-  p.viscosity_time = 2e-4;
-  const beam_plus::BeamBondPlus model(p);
-  Pair pair(model);
-  const double E = p.base.youngs_modulus, sc = p.base.critical_stress, l0 = Pair::l0;
-  const double eps = 0.9 * sc / E;   // 10 % below the static strength
-  const double rate = 0.2 * sc / E / p.viscosity_time;  // tau_v rate = 20 % of eps0
-  pair.set(eps);
-  pair.axial_force(model);
-  CHECK_FALSE(pair.broken());
-  pair.set(eps, Vec3(rate * l0, 0, 0));
-  pair.axial_force(model);
-  CHECK(pair.broken());
-  CHECK(pair.scene.stress[0].sigma_vm == doctest::Approx(1.1 * sc).epsilon(1e-9));
+// Moves the pair from strain eps_from to eps_to in `steps` steps of the scene's dt, linearly in
+// time, and returns the axial force after the last one.
+double ramp(Pair& pair, const BondModel& model, double eps_from, double eps_to, int steps) {
+  const double v = (eps_to - eps_from) * Pair::l0 / (steps * pair.scene.dt);
+  double f = 0;
+  for (int n = 1; n <= steps; ++n) {
+    pair.set(eps_from + (eps_to - eps_from) * n / steps, Vec3(v, 0, 0));
+    f = pair.axial_force(model);
+  }
+  return f;
 }
 
-TEST_CASE("viscous bond: the stable step shrinks by sqrt(1 + z^2) - z") {
+}  // namespace
+
+TEST_CASE("viscous bond: a constant-rate pull follows E_b A_b (eps + tau_v r (1 - exp(-t / tau_r)))") {
+  const auto p = viscous_params();
+  const beam_plus::BeamBondPlus model(p);
+  Pair pair(model);
+  const double E = p.base.youngs_modulus, A = Pair::area, dt = pair.scene.dt;
+  const double tau_r = kTau / kBeta;
+  const double rate = 5.0;  // 1/s: eps = 5e-3 after 1 ms, stress ~1/4 of sigma_crit
+  double eps = 0, f = 0;
+  for (const int steps : {100, 900}) {  // to t = tau_r / 2, then to 5 tau_r
+    const double next = eps + rate * steps * dt;
+    f = ramp(pair, model, eps, next, steps);
+    eps = next;
+    const double t = eps / rate;
+    const double h = kTau * rate * (1 - std::exp(-t / tau_r));
+    CHECK(f == doctest::Approx(E * A * (eps + h)).epsilon(1e-9));
+    // Stored energy: the beam's and the arm spring's, h / beta of strain.
+    CHECK(pair.scene.energy[0] ==
+          doctest::Approx(0.5 * E * A * Pair::l0 * (eps * eps + h * h / kBeta)).epsilon(1e-9));
+  }
+  // After 5 tau_r the arm is within exp(-5) = 0.7 % of the Kelvin-Voigt stress E_b tau_v r.
+  const double viscous = f - E * A * eps;
+  CHECK(viscous == doctest::Approx(E * A * kTau * rate).epsilon(0.0068));
+  CHECK(viscous < E * A * kTau * rate);
+
+  SUBCASE("held at constant strain, the arm relaxes as exp(-t / tau_r)") {
+    const double h0 = kTau * rate * (1 - std::exp(-5.0));
+    const int steps = 100;  // tau_r / 2
+    const double held = ramp(pair, model, eps, eps, steps);
+    CHECK(held - E * A * eps == doctest::Approx(E * A * h0 * std::exp(-steps * dt / tau_r)).epsilon(1e-9));
+  }
+}
+
+TEST_CASE("viscous bond: a jump fast against tau_r meets (1 + beta) E_b, slow loading only E_b") {
+  for (const double beta : {0.5, 1.0, 4.0}) {
+    const auto p = viscous_params(beta);
+    const beam_plus::BeamBondPlus model(p);
+    Pair pair(model);
+    const double E = p.base.youngs_modulus, A = Pair::area;
+    const double eps = 1e-3;
+    const double x = pair.scene.dt * beta / kTau;  // dt / tau_r
+    const double gain = beta * (1 - std::exp(-x)) / x;
+    pair.set(eps);
+    CHECK(pair.axial_force(model) == doctest::Approx(E * A * eps * (1 + gain)).epsilon(1e-10));
+    CHECK(gain == doctest::Approx(beta).epsilon(0.01));
+  }
+  // The same strain reached over 50 tau_r: the arm stress is tau_v r of strain, 2 % of eps.
+  const auto p = viscous_params();
+  const beam_plus::BeamBondPlus model(p);
+  Pair pair(model);
+  const double E = p.base.youngs_modulus, A = Pair::area;
+  const double f = ramp(pair, model, 0, 1e-3, 10000);
+  CHECK(f == doctest::Approx(E * A * 1e-3 * (1 + kTau / 1e-2)).epsilon(1e-3));
+}
+
+TEST_CASE("viscous bond: the breakage criterion sees the arm's stress") {
+  const auto p = viscous_params();
+  const beam_plus::BeamBondPlus model(p);
+  const double E = p.base.youngs_modulus, sc = p.base.critical_stress;
+  const double eps = 0.6 * sc / E;  // 40 % below the static strength
+  {
+    Pair slow(model);
+    ramp(slow, model, 0, eps, 20000);  // over 100 tau_r
+    CHECK_FALSE(slow.broken());
+  }
+  Pair fast(model);
+  fast.set(eps);  // in one step of 1e-6 s: the arm adds ~eps
+  fast.axial_force(model);
+  REQUIRE(fast.broken());
+  const double x = fast.scene.dt / kTau;
+  const double gain = (1 - std::exp(-x)) / x;
+  CHECK(fast.scene.stress[0].sigma_vm == doctest::Approx(0.6 * sc * (1 + gain)).epsilon(1e-9));
+}
+
+TEST_CASE("viscous bond: the stable step is the elastic one over sqrt(1 + beta), whatever tau_v") {
   auto p = table_one_plus();
   const beam_plus::BeamBondPlus elastic(p);
-  p.viscosity_time = 2e-6;
-  const beam_plus::BeamBondPlus viscous(p);
-  Pair a(elastic), b(viscous);
+  Pair a(elastic);
   const double t0 = elastic.time_step_limit(a.scene.batch(elastic)).critical;
-  const double t1 = viscous.time_step_limit(b.scene.batch(viscous)).critical;
-  const double k = p.base.youngs_modulus * Pair::area / Pair::l0;
-  const double z = 0.5 * p.viscosity_time * std::sqrt(k / a.scene.mass[0]);
-  CHECK(t1 / t0 == doctest::Approx(std::sqrt(1 + z * z) - z).epsilon(1e-12));
-  CHECK(t1 < t0);
+  for (const double tau : {2e-6, 2e-4, 1e-1})
+    for (const double beta : {1.0, 3.0}) {
+      p.viscosity_time = tau;
+      p.viscous_modulus_ratio = beta;
+      const beam_plus::BeamBondPlus viscous(p);
+      Pair b(viscous);
+      const double t1 = viscous.time_step_limit(b.scene.batch(viscous)).critical;
+      CHECK(t1 / t0 == doctest::Approx(1 / std::sqrt(1 + beta)).epsilon(1e-12));
+    }
+}
+
+TEST_CASE("viscous bond: off, the state is beam_bond's plus strength and damage") {
+  auto p = table_one_plus();
+  CHECK(beam_plus::BeamBondPlus(p).state_size() == beam_plus::kStateSize);
+  p.viscosity_time = kTau;
+  CHECK(beam_plus::BeamBondPlus(p).state_size() == beam_plus::kViscousStateSize);
 }
 
 }  // namespace shard::effects_test

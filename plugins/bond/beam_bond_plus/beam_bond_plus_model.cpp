@@ -9,6 +9,7 @@
 #include "beam_geometry.hpp"
 #include "beam_stress.hpp"
 #include "cohesive_softening.hpp"
+#include "maxwell_arm.hpp"
 #include "weibull_strength.hpp"
 
 namespace shard::beam_plus {
@@ -53,6 +54,7 @@ BeamBondPlusParams BeamBondPlusParams::from(const ParamSet& p) {
   b.strength_seed = static_cast<std::uint64_t>(p.integer("strength_seed"));
   b.softening_ratio = p.number("softening_ratio");
   b.viscosity_time = p.number("viscosity_time");
+  b.viscous_modulus_ratio = p.number("viscous_modulus_ratio");
   b.compression_stiffness_ratio = p.number("compression_stiffness_ratio");
   return b;
 }
@@ -70,6 +72,7 @@ BeamBondPlus::BeamBondPlus(const BeamBondPlusParams& params)
         "beam_bond_plus: youngs_modulus, shear modulus, shear_coefficient and radius_ratio must be > 0");
   if (!(p_.strength_weibull_modulus >= 0) || !(p_.softening_ratio >= 0) || !(p_.viscosity_time >= 0))
     throw std::invalid_argument("beam_bond_plus: strength_weibull_modulus, softening_ratio, viscosity_time must be >= 0");
+  if (!(p_.viscous_modulus_ratio > 0)) throw std::invalid_argument("beam_bond_plus: viscous_modulus_ratio must be > 0");
   if (!(p_.compression_stiffness_ratio > 0))
     throw std::invalid_argument("beam_bond_plus: compression_stiffness_ratio must be > 0");
 }
@@ -86,26 +89,27 @@ void BeamBondPlus::initialize(BondBatch& batch) const {
     const beam::Reference ref = beam::reference_of(p.position[e.first], p.position[e.second],
                                                    p.orientation[e.first], p.orientation[e.second]);
     if (!(ref.l0 > 0)) throw std::invalid_argument("beam_bond_plus: a bond joins two particles at the same position");
-    double* s = batch.state + k * kStateSize;
+    double* s = batch.state + k * state_size();
     beam::store(s, ref);
     const std::int64_t id1 = p.id ? p.id[e.first] : e.first;
     const std::int64_t id2 = p.id ? p.id[e.second] : e.second;
     s[kStrengthSlot] = strength_of(id1, id2);
     s[kDamageSlot] = 0;
+    if (viscous()) std::fill(s + kPreviousStrainSlot, s + kViscousStateSize, 0.0);  // unstrained, arm relaxed
   }
 }
 
-// Eq. 12 with the stiffer of the tensile and compressive axial springs. A Kelvin-Voigt dashpot
-// c = tau_v K shrinks the stable step of the explicit integrator by sqrt(1 + z^2) - z, with the
-// damping ratio z = tau_v omega / 2, omega = sqrt(K / m).
+// Eq. 12 with the stiffer of the tensile and compressive axial springs, plus the Maxwell arm's
+// beta E_b when viscosity is on (the most a step can see of it, maxwell_arm.hpp).
 TimeStepLimit BeamBondPlus::time_step_limit(const BondBatch& batch) const {
   const ParticleView& p = batch.particles;
-  const double axial_modulus = std::max(1.0, p_.compression_stiffness_ratio) * p_.base.youngs_modulus;
+  const double arm = viscous() ? p_.viscous_modulus_ratio : 0.0;
+  const double axial_modulus = (std::max(1.0, p_.compression_stiffness_ratio) + arm) * p_.base.youngs_modulus;
   double lightest = std::numeric_limits<double>::infinity();
   double stiffest = 0;
   for (std::size_t k = 0; k < batch.count; ++k) {
     const Index i = batch.i[k], j = batch.j[k];
-    const double l0 = batch.state[k * kStateSize];
+    const double l0 = batch.state[k * state_size()];
     const Section sec = section_of(p_.base.radius_ratio, p.radius[i], p.radius[j]);
     stiffest = std::max(stiffest, axial_modulus * sec.area / l0);
     lightest = std::min({lightest, p.mass[i], p.mass[j]});
@@ -114,10 +118,6 @@ TimeStepLimit BeamBondPlus::time_step_limit(const BondBatch& batch) const {
   limit.name = "beam_bond_plus t_bond (eq. 12)";
   if (stiffest > 0) {
     limit.critical = 0.17 * std::sqrt(lightest / stiffest);
-    if (p_.viscosity_time > 0) {
-      const double z = 0.5 * p_.viscosity_time * std::sqrt(stiffest / lightest);
-      limit.critical *= std::sqrt(1 + z * z) - z;
-    }
   } else {
     limit.critical = std::numeric_limits<double>::infinity();
   }
@@ -131,14 +131,15 @@ void BeamBondPlus::compute(BondBatch& batch) const {
   const double E = b.youngs_modulus;
   const double G = shear_modulus_;
   const double a_s = b.shear_coefficient;
-  const double tau_v = p_.viscosity_time;
-  const bool viscous = tau_v > 0;
+  const bool viscous = this->viscous();
+  const MaxwellArm arm(p_.viscosity_time, p_.viscous_modulus_ratio, batch.dt);
+  const std::size_t stride = state_size();
   const beam::RotationalDamping rotational(b.rotational_damping, E, G);
 
   for (std::size_t k = 0; k < batch.count; ++k) {
     const Ends e = ends_of(p, batch.i[k], batch.j[k]);
     const Index n1 = e.first, n2 = e.second;
-    double* state = batch.state + k * kStateSize;
+    double* state = batch.state + k * stride;
     const beam::Reference ref = beam::load(state);
     const double l0 = ref.l0;
     const double inv_l0 = 1 / l0;
@@ -154,17 +155,29 @@ void BeamBondPlus::compute(BondBatch& batch) const {
     const Vec3& v12 = r.v12;
     const Vec3& omega_rel = r.omega_rel;
 
-    // Kelvin-Voigt: the material stress follows Gamma + tau_v dGamma/dt (and likewise kappa).
-    Vec3 strain_kv = strain, curvature_kv = curvature;
+    // The Maxwell arm (maxwell_arm.hpp) advanced over this step: the material stress follows
+    // Gamma + h_Gamma (and likewise kappa), and so does the strength check.
+    Vec3 arm_strain = Vec3::Zero(), arm_curvature = Vec3::Zero();
+    Vec3 strain_total = strain, curvature_total = curvature;
     if (viscous) {
-      strain_kv += (tau_v / l0) * v12;
-      curvature_kv += (tau_v / l0) * omega_rel;
+      double* previous = state + kPreviousStrainSlot;
+      double* h = state + kArmStrainSlot;
+      for (int c = 0; c < 3; ++c) {
+        arm_strain[c] = arm.advance(h[c], strain[c] - previous[c]);
+        arm_curvature[c] = arm.advance(h[3 + c], curvature[c] - previous[3 + c]);
+        previous[c] = strain[c];
+        previous[3 + c] = curvature[c];
+        h[c] = arm_strain[c];
+        h[3 + c] = arm_curvature[c];
+      }
+      strain_total += arm_strain;
+      curvature_total += arm_curvature;
     }
 
     double damage = state[kDamageSlot];
     const double strength = state[kStrengthSlot];
-    if (b.breakage && beam::may_reach(strain_kv, curvature_kv, E, G, sec.radius, strength)) {
-      const BondStress s = beam::stress_of(strain_kv, curvature_kv, E, G, sec.radius);
+    if (b.breakage && beam::may_reach(strain_total, curvature_total, E, G, sec.radius, strength)) {
+      const BondStress s = beam::stress_of(strain_total, curvature_total, E, G, sec.radius);
       if (s.sigma_vm >= strength) {
         if (!(p_.softening_ratio > 0)) {
           write_broken(batch, k, s);
@@ -187,12 +200,15 @@ void BeamBondPlus::compute(BondBatch& batch) const {
                          E * sec.second_moment * curvature.z());
     double energy = 0.5 * l0 * (strain.dot(material_force) + curvature.dot(material_torque));
     if (viscous) {
-      // eta = E_b tau_v on the axial and bending rates, G_b tau_v on the shear and twist rates.
-      const Vec3 rate = (tau_v / l0) * v12;
-      const Vec3 twist_rate = (tau_v / l0) * omega_rel;
-      material_force += Vec3(E * sec.area * rate.x(), a_s * G * sec.area * rate.y(), a_s * G * sec.area * rate.z());
-      material_torque += Vec3(2 * G * sec.second_moment * twist_rate.x(), E * sec.second_moment * twist_rate.y(),
-                              E * sec.second_moment * twist_rate.z());
+      // The arm's stress on each component has that component's elastic modulus (E_b on the axial
+      // and bending strains, G_b on shear and twist, as tensile bonds); its spring holds h / beta.
+      const Vec3 arm_force(E * sec.area * arm_strain.x(), a_s * G * sec.area * arm_strain.y(),
+                           a_s * G * sec.area * arm_strain.z());
+      const Vec3 arm_torque(2 * G * sec.second_moment * arm_curvature.x(), E * sec.second_moment * arm_curvature.y(),
+                            E * sec.second_moment * arm_curvature.z());
+      material_force += arm_force;
+      material_torque += arm_torque;
+      energy += 0.5 * l0 * (arm_strain.dot(arm_force) + arm_curvature.dot(arm_torque)) / p_.viscous_modulus_ratio;
     }
     if (damage > 0) {
       const double intact = 1 - damage;

@@ -17,7 +17,7 @@ shard::PluginInfo beam_bond_plus_info() {
   shard::PluginInfo info;
   info.kind = shard::PluginKind::Bond;
   info.name = "beam_bond_plus";
-  info.version = "1.0.0";
+  info.version = "1.1.0";
   info.doc = "beam_bond + Weibull strength scatter, cohesive softening, Kelvin-Voigt viscosity, "
              "tension/compression asymmetry (docs/effects.md)";
   // beam_bond's own parameters, with the two whose meaning the effects widen re-documented.
@@ -42,8 +42,13 @@ shard::PluginInfo beam_bond_plus_info() {
                       "linear softening over a further strain softening_ratio sigma_crit / E_b after the peak; 0 = brittle",
                       0, 0, false, kInf, 0.0));
   ps.push_back(number_param("viscosity_time", "s",
-                      "Kelvin-Voigt time tau_v: stress E_b (Gamma + tau_v dGamma/dt), eta = E_b tau_v; 0 = elastic", 0, 0,
-                      false, kInf, 0.0));
+                      "viscosity eta = E_b tau_v of a Maxwell arm beside the elastic beam (standard linear solid); "
+                      "slow loading sees E_b (Gamma + tau_v dGamma/dt); 0 = elastic",
+                      0, 0, false, kInf, 0.0));
+  ps.push_back(number_param("viscous_modulus_ratio", "1",
+                      "the Maxwell arm's spring over E_b: fast loading sees (1 + ratio) E_b; relaxation time "
+                      "tau_v / ratio",
+                      1, 0, true));
   ps.push_back(number_param("compression_stiffness_ratio", "1",
                       "axial stiffness in compression over E_b A_b / l0; 1 = symmetric", 1, 0, true, kInf, 1.0));
   return info;
