@@ -6,6 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "beam_batch.hpp"
 #include "beam_geometry.hpp"
 #include "beam_stress.hpp"
 
@@ -88,7 +89,9 @@ TimeStepLimit BeamBond::time_step_limit(const BondBatch& batch) const {
   return limit;
 }
 
-void BeamBond::compute(BondBatch& batch) const {
+// The per-bond path: the reference the blocked path is checked against bit for bit, and what
+// runs the lanes the blocked path leaves (near failure, large rotations, off-unit quaternions).
+void BeamBond::compute_bond(BondBatch& batch, std::size_t k) const {
   const ParticleView& p = batch.particles;
   const double E = p_.youngs_modulus;
   const double G = shear_modulus_;
@@ -96,48 +99,143 @@ void BeamBond::compute(BondBatch& batch) const {
   const RotationalDamping rotational(p_.rotational_damping, E, G);
   const bool viscous_force = p_.damping != 0;
 
-  for (std::size_t k = 0; k < batch.count; ++k) {
-    const Ends e = ends_of(p, batch.i[k], batch.j[k]);
-    const Index n1 = e.first, n2 = e.second;
-    const Reference ref = load(batch.state + k * kStateSize);
-    const double l0 = ref.l0;
-    const double inv_l0 = 1 / l0;
-    const Section sec = section_of(p_.radius_ratio, p.radius[n1], p.radius[n2]);
-    const Deformation g = deform(ref, p.position[n1], p.position[n2], p.orientation[n1], p.orientation[n2]);
+  const Ends e = ends_of(p, batch.i[k], batch.j[k]);
+  const Index n1 = e.first, n2 = e.second;
+  const Reference ref = load(batch.state + k * kStateSize);
+  const double l0 = ref.l0;
+  const double inv_l0 = 1 / l0;
+  const Section sec = section_of(p_.radius_ratio, p.radius[n1], p.radius[n2]);
+  const Deformation g = deform(ref, p.position[n1], p.position[n2], p.orientation[n1], p.orientation[n2]);
 
-    // Strain and curvature vectors, bond frame.
-    const auto [strain, curvature] = strain_curvature(g, inv_l0);  // Gamma, kappa
+  // Strain and curvature vectors, bond frame.
+  const auto [strain, curvature] = strain_curvature(g, inv_l0);  // Gamma, kappa
 
-    if (p_.breakage && may_reach(strain, curvature, E, G, sec.radius, p_.critical_stress)) {
-      const BondStress s = stress_of(strain, curvature, E, G, sec.radius);
-      if (s.sigma_vm >= p_.critical_stress) {
-        batch.broken[k] = 1;
-        batch.stress[k] = s;
-        batch.force[k].setZero();
-        batch.torque_i[k].setZero();
-        batch.torque_j[k].setZero();
-        batch.energy[k] = 0;
+  if (p_.breakage && may_reach(strain, curvature, E, G, sec.radius, p_.critical_stress)) {
+    const BondStress s = stress_of(strain, curvature, E, G, sec.radius);
+    if (s.sigma_vm >= p_.critical_stress) {
+      batch.broken[k] = 1;
+      batch.stress[k] = s;
+      batch.force[k].setZero();
+      batch.torque_i[k].setZero();
+      batch.torque_j[k].setZero();
+      batch.energy[k] = 0;
+      return;
+    }
+  }
+
+  // Eq. 3 and 5: elastic force and torque, bond frame.
+  const Vec3 elastic_force(E * sec.area * strain.x(), a_s * G * sec.area * strain.y(), a_s * G * sec.area * strain.z());
+  const Vec3 elastic_torque(2 * G * sec.second_moment * curvature.x(), E * sec.second_moment * curvature.y(),
+                            E * sec.second_moment * curvature.z());
+  batch.energy[k] = 0.5 * l0 * (strain.dot(elastic_force) + curvature.dot(elastic_torque));
+
+  // Eq. 4: viscous force on the objective strain rate v12 = l0 dGamma/dt; eq. 6-7: viscous torque
+  // on Omega_rel = d theta / dt. Both zero for rigid motion.
+  const Rates r = rates_of(g, p.velocity[n1], p.velocity[n2], p.omega[n1], p.omega[n2], viscous_force);
+  Vec3 force = elastic_force;
+  if (viscous_force) force += p_.damping * r.v12;
+  const Vec3 damping_torque = rotational.torque(sec.second_moment, inv_l0, p.inertia[n1], p.inertia[n2], r.omega_rel);
+
+  const PairLoads loads = pair_loads(g, force, elastic_torque + damping_torque, e.swapped);
+  batch.force[k] = loads.force_on_i;
+  batch.torque_i[k] = loads.torque_on_i;
+  batch.torque_j[k] = loads.torque_on_j;
+}
+
+void BeamBond::compute_reference(BondBatch& batch) const {
+  for (std::size_t k = 0; k < batch.count; ++k) compute_bond(batch, k);
+}
+
+// Gather a block into lanes, evaluate it in one vectorised loop, scatter; the lanes the loop
+// leaves go through the per-bond path.
+void BeamBond::compute(BondBatch& batch) const {
+  const ParticleView& p = batch.particles;
+  BlockConstants c;
+  c.youngs = p_.youngs_modulus;
+  c.shear = shear_modulus_;
+  c.shear_coefficient = p_.shear_coefficient;
+  c.radius_ratio = p_.radius_ratio;
+  c.damping = p_.damping;
+  c.strength = p_.critical_stress;
+  c.bend_scale = p_.rotational_damping * std::sqrt(p_.youngs_modulus);
+  c.twist_over_bend = std::sqrt(2 * shear_modulus_ / p_.youngs_modulus);
+  c.breakage = p_.breakage;
+  c.viscous_force = p_.damping != 0;
+
+  BlockInput in;
+  BlockOutput out;
+  bool swapped[kBlockLanes];
+  for (std::size_t base = 0; base < batch.count; base += kBlockLanes) {
+    const std::size_t n = std::min(kBlockLanes, batch.count - base);
+    for (std::size_t l = 0; l < n; ++l) {
+      const std::size_t k = base + l;
+      const Ends e = ends_of(p, batch.i[k], batch.j[k]);
+      swapped[l] = e.swapped;
+      const Vec3& x1 = p.position[e.first];
+      const Vec3& x2 = p.position[e.second];
+      in.dx[l] = x2.x() - x1.x();
+      in.dy[l] = x2.y() - x1.y();
+      in.dz[l] = x2.z() - x1.z();
+      if (c.viscous_force) {
+        const Vec3& v1 = p.velocity[e.first];
+        const Vec3& v2 = p.velocity[e.second];
+        in.dvx[l] = v2.x() - v1.x();
+        in.dvy[l] = v2.y() - v1.y();
+        in.dvz[l] = v2.z() - v1.z();
+      }
+      const Quat& q1 = p.orientation[e.first];
+      const Quat& q2 = p.orientation[e.second];
+      in.q1w[l] = q1.w();
+      in.q1x[l] = q1.x();
+      in.q1y[l] = q1.y();
+      in.q1z[l] = q1.z();
+      in.q2w[l] = q2.w();
+      in.q2x[l] = q2.x();
+      in.q2y[l] = q2.y();
+      in.q2z[l] = q2.z();
+      const double* s = batch.state + k * kStateSize;
+      in.l0[l] = s[0];
+      in.b1w[l] = s[1];
+      in.b1x[l] = s[2];
+      in.b1y[l] = s[3];
+      in.b1z[l] = s[4];
+      in.b2w[l] = s[5];
+      in.b2x[l] = s[6];
+      in.b2y[l] = s[7];
+      in.b2z[l] = s[8];
+      const Vec3& o1 = p.omega[e.first];
+      const Vec3& o2 = p.omega[e.second];
+      in.o1x[l] = o1.x();
+      in.o1y[l] = o1.y();
+      in.o1z[l] = o1.z();
+      in.o2x[l] = o2.x();
+      in.o2y[l] = o2.y();
+      in.o2z[l] = o2.z();
+      in.r1[l] = p.radius[e.first];
+      in.r2[l] = p.radius[e.second];
+      in.i1[l] = p.inertia[e.first];
+      in.i2[l] = p.inertia[e.second];
+    }
+    evaluate_block(in, out, n, c);
+    for (std::size_t l = 0; l < n; ++l) {
+      const std::size_t k = base + l;
+      if (out.fallback[l]) {
+        compute_bond(batch, k);
         continue;
       }
+      const Vec3 on_first(out.tax[l], out.tay[l], out.taz[l]);
+      const Vec3 on_second(out.tbx[l], out.tby[l], out.tbz[l]);
+      if (swapped[l]) {
+        batch.force[k] = Vec3(-out.fx[l], -out.fy[l], -out.fz[l]);
+        batch.torque_i[k] = on_second;
+        batch.torque_j[k] = on_first;
+      } else {
+        batch.force[k] = Vec3(out.fx[l], out.fy[l], out.fz[l]);
+        batch.torque_i[k] = on_first;
+        batch.torque_j[k] = on_second;
+      }
+      batch.energy[k] = out.energy[l];
     }
-
-    // Eq. 3 and 5: elastic force and torque, bond frame.
-    const Vec3 elastic_force(E * sec.area * strain.x(), a_s * G * sec.area * strain.y(), a_s * G * sec.area * strain.z());
-    const Vec3 elastic_torque(2 * G * sec.second_moment * curvature.x(), E * sec.second_moment * curvature.y(),
-                              E * sec.second_moment * curvature.z());
-    batch.energy[k] = 0.5 * l0 * (strain.dot(elastic_force) + curvature.dot(elastic_torque));
-
-    // Eq. 4: viscous force on the objective strain rate v12 = l0 dGamma/dt; eq. 6-7: viscous torque
-    // on Omega_rel = d theta / dt. Both zero for rigid motion.
-    const Rates r = rates_of(g, p.velocity[n1], p.velocity[n2], p.omega[n1], p.omega[n2], viscous_force);
-    Vec3 force = elastic_force;
-    if (viscous_force) force += p_.damping * r.v12;
-    const Vec3 damping_torque = rotational.torque(sec.second_moment, inv_l0, p.inertia[n1], p.inertia[n2], r.omega_rel);
-
-    const PairLoads loads = pair_loads(g, force, elastic_torque + damping_torque, e.swapped);
-    batch.force[k] = loads.force_on_i;
-    batch.torque_i[k] = loads.torque_on_i;
-    batch.torque_j[k] = loads.torque_on_j;
   }
 }
 

@@ -1,0 +1,167 @@
+#include "beam_batch.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "beam_geometry.hpp"
+
+namespace shard::beam {
+namespace {
+
+// Eigen 3.4's SSE product of double quaternions (Geometry/arch/Geometry_SIMD.h), term for term:
+// its grouping differs from the textbook formula, and the lanes must round as it does.
+struct Q {
+  double w, x, y, z;
+};
+
+[[gnu::always_inline]] inline Q product(const Q& a, const Q& b) {
+  return {(a.w * b.w - a.y * b.y) - (a.z * b.z + a.x * b.x), (a.w * b.x + a.y * b.z) - (a.z * b.y - a.x * b.w),
+          (a.w * b.y + a.y * b.w) + (a.z * b.x - a.x * b.z), (a.w * b.z - a.y * b.x) + (a.z * b.w + a.x * b.y)};
+}
+
+// One loop body without branches (the rare cases only set `fallback`; breakage and the viscous
+// force are template arguments because GCC does not unswitch a loop this large), so it vectorises.
+template <bool breakage, bool viscous>
+[[gnu::always_inline]] inline void evaluate_lanes(const BlockInput& in, BlockOutput& out, std::size_t n,
+                                                  const BlockConstants& c) {
+  const double E = c.youngs, G = c.shear;
+  const double axial_stiffness_factor = E;
+  const double shear_factor = c.shear_coefficient * G;
+  const double twist_factor = 2 * G;
+  const double strength_bound = (1 - 1e-12) * c.strength * c.strength;
+#pragma GCC ivdep
+  for (std::size_t l = 0; l < n; ++l) {
+    // deform(): frames of the two ends, relative rotation, its normalisation.
+    const Q f1 = product({in.q1w[l], in.q1x[l], in.q1y[l], in.q1z[l]}, {in.b1w[l], in.b1x[l], in.b1y[l], in.b1z[l]});
+    const Q f2 = product({in.q2w[l], in.q2x[l], in.q2y[l], in.q2z[l]}, {in.b2w[l], in.b2x[l], in.b2y[l], in.b2z[l]});
+    Q rel = product({f1.w, -f1.x, -f1.y, -f1.z}, f2);
+    const double norm2 = (rel.x * rel.x + rel.z * rel.z) + (rel.y * rel.y + rel.w * rel.w);
+    const double e = norm2 - 1;
+    const bool unit = std::abs(e) < 1e-9;
+    const double scale = std::copysign(1 - 0.5 * e, rel.w);
+    rel = {rel.w * scale, rel.x * scale, rel.y * scale, rel.z * scale};
+    const double vx = rel.x, vy = rel.y, vz = rel.z, w = rel.w;
+    const double s2 = (vx * vx + vy * vy) + vz * vz;
+    const bool series = s2 < kSeriesLimit;
+    const double tail = arcsin_ratio_tail(s2);
+    const double mu = 1 + s2 * tail;
+    const double mu_axis = -tail;
+    const double two_mu = 2 * mu;
+    const double thx = two_mu * vx, thy = two_mu * vy, thz = two_mu * vz;
+    const double one_w = 1 + w;
+    const double inv_root = 1 / std::sqrt(2 * one_w);
+    const double k2 = inv_root * inv_root;
+    const double skx = k2 * vx, sky = k2 * vy, skz = k2 * vz;
+    const Q m = product(f1, {inv_root * one_w, inv_root * vx, inv_root * vy, inv_root * vz});
+    // toRotationMatrix()
+    const double tx = 2 * m.x, ty = 2 * m.y, tz = 2 * m.z;
+    const double twx = tx * m.w, twy = ty * m.w, twz = tz * m.w;
+    const double txx = tx * m.x, txy = ty * m.x, txz = tz * m.x;
+    const double tyy = ty * m.y, tyz = tz * m.y, tzz = tz * m.z;
+    const double R00 = 1 - (tyy + tzz), R01 = txy - twz, R02 = txz + twy;
+    const double R10 = txy + twz, R11 = 1 - (txx + tzz), R12 = tyz - twx;
+    const double R20 = txz - twy, R21 = tyz + twx, R22 = 1 - (txx + tyy);
+    const double dx = in.dx[l], dy = in.dy[l], dz = in.dz[l];
+    const double dlx = (R00 * dx + R10 * dy) + R20 * dz;
+    const double dly = (R01 * dx + R11 * dy) + R21 * dz;
+    const double dlz = (R02 * dx + R12 * dy) + R22 * dz;
+
+    // strain_curvature(), section_of()
+    const double l0 = in.l0[l];
+    const double inv_l0 = 1 / l0;
+    const double sx = dlx * inv_l0 - 1, sy = dly * inv_l0, sz = dlz * inv_l0;
+    const double cx = thx * inv_l0, cy = thy * inv_l0, cz = thz * inv_l0;
+    const double radius = c.radius_ratio * std::min(in.r1[l], in.r2[l]);
+    const double area = std::numbers::pi * radius * radius;
+    const double second_moment = std::numbers::pi * radius * radius * radius * radius / 4;
+
+    // may_reach()
+    bool reach = false;
+    if constexpr (breakage) {
+      const double axial = std::max(E * sx, 0.0) + E * radius * (std::abs(cy) + std::abs(cz));
+      const double tau = G * (std::abs(sy) + std::abs(sz)) + G * radius * std::abs(cx);
+      reach = axial * axial + 3 * tau * tau >= strength_bound;
+    }
+    out.fallback[l] = static_cast<std::int64_t>(!unit | !series | reach);
+
+    // Eq. 3 and 5, energy.
+    double Fx = axial_stiffness_factor * area * sx, Fy = shear_factor * area * sy, Fz = shear_factor * area * sz;
+    const double Tx = twist_factor * second_moment * cx, Ty = E * second_moment * cy, Tz = E * second_moment * cz;
+    out.energy[l] = 0.5 * l0 * (((sx * Fx + sy * Fy) + sz * Fz) + ((cx * Tx + cy * Ty) + cz * Tz));
+
+    // rates_of()
+    const double o1x = in.o1x[l], o1y = in.o1y[l], o1z = in.o1z[l];
+    const double o2x = in.o2x[l], o2y = in.o2y[l], o2z = in.o2z[l];
+    const double w1x = (R00 * o1x + R10 * o1y) + R20 * o1z;
+    const double w1y = (R01 * o1x + R11 * o1y) + R21 * o1z;
+    const double w1z = (R02 * o1x + R12 * o1y) + R22 * o1z;
+    const double w2x = (R00 * o2x + R10 * o2y) + R20 * o2z;
+    const double w2y = (R01 * o2x + R11 * o2y) + R21 * o2z;
+    const double w2z = (R02 * o2x + R12 * o2y) + R22 * o2z;
+    const double ux = w2x - w1x, uy = w2y - w1y, uz = w2z - w1z;
+    const double vu = mu_axis * ((vx * ux + vy * uy) + vz * uz);
+    const double orx = mu * ux + vu * vx, ory = mu * uy + vu * vy, orz = mu * uz + vu * vz;
+    if constexpr (viscous) {
+      const double ax = w1x - w2x, ay = w1y - w2y, az = w1z - w2z;
+      const double fsx = 0.5 * (w1x + w2x) + (sky * az - skz * ay);
+      const double fsy = 0.5 * (w1y + w2y) + (skz * ax - skx * az);
+      const double fsz = 0.5 * (w1z + w2z) + (skx * ay - sky * ax);
+      const double dvx = in.dvx[l], dvy = in.dvy[l], dvz = in.dvz[l];
+      const double rvx = (R00 * dvx + R10 * dvy) + R20 * dvz;
+      const double rvy = (R01 * dvx + R11 * dvy) + R21 * dvz;
+      const double rvz = (R02 * dvx + R12 * dvy) + R22 * dvz;
+      const double v12x = rvx - (fsy * dlz - fsz * dly);
+      const double v12y = rvy - (fsz * dlx - fsx * dlz);
+      const double v12z = rvz - (fsx * dly - fsy * dlx);
+      Fx = Fx + c.damping * v12x;
+      Fy = Fy + c.damping * v12y;
+      Fz = Fz + c.damping * v12z;
+    }
+
+    // RotationalDamping::torque()
+    const double i1 = in.i1[l], i2 = in.i2[l];
+    const double inertia_r = i1 * i2 / (i1 + i2);
+    const double c_bend = c.bend_scale * std::sqrt(second_moment * inertia_r * inv_l0);
+    const double c_twist = c_bend * c.twist_over_bend;
+    const double ttx = Tx + c_twist * orx, tty = Ty + c_bend * ory, ttz = Tz + c_bend * orz;
+
+    // pair_loads(). Eigen's R * u: rows 0 and 1 as one packet, (a0 + a1) + a2; row 2 by its
+    // scalar unroller, which halves the sum: a0 + (a1 + a2).
+    const double cpx = dly * Fz - dlz * Fy, cpy = dlz * Fx - dlx * Fz, cpz = dlx * Fy - dly * Fx;
+    const double csx = sky * cpz - skz * cpy, csy = skz * cpx - skx * cpz, csz = skx * cpy - sky * cpx;
+    const double vt = mu_axis * ((vx * ttx + vy * tty) + vz * ttz);
+    const double btx = mu * ttx + vt * vx, bty = mu * tty + vt * vy, btz = mu * ttz + vt * vz;
+    out.fx[l] = (R00 * Fx + R01 * Fy) + R02 * Fz;
+    out.fy[l] = (R10 * Fx + R11 * Fy) + R12 * Fz;
+    out.fz[l] = R20 * Fx + (R21 * Fy + R22 * Fz);
+    const double ax = (0.5 * cpx - csx) + btx, ay = (0.5 * cpy - csy) + bty, az = (0.5 * cpz - csz) + btz;
+    const double bx = (0.5 * cpx + csx) - btx, by = (0.5 * cpy + csy) - bty, bz = (0.5 * cpz + csz) - btz;
+    out.tax[l] = (R00 * ax + R01 * ay) + R02 * az;
+    out.tay[l] = (R10 * ax + R11 * ay) + R12 * az;
+    out.taz[l] = R20 * ax + (R21 * ay + R22 * az);
+    out.tbx[l] = (R00 * bx + R01 * by) + R02 * bz;
+    out.tby[l] = (R10 * bx + R11 * by) + R12 * bz;
+    out.tbz[l] = R20 * bx + (R21 * by + R22 * bz);
+  }
+}
+
+}  // namespace
+
+// The clones let a machine with AVX2 or AVX-512 run wider lanes of the same IEEE operations;
+// beam_batch.cpp is compiled with -ffp-contract=off, so every clone rounds exactly as the
+// x86-64-v2 per-bond path does.
+#if defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
+__attribute__((target_clones("avx512f", "avx2", "default")))
+#endif
+void evaluate_block(const BlockInput& in, BlockOutput& out, std::size_t n, const BlockConstants& c) {
+  if (c.breakage) {
+    if (c.viscous_force) evaluate_lanes<true, true>(in, out, n, c);
+    else evaluate_lanes<true, false>(in, out, n, c);
+  } else {
+    if (c.viscous_force) evaluate_lanes<false, true>(in, out, n, c);
+    else evaluate_lanes<false, false>(in, out, n, c);
+  }
+}
+
+}  // namespace shard::beam

@@ -1,0 +1,52 @@
+#pragma once
+// beam_bond's step for a block of bonds at once, in structure-of-arrays lanes the compiler can
+// vectorise (docs/performance.md, session 3). It is the arithmetic of beam_geometry.hpp and
+// beam_stress.hpp written out per scalar in exactly the order Eigen evaluates it there (including
+// Eigen's SSE quaternion product), so every lane it accepts is bit-identical to the per-bond
+// path; beam_bond_plus, which keeps the per-bond path, must stay bit-identical to beam_bond at its
+// neutral values (tests/effects/test_beam_plus_neutral.cpp).
+//
+// Only the common case is evaluated here: q_rel within 1e-9 of unit length, a relative rotation
+// inside the arcsin series range, and (with breakage) a bond the von Mises bound says cannot break.
+// Every other lane is flagged `fallback` and the caller runs the per-bond path on it.
+#include <cstddef>
+#include <cstdint>
+
+namespace shard::beam {
+
+inline constexpr std::size_t kBlockLanes = 64;
+
+// Per-batch constants (the same values the per-bond path uses).
+struct BlockConstants {
+  double youngs = 0, shear = 0, shear_coefficient = 0, radius_ratio = 0, damping = 0, strength = 0;
+  double bend_scale = 0, twist_over_bend = 0;  // RotationalDamping's factors
+  bool breakage = true;
+  bool viscous_force = false;  // damping != 0: v12 is needed
+};
+
+// Gathered inputs, ends already in the bond's own order (first = smaller stable id).
+struct alignas(64) BlockInput {
+  double dx[kBlockLanes], dy[kBlockLanes], dz[kBlockLanes];        // x2 - x1
+  double dvx[kBlockLanes], dvy[kBlockLanes], dvz[kBlockLanes];     // v2 - v1 (only if viscous)
+  double q1w[kBlockLanes], q1x[kBlockLanes], q1y[kBlockLanes], q1z[kBlockLanes];
+  double q2w[kBlockLanes], q2x[kBlockLanes], q2y[kBlockLanes], q2z[kBlockLanes];
+  double b1w[kBlockLanes], b1x[kBlockLanes], b1y[kBlockLanes], b1z[kBlockLanes];
+  double b2w[kBlockLanes], b2x[kBlockLanes], b2y[kBlockLanes], b2z[kBlockLanes];
+  double o1x[kBlockLanes], o1y[kBlockLanes], o1z[kBlockLanes];
+  double o2x[kBlockLanes], o2y[kBlockLanes], o2z[kBlockLanes];
+  double l0[kBlockLanes], r1[kBlockLanes], r2[kBlockLanes], i1[kBlockLanes], i2[kBlockLanes];
+};
+
+// Loads on the bond's first and second end (lab frame), elastic energy, and the fallback flag.
+struct alignas(64) BlockOutput {
+  double fx[kBlockLanes], fy[kBlockLanes], fz[kBlockLanes];     // force on first
+  double tax[kBlockLanes], tay[kBlockLanes], taz[kBlockLanes];  // torque on first
+  double tbx[kBlockLanes], tby[kBlockLanes], tbz[kBlockLanes];  // torque on second
+  double energy[kBlockLanes];
+  std::int64_t fallback[kBlockLanes];  // 1: lane not evaluated, run the per-bond path
+};
+
+// Lanes [0, n), n <= kBlockLanes.
+void evaluate_block(const BlockInput& in, BlockOutput& out, std::size_t n, const BlockConstants& c);
+
+}  // namespace shard::beam
