@@ -11,6 +11,8 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <stdexcept>
+#include <string_view>
 
 #include "measure_commands.hpp"
 #include "measure_plan.hpp"
@@ -135,6 +137,12 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
       if (result == nlopt::MAXEVAL_REACHED) stop = "evaluation budget reached";
     } catch (const nlopt::roundoff_limited&) {
       stop = "round-off limited";
+    } catch (const std::runtime_error& e) {
+      // NLopt's generic NLOPT_FAILURE: BOBYQA's quadratic model can break down on an objective
+      // with packing noise. Every evaluation so far is a finished simulation; keep the best one
+      // rather than lose them. Anything else (a failed run) still ends the command.
+      if (std::string_view(e.what()) != "nlopt failure" || fit.best_x.empty()) throw;
+      stop = "BOBYQA stopped (its quadratic model broke down on the noisy objective); the best evaluation is kept";
     }
     const std::vector<double> best = fit.best_x.empty() ? x : fit.best_x;
     const ModelPlan final_model = fit.model(best);

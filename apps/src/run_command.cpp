@@ -19,6 +19,7 @@
 #include "numerical_health.hpp"
 #include "run_restart.hpp"
 #include "shard/analysis/components.hpp"
+#include "shard/bending/quasi_static.hpp"
 #include "shard/checkpoint.hpp"
 #include "shard/output.hpp"
 #include "shard/run_file.hpp"
@@ -72,11 +73,8 @@ void restore_loop_state(const Checkpoint& c, RunSummary& summary, int& frames_wr
 }
 
 double max_kinetic_to_elastic(const RunSummary& summary) {
-  double ratio = 0;
-  for (std::size_t k = 0; k < summary.kinetic_before_break.size() && k < summary.load.size(); ++k)
-    if (summary.load[k] >= 0.2 * summary.peak_load && summary.peak_load > 0 && summary.elastic_before_break[k] > 0)
-      ratio = std::max(ratio, summary.kinetic_before_break[k] / summary.elastic_before_break[k]);
-  return ratio;
+  return bending::max_kinetic_to_elastic(summary.load, summary.kinetic_before_break, summary.elastic_before_break,
+                                         summary.peak_load);
 }
 
 // True when a line of the scene reads `breakage = true` (blanks allowed around the words).

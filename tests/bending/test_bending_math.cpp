@@ -2,11 +2,13 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <span>
 #include <stdexcept>
 #include <vector>
 
 #include "shard/bending/beam_theory.hpp"
 #include "shard/bending/curve_analysis.hpp"
+#include "shard/bending/quasi_static.hpp"
 
 using namespace shard::bending;
 
@@ -126,4 +128,15 @@ TEST_CASE("smoothed peak: a one-row spike at the snap is averaged over the peak 
   CurveOptions narrow;
   narrow.peak_window = 1e-6;  // one row: the raw maximum
   CHECK(analyse_curve(w, f, g, narrow).force_max_smoothed == doctest::Approx(50.0));
+}
+
+TEST_CASE("quasi-static figure: largest kinetic/elastic over the rows loaded to at least a fifth of the peak") {
+  // Row 0 is seating (load 1 % of the peak, ratio 50), row 3 has no stored energy yet counted.
+  const std::vector<double> load{0.1, 3.0, 10.0, 5.0};
+  const std::vector<double> kinetic{5.0, 0.3, 0.1, 1.0};
+  const std::vector<double> elastic{0.1, 1.0, 10.0, 0.0};
+  CHECK(max_kinetic_to_elastic(load, kinetic, elastic, 10.0) == doctest::Approx(0.3));
+  // Only the rows the caller passes: before the first break, the kinetic series may be shorter.
+  CHECK(max_kinetic_to_elastic(load, std::span(kinetic).first(1), elastic, 10.0) == 0.0);
+  CHECK(max_kinetic_to_elastic(load, kinetic, elastic, 0.0) == 0.0);  // nothing loaded
 }

@@ -1,4 +1,5 @@
 #include "shard/bending/bending_run.hpp"
+#include "shard/bending/quasi_static.hpp"
 
 #include <fmt/format.h>
 
@@ -6,6 +7,7 @@
 #include <cmath>
 #include <map>
 #include <numbers>
+#include <span>
 #include <stdexcept>
 #include <toml++/toml.h>
 
@@ -248,12 +250,15 @@ BendingReport analyse_bending_run(const std::filesystem::path& path, const Bendi
   const auto ec = file.read_series("contact_energy");
   const auto broken = file.read_series("bonds_broken");
   if (r.analysis.peak_row < broken.size()) r.breaks_before_peak = static_cast<std::size_t>(broken[r.analysis.peak_row]);
-  for (std::size_t k = 0; k < time.size() && k < ke.size(); ++k) {
-    if (broken[k] > 0 || k > r.analysis.peak_row) break;
-    if (r.curve.force[k] < 0.2 * r.analysis.force_max) continue;
-    const double elastic = eb[k] + ec[k];
-    if (elastic > 0) r.quasi_static.max_kinetic_to_elastic = std::max(r.quasi_static.max_kinetic_to_elastic, ke[k] / elastic);
-  }
+  std::size_t loading_rows = 0;  // before the first break and up to the peak
+  while (loading_rows < std::min({time.size(), ke.size(), eb.size(), ec.size(), broken.size()}) &&
+         broken[loading_rows] == 0 && loading_rows <= r.analysis.peak_row)
+    ++loading_rows;
+  std::vector<double> elastic(loading_rows);
+  for (std::size_t k = 0; k < loading_rows; ++k) elastic[k] = eb[k] + ec[k];
+  r.quasi_static.max_kinetic_to_elastic =
+      max_kinetic_to_elastic(std::span(r.curve.force).first(std::min(loading_rows, r.curve.force.size())),
+                             std::span(ke).first(loading_rows), elastic, r.analysis.force_max);
   if (time.size() >= 2 && time.back() > time.front())
     r.quasi_static.loading_speed = (r.curve.displacement.back() - r.curve.displacement.front()) / (time.back() - time.front());
   if (r.quasi_static.loading_speed > 0)
