@@ -22,9 +22,23 @@ struct Q {
 
 // One loop body without branches (the rare cases only set `fallback`; breakage and the viscous
 // force are template arguments because GCC does not unswitch a loop this large), so it vectorises.
+// The particle fields are read straight through the lane's indices (gathers where the ISA has
+// them): copying them into lane arrays first cost more than the arithmetic.
 template <bool breakage, bool viscous>
 [[gnu::always_inline]] inline void evaluate_lanes(const BlockInput& in, BlockOutput& out, std::size_t n,
                                                   const BlockConstants& c) {
+  const Index* __restrict first = in.first;
+  const Index* __restrict second = in.second;
+  // The state's stride of 9 defeats GCC's interleaved loads: transposed into lanes first.
+  alignas(64) double st[kStateSize][kBlockLanes];
+  for (std::size_t l = 0; l < n; ++l)
+    for (std::size_t k = 0; k < kStateSize; ++k) st[k][l] = in.state[l * kStateSize + k];
+  const double* __restrict x = in.position;
+  const double* __restrict v = in.velocity;
+  const double* __restrict q = in.orientation;
+  const double* __restrict omega = in.omega;
+  const double* __restrict radius_of = in.radius;
+  const double* __restrict inertia = in.inertia;
   const double E = c.youngs, G = c.shear;
   const double axial_stiffness_factor = E;
   const double shear_factor = c.shear_coefficient * G;
@@ -32,9 +46,12 @@ template <bool breakage, bool viscous>
   const double strength_bound = (1 - 1e-12) * c.strength * c.strength;
 #pragma GCC ivdep
   for (std::size_t l = 0; l < n; ++l) {
+    const std::size_t a = static_cast<std::size_t>(first[l]), b = static_cast<std::size_t>(second[l]);
+    const double s[kStateSize] = {st[0][l], st[1][l], st[2][l], st[3][l], st[4][l],
+                                  st[5][l], st[6][l], st[7][l], st[8][l]};
     // deform(): frames of the two ends, relative rotation, its normalisation.
-    const Q f1 = product({in.q1w[l], in.q1x[l], in.q1y[l], in.q1z[l]}, {in.b1w[l], in.b1x[l], in.b1y[l], in.b1z[l]});
-    const Q f2 = product({in.q2w[l], in.q2x[l], in.q2y[l], in.q2z[l]}, {in.b2w[l], in.b2x[l], in.b2y[l], in.b2z[l]});
+    const Q f1 = product({q[4 * a + 3], q[4 * a], q[4 * a + 1], q[4 * a + 2]}, {s[1], s[2], s[3], s[4]});
+    const Q f2 = product({q[4 * b + 3], q[4 * b], q[4 * b + 1], q[4 * b + 2]}, {s[5], s[6], s[7], s[8]});
     Q rel = product({f1.w, -f1.x, -f1.y, -f1.z}, f2);
     const double norm2 = (rel.x * rel.x + rel.z * rel.z) + (rel.y * rel.y + rel.w * rel.w);
     const double e = norm2 - 1;
@@ -62,17 +79,17 @@ template <bool breakage, bool viscous>
     const double R00 = 1 - (tyy + tzz), R01 = txy - twz, R02 = txz + twy;
     const double R10 = txy + twz, R11 = 1 - (txx + tzz), R12 = tyz - twx;
     const double R20 = txz - twy, R21 = tyz + twx, R22 = 1 - (txx + tyy);
-    const double dx = in.dx[l], dy = in.dy[l], dz = in.dz[l];
+    const double dx = x[3 * b] - x[3 * a], dy = x[3 * b + 1] - x[3 * a + 1], dz = x[3 * b + 2] - x[3 * a + 2];
     const double dlx = (R00 * dx + R10 * dy) + R20 * dz;
     const double dly = (R01 * dx + R11 * dy) + R21 * dz;
     const double dlz = (R02 * dx + R12 * dy) + R22 * dz;
 
     // strain_curvature(), section_of()
-    const double l0 = in.l0[l];
+    const double l0 = s[0];
     const double inv_l0 = 1 / l0;
     const double sx = dlx * inv_l0 - 1, sy = dly * inv_l0, sz = dlz * inv_l0;
     const double cx = thx * inv_l0, cy = thy * inv_l0, cz = thz * inv_l0;
-    const double radius = c.radius_ratio * std::min(in.r1[l], in.r2[l]);
+    const double radius = c.radius_ratio * std::min(radius_of[a], radius_of[b]);
     const double area = std::numbers::pi * radius * radius;
     const double second_moment = std::numbers::pi * radius * radius * radius * radius / 4;
 
@@ -91,8 +108,8 @@ template <bool breakage, bool viscous>
     out.energy[l] = 0.5 * l0 * (((sx * Fx + sy * Fy) + sz * Fz) + ((cx * Tx + cy * Ty) + cz * Tz));
 
     // rates_of()
-    const double o1x = in.o1x[l], o1y = in.o1y[l], o1z = in.o1z[l];
-    const double o2x = in.o2x[l], o2y = in.o2y[l], o2z = in.o2z[l];
+    const double o1x = omega[3 * a], o1y = omega[3 * a + 1], o1z = omega[3 * a + 2];
+    const double o2x = omega[3 * b], o2y = omega[3 * b + 1], o2z = omega[3 * b + 2];
     const double w1x = (R00 * o1x + R10 * o1y) + R20 * o1z;
     const double w1y = (R01 * o1x + R11 * o1y) + R21 * o1z;
     const double w1z = (R02 * o1x + R12 * o1y) + R22 * o1z;
@@ -107,7 +124,7 @@ template <bool breakage, bool viscous>
       const double fsx = 0.5 * (w1x + w2x) + (sky * az - skz * ay);
       const double fsy = 0.5 * (w1y + w2y) + (skz * ax - skx * az);
       const double fsz = 0.5 * (w1z + w2z) + (skx * ay - sky * ax);
-      const double dvx = in.dvx[l], dvy = in.dvy[l], dvz = in.dvz[l];
+      const double dvx = v[3 * b] - v[3 * a], dvy = v[3 * b + 1] - v[3 * a + 1], dvz = v[3 * b + 2] - v[3 * a + 2];
       const double rvx = (R00 * dvx + R10 * dvy) + R20 * dvz;
       const double rvy = (R01 * dvx + R11 * dvy) + R21 * dvz;
       const double rvz = (R02 * dvx + R12 * dvy) + R22 * dvz;
@@ -120,7 +137,7 @@ template <bool breakage, bool viscous>
     }
 
     // RotationalDamping::torque()
-    const double i1 = in.i1[l], i2 = in.i2[l];
+    const double i1 = inertia[a], i2 = inertia[b];
     const double inertia_r = i1 * i2 / (i1 + i2);
     const double c_bend = c.bend_scale * std::sqrt(second_moment * inertia_r * inv_l0);
     const double c_twist = c_bend * c.twist_over_bend;
@@ -148,11 +165,11 @@ template <bool breakage, bool viscous>
 
 }  // namespace
 
-// The clones let a machine with AVX2 or AVX-512 run wider lanes of the same IEEE operations;
-// beam_batch.cpp is compiled with -ffp-contract=off, so every clone rounds exactly as the
-// x86-64-v2 per-bond path does.
+// An AVX2 clone runs 4 lanes of the same IEEE operations (and hardware gathers); beam_batch.cpp
+// is compiled with -ffp-contract=off, so it rounds exactly as the x86-64-v2 per-bond path does.
+// An AVX-512 clone measured no faster than AVX2 here (docs/performance.md).
 #if defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
-__attribute__((target_clones("avx512f", "avx2", "default")))
+__attribute__((target_clones("avx2", "default")))
 #endif
 void evaluate_block(const BlockInput& in, BlockOutput& out, std::size_t n, const BlockConstants& c) {
   if (c.breakage) {

@@ -12,6 +12,8 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "shard/types.hpp"
+
 namespace shard::beam {
 
 inline constexpr std::size_t kBlockLanes = 64;
@@ -24,17 +26,19 @@ struct BlockConstants {
   bool viscous_force = false;  // damping != 0: v12 is needed
 };
 
-// Gathered inputs, ends already in the bond's own order (first = smaller stable id).
-struct alignas(64) BlockInput {
-  double dx[kBlockLanes], dy[kBlockLanes], dz[kBlockLanes];        // x2 - x1
-  double dvx[kBlockLanes], dvy[kBlockLanes], dvz[kBlockLanes];     // v2 - v1 (only if viscous)
-  double q1w[kBlockLanes], q1x[kBlockLanes], q1y[kBlockLanes], q1z[kBlockLanes];
-  double q2w[kBlockLanes], q2x[kBlockLanes], q2y[kBlockLanes], q2z[kBlockLanes];
-  double b1w[kBlockLanes], b1x[kBlockLanes], b1y[kBlockLanes], b1z[kBlockLanes];
-  double b2w[kBlockLanes], b2x[kBlockLanes], b2y[kBlockLanes], b2z[kBlockLanes];
-  double o1x[kBlockLanes], o1y[kBlockLanes], o1z[kBlockLanes];
-  double o2x[kBlockLanes], o2y[kBlockLanes], o2z[kBlockLanes];
-  double l0[kBlockLanes], r1[kBlockLanes], r2[kBlockLanes], i1[kBlockLanes], i2[kBlockLanes];
+// A block's inputs: its bonds' ends in the bond's own order (first = smaller stable id), their
+// state (kStateSize doubles each) and the particle fields as flat arrays (Vec3: x, y, z;
+// Quat: x, y, z, w, Eigen's storage order).
+struct BlockInput {
+  const Index* first = nullptr;
+  const Index* second = nullptr;
+  const double* state = nullptr;
+  const double* position = nullptr;
+  const double* velocity = nullptr;  // read only with a viscous force
+  const double* orientation = nullptr;
+  const double* omega = nullptr;
+  const double* radius = nullptr;
+  const double* inertia = nullptr;
 };
 
 // Loads on the bond's first and second end (lab frame), elastic energy, and the fallback flag.

@@ -162,60 +162,28 @@ void BeamBond::compute(BondBatch& batch) const {
   c.breakage = p_.breakage;
   c.viscous_force = p_.damping != 0;
 
-  BlockInput in;
+  static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(Quat) == 4 * sizeof(double));
   BlockOutput out;
+  Index first[kBlockLanes], second[kBlockLanes];
   bool swapped[kBlockLanes];
+  BlockInput in;
+  in.first = first;
+  in.second = second;
+  in.position = reinterpret_cast<const double*>(p.position);
+  in.velocity = reinterpret_cast<const double*>(p.velocity);
+  in.orientation = reinterpret_cast<const double*>(p.orientation);
+  in.omega = reinterpret_cast<const double*>(p.omega);
+  in.radius = p.radius;
+  in.inertia = p.inertia;
   for (std::size_t base = 0; base < batch.count; base += kBlockLanes) {
     const std::size_t n = std::min(kBlockLanes, batch.count - base);
     for (std::size_t l = 0; l < n; ++l) {
-      const std::size_t k = base + l;
-      const Ends e = ends_of(p, batch.i[k], batch.j[k]);
+      const Ends e = ends_of(p, batch.i[base + l], batch.j[base + l]);
+      first[l] = e.first;
+      second[l] = e.second;
       swapped[l] = e.swapped;
-      const Vec3& x1 = p.position[e.first];
-      const Vec3& x2 = p.position[e.second];
-      in.dx[l] = x2.x() - x1.x();
-      in.dy[l] = x2.y() - x1.y();
-      in.dz[l] = x2.z() - x1.z();
-      if (c.viscous_force) {
-        const Vec3& v1 = p.velocity[e.first];
-        const Vec3& v2 = p.velocity[e.second];
-        in.dvx[l] = v2.x() - v1.x();
-        in.dvy[l] = v2.y() - v1.y();
-        in.dvz[l] = v2.z() - v1.z();
-      }
-      const Quat& q1 = p.orientation[e.first];
-      const Quat& q2 = p.orientation[e.second];
-      in.q1w[l] = q1.w();
-      in.q1x[l] = q1.x();
-      in.q1y[l] = q1.y();
-      in.q1z[l] = q1.z();
-      in.q2w[l] = q2.w();
-      in.q2x[l] = q2.x();
-      in.q2y[l] = q2.y();
-      in.q2z[l] = q2.z();
-      const double* s = batch.state + k * kStateSize;
-      in.l0[l] = s[0];
-      in.b1w[l] = s[1];
-      in.b1x[l] = s[2];
-      in.b1y[l] = s[3];
-      in.b1z[l] = s[4];
-      in.b2w[l] = s[5];
-      in.b2x[l] = s[6];
-      in.b2y[l] = s[7];
-      in.b2z[l] = s[8];
-      const Vec3& o1 = p.omega[e.first];
-      const Vec3& o2 = p.omega[e.second];
-      in.o1x[l] = o1.x();
-      in.o1y[l] = o1.y();
-      in.o1z[l] = o1.z();
-      in.o2x[l] = o2.x();
-      in.o2y[l] = o2.y();
-      in.o2z[l] = o2.z();
-      in.r1[l] = p.radius[e.first];
-      in.r2[l] = p.radius[e.second];
-      in.i1[l] = p.inertia[e.first];
-      in.i2[l] = p.inertia[e.second];
     }
+    in.state = batch.state + base * kStateSize;
     evaluate_block(in, out, n, c);
     for (std::size_t l = 0; l < n; ++l) {
       const std::size_t k = base + l;
