@@ -18,6 +18,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 
 namespace fs = std::filesystem;
 
@@ -59,9 +60,10 @@ std::string string_after(const std::string& text, const std::string& key, std::s
 }
 
 // synth + diagnose; returns diagnose.json.
-std::string diagnose_hidden(const std::string& tag, const std::string& hidden) {
+std::string diagnose_hidden(const std::string& tag, const std::string& hidden, const std::string& rates = "") {
   const fs::path meas = kWork / ("meas_" + tag), out = kWork / ("diag_" + tag);
-  shard("synth --scene " + kScene + " --work " + kWork.string() + " --out " + meas.string() + kSensor + hidden);
+  shard("synth --scene " + kScene + " --work " + kWork.string() + " --out " + meas.string() + kSensor + hidden +
+        (rates.empty() ? "" : " --rates " + rates));
   shard("diagnose " + meas.string() + " --scene " + kScene + " --work " + kWork.string() + kParams + " --refit 2 --out " +
         out.string());
   return read(out / "diagnose.json");
@@ -75,46 +77,63 @@ std::string diagnose_hidden(const std::string& tag, const std::string& hidden) {
 // bands it is raised for one regime of a right model in about a quarter of the cases.
 constexpr double kRegimeNoise = 2.58;
 
+// Every regime the calibration reports ("toe", ... at one rate; "toe@0.02", ... at several; a
+// regime empty on the grid is not listed), each entry "name": [before, after].
 void check_no_regime_worse(const std::string& calibrate_json) {
   const auto regimes = find(calibrate_json, "\"regimes\": {");
-  for (const std::string name : {"toe", "elastic", "pre-peak", "peak", "post-peak"}) {
-    const auto at = calibrate_json.find("\"" + name + "\": [", regimes);
-    if (at == std::string::npos) continue;  // the regime is empty on this grid
+  const auto end = calibrate_json.find('}', regimes);
+  int checked = 0;
+  for (auto at = calibrate_json.find('[', regimes); at < end; at = calibrate_json.find('[', at + 1)) {
+    const auto name_end = calibrate_json.rfind('"', at);
+    const auto name_start = calibrate_json.rfind('"', name_end - 1) + 1;
+    const std::string name = calibrate_json.substr(name_start, name_end - name_start);
     const double before = number_after(calibrate_json, "[", at);
     const double after = number_after(calibrate_json, ", ", at);
     INFO("regime " << name << ": mean residual " << before << " -> " << after);
     CHECK_FALSE((std::abs(after) > kRegimeNoise && std::abs(after) > std::abs(before)));
+    ++checked;
   }
+  CHECK(checked >= 3);  // at least toe/elastic/peak exist on every curve the loop compares
 }
 
 struct Hidden {
+  Hidden(std::string tag_, std::string synth_, std::string effect_, double truth_, double neutral_)
+      : tag(std::move(tag_)), synth(std::move(synth_)), effect(std::move(effect_)), truth(truth_), neutral(neutral_) {}
   std::string tag, synth, effect;
   double truth = 0, neutral = 0;
+  // The band of the diagnosis's linearised size over the truth, and calibrate-effect's budget.
+  double size_low = 2.0 / 3.0, size_high = 1.5;
+  int evaluations = 3;
+  std::string rates;  // synth --rates; empty: the scene's pin speed
 };
 
 // The library effect must be the confirmed verdict; its linearised size within 2/3..3/2 of the
 // truth (the signature is taken at the library's plausible size, not at the truth, and the
-// packing noise of three specimens moves it); calibrate-effect must halve the NRMSE.
+// packing noise of three specimens moves it); calibrate-effect must halve the NRMSE, and its
+// fitted size must be within 2/3..3/2 of the truth.
 void check_found_and_calibrated(const Hidden& h) {
-  const std::string json = diagnose_hidden(h.tag, h.synth);
+  const std::string json = diagnose_hidden(h.tag, h.synth, h.rates);
   INFO(h.tag << ": " << json);
   CHECK(string_after(json, "\"verdict\": \"") == h.effect);  // implies "not adequate"
   // The estimate of the named effect's size from its confirmation refit.
   const auto conf = find(json, "{\"name\": \"" + h.effect + "\", \"chi_square\"", find(json, "\"confirmations\""));
   const double estimate = number_after(json, "\"value\": ", conf);
   const double ratio = (estimate - h.neutral) / (h.truth - h.neutral);
-  CHECK(ratio > 2.0 / 3.0);
-  CHECK(ratio < 1.5);
+  CHECK(ratio > h.size_low);
+  CHECK(ratio < h.size_high);
 
   const fs::path out = kWork / ("cal_" + h.tag);
   // Three evaluations: the linearised start (cached from the diagnosis) and two BOBYQA steps; the
   // tutorial runs more (docs/tutorial.md).
   shard("calibrate-effect " + (kWork / ("meas_" + h.tag)).string() + " --scene " + kScene + " --work " + kWork.string() +
-        kParams + " --with " + h.effect + " --max-evaluations 3 --out " + out.string());
+        kParams + " --with " + h.effect + " --max-evaluations " + std::to_string(h.evaluations) + " --out " + out.string());
   const std::string cal = read(out / "calibrate.json");
   INFO(cal);
   const double before = number_after(cal, "\"nrmse_before\": "), after = number_after(cal, "\"nrmse_after\": ");
   CHECK(after <= 0.5 * before);
+  const double fitted = (number_after(cal, "\"value\": ") - h.neutral) / (h.truth - h.neutral);
+  CHECK(fitted > 2.0 / 3.0);
+  CHECK(fitted < 1.5);
   check_no_regime_worse(cal);
 }
 
@@ -156,6 +175,22 @@ TEST_CASE("hidden compression asymmetry (bond stiffness ratio 4): named, sized, 
   // sigma_crit absorbs it (docs/measurements.md).
   check_found_and_calibrated({"asymmetry", " --set bond.plugin=beam_bond_plus --set bond.compression_stiffness_ratio=4",
                               "compression_asymmetry", 4, 1});
+}
+
+TEST_CASE("hidden bond viscosity (tau_v 5 ms, data at 0.02 and 0.1 m/s): named, sized, calibrated") {
+  // A binder whose stress relaxes over milliseconds on this beam's compressed time scale: at
+  // 0.1 m/s the peak comes after ~10 ms, twice tau_v, so the beam is ~25 % stiffer than at
+  // 0.02 m/s. One rate cannot show it (E_b absorbs a rate-independent stiffening,
+  // docs/measurements.md); two rates a factor 5 apart do. The arm saturates (maxwell_arm.hpp), so
+  // the response is concave in tau_v and the signature, taken at the plausible 1 ms, extrapolates
+  // 5x: the linearised size is biased low (measured 0.56 of the truth) and only its order is
+  // asserted (1/2..3/2); the calibrated size must meet 2/3..3/2. BOBYQA needs more than three steps
+  // on three free parameters here (20: NRMSE 15.4 % -> 7.2 %).
+  Hidden h{"viscosity", " --set bond.plugin=beam_bond_plus --set bond.viscosity_time=5e-3", "bond_viscosity", 5e-3, 0};
+  h.size_low = 0.5;
+  h.evaluations = 20;
+  h.rates = "0.02,0.1";
+  check_found_and_calibrated(h);
 }
 
 TEST_CASE("a seating toe outside the library is an unexplained structured residual, not a wrong name") {
