@@ -257,6 +257,8 @@ void add_bending_command(CLI::App& app, CommandContext& ctx) {
   auto co = std::make_shared<CalibrateCliOptions>();
   auto* c = app.add_subcommand("calibrate", "tune bond.youngs_modulus (breakage off) until E matches, then "
                                             "bond.critical_stress until F_max matches (seed sec. V)");
+  c->footer("With --with EFFECT this is the measurement loop's calibration: shard calibrate MEASUREMENTS --scene S "
+            "--with EFFECT [--param KEY ...] runs calibrate-effect (see its --help).");
   c->add_option("scene", co->scene, "four-point bending scene .toml")->required()->check(CLI::ExistingFile);
   c->add_option("--set", co->overrides, "scene overrides applied to every run");
   c->add_option("--out", co->out_dir, "output folder (default ./calibration)");

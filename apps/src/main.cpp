@@ -2,6 +2,10 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <string>
+#include <vector>
+
+#include "shard/app/command_routing.hpp"
 #include "shard/app/commands.hpp"
 
 int main(int argc, char** argv) {
@@ -15,8 +19,12 @@ int main(int argc, char** argv) {
   shard::add_fragments_command(app, ctx);
   shard::add_measure_command(app, ctx);
   shard::add_new_plugin_command(app, ctx);
+  std::vector<std::string> args(argv, argv + argc);
+  shard::route_calibrate_with(args);
+  std::vector<char*> words;
+  for (auto& a : args) words.push_back(a.data());
   try {
-    app.parse(argc, argv);
+    app.parse(static_cast<int>(words.size()), words.data());
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   } catch (const std::exception& e) {

@@ -125,7 +125,8 @@ void check_found_and_calibrated(const Hidden& h) {
   const fs::path out = kWork / ("cal_" + h.tag);
   // Three evaluations: the linearised start (cached from the diagnosis) and two BOBYQA steps; the
   // tutorial runs more (docs/tutorial.md).
-  shard("calibrate-effect " + (kWork / ("meas_" + h.tag)).string() + " --scene " + kScene + " --work " + kWork.string() +
+  // The spelling, `shard calibrate --with`, routed to calibrate-effect (command_routing.hpp).
+  shard("calibrate " + (kWork / ("meas_" + h.tag)).string() + " --scene " + kScene + " --work " + kWork.string() +
         kParams + " --with " + h.effect + " --max-evaluations " + std::to_string(h.evaluations) + " --out " + out.string());
   const std::string cal = read(out / "calibrate.json");
   INFO(cal);
