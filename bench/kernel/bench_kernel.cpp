@@ -10,9 +10,12 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "bench_scenes.hpp"
 
@@ -31,6 +34,32 @@ double cpu_seconds() {
   timespec t{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// FNV-1a over the bits of every particle's stable id, position, orientation, velocity and spin,
+// in stable-id order: equal hashes mean a bit-identical state whatever the internal numbering, so
+// a speed-up can be checked not to have moved a single bit (docs/performance.md).
+std::uint64_t state_hash(const Particles& p) {
+  std::vector<std::size_t> by_id(p.size());
+  for (std::size_t k = 0; k < p.size(); ++k) by_id[static_cast<std::size_t>(p.id[k])] = k;
+  std::uint64_t h = 1469598103934665603ull;
+  const auto mix = [&h](const double* v, std::size_t n) {
+    for (std::size_t c = 0; c < n; ++c) {
+      std::uint64_t bits;
+      std::memcpy(&bits, v + c, sizeof bits);
+      for (int b = 0; b < 8; ++b) {
+        h ^= (bits >> (8 * b)) & 0xffu;
+        h *= 1099511628211ull;
+      }
+    }
+  };
+  for (const std::size_t k : by_id) {
+    mix(p.position[k].data(), 3);
+    mix(p.orientation[k].coeffs().data(), 4);
+    mix(p.velocity[k].data(), 3);
+    mix(p.omega[k].data(), 3);
+  }
+  return h;
 }
 
 // Tension of the block: the x force the bonds pull the +x slab back with.
@@ -70,10 +99,11 @@ void bonded(int argc, char** argv) {
   std::printf(
       "bench_kernel bonded: particles=%zu bonds=%zu threads=%d steps=%lld dt=%.3e contacts=%zu broken=%lld peak_force_N=%.4g "
       "rebuilds=%lld seconds=%.3f cpu_seconds=%.3f bond_steps_per_s=%.4g ns_per_bond_step=%.2f cpu_ns_per_bond_step=%.2f "
-      "parted=%s\n",
+      "parted=%s state_hash=%016llx\n",
       sim.particles().size(), bonds0, omp_get_max_threads(), static_cast<long long>(steps), sim.dt(),
       sim.contact_count(), static_cast<long long>(sim.bonds_broken()), peak, static_cast<long long>(sim.neighbour_rebuilds()), busy,
-      cpu, bond_steps / busy, 1e9 * busy / bond_steps, 1e9 * cpu / bond_steps, steps < max_steps ? "yes" : "no");
+      cpu, bond_steps / busy, 1e9 * busy / bond_steps, 1e9 * cpu / bond_steps, steps < max_steps ? "yes" : "no",
+      static_cast<unsigned long long>(state_hash(sim.particles())));
 }
 
 void pack_run(const char* name, std::size_t target, std::int64_t steps) {

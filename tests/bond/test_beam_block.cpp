@@ -6,6 +6,7 @@
 
 #include <cstring>
 #include <random>
+#include <vector>
 
 #include "beam_batch.hpp"
 #include "beam_bond_model.hpp"
@@ -152,7 +153,13 @@ TEST_CASE("the blocked lanes take the common case: small rotations, below streng
   in.omega = s.omega[0].data();
   in.radius = s.radius.data();
   in.inertia = s.inertia.data();
+  std::vector<std::int64_t> swapped(kBlockLanes, 0);
+  in.swapped = swapped.data();
   BlockOutput out{};
+  out.force = s.force[0].data();
+  out.torque_i = s.torque_i[0].data();
+  out.torque_j = s.torque_j[0].data();
+  out.energy = s.energy.data();
   evaluate_block(in, out, kBlockLanes, c);
   for (std::size_t l = 0; l < kBlockLanes; ++l) CHECK(out.fallback[l] == (l == 3 || l == 5 || l == 7 ? 1 : 0));
   // And the whole model agrees with the per-bond path on them.

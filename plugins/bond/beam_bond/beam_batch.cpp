@@ -29,6 +29,11 @@ template <bool breakage, bool viscous>
                                                   const BlockConstants& c) {
   const Index* __restrict first = in.first;
   const Index* __restrict second = in.second;
+  const std::int64_t* __restrict swapped = in.swapped;
+  double* __restrict force = out.force;
+  double* __restrict torque_i = out.torque_i;
+  double* __restrict torque_j = out.torque_j;
+  double* __restrict energy = out.energy;
   // The state's stride of 9 defeats GCC's interleaved loads: transposed into lanes first.
   alignas(64) double st[kStateSize][kBlockLanes];
   for (std::size_t l = 0; l < n; ++l)
@@ -105,7 +110,7 @@ template <bool breakage, bool viscous>
     // Eq. 3 and 5, energy.
     double Fx = axial_stiffness_factor * area * sx, Fy = shear_factor * area * sy, Fz = shear_factor * area * sz;
     const double Tx = twist_factor * second_moment * cx, Ty = E * second_moment * cy, Tz = E * second_moment * cz;
-    out.energy[l] = 0.5 * l0 * (((sx * Fx + sy * Fy) + sz * Fz) + ((cx * Tx + cy * Ty) + cz * Tz));
+    energy[l] = 0.5 * l0 * (((sx * Fx + sy * Fy) + sz * Fz) + ((cx * Tx + cy * Ty) + cz * Tz));
 
     // rates_of()
     const double o1x = omega[3 * a], o1y = omega[3 * a + 1], o1z = omega[3 * a + 2];
@@ -149,17 +154,28 @@ template <bool breakage, bool viscous>
     const double csx = sky * cpz - skz * cpy, csy = skz * cpx - skx * cpz, csz = skx * cpy - sky * cpx;
     const double vt = mu_axis * ((vx * ttx + vy * tty) + vz * ttz);
     const double btx = mu * ttx + vt * vx, bty = mu * tty + vt * vy, btz = mu * ttz + vt * vz;
-    out.fx[l] = (R00 * Fx + R01 * Fy) + R02 * Fz;
-    out.fy[l] = (R10 * Fx + R11 * Fy) + R12 * Fz;
-    out.fz[l] = R20 * Fx + (R21 * Fy + R22 * Fz);
+    const double ffx = (R00 * Fx + R01 * Fy) + R02 * Fz;
+    const double ffy = (R10 * Fx + R11 * Fy) + R12 * Fz;
+    const double ffz = R20 * Fx + (R21 * Fy + R22 * Fz);
     const double ax = (0.5 * cpx - csx) + btx, ay = (0.5 * cpy - csy) + bty, az = (0.5 * cpz - csz) + btz;
     const double bx = (0.5 * cpx + csx) - btx, by = (0.5 * cpy + csy) - bty, bz = (0.5 * cpz + csz) - btz;
-    out.tax[l] = (R00 * ax + R01 * ay) + R02 * az;
-    out.tay[l] = (R10 * ax + R11 * ay) + R12 * az;
-    out.taz[l] = R20 * ax + (R21 * ay + R22 * az);
-    out.tbx[l] = (R00 * bx + R01 * by) + R02 * bz;
-    out.tby[l] = (R10 * bx + R11 * by) + R12 * bz;
-    out.tbz[l] = R20 * bx + (R21 * by + R22 * bz);
+    const double tax = (R00 * ax + R01 * ay) + R02 * az;
+    const double tay = (R10 * ax + R11 * ay) + R12 * az;
+    const double taz = R20 * ax + (R21 * ay + R22 * az);
+    const double tbx = (R00 * bx + R01 * by) + R02 * bz;
+    const double tby = (R10 * bx + R11 * by) + R12 * bz;
+    const double tbz = R20 * bx + (R21 * by + R22 * bz);
+    // A selection, not a branch: which end the batch lists first is close to random.
+    const bool sw = swapped[l] != 0;
+    force[3 * l] = sw ? -ffx : ffx;
+    force[3 * l + 1] = sw ? -ffy : ffy;
+    force[3 * l + 2] = sw ? -ffz : ffz;
+    torque_i[3 * l] = sw ? tbx : tax;
+    torque_i[3 * l + 1] = sw ? tby : tay;
+    torque_i[3 * l + 2] = sw ? tbz : taz;
+    torque_j[3 * l] = sw ? tax : tbx;
+    torque_j[3 * l + 1] = sw ? tay : tby;
+    torque_j[3 * l + 2] = sw ? taz : tbz;
   }
 }
 

@@ -1,8 +1,9 @@
 #pragma once
-// beam_bond's step for a block of bonds at once, in structure-of-arrays lanes the compiler can
-// vectorise (docs/performance.md, session 3). It is the arithmetic of beam_geometry.hpp and
+// beam_bond's step for a block of bonds at once, one bond per SIMD lane in a loop the compiler
+// vectorises (docs/performance.md, session 3). It is the arithmetic of beam_geometry.hpp and
 // beam_stress.hpp written out per scalar in exactly the order Eigen evaluates it there (including
-// Eigen's SSE quaternion product), so every lane it accepts is bit-identical to the per-bond
+// Eigen's SSE quaternion product and its halved sum for the last row of a 3x3 product), so every
+// lane it accepts is bit-identical to the per-bond
 // path; beam_bond_plus, which keeps the per-bond path, must stay bit-identical to beam_bond at its
 // neutral values (tests/effects/test_beam_plus_neutral.cpp).
 //
@@ -32,6 +33,7 @@ struct BlockConstants {
 struct BlockInput {
   const Index* first = nullptr;
   const Index* second = nullptr;
+  const std::int64_t* swapped = nullptr;  // 1: the batch lists the bond from its second end
   const double* state = nullptr;
   const double* position = nullptr;
   const double* velocity = nullptr;  // read only with a viscous force
@@ -41,12 +43,14 @@ struct BlockInput {
   const double* inertia = nullptr;
 };
 
-// Loads on the bond's first and second end (lab frame), elastic energy, and the fallback flag.
-struct alignas(64) BlockOutput {
-  double fx[kBlockLanes], fy[kBlockLanes], fz[kBlockLanes];     // force on first
-  double tax[kBlockLanes], tay[kBlockLanes], taz[kBlockLanes];  // torque on first
-  double tbx[kBlockLanes], tby[kBlockLanes], tbz[kBlockLanes];  // torque on second
-  double energy[kBlockLanes];
+// Where the lanes write: the block's slots of the batch outputs (Vec3 as x, y, z), in the batch's
+// orientation (force and torque_i on batch.i). Fallback lanes are written too, with meaningless
+// values, for the caller to overwrite through the per-bond path.
+struct BlockOutput {
+  double* force = nullptr;
+  double* torque_i = nullptr;
+  double* torque_j = nullptr;
+  double* energy = nullptr;
   std::int64_t fallback[kBlockLanes];  // 1: lane not evaluated, run the per-bond path
 };
 

@@ -165,10 +165,11 @@ void BeamBond::compute(BondBatch& batch) const {
   static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(Quat) == 4 * sizeof(double));
   BlockOutput out;
   Index first[kBlockLanes], second[kBlockLanes];
-  bool swapped[kBlockLanes];
+  std::int64_t swapped[kBlockLanes];
   BlockInput in;
   in.first = first;
   in.second = second;
+  in.swapped = swapped;
   in.position = reinterpret_cast<const double*>(p.position);
   in.velocity = reinterpret_cast<const double*>(p.velocity);
   in.orientation = reinterpret_cast<const double*>(p.orientation);
@@ -184,26 +185,13 @@ void BeamBond::compute(BondBatch& batch) const {
       swapped[l] = e.swapped;
     }
     in.state = batch.state + base * kStateSize;
+    out.force = batch.force[base].data();
+    out.torque_i = batch.torque_i[base].data();
+    out.torque_j = batch.torque_j[base].data();
+    out.energy = batch.energy + base;
     evaluate_block(in, out, n, c);
-    for (std::size_t l = 0; l < n; ++l) {
-      const std::size_t k = base + l;
-      if (out.fallback[l]) {
-        compute_bond(batch, k);
-        continue;
-      }
-      const Vec3 on_first(out.tax[l], out.tay[l], out.taz[l]);
-      const Vec3 on_second(out.tbx[l], out.tby[l], out.tbz[l]);
-      if (swapped[l]) {
-        batch.force[k] = Vec3(-out.fx[l], -out.fy[l], -out.fz[l]);
-        batch.torque_i[k] = on_second;
-        batch.torque_j[k] = on_first;
-      } else {
-        batch.force[k] = Vec3(out.fx[l], out.fy[l], out.fz[l]);
-        batch.torque_i[k] = on_first;
-        batch.torque_j[k] = on_second;
-      }
-      batch.energy[k] = out.energy[l];
-    }
+    for (std::size_t l = 0; l < n; ++l)
+      if (out.fallback[l]) compute_bond(batch, base + l);
   }
 }
 
