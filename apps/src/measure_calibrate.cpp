@@ -173,6 +173,10 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
     if (fit.effect)
       md += fmt::format("| {} ({}) | {:.5g} (neutral) | {:.5g} {} |\n", fit.effect->parameter, fit.effect->name,
                         fit.effect->neutral, fit.value_of(best), fit.effect->unit);
+    if (o->sim.time_compression != 1)
+      md += fmt::format("\nSimulated at {0:g} x the measured loading rates (--time-compression): the fitted times are "
+                        "model times; in the lab a bond.viscosity_time is {0:g} x the fitted value.\n",
+                        o->sim.time_compression);
     md += "\n| regime | mean residual before | after |\n|---|---|---|\n";
     std::string json_regimes;
     for (std::size_t k = 0; k < before.at.size(); ++k)

@@ -57,7 +57,9 @@ void add_compare(CLI::App& app, CommandContext& ctx) {
     double ke = 0;
     if (!o->model.scene.empty()) {
       Simulator simulator(o->sim, ctx.plugin_dirs);
-      o->model.loading_rate = o->rate;  // the model runs at the compared specimens' rate (0: the scene's)
+      // The model runs at the compared specimens' rate: --rate, or the data's only rate.
+      const std::vector<double> rates = set.loading_rates();
+      o->model.loading_rate = o->rate > 0 ? o->rate : rates.size() == 1 ? rates.front() : 0.0;
       for (auto& s : simulator.simulate(o->model, std::cerr)) sims.push_back(std::move(s));
       ke = simulator.max_kinetic_to_elastic();
     }

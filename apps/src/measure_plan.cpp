@@ -28,6 +28,10 @@ void add_simulation_options(CLI::App* cmd, ModelPlan& model, SimulationOptions& 
   cmd->add_flag("!--no-seat", options.seat, "do not bring pins and supports into contact before loading");
   cmd->add_option("--machine-compliance", model.machine_compliance,
                   "load-frame compliance C in m/N added to the simulated displacement (w + C F)");
+  cmd->add_option("--time-compression", options.time_compression,
+                  "simulate each specimen at this factor times its measured loading rate (quasi-static surrogate; "
+                  "model times and bond.viscosity_time are then this factor shorter than the lab's)")
+      ->check(CLI::PositiveNumber);
 }
 
 Simulator::Simulator(const SimulationOptions& options, const std::vector<fs::path>& plugin_dirs)
@@ -37,8 +41,22 @@ std::vector<std::vector<Specimen>> Simulator::simulate(const std::vector<ModelPl
   std::vector<RunRequest> requests;
   for (const auto& m : models) {
     std::vector<std::string> overrides = m.overrides;
-    if (m.loading_rate > 0)
-      for (auto& r : pool_.rate_overrides(m.scene, m.overrides, m.loading_rate)) overrides.push_back(std::move(r));
+    const double rate = m.loading_rate * options_.time_compression;
+    if (rate > 0 && !rate_hint_given_) {
+      rate_hint_given_ = true;
+      const double own = pool_.scene_rate(m.scene, m.overrides);
+      if (options_.time_compression != 1)
+        log << fmt::format("time compression {0:g}: the model loads at {1:g} m/s for data at {2:g} m/s; model times "
+                           "(and bond.viscosity_time) are the lab's divided by {0:g}\n",
+                           options_.time_compression, rate, m.loading_rate);
+      else if (own > 0 && rate < 0.5 * own)
+        log << fmt::format("note: the data are at {:g} m/s, {:.3g} x slower than the scene's {:g} m/s, and the model runs at "
+                           "the data's rate ({:.3g} x the scene's run time). If the scene is quasi-static at its own rate "
+                           "(shard bending-rate-check), --time-compression {:.3g} runs it there\n",
+                           m.loading_rate, own / rate, own, own / rate, own / rate);
+    }
+    if (rate > 0)
+      for (auto& r : pool_.rate_overrides(m.scene, m.overrides, rate)) overrides.push_back(std::move(r));
     for (int k = 0; k < options_.seeds; ++k) requests.push_back({m.scene, overrides, options_.first_seed + k, options_.seat});
   }
   const auto results = pool_.run(requests, log);
