@@ -181,11 +181,11 @@ template <bool breakage, bool viscous>
 
 }  // namespace
 
-// An AVX2 clone runs 4 lanes of the same IEEE operations (and hardware gathers); beam_batch.cpp
-// is compiled with -ffp-contract=off, so it rounds exactly as the x86-64-v2 per-bond path does.
-// An AVX-512 clone measured no faster than AVX2 here (docs/performance.md).
+// AVX2 and AVX-512 clones run 4 and 8 lanes of the same IEEE operations (and hardware gathers);
+// beam_batch.cpp is compiled with -ffp-contract=off, so no clone fuses a multiply-add and each
+// rounds exactly as the x86-64-v2 per-bond path does (the AVX-512 target would otherwise use FMA).
 #if defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
-__attribute__((target_clones("avx2", "default")))
+__attribute__((target_clones("avx512f", "avx2", "default")))
 #endif
 void evaluate_block(const BlockInput& in, BlockOutput& out, std::size_t n, const BlockConstants& c) {
   if (c.breakage) {
