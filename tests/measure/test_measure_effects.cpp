@@ -37,6 +37,20 @@ TEST_CASE("the shipped library parses and every effect switches something on") {
   }
 }
 
+TEST_CASE("value_format puts the scalar into a vector-valued scene key") {
+  const auto lib = read_effect_library(fs::path(SHARD_SOURCE_DIR) / "scenes/measurements/effects.toml");
+  const auto weight = select_effects(lib, {"self_weight"});
+  REQUIRE(weight.size() == 1);
+  CHECK(weight[0].overrides(-9.81).back() == "simulation.gravity=[0.0, 0.0, -9.81]");
+  CHECK(weight[0].overrides(0).back() == "simulation.gravity=[0.0, 0.0, 0]");
+  const auto two = write_file("fmt.toml", "[[effect]]\nname = \"a\"\nparameter = \"simulation.gravity\"\n"
+                                          "value_format = \"[{}, {}, 0]\"\nneutral = 0\nplausible = 1\n");
+  CHECK_THROWS_WITH_AS(read_effect_library(two), doctest::Contains(":4:"), std::runtime_error);
+  const auto none = write_file("nofmt.toml", "[[effect]]\nname = \"a\"\nparameter = \"simulation.gravity\"\n"
+                                             "value_format = \"[0, 0, -1]\"\nneutral = 0\nplausible = 1\n");
+  CHECK_THROWS_WITH_AS(read_effect_library(none), doctest::Contains("one {} where the value goes"), std::runtime_error);
+}
+
 TEST_CASE("library errors name the file, line and the valid keys") {
   const auto p = write_file("bad.toml", "[[effect]]\nname = \"a\"\nparameter = \"bond.x\"\nneutral = 0\nplausibel = 1\n");
   try {

@@ -14,9 +14,17 @@ std::string where(const std::filesystem::path& file, const toml::node& n) {
 
 }  // namespace
 
+std::string CandidateEffect::scene_value(double value) const {
+  const std::string number = fmt::format("{:.12g}", value);
+  if (value_format.empty()) return number;
+  std::string out = value_format;
+  out.replace(out.find("{}"), 2, number);
+  return out;
+}
+
 std::vector<std::string> CandidateEffect::overrides(double value) const {
   std::vector<std::string> out = set;
-  if (!post_processing()) out.push_back(fmt::format("{}={:.12g}", parameter, value));
+  if (!post_processing()) out.push_back(parameter + "=" + scene_value(value));
   return out;
 }
 
@@ -42,6 +50,15 @@ std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& fi
         const auto* s = value.as_string();
         if (!s) throw std::runtime_error(fmt::format("{}: '{}' must be a string", where(file, value), k));
         (k == "name" ? e.name : k == "parameter" ? e.parameter : k == "unit" ? e.unit : k == "doc" ? e.doc : e.separated_by) = s->get();
+      } else if (k == "value_format") {
+        const auto* s = value.as_string();
+        const std::string text = s ? s->get() : "";
+        const auto at = text.find("{}");
+        if (!s || at == std::string::npos || text.find("{}", at + 2) != std::string::npos)
+          throw std::runtime_error(fmt::format(
+              "{}: 'value_format' must be a string with one {{}} where the value goes, e.g. \"[0.0, 0.0, {{}}]\"",
+              where(file, value)));
+        e.value_format = text;
       } else if (k == "neutral" || k == "plausible") {
         const auto v = value.value<double>();
         if (!v) throw std::runtime_error(fmt::format("{}: '{}' must be a number", where(file, value), k));
@@ -57,8 +74,8 @@ std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& fi
         }
       } else {
         throw std::runtime_error(fmt::format(
-            "{}: unknown key '{}' in [[effect]]; the keys are name, parameter, unit, neutral, plausible, set, "
-            "separated_by, doc",
+            "{}: unknown key '{}' in [[effect]]; the keys are name, parameter, value_format, unit, neutral, "
+            "plausible, set, separated_by, doc",
             where(file, value), k));
       }
     }

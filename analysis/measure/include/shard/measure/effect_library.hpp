@@ -14,6 +14,9 @@
 //   set = []                          # e.g. ["bond.plugin=beam_bond_plus"]
 //   separated_by = "a second loading rate"
 //   doc = "viscous bond force on the strain rate: a rate-dependent stiffness and strength"
+//
+// A parameter that is not a plain number in the scene (a vector such as simulation.gravity) takes
+// `value_format = "[0.0, 0.0, {}]"`: the effect's scalar value goes where {} stands.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -31,10 +34,13 @@ struct CandidateEffect {
   std::vector<std::string> set;  // extra overrides that switch the effect's plugin on
   std::string separated_by;      // the measurement that tells it apart from look-alikes
   std::string doc;
+  std::string value_format;      // "" or a scene value with one {} for the scalar, e.g. "[0, 0, {}]"
 
   bool post_processing() const { return parameter == kMachineCompliance; }
   // The overrides that put the effect at `value` into a scene (none for machine compliance).
   std::vector<std::string> overrides(double value) const;
+  // The scene's text for the parameter at `value` (value_format applied).
+  std::string scene_value(double value) const;
 };
 
 // Reads the library; errors name the file, line and column.
