@@ -167,9 +167,12 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
       const CandidateEffect* e = nullptr;
       for (const auto& x : effects)
         if (x.name == s.name) e = &x;
-      md += fmt::format("| {} | {:.2f} | {:.3g} | {:.0f} % | {:.0f} % | {:.4g} {} | {:+.1f} | {:+.1f} | {} |\n", s.name,
+      md += fmt::format("| {} | {:.2f} | {:.3g} | {:.0f} % | {:.0f} % | {:.4g} {}{} | {:+.1f} | {:+.1f} | {} |\n", s.name,
                         s.score, s.p_value, 100 * s.explained, 100 * s.absorbed, e->neutral + s.size, e->unit,
-                        s.delta_aic, s.delta_bic, join(s.explains));
+                        !s.at_bound ? "" : s.size == 0 ? " (the data ask for it reversed: outside its physical range)"
+                                                       : " (at its physical bound: the data ask for more)",
+                        s.delta_aic, s.delta_bic,
+                        join(s.explains));
     }
     if (!confirmations.empty()) {
       md += fmt::format("\nConfirmation runs (simulated, not predicted; excess chi^2 of the base refit over its {} "
@@ -221,9 +224,9 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
       for (const auto& x : effects)
         if (x.name == s.name) e = &x;
       json += fmt::format("{}{{\"name\": \"{}\", \"score\": {:.9g}, \"p_value\": {:.9g}, \"explained\": {:.9g}, "
-                          "\"absorbed\": {:.9g}, \"value\": {:.9g}}}",
+                          "\"absorbed\": {:.9g}, \"value\": {:.9g}, \"at_bound\": {}}}",
                           k ? ", " : "", json_escape(s.name), s.score, s.p_value, s.explained, s.absorbed,
-                          e->neutral + s.size);
+                          e->neutral + s.size, s.at_bound);
     }
     json += "], \"confirmations\": [";
     // JSON has no infinity: a refit that failed has null numbers and its error.

@@ -297,7 +297,8 @@ Linearisation linearise(Simulator& simulator, const RateGroups& measured, const 
   for (std::size_t i = 0; i < keys.size(); ++i) l.jacobian.push_back(difference(1 + i, keys[i], kStep));
   for (std::size_t e = 0; e < effects.size(); ++e)
     l.signatures.push_back({effects[e].name, effects[e].plausible - effects[e].neutral,
-                            difference(1 + keys.size() + e, effects[e].name, 1.0)});
+                            difference(1 + keys.size() + e, effects[e].name, 1.0), effects[e].scale_min(),
+                            effects[e].scale_max()});
   return l;
 }
 

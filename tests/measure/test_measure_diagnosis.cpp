@@ -139,3 +139,41 @@ TEST_CASE("collinear signatures are named as indistinguishable") {
   // The twin explains the residual equally well, with the opposite sign and 1 / 1.5 the size.
   CHECK(d.ranking[0].score == doctest::Approx(d.ranking[1].score).epsilon(1e-9));
 }
+
+TEST_CASE("an effect the data want reversed scores nothing when its range forbids it") {
+  // Residual +2 s: the fit must add -2 x the trial (size -1.0), e.g. a negative compliance.
+  // Two-sided it is found; with a >= 0 it scores 0.
+  std::mt19937_64 rng(7);
+  World w = make_world(rng);
+  const auto r = residual(w, rng, 0, 2.0);  // the fit must add -2 x the trial size
+  const Diagnosis free = diagnose(w.names, r, w.jacobian, w.effects);
+  REQUIRE(free.ranking.front().name == "effect0");
+  CHECK(free.ranking.front().size == doctest::Approx(-1.0).epsilon(0.3));
+  CHECK_FALSE(free.ranking.front().at_bound);
+
+  w.effects[0].scale_min = 0;  // only >= neutral is physical
+  const Diagnosis bounded = diagnose(w.names, r, w.jacobian, w.effects);
+  for (const auto& s : bounded.ranking)
+    if (s.name == "effect0") {
+      CHECK(s.score == 0.0);
+      CHECK(s.size == 0.0);
+      CHECK(s.at_bound);
+      CHECK(s.p_value == doctest::Approx(1.0));
+    }
+  CHECK(bounded.ranking.front().name != "effect0");
+
+  // A bound the estimate stays inside changes nothing; one it crosses caps the size, and the
+  // score is the drop at the cap: below the free LM, above zero.
+  w.effects[0].scale_min = -10;
+  const Diagnosis wide = diagnose(w.names, r, w.jacobian, w.effects);
+  CHECK(wide.ranking.front().score == doctest::Approx(free.ranking.front().score).epsilon(1e-12));
+  w.effects[0].scale_min = -1;  // half of the -2 the data need
+  const Diagnosis capped = diagnose(w.names, r, w.jacobian, w.effects);
+  for (const auto& s : capped.ranking)
+    if (s.name == "effect0") {
+      CHECK(s.at_bound);
+      CHECK(s.size == doctest::Approx(-0.5));  // -1 x trial size 0.5
+      CHECK(s.score > 0);
+      CHECK(s.score < free.ranking.front().score);
+    }
+}

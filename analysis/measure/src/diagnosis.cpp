@@ -58,9 +58,14 @@ Diagnosis diagnose(const std::vector<std::string>& names, const std::vector<doub
     const double ss = to_vector(e.signature).squaredNorm();
     s.absorbed = ss > 0 ? 1 - tt / ss : 1;
     if (tt > 1e-12 * std::max(1.0, to_vector(e.signature).squaredNorm())) {
+      // Score of the best admissible size: the drop |y|^2 - |y + a t|^2 = -2 a t.y - a^2 |t|^2 at
+      // a clamped into the effect's physical range. Unclamped it is the LM statistic (t.y)^2 / |t|^2;
+      // an effect the data want reversed (a negative compliance) scores 0 and explains nothing.
       const double ty = t.dot(y);
-      s.score = ty * ty / tt;
-      const double a = -ty / tt;
+      const double free_a = -ty / tt;
+      const double a = std::clamp(free_a, e.scale_min, e.scale_max);
+      s.at_bound = a != free_a;
+      s.score = std::max(0.0, -2 * a * ty - a * a * tt);
       s.size = a * e.trial_size;
       // Components whose |residual| drops most when the fitted effect is added.
       const Eigen::VectorXd after = y + a * t;

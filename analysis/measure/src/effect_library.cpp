@@ -22,6 +22,16 @@ std::string CandidateEffect::scene_value(double value) const {
   return out;
 }
 
+double CandidateEffect::scale_min() const {
+  const double step = plausible - neutral;
+  return step > 0 ? (min - neutral) / step : (max - neutral) / step;
+}
+
+double CandidateEffect::scale_max() const {
+  const double step = plausible - neutral;
+  return step > 0 ? (max - neutral) / step : (min - neutral) / step;
+}
+
 std::vector<std::string> CandidateEffect::overrides(double value) const {
   std::vector<std::string> out = set;
   if (!post_processing()) out.push_back(parameter + "=" + scene_value(value));
@@ -59,10 +69,10 @@ std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& fi
               "{}: 'value_format' must be a string with one {{}} where the value goes, e.g. \"[0.0, 0.0, {{}}]\"",
               where(file, value)));
         e.value_format = text;
-      } else if (k == "neutral" || k == "plausible") {
+      } else if (k == "neutral" || k == "plausible" || k == "min" || k == "max") {
         const auto v = value.value<double>();
         if (!v) throw std::runtime_error(fmt::format("{}: '{}' must be a number", where(file, value), k));
-        (k == "neutral" ? e.neutral : e.plausible) = *v;
+        (k == "neutral" ? e.neutral : k == "plausible" ? e.plausible : k == "min" ? e.min : e.max) = *v;
       } else if (k == "set") {
         const auto* a = value.as_array();
         if (!a) throw std::runtime_error(fmt::format("{}: 'set' must be an array of \"section.key=value\" strings", where(file, value)));
@@ -75,12 +85,15 @@ std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& fi
       } else {
         throw std::runtime_error(fmt::format(
             "{}: unknown key '{}' in [[effect]]; the keys are name, parameter, value_format, unit, neutral, "
-            "plausible, set, separated_by, doc",
+            "plausible, min, max, set, separated_by, doc",
             where(file, value), k));
       }
     }
     if (e.name.empty() || e.parameter.empty())
       throw std::runtime_error(fmt::format("{}: an [[effect]] needs a name and a parameter", where(file, node)));
+    if (!(e.min <= e.neutral && e.neutral <= e.max && e.min <= e.plausible && e.plausible <= e.max))
+      throw std::runtime_error(fmt::format("{}: effect '{}': neutral {:g} and plausible {:g} must lie in [min, max] = [{:g}, {:g}]",
+                                           where(file, node), e.name, e.neutral, e.plausible, e.min, e.max));
     if (e.plausible == e.neutral)
       throw std::runtime_error(fmt::format("{}: effect '{}': plausible equals neutral, the trial run would not switch "
                                            "it on",

@@ -15,6 +15,7 @@
 // and the least-squares size a* = -(t . y) / (t . t) (the effect must cancel the residual).
 // Refitting that one effect lowers chi^2 = |y|^2 by exactly LM; AIC = chi^2 + 2k and BIC =
 // chi^2 + k ln m compare the base model (k = p) with base + effect (k = p + 1).
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,10 @@ struct EffectSignature {
   std::string name;
   double trial_size = 0;          // the effect parameter value used for the signature
   std::vector<double> signature;  // s, same components as the residual
+  // The physically admissible multiples a of the trial (size a * trial_size from neutral): a
+  // compliance, a viscosity or a Weibull modulus cannot go below neutral, so a = [0, inf).
+  double scale_min = -std::numeric_limits<double>::infinity();
+  double scale_max = std::numeric_limits<double>::infinity();
 };
 
 struct EffectScore {
@@ -32,6 +37,7 @@ struct EffectScore {
   double p_value = 1;         // chi-square(1)
   double explained = 0;       // LM / |y|^2: share of the unabsorbed weighted residual it explains
   double size = 0;            // estimated effect parameter value, a* trial_size
+  bool at_bound = false;      // the data ask for more than the admissible range (size clamped there)
   double chi_square_after = 0;
   double absorbed = 0;        // share of |s|^2 the base parameters absorb (1 - |t|^2 / |s|^2)
   double delta_aic = 0;       // AIC(with effect) - AIC(base) = -LM + 2

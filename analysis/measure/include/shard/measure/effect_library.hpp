@@ -18,6 +18,7 @@
 // A parameter that is not a plain number in the scene (a vector such as simulation.gravity) takes
 // `value_format = "[0.0, 0.0, {}]"`: the effect's scalar value goes where {} stands.
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -35,12 +36,18 @@ struct CandidateEffect {
   std::string separated_by;      // the measurement that tells it apart from look-alikes
   std::string doc;
   std::string value_format;      // "" or a scene value with one {} for the scalar, e.g. "[0, 0, {}]"
+  // The parameter's physical range (keys min, max): a diagnosis does not ask for a value outside.
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
 
   bool post_processing() const { return parameter == kMachineCompliance; }
   // The overrides that put the effect at `value` into a scene (none for machine compliance).
   std::vector<std::string> overrides(double value) const;
   // The scene's text for the parameter at `value` (value_format applied).
   std::string scene_value(double value) const;
+  // [min, max] as multiples of the trial step plausible - neutral, from neutral.
+  double scale_min() const;
+  double scale_max() const;
 };
 
 // Reads the library; errors name the file, line and column.
