@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <random>
 
 #include "measure_commands.hpp"
@@ -57,6 +58,7 @@ void add_compare(CLI::App& app, CommandContext& ctx) {
     double ke = 0;
     if (!o->model.scene.empty()) {
       Simulator simulator(o->sim, ctx.plugin_dirs);
+      simulator.check_geometry(o->model, specimens_at_rate(set, o->rate));
       // The model runs at the compared specimens' rate: --rate, or the data's only rate.
       const std::vector<double> rates = set.loading_rates();
       o->model.loading_rate = o->rate > 0 ? o->rate : rates.size() == 1 ? rates.front() : 0.0;
@@ -93,8 +95,9 @@ void add_synth(CLI::App& app, CommandContext& ctx) {
     SensorModel sensor;
     fs::path out = "synthetic";
     std::string name = "synthetic";
-    double length = 0.04, width = 0.008, height = 0.008, span = 0.036, pin_distance = 0.016;
-    std::vector<double> rates{0.02};
+    // Unset: read from the scene (its walls and generated packing; its pin speed).
+    std::optional<double> length, width, height, span, pin_distance;
+    std::vector<double> rates;
     std::uint64_t noise_seed = 1;
   };
   auto o = std::make_shared<Options>();
@@ -112,14 +115,14 @@ void add_synth(CLI::App& app, CommandContext& ctx) {
                   "closure gap of rough specimen faces (m): a toe w + g F / (F + F_h), outside the effect library");
   cmd->add_option("--seating-half-force", o->sensor.seating_half_force, "force at half closure F_h (N)");
   cmd->add_option("--noise-seed", o->noise_seed, "seed of the sensor noise");
-  cmd->add_option("--length", o->length, "specimen length in specimens.csv (m)");
-  cmd->add_option("--width", o->width, "specimen width (m)");
-  cmd->add_option("--height", o->height, "specimen height (m)");
-  cmd->add_option("--span", o->span, "support distance (m)");
-  cmd->add_option("--pin-distance", o->pin_distance, "loading-pin distance (m)");
+  cmd->add_option("--length", o->length, "specimen length in specimens.csv (m; default: the scene's packing)");
+  cmd->add_option("--width", o->width, "specimen width (m; default: the scene's packing)");
+  cmd->add_option("--height", o->height, "specimen height (m; default: the scene's packing)");
+  cmd->add_option("--span", o->span, "support distance (m; default: the scene's supports)");
+  cmd->add_option("--pin-distance", o->pin_distance, "loading-pin distance (m; default: the scene's pins)");
   cmd->add_option("--rate,--rates", o->rates,
                   "loading rate(s) of the pins (m/s), comma-separated: the truth is run at each, its specimens are "
-                  "replicates at that rate")
+                  "replicates at that rate (default: the scene's pin speed)")
       ->delimiter(',')
       ->check(CLI::PositiveNumber);
   cmd->callback([o, &ctx] {
@@ -132,6 +135,13 @@ void add_synth(CLI::App& app, CommandContext& ctx) {
     truth.machine_compliance = 0;  // the sensor model applies it to the true force
     o->sensor.machine_compliance = o->model.machine_compliance;
     Simulator simulator(o->sim, ctx.plugin_dirs);
+    if (o->rates.empty()) o->rates.push_back(simulator.pool().scene_rate(truth.scene, truth.overrides));
+    SpecimenSetup setup;
+    if (!o->length || !o->width || !o->height || !o->span || !o->pin_distance)
+      setup = simulator.pool().specimen_setup(truth.scene, truth.overrides, o->sim.first_seed);
+    setup.length = o->length.value_or(setup.length), setup.width = o->width.value_or(setup.width);
+    setup.height = o->height.value_or(setup.height), setup.span = o->span.value_or(setup.span);
+    setup.pin_distance = o->pin_distance.value_or(setup.pin_distance);
     std::vector<ModelPlan> at_rates;
     for (double r : o->rates) {
       at_rates.push_back(truth);
@@ -142,8 +152,8 @@ void add_synth(CLI::App& app, CommandContext& ctx) {
       for (const auto& sim : sims[k]) {
         Specimen s;
         s.id = o->rates.size() > 1 ? fmt::format("{}_rate{:g}", sim.id, o->rates[k]) : sim.id;
-        s.length = o->length, s.width = o->width, s.height = o->height;
-        s.span = o->span, s.pin_distance = o->pin_distance, s.loading_rate = o->rates[k];
+        s.length = setup.length, s.width = setup.width, s.height = setup.height;
+        s.span = setup.span, s.pin_distance = setup.pin_distance, s.loading_rate = o->rates[k];
         s.curve = record(sim.curve, o->sensor, rng);
         set.specimens.push_back(std::move(s));
       }

@@ -28,6 +28,8 @@ void add_simulation_options(CLI::App* cmd, ModelPlan& model, SimulationOptions& 
   cmd->add_flag("!--no-seat", options.seat, "do not bring pins and supports into contact before loading");
   cmd->add_option("--machine-compliance", model.machine_compliance,
                   "load-frame compliance C in m/N added to the simulated displacement (w + C F)");
+  cmd->add_flag("!--ignore-geometry", options.check_geometry,
+                "compare even when the specimens' span or pin distance differ from the scene's");
   cmd->add_option("--time-compression", options.time_compression,
                   "simulate each specimen at this factor times its measured loading rate (quasi-static surrogate; "
                   "model times and bond.viscosity_time are then this factor shorter than the lab's)")
@@ -72,6 +74,21 @@ std::vector<std::vector<Specimen>> Simulator::simulate(const std::vector<ModelPl
       out[m].push_back(std::move(s));
     }
   return out;
+}
+
+void Simulator::check_geometry(const ModelPlan& model, const std::vector<Specimen>& specimens) {
+  if (!options_.check_geometry || geometry_checked_ || specimens.empty()) return;
+  geometry_checked_ = true;
+  const SpecimenSetup scene = pool_.specimen_setup(model.scene, model.overrides, options_.first_seed);
+  auto off = [](double measured, double simulated) { return std::abs(measured - simulated) > 0.02 * simulated; };
+  for (const auto& s : specimens)
+    if (off(s.span, scene.span) || off(s.pin_distance, scene.pin_distance))
+      throw std::runtime_error(fmt::format(
+          "specimen {}: span {:.4g} mm and pin distance {:.4g} mm, but the model scene {} has span {:.4g} mm and pin "
+          "distance {:.4g} mm (specimen {:.4g} x {:.4g} x {:.4g} mm). Make a scene of the measured set-up (move its "
+          "support and pin walls, size its body), or pass --ignore-geometry to compare anyway",
+          s.id, 1e3 * s.span, 1e3 * s.pin_distance, model.scene.string(), 1e3 * scene.span, 1e3 * scene.pin_distance,
+          1e3 * scene.length, 1e3 * scene.width, 1e3 * scene.height));
 }
 
 std::vector<Specimen> Simulator::simulate(const ModelPlan& model, std::ostream& log) {
@@ -144,6 +161,8 @@ double RateComparison::chi_square() const {
 std::vector<RateComparison> simulate_and_compare(Simulator& simulator, const RateGroups& groups, const Metadata& metadata,
                                                  const std::vector<ModelPlan>& models, std::ostream& log) {
   // With one rate the model runs at the scene's own speed unless the data are at another one.
+  if (!models.empty())
+    for (const auto& at : groups.specimens) simulator.check_geometry(models.front(), at);
   std::vector<ModelPlan> runs;
   for (const auto& m : models)
     for (double r : groups.rates) {

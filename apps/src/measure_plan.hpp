@@ -36,6 +36,9 @@ struct SimulationOptions {
   // curves are compared against displacement, not time. The model's times, and its rate
   // parameters (bond.viscosity_time), are then this factor shorter than the lab's.
   double time_compression = 1;
+  // The specimens' span and pin distance must be the scene's (2 %): a model of another test
+  // geometry is not a model of these data.
+  bool check_geometry = true;
 };
 
 void add_simulation_options(CLI::App* cmd, ModelPlan& model, SimulationOptions& options);
@@ -49,12 +52,16 @@ class Simulator {
   RunPool& pool() { return pool_; }
   // Largest kinetic/elastic ratio of the runs simulated so far (the quasi-static check).
   double max_kinetic_to_elastic() const { return max_ke_; }
+  // Throws, naming both, when a specimen's span or pin distance differs from the model scene's
+  // by more than 2 % (once per simulator: the models of one command share the scene's geometry).
+  void check_geometry(const ModelPlan& model, const std::vector<measure::Specimen>& specimens);
 
  private:
   SimulationOptions options_;
   RunPool pool_;
   double max_ke_ = 0;
   bool rate_hint_given_ = false;
+  bool geometry_checked_ = false;
 };
 
 // The value of section.key in the resolved scene (overrides applied); throws when absent.

@@ -161,6 +161,46 @@ std::vector<std::string> RunPool::seating_overrides(const RunRequest& request) c
   return out;
 }
 
+SpecimenSetup RunPool::specimen_setup(const fs::path& scene_file, const std::vector<std::string>& overrides,
+                                      long seed) const {
+  RunRequest request{scene_file, overrides, seed, false};
+  const Scene scene = load_scene(scene_file, full_overrides(request), *host_);
+  std::vector<const Wall*> pins, supports;
+  for (const Wall& w : scene.walls) {
+    if (w.shape != WallShape::Cylinder) continue;
+    const bool loading =
+        std::find(scene.stop.load_walls.begin(), scene.stop.load_walls.end(), w.name) != scene.stop.load_walls.end();
+    if (loading) pins.push_back(&w);
+    else if (w.velocity.norm() == 0) supports.push_back(&w);
+  }
+  if (pins.size() != 2 || supports.size() != 2)
+    throw std::runtime_error(fmt::format(
+        "{}: {} loading and {} resting cylinders; the specimen's span and pin distance are read from two of each "
+        "(four-point bending). Give them explicitly (--length, --width, --height, --span, --pin-distance)",
+        scene_file.string(), pins.size(), supports.size()));
+  const Vec3 n = scene.stop.load_direction.normalized();
+  auto across_load = [&](const Vec3& v) { return Vec3(v - v.dot(n) * n); };
+  const Vec3 along = across_load(pins[1]->point - pins[0]->point).normalized();
+  const Vec3 cross = n.cross(along);
+  SpecimenSetup s;
+  s.pin_distance = std::abs(across_load(pins[1]->point - pins[0]->point).dot(along));
+  s.span = std::abs(across_load(supports[1]->point - supports[0]->point).dot(along));
+  const SceneInstance inst = instantiate(scene, *host_, [](const std::string&) {});
+  const Particles& p = inst.simulation->particles();
+  auto extent = [&](const Vec3& e) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      lo = std::min(lo, p.position[k].dot(e) - p.radius[k]);
+      hi = std::max(hi, p.position[k].dot(e) + p.radius[k]);
+    }
+    return p.size() > 0 ? hi - lo : 0.0;
+  };
+  s.length = extent(along);
+  s.width = extent(cross);
+  s.height = extent(n);
+  return s;
+}
+
 double RunPool::scene_rate(const fs::path& scene_file, const std::vector<std::string>& overrides) const {
   const Scene scene = load_scene(scene_file, overrides, *host_);
   double rate = 0;

@@ -29,6 +29,13 @@ struct RunRequest {
   bool seat = true;
 };
 
+// A bending scene's specimen as a measurement describes it (m): the extent of the generated
+// packing along the beam (the line between the loading pins, across the loading direction),
+// across it and along the load; the distances between the two supports and the two pins.
+struct SpecimenSetup {
+  double length = 0, width = 0, height = 0, span = 0, pin_distance = 0;
+};
+
 struct RunResult {
   measure::Curve curve;
   double kinetic_to_elastic = 0;  // max before breakage (quasi-static check)
@@ -51,6 +58,10 @@ class RunPool {
   // inversely so that the same pin travel is simulated and recorded. Empty at the scene's rate.
   std::vector<std::string> rate_overrides(const std::filesystem::path& scene, const std::vector<std::string>& overrides,
                                           double rate) const;
+  // The specimen of a scene (generated with `seed`); throws unless the scene has two loading
+  // cylinders ([stop] load_walls) and two resting cylinders (supports).
+  SpecimenSetup specimen_setup(const std::filesystem::path& scene, const std::vector<std::string>& overrides,
+                               long seed) const;
   // The pin speed of a scene, m/s: the largest speed of its [stop] load walls.
   double scene_rate(const std::filesystem::path& scene, const std::vector<std::string>& overrides) const;
   // The full scene text a request runs (overrides, seed and seating applied).

@@ -164,6 +164,26 @@ TEST_CASE("time compression: the quasi-static tiny beam at half the data's rate 
   CHECK(read(kWork / "log.txt").find("time compression 0.5: the model loads at 0.01 m/s") != std::string::npos);
 }
 
+TEST_CASE("data of another test geometry are refused, naming both set-ups") {
+  // The tiny beam's specimens (span 36 mm, pins 16 mm) against the main bending scene
+  // (170 mm, 80 mm): an error before any run, unless --ignore-geometry.
+  diagnose_hidden("null", "");
+  const std::string main_scene = std::string(SHARD_SOURCE_DIR) + "/scenes/four_point_bending.toml";
+  const fs::path log = kWork / "geometry.txt";
+  const std::string cmd = std::string(SHARD_BUILD_DIR) + "/bin/shard compare " + (kWork / "meas_null").string() +
+                          " --scene " + main_scene + " --work " + kWork.string() + " --out " +
+                          (kWork / "cmp_geometry").string() + " > " + log.string() + " 2>&1";
+  CHECK(std::system(cmd.c_str()) != 0);
+  const std::string text = read(log);
+  INFO(text);
+  CHECK(text.find("span 36 mm and pin distance 16 mm") != std::string::npos);
+  CHECK(text.find("span 170 mm and pin distance 80 mm") != std::string::npos);
+  CHECK(text.find("--ignore-geometry") != std::string::npos);
+  // synth read the tiny beam's set-up from its scene: supports and pins, and the packing's size.
+  const std::string specimens = read(kWork / "meas_null" / "specimens.csv");
+  CHECK(specimens.find(",0.036,0.016,0.02,") != std::string::npos);
+}
+
 TEST_CASE("hidden machine compliance 1e-4 m/N: named, sized, calibrated") {
   // A 5 N S-beam load cell deflects ~0.25 mm at full scale (5e-5 m/N); with the fixture's
   // seating and the crosshead drive, 1e-4 m/N is what a small-force frame measured at the
