@@ -77,8 +77,13 @@ std::vector<std::vector<Specimen>> Simulator::simulate(const std::vector<ModelPl
 }
 
 void Simulator::check_geometry(const ModelPlan& model, const std::vector<Specimen>& specimens) {
-  if (!options_.check_geometry || geometry_checked_ || specimens.empty()) return;
+  if (geometry_checked_ || specimens.empty()) return;
   geometry_checked_ = true;
+  if (options_.seeds < 2)
+    fmt::print(stderr,
+               "warning: one packing seed: the model's packing-to-packing scatter is unknown, so the scores below count "
+               "the measurement's noise only and read far beyond noise (use --seeds 3 or more)\n");
+  if (!options_.check_geometry) return;
   const SpecimenSetup scene = pool_.specimen_setup(model.scene, model.overrides, options_.first_seed);
   auto off = [](double measured, double simulated) { return std::abs(measured - simulated) > 0.02 * simulated; };
   for (const auto& s : specimens)
