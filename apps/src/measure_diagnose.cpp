@@ -159,6 +159,15 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
             md += fmt::format(" The best refit, {}, explains {:.0f} % of the excess chi^2 over noise ({:.1f}) and "
                               "leaves p = {:.2g}: not enough to name it.",
                               e.name, 100 * e.share_explained, decision.excess, e.p_after);
+      // Say what the data show that the base model does not, in the comparison's words, and how a
+      // user adds the missing physics: the library is open.
+      md += "\n\nWhat the base model misses:";
+      for (std::size_t k = 0; k < lin.base_comparison.at.size(); ++k)
+        md += fmt::format(" {}{}", lin.base_comparison.at.size() > 1 ? fmt::format("at {:g} m/s: ", lin.base_comparison.rates[k]) : "",
+                          lin.base_comparison.at[k].verdict);
+      md += " To add an effect: `shard new-plugin` writes a one-file plugin whose new parameter has a neutral value "
+            "(docs/plugins.md); an [[effect]] entry for it in the library lets diagnose try it and `shard calibrate "
+            "--with` fit it.";
       md += "\n\n";
     }
     md += "| effect | score (LM) | p-value | explains | absorbed by base | estimated value | dAIC | dBIC | regimes/features it explains |\n"
@@ -170,7 +179,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
       md += fmt::format("| {} | {:.2f} | {:.3g} | {:.0f} % | {:.0f} % | {:.4g} {}{} | {:+.1f} | {:+.1f} | {} |\n", s.name,
                         s.score, s.p_value, 100 * s.explained, 100 * s.absorbed, e->neutral + s.size, e->unit,
                         !s.at_bound ? "" : s.size == 0 ? " (the data ask for it reversed: outside its physical range)"
-                                                       : " (at its physical bound: the data ask for more)",
+                                                       : " (clamped at its physical bound)",
                         s.delta_aic, s.delta_bic,
                         join(s.explains));
     }
