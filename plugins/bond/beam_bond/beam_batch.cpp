@@ -184,6 +184,7 @@ template <bool breakage, bool viscous>
 // AVX2 and AVX-512 clones run 4 and 8 lanes of the same IEEE operations (and hardware gathers);
 // beam_batch.cpp is compiled with -ffp-contract=off, so no clone fuses a multiply-add and each
 // rounds exactly as the x86-64-v2 per-bond path does (the AVX-512 target would otherwise use FMA).
+// Not under ASan: an ifunc resolver may run before the sanitizer runtime is initialised.
 #if defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
 __attribute__((target_clones("avx512f", "avx2", "default")))
 #endif
