@@ -66,7 +66,9 @@ void add_compare(CLI::App& app, CommandContext& ctx) {
       ke = simulator.max_kinetic_to_elastic();
     }
     if (sims.empty()) throw std::runtime_error("compare: give simulated curves with --sim or a model with --scene");
-    const Comparison c = compare(specimens_at_rate(set, o->rate), set.metadata, sims);
+    CompareOptions options;
+    options.judge_fracture = o->sim.judge_fracture;
+    const Comparison c = compare(specimens_at_rate(set, o->rate), set.metadata, sims, options);
     fs::create_directories(o->out);
     std::ofstream(o->out / "compare.md") << comparison_markdown(c);
     std::ofstream(o->out / "compare.json") << comparison_json(c);
@@ -155,6 +157,10 @@ void add_synth(CLI::App& app, CommandContext& ctx) {
         s.length = setup.length, s.width = setup.width, s.height = setup.height;
         s.span = setup.span, s.pin_distance = setup.pin_distance, s.loading_rate = o->rates[k];
         s.curve = record(sim.curve, o->sensor, rng);
+        // What a lab notes after the test: where the crack is and the pieces (sieved sizes).
+        s.crack_position = sim.crack_position;
+        s.fragment_sizes = sim.fragment_sizes;
+        s.fragment_count = sim.fragment_count;
         set.specimens.push_back(std::move(s));
       }
     write_measurements(set, o->out);

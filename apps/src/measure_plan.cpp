@@ -28,6 +28,8 @@ void add_simulation_options(CLI::App* cmd, ModelPlan& model, SimulationOptions& 
   cmd->add_flag("!--no-seat", options.seat, "do not bring pins and supports into contact before loading");
   cmd->add_option("--machine-compliance", model.machine_compliance,
                   "load-frame compliance C in m/N added to the simulated displacement (w + C F)");
+  cmd->add_flag("--judge-fracture", options.judge_fracture,
+                "let crack position and fragment sizes enter the verdict and the residual (always reported)");
   cmd->add_flag("!--ignore-geometry", options.check_geometry,
                 "compare even when the specimens' span or pin distance differ from the scene's");
   cmd->add_option("--time-compression", options.time_compression,
@@ -71,6 +73,9 @@ std::vector<std::vector<Specimen>> Simulator::simulate(const std::vector<ModelPl
       s.curve = models[m].machine_compliance > 0 ? with_machine_compliance(results[i].curve, models[m].machine_compliance)
                                                  : results[i].curve;
       max_ke_ = std::max(max_ke_, results[i].kinetic_to_elastic);
+      s.crack_position = results[i].crack_position;
+      s.fragment_sizes = results[i].fragment_sizes;
+      if (!s.fragment_sizes.empty()) s.fragment_count = static_cast<double>(s.fragment_sizes.size());
       out[m].push_back(std::move(s));
     }
   return out;
@@ -176,11 +181,13 @@ std::vector<RateComparison> simulate_and_compare(Simulator& simulator, const Rat
       runs.push_back(std::move(at));
     }
   const auto sims = simulator.simulate(runs, log);
+  measure::CompareOptions compare_options;
+  compare_options.judge_fracture = simulator.options().judge_fracture;
   std::vector<RateComparison> out(models.size());
   for (std::size_t m = 0; m < models.size(); ++m) {
     out[m].rates = groups.rates;
     for (std::size_t k = 0; k < groups.rates.size(); ++k)
-      out[m].at.push_back(compare(groups.specimens[k], metadata, sims[m * groups.rates.size() + k]));
+      out[m].at.push_back(compare(groups.specimens[k], metadata, sims[m * groups.rates.size() + k], compare_options));
   }
   return out;
 }

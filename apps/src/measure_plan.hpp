@@ -39,6 +39,7 @@ struct SimulationOptions {
   // The specimens' span and pin distance must be the scene's (2 %): a model of another test
   // geometry is not a model of these data.
   bool check_geometry = true;
+  bool judge_fracture = false;  // CompareOptions::judge_fracture
 };
 
 void add_simulation_options(CLI::App* cmd, ModelPlan& model, SimulationOptions& options);
@@ -50,6 +51,7 @@ class Simulator {
   std::vector<std::vector<measure::Specimen>> simulate(const std::vector<ModelPlan>& models, std::ostream& log);
   std::vector<measure::Specimen> simulate(const ModelPlan& model, std::ostream& log);
   RunPool& pool() { return pool_; }
+  const SimulationOptions& options() const { return options_; }
   // Largest kinetic/elastic ratio of the runs simulated so far (the quasi-static check).
   double max_kinetic_to_elastic() const { return max_ke_; }
   // Throws, naming both, when a specimen's span or pin distance differs from the model scene's

@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "shard/app/run_command.hpp"
+#include "shard/bending/bending_run.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
 
@@ -64,7 +65,9 @@ double log_number(const std::string& log, const std::string& before, double fall
   const auto at = log.rfind(before);
   if (at == std::string::npos) return fallback;
   try {
-    return std::stod(log.substr(at + before.size()));
+    const std::string tail = log.substr(at + before.size());
+    if (tail.starts_with("nan")) return fallback;
+    return std::stod(tail);
   } catch (const std::exception&) {
     return fallback;
   }
@@ -96,9 +99,41 @@ measure::Curve read_run_curve(const fs::path& file) {
   return c;
 }
 
+// <key>.fracture.csv beside a cached curve: "# crack_position=<m or nan>", then one fragment
+// size (m) per line.
+void write_fracture(const fs::path& run, const fs::path& file) {
+  bending::BendingReport report;
+  try {
+    report = bending::analyse_bending_run(run);
+  } catch (const std::exception&) {
+    return;  // not a four-point bending run: the curve is all there is
+  }
+  const fs::path tmp = file.string() + ".tmp";
+  {
+    auto out = fmt::output_file(tmp.string());
+    out.print("# crack_position={:.9g}\nsize\n",
+              report.crack.found ? report.crack.position : std::numeric_limits<double>::quiet_NaN());
+    for (double d : report.fragments.sizes) out.print("{:.9g}\n", d);
+  }
+  fs::rename(tmp, file);
+}
+
+void read_fracture(const fs::path& file, RunResult& r) {
+  std::ifstream in(file);
+  if (!in) return;  // a run cached before fracture outcomes were recorded
+  std::string line;
+  std::getline(in, line);
+  const double crack = log_number(line, "crack_position=", std::numeric_limits<double>::quiet_NaN());
+  if (std::isfinite(crack)) r.crack_position = crack;
+  std::getline(in, line);  // header
+  while (std::getline(in, line))
+    if (!line.empty()) r.fragment_sizes.push_back(std::stod(line));
+}
+
 RunResult read_cached(const fs::path& file, const std::string& key) {
   RunResult r;
   r.curve = read_run_curve(file);
+  read_fracture(fs::path(file).replace_extension(".fracture.csv"), r);
   r.key = key;
   r.cached = true;
   std::ifstream in(file);
@@ -307,6 +342,7 @@ std::vector<RunResult> RunPool::run(const std::vector<RunRequest>& requests, std
       for (std::size_t k = 0; k < curve.size(); ++k)
         out.print("{:.12g},{:.12g},{:.12g}\n", curve.time[k], curve.displacement[k], curve.force[k]);
     }
+    write_fracture(c.dir / "run.h5", cache / (queue[c.job].key + ".fracture.csv"));
     fs::rename(tmp, cache / (queue[c.job].key + ".csv"));  // atomic: a killed diagnosis leaves no torn entry
     std::error_code ignored;
     fs::remove_all(c.dir, ignored);  // run.h5 and checkpoints: the curve is all the workflow uses

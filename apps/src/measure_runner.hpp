@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <iosfwd>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,11 @@ struct RunResult {
   double wall_seconds = 0;        // of the run itself (0 for a cached run that did not record it)
   bool cached = false;
   std::string key;
+  // The fracture the run ended with (shard::bending's analysis of its run.h5): the crack's
+  // distance from the centre between the pins along the beam, and every fragment's equivalent
+  // diameter. Unset / empty when the run is not a four-point bending test or no bond broke.
+  std::optional<double> crack_position;
+  std::vector<double> fragment_sizes;
 };
 
 class RunPool {

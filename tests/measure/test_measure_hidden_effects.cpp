@@ -182,6 +182,13 @@ TEST_CASE("data of another test geometry are refused, naming both set-ups") {
   // synth read the tiny beam's set-up from its scene: supports and pins, and the packing's size.
   const std::string specimens = read(kWork / "meas_null" / "specimens.csv");
   CHECK(specimens.find(",0.036,0.016,0.02,") != std::string::npos);
+  // ... and, as a lab notes them, the crack position and the fragments of every specimen (the
+  // truth runs' own, from shard::bending), reported by compare but not judged by default.
+  CHECK(specimens.find(",0.02,,") == std::string::npos);
+  CHECK(fs::exists(kWork / "meas_null" / "fragments" / "sim_seed1001.csv"));
+  const std::string cmp = read(kWork / "cmp_rate" / "compare.json");
+  CHECK(cmp.find("\"crack_position\"") != std::string::npos);
+  CHECK(cmp.find("\"fragment_x50\"") != std::string::npos);
 }
 
 TEST_CASE("hidden machine compliance 1e-4 m/N: named, sized, calibrated") {

@@ -188,6 +188,7 @@ BendingReport analyse_bending_run(const std::filesystem::path& path, const Bendi
     for (const auto& f : fa.fragments) total += f.mass;
     r.fragments.count = fa.fragments.size();
     r.fragments.frame_time = last.time;
+    for (const auto& f : fa.fragments) r.fragments.sizes.push_back(f.d_eq);
     for (const auto& f : fa.fragments)
       if (total > 0 && f.mass >= options.major_fragment * total) r.fragments.major_mass_fractions.push_back(f.mass / total);
     r.fragments.major = r.fragments.major_mass_fractions.size();

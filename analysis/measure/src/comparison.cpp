@@ -114,7 +114,8 @@ void fill_features(Comparison& c, const std::vector<Specimen>& measured, const M
     fc.relative_error = fc.measured != 0 ? fc.error / std::abs(fc.measured) : 0;
     const double u = std::hypot(fc.u_measured, fc.u_simulated);
     fc.score = u > 0 ? fc.error / u : std::numeric_limits<double>::quiet_NaN();
-    fc.beyond_noise = u > 0 && std::abs(fc.score) > options.noise_threshold;
+    fc.judged = i < kCurveFeatureCount || options.judge_fracture;
+    fc.beyond_noise = fc.judged && u > 0 && std::abs(fc.score) > options.noise_threshold;
     c.features.push_back(fc);
   }
 }
@@ -249,7 +250,7 @@ ResidualVector Comparison::residual_vector() const {
       v.values.push_back(g.mean_residual);
     }
   for (const auto& f : features)
-    if (std::isfinite(f.score)) {
+    if (f.judged && std::isfinite(f.score)) {
       v.names.push_back(fmt::format("feature:{}", feature_name(f.feature)));
       v.values.push_back(f.score);
     }

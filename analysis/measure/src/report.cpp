@@ -43,7 +43,7 @@ std::string comparison_markdown(const Comparison& c) {
                       feature_name(f.feature), feature_unit(f.feature), f.measured, f.u_measured, f.simulated,
                       f.u_simulated, f.error, 100 * f.relative_error,
                       std::isfinite(f.score) ? fmt::format("{:+.2f}", f.score) : "n/a",
-                      f.beyond_noise ? "**yes**" : "no");
+                      !f.judged ? "not judged" : f.beyond_noise ? "**yes**" : "no");
   md += "\n| regime | xi range | points | mean residual (sigma) | RMS residual | force error | beyond noise |\n"
         "|---|---|---|---|---|---|---|\n";
   for (const auto& g : c.regimes) {
@@ -68,10 +68,11 @@ std::string comparison_json(const Comparison& c) {
     const auto& f = c.features[i];
     j += fmt::format(
         "    {{\"name\": \"{}\", \"unit\": \"{}\", \"measured\": {}, \"u_measured\": {}, \"simulated\": {}, "
-        "\"u_simulated\": {}, \"error\": {}, \"relative_error\": {}, \"score\": {}, \"beyond_noise\": {}}}{}\n",
+        "\"u_simulated\": {}, \"error\": {}, \"relative_error\": {}, \"score\": {}, \"beyond_noise\": {}, "
+        "\"judged\": {}}}{}\n",
         feature_name(f.feature), feature_unit(f.feature), number(f.measured), number(f.u_measured),
         number(f.simulated), number(f.u_simulated), number(f.error), number(f.relative_error), number(f.score),
-        f.beyond_noise ? "true" : "false", i + 1 < c.features.size() ? "," : "");
+        f.beyond_noise ? "true" : "false", f.judged ? "true" : "false", i + 1 < c.features.size() ? "," : "");
   }
   j += "  ],\n  \"regimes\": [\n";
   for (std::size_t r = 0; r < kRegimeCount; ++r) {

@@ -35,6 +35,7 @@ struct FragmentSummary {
   std::size_t count = 0;          // all fragments (single particles included)
   std::size_t major = 0;          // fragments with >= major_fragment of the mass
   std::vector<double> major_mass_fractions;
+  std::vector<double> sizes;      // m, every fragment's equivalent diameter (heaviest first)
   double frame_time = 0;          // s, the frame analysed (the last)
 };
 

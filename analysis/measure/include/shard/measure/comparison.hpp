@@ -34,6 +34,11 @@ struct CompareOptions {
   std::size_t grid_points = 120;
   double max_xi = 3;             // post-peak beyond 3 w_ref carries no information on the model
   double noise_threshold = 2;    // |score| beyond which a difference is not noise
+  // Crack position, fragment x50 and count are always reported; they enter the verdict and the
+  // residual vector that diagnose explains only when judged. On a few-hundred-sphere beam the
+  // crack sits at one of two sites by the packing's chance, and three replicates do not estimate
+  // that scatter: judged, they made correct effect models fail the remainder test.
+  bool judge_fracture = false;
 };
 
 struct Band {
@@ -58,6 +63,7 @@ struct FeatureComparison {
   double error = 0, relative_error = 0;
   double score = 0;  // error / combined uncertainty; NaN when the uncertainty is zero
   bool beyond_noise = false;
+  bool judged = true;  // part of the verdict and the residual vector (CompareOptions::judge_fracture)
 };
 
 // Named standardised residual components (regime means, then feature scores): what
