@@ -12,56 +12,13 @@
 #include "beam_bond_model.hpp"
 #include "beam_geometry.hpp"
 #include "bond_pair.hpp"
+#include "random_bonds.hpp"
 
 using namespace shard;
 using namespace shard::beam;
+using shard::test::same_bits;
 
 namespace {
-
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
-bool same_bits(const Vec3& a, const Vec3& b) {
-  return same_bits(a.x(), b.x()) && same_bits(a.y(), b.y()) && same_bits(a.z(), b.z());
-}
-
-Quat random_rotation(std::mt19937_64& rng, double max_angle) {
-  std::uniform_real_distribution<double> u(-1, 1);
-  Vec3 axis(u(rng), u(rng), u(rng));
-  axis.normalize();
-  return Quat(Eigen::AngleAxisd(max_angle * u(rng), axis));
-}
-
-test::HandBonds random_pairs(std::size_t pairs, std::uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 1);
-  std::uniform_real_distribution<double> radius(0.3e-3, 0.5e-3);
-  test::HandBonds s;
-  for (std::size_t k = 0; k < pairs; ++k) {
-    const double r1 = radius(rng), r2 = k % 5 == 0 ? r1 : radius(rng);
-    const Vec3 x1(u(rng), u(rng), u(rng));
-    Vec3 dir(u(rng), u(rng), u(rng));
-    dir.normalize();
-    const Index a = s.add_sphere(x1 * 1e-2, r1);
-    const Index b = s.add_sphere(x1 * 1e-2 + (r1 + r2) * dir, r2);
-    s.orientation[a] = random_rotation(rng, 3.0);
-    s.orientation[b] = random_rotation(rng, 3.0);
-    if (k % 3 == 0) s.add_bond(b, a);
-    else s.add_bond(a, b);
-    if (k % 7 == 0) std::swap(s.id[static_cast<std::size_t>(a)], s.id[static_cast<std::size_t>(b)]);
-  }
-  return s;
-}
-
-// Positions and rotations moved by `scale` (relative to the radius / in rad), random motion.
-void deform(test::HandBonds& s, std::uint64_t seed, double scale) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 1);
-  for (std::size_t p = 0; p < s.position.size(); ++p) {
-    s.position[p] += scale * s.radius[p] * Vec3(u(rng), u(rng), u(rng));
-    s.orientation[p] = (random_rotation(rng, scale) * s.orientation[p]).normalized();
-    s.velocity[p] = 1e-2 * Vec3(u(rng), u(rng), u(rng));
-    s.omega[p] = 10.0 * Vec3(u(rng), u(rng), u(rng));
-  }
-}
 
 struct Counts {
   std::size_t compared = 0, broken = 0;
@@ -69,30 +26,19 @@ struct Counts {
 
 Counts compare(const BeamBondParams& params, std::size_t pairs, std::uint64_t seed) {
   const BeamBond model(params);
-  test::HandBonds a = random_pairs(pairs, seed);
+  test::HandBonds a = test::random_pairs<test::HandBonds>(pairs, seed, {true, true});
   a.initialize(model);
   test::HandBonds b = a;
   Counts n;
   const double scales[] = {1e-6, 1e-4, 1e-3, 3e-3, 1e-2, 0.05, 0.2, 0.6};
   for (std::size_t step = 0; step < std::size(scales); ++step) {
-    deform(a, 100 + step, scales[step]);
-    deform(b, 100 + step, scales[step]);
+    test::deform(a, 100 + step, scales[step], 1.0);
+    test::deform(b, 100 + step, scales[step], 1.0);
     BondBatch ba = a.batch(model), bb = b.batch(model);
     model.compute(ba);
     model.compute_reference(bb);
-    for (std::size_t k = 0; k < a.i.size(); ++k) {
-      ++n.compared;
-      REQUIRE(a.broken[k] == b.broken[k]);
-      n.broken += a.broken[k];
-      CHECK(same_bits(a.force[k], b.force[k]));
-      CHECK(same_bits(a.torque_i[k], b.torque_i[k]));
-      CHECK(same_bits(a.torque_j[k], b.torque_j[k]));
-      CHECK(same_bits(a.energy[k], b.energy[k]));
-      if (a.broken[k]) {
-        CHECK(same_bits(a.stress[k].sigma_vm, b.stress[k].sigma_vm));
-        CHECK(a.stress[k].dominant == b.stress[k].dominant);
-      }
-    }
+    n.compared += a.i.size();
+    n.broken += test::check_same_outputs(a, b);
   }
   return n;
 }

@@ -113,12 +113,7 @@ void BeamBond::compute_bond(BondBatch& batch, std::size_t k) const {
   if (p_.breakage && may_reach(strain, curvature, E, G, sec.radius, p_.critical_stress)) {
     const BondStress s = stress_of(strain, curvature, E, G, sec.radius);
     if (s.sigma_vm >= p_.critical_stress) {
-      batch.broken[k] = 1;
-      batch.stress[k] = s;
-      batch.force[k].setZero();
-      batch.torque_i[k].setZero();
-      batch.torque_j[k].setZero();
-      batch.energy[k] = 0;
+      write_broken(batch, k, s);
       return;
     }
   }

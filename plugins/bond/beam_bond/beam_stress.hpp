@@ -12,6 +12,7 @@
 // shear terms are scaled to their von Mises equivalent so the four compare in one unit.
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 
 #include "shard/bond_model.hpp"
 #include "shard/types.hpp"
@@ -50,6 +51,16 @@ inline BondStress stress_of(const Vec3& strain, const Vec3& curvature, double yo
     if (candidates[m] > candidates[best]) best = m;
   s.dominant = candidates[best] > 0 ? modes[best] : BondFailureMode::None;
   return s;
+}
+
+// A bond that fails this step: its stresses at failure recorded, no load on its particles.
+inline void write_broken(BondBatch& batch, std::size_t k, const BondStress& s) {
+  batch.broken[k] = 1;
+  batch.stress[k] = s;
+  batch.force[k].setZero();
+  batch.torque_i[k].setZero();
+  batch.torque_j[k].setZero();
+  batch.energy[k] = 0;
 }
 
 }  // namespace shard::beam

@@ -36,14 +36,6 @@ Section section_of(double lambda, double r1, double r2) {
   return {r, std::numbers::pi * r * r, std::numbers::pi * r * r * r * r / 4};
 }
 
-void write_broken(BondBatch& batch, std::size_t k, const BondStress& s) {
-  batch.broken[k] = 1;
-  batch.stress[k] = s;
-  batch.force[k].setZero();
-  batch.torque_i[k].setZero();
-  batch.torque_j[k].setZero();
-  batch.energy[k] = 0;
-}
 
 }  // namespace
 
@@ -180,12 +172,12 @@ void BeamBondPlus::compute(BondBatch& batch) const {
       const BondStress s = beam::stress_of(strain_total, curvature_total, E, G, sec.radius);
       if (s.sigma_vm >= strength) {
         if (!(p_.softening_ratio > 0)) {
-          write_broken(batch, k, s);
+          beam::write_broken(batch, k, s);
           continue;
         }
         damage = std::max(damage, softening_damage(s.sigma_vm, strength, p_.softening_ratio));
         if (damage >= 1) {
-          write_broken(batch, k, s);
+          beam::write_broken(batch, k, s);
           continue;
         }
         state[kDamageSlot] = damage;
