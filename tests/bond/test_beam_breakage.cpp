@@ -156,3 +156,24 @@ TEST_CASE("eq. 12 time step for Table I: t_bond = 0.17 sqrt(m / K) ~ 1.7e-6 s") 
   CHECK(limit.critical == doctest::Approx(1.656e-6).epsilon(1e-3));
   CHECK(limit.recommended == limit.critical);
 }
+
+TEST_CASE("eq. 4's dashpot shrinks the step by 1 / (sqrt(1 + z^2) + z), z = (c / K) / t_bond") {
+  // bar_pull's damping of 0.3 N s/m blew up at the undamped step (docs/physics.md); with the
+  // damped step it runs, as does 1.0.
+  auto p = breakable();
+  const beam::BeamBond elastic(p);
+  HandBonds a = touching_pair();
+  a.initialize(elastic);
+  BondBatch ba = a.batch(elastic);
+  const double t0 = elastic.time_step_limit(ba).critical;
+  const double K = 7037.0;  // N/m, as above
+  for (const double c : {1e-3, 0.1, 1.0}) {
+    p.damping = c;
+    const beam::BeamBond damped(p);
+    HandBonds b = touching_pair();
+    b.initialize(damped);
+    BondBatch bb = b.batch(damped);
+    const double z = c / K / t0;
+    CHECK(damped.time_step_limit(bb).critical / t0 == doctest::Approx(1 / (std::sqrt(1 + z * z) + z)).epsilon(1e-3));
+  }
+}
