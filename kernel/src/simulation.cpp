@@ -440,6 +440,7 @@ void Simulation::contact_chunk(std::size_t begin, std::size_t end, Vec3* force, 
 // are scattered (one sweep over the whole range would write them out to memory and read them back).
 void Simulation::bond_chunk(std::size_t begin, std::size_t end, Vec3* force, Vec3* torque, int thread) {
   constexpr std::size_t kBlock = 256;
+  const bool writes_every_output = bond_->writes_every_output();
   bool broke = false;
   for (std::size_t first = begin; first < end; first += kBlock) {
     BondBatch b = bond_batch();
@@ -453,10 +454,12 @@ void Simulation::bond_chunk(std::size_t begin, std::size_t end, Vec3* force, Vec
     b.energy += first;
     b.broken += first;
     b.stress += first;
-    std::fill_n(b.force, b.count, Vec3::Zero());
-    std::fill_n(b.torque_i, b.count, Vec3::Zero());
-    std::fill_n(b.torque_j, b.count, Vec3::Zero());
-    std::fill_n(b.energy, b.count, 0.0);
+    if (!writes_every_output) {
+      std::fill_n(b.force, b.count, Vec3::Zero());
+      std::fill_n(b.torque_i, b.count, Vec3::Zero());
+      std::fill_n(b.torque_j, b.count, Vec3::Zero());
+      std::fill_n(b.energy, b.count, 0.0);
+    }
     std::fill_n(b.broken, b.count, std::uint8_t{0});
     bond_->compute(b);
     for (std::size_t k = 0; k < b.count; ++k) {

@@ -31,8 +31,9 @@ struct BondBatch {
   const Index* j = nullptr;
   ParticleView particles;
   double* state = nullptr;  // state_size() doubles per bond
-  // Outputs, zeroed by the kernel: force on i (j gets the opposite), torques on i and on j,
-  // elastic energy; broken[k] = 1 and stress[k] filled when bond k fails this step.
+  // Outputs: force on i (j gets the opposite), torques on i and on j, elastic energy, zeroed by
+  // the kernel unless the model writes every one of them (BondModel::writes_every_output);
+  // broken[k] (always zeroed by the kernel) = 1 and stress[k] filled when bond k fails this step.
   Vec3* force = nullptr;
   Vec3* torque_i = nullptr;
   Vec3* torque_j = nullptr;
@@ -50,6 +51,10 @@ class BondModel {
   // Stiffest bond against lightest particle, over the bonds in `batch`.
   virtual TimeStepLimit time_step_limit(const BondBatch& batch) const = 0;
   virtual void compute(BondBatch& batch) const = 0;
+  // True when compute() writes force, torque_i, torque_j and energy of every bond of the batch
+  // (zeros for a broken one), so the kernel need not zero them first: ~8-10 % of a beam_bond
+  // step (docs/performance.md).
+  virtual bool writes_every_output() const { return false; }
 };
 
 }  // namespace shard

@@ -17,7 +17,7 @@
 namespace shard {
 
 // Bump on any change to a header in include/shard that plugins compile against.
-inline constexpr int kAbiVersion = 1;
+inline constexpr int kAbiVersion = 2;  // 2: BondModel::writes_every_output
 
 enum class PluginKind { Contact, Bond, Generator };
 const char* to_string(PluginKind kind);

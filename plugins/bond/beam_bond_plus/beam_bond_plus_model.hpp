@@ -44,6 +44,7 @@ class BeamBondPlus final : public BondModel {
   void initialize(BondBatch& batch) const override;
   TimeStepLimit time_step_limit(const BondBatch& batch) const override;
   void compute(BondBatch& batch) const override;
+  bool writes_every_output() const override { return true; }  // intact bonds in full, broken ones zeroed
 
   const BeamBondPlusParams& params() const { return p_; }
   bool viscous() const { return p_.viscosity_time > 0; }
