@@ -6,7 +6,7 @@
 #   4. the installed `shard --plugin-dir <build>/plugins plugins` loads and lists it, and the
 #      installed plugin folder holds the shipped plugins.
 # Run: cmake -DSHARD_BUILD_DIR=<build> -DWORK_DIR=<scratch> -P out_of_tree_plugin.cmake
-foreach(var SHARD_BUILD_DIR WORK_DIR)
+foreach(var SHARD_BUILD_DIR SHARD_SOURCE_DIR WORK_DIR)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "out_of_tree_plugin: -D${var}= is required")
   endif()
@@ -19,6 +19,7 @@ function(run)
     message(FATAL_ERROR "failed (${rc}): ${cmd}\n${out}\n${err}")
   endif()
   set(run_output "${out}" PARENT_SCOPE)
+  set(run_log "${err}" PARENT_SCOPE)  # a run's report (peak load, time steps) goes to stderr
 endfunction()
 
 file(REMOVE_RECURSE "${WORK_DIR}")
@@ -65,6 +66,32 @@ run("${shard}" --plugin-dir "${WORK_DIR}/oot_contact/build/plugins" plugins)
 if(NOT run_output MATCHES "adhesion_force [^\n]*neutral 0")
   message(FATAL_ERROR "the contact template's neutral value is not listed:\n${run_output}")
 endif()
+# The tutorial's effect (docs/tutorial.md part 6) extends the seed's beam through the installed
+# header-only beam helpers; at its neutral value it must run the tiny beam exactly as beam_bond.
+set(tutorial "${WORK_DIR}/crushing_bond")
+run(${CMAKE_COMMAND} -S "${SHARD_SOURCE_DIR}/docs/tutorial/crushing_bond" -B "${tutorial}" -G Ninja
+    "-DCMAKE_PREFIX_PATH=${prefix}" "-DCMAKE_CXX_FLAGS=${strict_flags}")
+run(${CMAKE_COMMAND} --build "${tutorial}")
+set(tiny "${SHARD_SOURCE_DIR}/scenes/measurements/tiny_bending.toml")
+run("${shard}" --plugin-dir "${tutorial}/plugins" run "${tiny}" --out "${WORK_DIR}/tiny_beam" --threads 1)
+string(REGEX MATCH "peak load [^\n]*" with_beam "${run_log}")
+run("${shard}" --plugin-dir "${tutorial}/plugins" run "${tiny}" --out "${WORK_DIR}/tiny_crushing" --threads 1
+    --set bond.plugin=crushing_bond --set bond.crushing_ratio=0)
+string(REGEX MATCH "peak load [^\n]*" with_crushing "${run_log}")
+if(with_beam STREQUAL "" OR NOT with_beam STREQUAL with_crushing)
+  message(FATAL_ERROR "crushing_bond at crushing_ratio 0 is not beam_bond: '${with_beam}' vs '${with_crushing}'")
+endif()
+run("${shard}" --plugin-dir "${tutorial}/plugins" run "${tiny}" --out "${WORK_DIR}/tiny_crushed" --threads 1
+    --set bond.plugin=crushing_bond --set bond.crushing_ratio=2)
+string(REGEX MATCH "peak load ([0-9.]+)" crushed "${run_log}")
+string(REGEX MATCH "peak load ([0-9.]+)" intact "${with_beam}")
+string(REGEX REPLACE "peak load " "" crushed "${crushed}")
+string(REGEX REPLACE "peak load " "" intact "${intact}")
+if(NOT crushed LESS intact)
+  message(FATAL_ERROR "crushing_ratio 2 did not lower the peak load: ${crushed} N against ${intact} N")
+endif()
+message(STATUS "crushing_bond: built out of tree; neutral = beam_bond (${with_beam}); ratio 2: ${crushed} N")
+
 # A second new-plugin into the same folder refuses to overwrite.
 execute_process(COMMAND "${shard}" new-plugin contact oot_contact --dir "${WORK_DIR}/oot_contact"
                 RESULT_VARIABLE rc OUTPUT_QUIET ERROR_VARIABLE err)
