@@ -206,6 +206,21 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
     for (const auto& c : confirmations)
       if (!c.failure.empty())
         md += fmt::format("\nThe refit with {} did not run to the end and is left out: {}\n", c.name, c.failure);
+    for (const auto& rival : decision.rivals) {
+      std::string how;
+      double rival_chi2 = 0, named_chi2 = 0;
+      for (const auto& e : decision.effects) {
+        if (e.name == rival) rival_chi2 = e.chi_square;
+        if (e.name == verdict) named_chi2 = e.chi_square;
+      }
+      for (const auto& x : effects)
+        if ((x.name == rival || x.name == verdict) && !x.separated_by.empty())
+          how += fmt::format("{}{}: {}", how.empty() ? "" : "; ", x.name, x.separated_by);
+      md += fmt::format("\n{}'s refit (chi^2 {:.1f}) explains these data almost as well as {}'s ({:.1f}; within {:g}): "
+                        "they cannot tell the two apart. Measurements that would: {}.\n",
+                        rival, rival_chi2, verdict, named_chi2, ConfirmationRule{}.rival_chi_square,
+                        how.empty() ? "a second loading rate, an unloading cycle or fragment sizes" : how);
+    }
     for (const auto& [a, b] : d.indistinguishable) {
       std::string how;
       for (const auto& x : effects)
@@ -250,7 +265,10 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
                           number(c.delta_aic), number(c.delta_bic), number(ce ? ce->share_explained : 0.0),
                           number(ce ? ce->p_after : 1.0), c.effect_value, json_escape(c.failure));
     }
-    json += fmt::format("], \"excess\": {:.9g}, \"partial\": \"{}\"}}\n", decision.excess, json_escape(decision.best_partial));
+    std::string rivals;
+    for (const auto& r : decision.rivals) rivals += fmt::format("{}\"{}\"", rivals.empty() ? "" : ", ", json_escape(r));
+    json += fmt::format("], \"excess\": {:.9g}, \"partial\": \"{}\", \"rivals\": [{}]}}\n", decision.excess,
+                        json_escape(decision.best_partial), rivals);
     fs::create_directories(o->out);
     std::ofstream(o->out / "diagnose.md") << md;
     std::ofstream(o->out / "diagnose.json") << json;

@@ -49,3 +49,20 @@ TEST_CASE("of two effects that both qualify, the lower chi^2 is named") {
   CHECK(d.effects[1].named);
   CHECK(d.verdict == "b");
 }
+
+TEST_CASE("a refit within 2 in chi^2 of the named one is a rival the data cannot tell apart") {
+  // The tutorial's hidden crushing (docs/tutorial.md part 6): base refit 76.0, asymmetry 15.0,
+  // crushing 15.8 (p after 0.045, so not named itself, but as good within 2), viscosity 64.5.
+  const auto d = decide_from_refits(76.0, {{"viscosity", 64.5}, {"asymmetry", 15.0}, {"crushing", 15.8}}, 11, 2);
+  CHECK(d.verdict == "asymmetry");
+  REQUIRE(d.rivals.size() == 1);
+  CHECK(d.rivals[0] == "crushing");
+  // 2.5 worse is no longer a rival; nor is a refit that explains less than half of the excess.
+  CHECK(decide_from_refits(76.0, {{"asymmetry", 15.0}, {"crushing", 17.5}}, 11, 2).rivals.empty());
+  // Base 20 (excess 11): a at 10.0 explains 91 %; b at 11.5 is within 2 and explains 77 %: a rival;
+  // d at 14.9 explains 46 % and is 4.9 worse: not a rival.
+  const auto close = decide_from_refits(20.0, {{"a", 10.0}, {"b", 11.5}, {"d", 14.9}}, 11, 2);
+  CHECK(close.verdict == "a");
+  REQUIRE(close.rivals.size() == 1);
+  CHECK(close.rivals[0] == "b");
+}

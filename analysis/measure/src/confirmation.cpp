@@ -36,6 +36,10 @@ ConfirmationDecision decide_from_refits(double base_chi2, const std::vector<Refi
   }
   if (best_named) {
     d.verdict = best_named->name;
+    for (const auto& e : d.effects)
+      if (&e != best_named && e.share_explained >= rule.min_explained &&
+          e.chi_square <= best_named->chi_square + rule.rival_chi_square)
+        d.rivals.push_back(e.name);
   } else {
     d.verdict = kUnexplained;
     if (best_any) d.best_partial = best_any->name;

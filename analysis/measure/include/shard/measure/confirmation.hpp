@@ -15,6 +15,10 @@
 // name means "the base model plus this effect is adequate". A refit that improves the fit without meeting all
 // three is reported as a partial explanation and the verdict is "unexplained structured
 // residual": the data say something is missing, not that it is this candidate.
+// Rivals: other refits that explain at least `min_explained` of the excess and come within
+// `rival_chi_square` of the named one (2: a dAIC under 2 between two one-parameter additions,
+// "substantial support" for both in Burnham & Anderson's terms). The data cannot tell them from
+// the verdict, and the report says so with the measurement that would.
 #include <string>
 #include <vector>
 
@@ -34,6 +38,7 @@ struct ConfirmedEffect {
 struct ConfirmationRule {
   double min_explained = 0.5;
   double remaining_p = 0.05;
+  double rival_chi_square = 2.0;
 };
 
 struct ConfirmationDecision {
@@ -41,6 +46,7 @@ struct ConfirmationDecision {
   std::vector<ConfirmedEffect> effects;  // in the order given
   std::string verdict;                   // the named effect, or "unexplained structured residual"
   std::string best_partial;              // the refit that lowered chi^2 most when none is named
+  std::vector<std::string> rivals;       // refits the data cannot tell from the named one
 };
 
 inline constexpr const char* kUnexplained = "unexplained structured residual";
