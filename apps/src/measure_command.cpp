@@ -56,9 +56,10 @@ void add_compare(CLI::App& app, CommandContext& ctx) {
       sims.push_back(std::move(s));
     }
     double ke = 0;
+    const std::vector<Specimen> measured = specimens_at_rate(set, o->rate);
     if (!o->model.scene.empty()) {
       Simulator simulator(o->sim, ctx.plugin_dirs);
-      simulator.check_geometry(o->model, specimens_at_rate(set, o->rate));
+      simulator.check_inputs(o->model, measured);
       // The model runs at the compared specimens' rate: --rate, or the data's only rate.
       const std::vector<double> rates = set.loading_rates();
       o->model.loading_rate = o->rate > 0 ? o->rate : rates.size() == 1 ? rates.front() : 0.0;
@@ -68,7 +69,7 @@ void add_compare(CLI::App& app, CommandContext& ctx) {
     if (sims.empty()) throw std::runtime_error("compare: give simulated curves with --sim or a model with --scene");
     CompareOptions options;
     options.judge_fracture = o->sim.judge_fracture;
-    const Comparison c = compare(specimens_at_rate(set, o->rate), set.metadata, sims, options);
+    const Comparison c = compare(measured, set.metadata, sims, options);
     fs::create_directories(o->out);
     std::ofstream(o->out / "compare.md") << comparison_markdown(c);
     std::ofstream(o->out / "compare.json") << comparison_json(c);

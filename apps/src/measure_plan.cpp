@@ -81,9 +81,9 @@ std::vector<std::vector<Specimen>> Simulator::simulate(const std::vector<ModelPl
   return out;
 }
 
-void Simulator::check_geometry(const ModelPlan& model, const std::vector<Specimen>& specimens) {
-  if (geometry_checked_ || specimens.empty()) return;
-  geometry_checked_ = true;
+void Simulator::check_inputs(const ModelPlan& model, const std::vector<Specimen>& specimens) {
+  if (inputs_checked_ || specimens.empty()) return;
+  inputs_checked_ = true;
   if (options_.seeds < 2)
     fmt::print(stderr,
                "warning: one packing seed: the model's packing-to-packing scatter is unknown, so the scores below count "
@@ -171,8 +171,11 @@ double RateComparison::chi_square() const {
 std::vector<RateComparison> simulate_and_compare(Simulator& simulator, const RateGroups& groups, const Metadata& metadata,
                                                  const std::vector<ModelPlan>& models, std::ostream& log) {
   // With one rate the model runs at the scene's own speed unless the data are at another one.
-  if (!models.empty())
-    for (const auto& at : groups.specimens) simulator.check_geometry(models.front(), at);
+  if (!models.empty()) {
+    std::vector<Specimen> every_rate;
+    for (const auto& at : groups.specimens) every_rate.insert(every_rate.end(), at.begin(), at.end());
+    simulator.check_inputs(models.front(), every_rate);
+  }
   std::vector<ModelPlan> runs;
   for (const auto& m : models)
     for (double r : groups.rates) {

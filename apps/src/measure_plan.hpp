@@ -54,16 +54,17 @@ class Simulator {
   const SimulationOptions& options() const { return options_; }
   // Largest kinetic/elastic ratio of the runs simulated so far (the quasi-static check).
   double max_kinetic_to_elastic() const { return max_ke_; }
-  // Throws, naming both, when a specimen's span or pin distance differs from the model scene's
-  // by more than 2 % (once per simulator: the models of one command share the scene's geometry).
-  void check_geometry(const ModelPlan& model, const std::vector<measure::Specimen>& specimens);
+  // Before the first simulation of a command (later calls do nothing: its models share the scene
+  // and the data): warns when one packing seed leaves the model's scatter unknown, and throws,
+  // naming both, when a specimen's span or pin distance differs from the scene's by more than 2 %.
+  void check_inputs(const ModelPlan& model, const std::vector<measure::Specimen>& specimens);
 
  private:
   SimulationOptions options_;
   RunPool pool_;
   double max_ke_ = 0;
   bool rate_hint_given_ = false;
-  bool geometry_checked_ = false;
+  bool inputs_checked_ = false;
 };
 
 // The value of section.key in the resolved scene (overrides applied); throws when absent.

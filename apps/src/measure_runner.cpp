@@ -20,6 +20,7 @@
 
 #include "shard/app/run_command.hpp"
 #include "shard/bending/bending_run.hpp"
+#include "shard/bending/test_setup.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
 
@@ -54,6 +55,11 @@ double touch_offset(const Wall& w, const Vec3& n, const Vec3& x, double r, bool 
   return first ? along - h : along + h;
 }
 
+// A [stop] load wall: a loading pin of the test.
+bool is_load_wall(const Scene& scene, const Wall& w) {
+  return std::find(scene.stop.load_walls.begin(), scene.stop.load_walls.end(), w.name) != scene.stop.load_walls.end();
+}
+
 struct Child {
   pid_t pid = -1;
   std::size_t job = 0;
@@ -65,9 +71,7 @@ double log_number(const std::string& log, const std::string& before, double fall
   const auto at = log.rfind(before);
   if (at == std::string::npos) return fallback;
   try {
-    const std::string tail = log.substr(at + before.size());
-    if (tail.starts_with("nan")) return fallback;
-    return std::stod(tail);
+    return std::stod(log.substr(at + before.size()));
   } catch (const std::exception&) {
     return fallback;
   }
@@ -178,8 +182,7 @@ std::vector<std::string> RunPool::seating_overrides(const RunRequest& request) c
   std::vector<std::string> out;
   for (const Wall& w : scene.walls) {
     if (w.shape != WallShape::Cylinder) continue;
-    const bool loading =
-        std::find(scene.stop.load_walls.begin(), scene.stop.load_walls.end(), w.name) != scene.stop.load_walls.end();
+    const bool loading = is_load_wall(scene, w);
     if (!loading && w.velocity.norm() > 0) continue;
     // A loading pin arrives along +n (first contact = smallest offset); a support waits on the far
     // side and is brought against the body along -n (largest offset).
@@ -203,9 +206,7 @@ SpecimenSetup RunPool::specimen_setup(const fs::path& scene_file, const std::vec
   std::vector<const Wall*> pins, supports;
   for (const Wall& w : scene.walls) {
     if (w.shape != WallShape::Cylinder) continue;
-    const bool loading =
-        std::find(scene.stop.load_walls.begin(), scene.stop.load_walls.end(), w.name) != scene.stop.load_walls.end();
-    if (loading) pins.push_back(&w);
+    if (is_load_wall(scene, w)) pins.push_back(&w);
     else if (w.velocity.norm() == 0) supports.push_back(&w);
   }
   if (pins.size() != 2 || supports.size() != 2)
@@ -213,26 +214,14 @@ SpecimenSetup RunPool::specimen_setup(const fs::path& scene_file, const std::vec
         "{}: {} loading and {} resting cylinders; the specimen's span and pin distance are read from two of each "
         "(four-point bending). Give them explicitly (--length, --width, --height, --span, --pin-distance)",
         scene_file.string(), pins.size(), supports.size()));
-  const Vec3 n = scene.stop.load_direction.normalized();
-  auto across_load = [&](const Vec3& v) { return Vec3(v - v.dot(n) * n); };
-  const Vec3 along = across_load(pins[1]->point - pins[0]->point).normalized();
-  const Vec3 cross = n.cross(along);
-  SpecimenSetup s;
-  s.pin_distance = std::abs(across_load(pins[1]->point - pins[0]->point).dot(along));
-  s.span = std::abs(across_load(supports[1]->point - supports[0]->point).dot(along));
+  const bending::BeamFrame frame = bending::beam_frame(pins[0]->point, pins[1]->point, scene.stop.load_direction);
   const SceneInstance inst = instantiate(scene, *host_, [](const std::string&) {});
   const Particles& p = inst.simulation->particles();
-  auto extent = [&](const Vec3& e) {
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (std::size_t k = 0; k < p.size(); ++k) {
-      lo = std::min(lo, p.position[k].dot(e) - p.radius[k]);
-      hi = std::max(hi, p.position[k].dot(e) + p.radius[k]);
-    }
-    return p.size() > 0 ? hi - lo : 0.0;
-  };
-  s.length = extent(along);
-  s.width = extent(cross);
-  s.height = extent(n);
+  const bending::SphereExtent extent = bending::sphere_extent(frame, p.position, p.radius);
+  SpecimenSetup s;
+  s.pin_distance = bending::distance_along(frame, pins[0]->point, pins[1]->point);
+  s.span = bending::distance_along(frame, supports[0]->point, supports[1]->point);
+  s.length = extent.length, s.width = extent.width, s.height = extent.height;
   return s;
 }
 
@@ -240,7 +229,7 @@ double RunPool::scene_rate(const fs::path& scene_file, const std::vector<std::st
   const Scene scene = load_scene(scene_file, overrides, *host_);
   double rate = 0;
   for (const Wall& w : scene.walls)
-    if (std::find(scene.stop.load_walls.begin(), scene.stop.load_walls.end(), w.name) != scene.stop.load_walls.end())
+    if (is_load_wall(scene, w))
       rate = std::max(rate, w.velocity.norm());
   return rate;
 }
@@ -256,7 +245,7 @@ std::vector<std::string> RunPool::rate_overrides(const fs::path& scene_file, con
   const double f = rate / own;
   std::vector<std::string> out;
   for (const Wall& w : scene.walls)
-    if (std::find(scene.stop.load_walls.begin(), scene.stop.load_walls.end(), w.name) != scene.stop.load_walls.end()) {
+    if (is_load_wall(scene, w)) {
       const Vec3 v = f * w.velocity;
       out.push_back(fmt::format("wall.{}.velocity=[{:.12g}, {:.12g}, {:.12g}]", w.name, v.x(), v.y(), v.z()));
     }

@@ -1,5 +1,6 @@
 #include "shard/bending/bending_run.hpp"
 #include "shard/bending/quasi_static.hpp"
+#include "shard/bending/test_setup.hpp"
 
 #include <fmt/format.h>
 
@@ -106,21 +107,23 @@ BendingReport analyse_bending_run(const std::filesystem::path& path, const Bendi
   if (pins.size() != 2)
     throw std::runtime_error(fmt::format("{}: a four-point bending run needs two cylinder walls in [stop] load_walls; "
                                          "found {}", path.string(), pins.size()));
-  Vec3 axis = pins[1].point - pins[0].point;
-  axis -= axis.dot(r.down) * r.down;
-  if (axis.norm() == 0) throw std::runtime_error(fmt::format("{}: the two loading pins coincide", path.string()));
-  r.axis = axis.normalized();
-  if (r.axis.dot(Vec3::UnitX() + Vec3::UnitY() + Vec3::UnitZ()) < 0) r.axis = -r.axis;  // deterministic sign
-  r.centre = 0.5 * (pins[0].point + pins[1].point);
+  BeamFrame frame;
+  try {
+    frame = beam_frame(pins[0].point, pins[1].point, r.down);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(fmt::format("{}: {}", path.string(), e.what()));
+  }
+  r.axis = frame.axis;
+  r.centre = frame.centre;
   std::string source;
   BendingGeometry& g = r.geometry;
-  g.pin_distance = options.pin_distance.value_or(std::abs((pins[1].point - pins[0].point).dot(r.axis)));
+  g.pin_distance = options.pin_distance.value_or(distance_along(frame, pins[0].point, pins[1].point));
   source += options.pin_distance ? "pin distance: given; " : "pin distance: pin walls; ";
   if (options.span) {
     g.span = *options.span;
     source += "span: given; ";
   } else if (supports.size() == 2) {
-    g.span = std::abs((supports[1].point - supports[0].point).dot(r.axis));
+    g.span = distance_along(frame, supports[0].point, supports[1].point);
     source += "span: support walls; ";
   } else {
     throw std::runtime_error(fmt::format("{}: cannot infer the span: {} cylinder walls besides the pins (need 2); "
@@ -132,21 +135,14 @@ BendingReport analyse_bending_run(const std::filesystem::path& path, const Bendi
   const FrameData first = file.read_frame(0);
   r.particles = first.id.size();
   r.bonds = first.bonds.size();
-  const Vec3 across = r.down.cross(r.axis).normalized();
-  double lo_h = 1e300, hi_h = -1e300, lo_w = 1e300, hi_w = -1e300, lo_l = 1e300, hi_l = -1e300, dsum = 0;
-  for (std::size_t k = 0; k < first.position.size(); ++k) {
-    const Vec3 p = first.position[k] - r.centre;
-    const double rad = first.radius[k];
-    lo_h = std::min(lo_h, p.dot(r.down) - rad), hi_h = std::max(hi_h, p.dot(r.down) + rad);
-    lo_w = std::min(lo_w, p.dot(across) - rad), hi_w = std::max(hi_w, p.dot(across) + rad);
-    lo_l = std::min(lo_l, p.dot(r.axis) - rad), hi_l = std::max(hi_l, p.dot(r.axis) + rad);
-    dsum += 2 * rad;
-  }
   if (r.particles == 0) throw std::runtime_error(fmt::format("{}: the first frame holds no particles", path.string()));
+  const SphereExtent extent = sphere_extent(frame, first.position, first.radius);
+  double dsum = 0;
+  for (double rad : first.radius) dsum += 2 * rad;
   r.mean_diameter = dsum / static_cast<double>(r.particles);
-  r.length = hi_l - lo_l;
-  g.width = options.width.value_or(hi_w - lo_w);
-  g.height = options.height.value_or(hi_h - lo_h);
+  r.length = extent.length;
+  g.width = options.width.value_or(extent.width);
+  g.height = options.height.value_or(extent.height);
   source += options.width ? "width: given; " : "width: sphere extent; ";
   source += options.height ? "height: given" : "height: sphere extent";
   r.geometry_source = source;
@@ -210,7 +206,7 @@ BendingReport analyse_bending_run(const std::filesystem::path& path, const Bendi
   const double t_peak = time.empty() ? 0 : time[r.analysis.peak_row];
   {
     SectionGauges gauges;
-    gauges.centre = r.centre + 0.5 * (lo_h + hi_h) * r.down;
+    gauges.centre = r.centre + extent.mid_height * r.down;
     gauges.axis = r.axis;
     gauges.down = r.down;
     gauges.section_width = options.gauge_section > 0 ? options.gauge_section : 2 * r.mean_diameter;
