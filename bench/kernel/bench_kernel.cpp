@@ -36,7 +36,7 @@ double cpu_seconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-// FNV-1a over the bits of every particle's stable id, position, orientation, velocity and spin,
+// FNV-1a over the bits of every particle's position, orientation, velocity and spin, taken
 // in stable-id order: equal hashes mean a bit-identical state whatever the internal numbering, so
 // a speed-up can be checked not to have moved a single bit (docs/performance.md).
 std::uint64_t state_hash(const Particles& p) {

@@ -1,6 +1,7 @@
 #pragma once
 // A hand-built set of particles and bonds for driving a BondModel directly, without the kernel.
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -44,14 +45,17 @@ struct HandBonds {
 
   double dt = 0;  // s, handed to the model in every batch (rate-dependent models read it)
 
-  // A batch over all bonds; outputs zeroed as the kernel does; the model state is kept.
+  // A batch over all bonds, outputs prepared as the kernel does: zeroed, or, for a model that
+  // declares it writes every output, filled with NaN so that an output it forgot shows in any
+  // comparison. The model state is kept.
   BondBatch batch(const BondModel& model) {
     const std::size_t n = i.size();
     state.resize(n * model.state_size());
-    force.assign(n, Vec3::Zero());
-    torque_i.assign(n, Vec3::Zero());
-    torque_j.assign(n, Vec3::Zero());
-    energy.assign(n, 0.0);
+    const double unset = model.writes_every_output() ? std::numeric_limits<double>::quiet_NaN() : 0.0;
+    force.assign(n, Vec3::Constant(unset));
+    torque_i.assign(n, Vec3::Constant(unset));
+    torque_j.assign(n, Vec3::Constant(unset));
+    energy.assign(n, unset);
     broken.assign(n, 0);
     stress.assign(n, BondStress{});
     BondBatch b;

@@ -27,7 +27,7 @@ inline Quat random_rotation(std::mt19937_64& rng, double max_angle) {
 }
 
 struct RandomPairOptions {
-  bool equal_radii_every_fifth = false;   // exercises the equal-radius branch of the section
+  bool equal_radii_every_fifth = false;   // pairs of equal radii: the section's min() of a tie
   bool swap_ids_every_seventh = false;    // stable ids opposite to the storage order
 };
 

@@ -4,9 +4,7 @@
 // every force, torque, energy, break flag and break stress must be bit-identical.
 #include <doctest/doctest.h>
 
-#include <cstring>
 #include <map>
-#include <random>
 
 #include "../bond/random_bonds.hpp"
 #include "bond_batch.hpp"

@@ -14,7 +14,6 @@
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <numbers>
 #include <optional>
 #include <stdexcept>
 
@@ -25,7 +24,6 @@
 
 namespace {
 
-using shard::Index;
 using shard::Vec3;
 
 struct Params {
@@ -45,7 +43,7 @@ class CrushingBond final : public shard::BondModel {
   void initialize(shard::BondBatch& b) const override {
     const auto& p = b.particles;
     for (std::size_t k = 0; k < b.count; ++k) {
-      const auto [n1, n2, swapped] = ends(p, b.i[k], b.j[k]);
+      const auto [n1, n2, swapped] = shard::beam::ends_of(p, b.i[k], b.j[k]);
       shard::beam::store(b.state + k * shard::beam::kStateSize,
                          shard::beam::reference_of(p.position[n1], p.position[n2], p.orientation[n1], p.orientation[n2]));
     }
@@ -55,8 +53,8 @@ class CrushingBond final : public shard::BondModel {
   shard::TimeStepLimit time_step_limit(const shard::BondBatch& b) const override {
     double lightest = std::numeric_limits<double>::infinity(), stiffest = 0, softest = lightest;
     for (std::size_t k = 0; k < b.count; ++k) {
-      const double r = p_.radius_ratio * std::min(b.particles.radius[b.i[k]], b.particles.radius[b.j[k]]);
-      const double axial = p_.youngs * std::numbers::pi * r * r / b.state[k * shard::beam::kStateSize];
+      const auto sec = shard::beam::section_of(p_.radius_ratio, b.particles.radius[b.i[k]], b.particles.radius[b.j[k]]);
+      const double axial = p_.youngs * sec.area / b.state[k * shard::beam::kStateSize];
       stiffest = std::max(stiffest, axial), softest = std::min(softest, axial);
       lightest = std::min({lightest, b.particles.mass[b.i[k]], b.particles.mass[b.j[k]]});
     }
@@ -65,30 +63,31 @@ class CrushingBond final : public shard::BondModel {
     return {"crushing_bond t_bond (eq. 12)", t, t};
   }
 
+  bool writes_every_output() const override { return true; }  // intact bonds in full, broken ones zeroed
+
   void compute(shard::BondBatch& b) const override {
     namespace beam = shard::beam;
     const auto& p = b.particles;
     const double E = p_.youngs, G = p_.shear;
     const beam::RotationalDamping rotational(p_.rotational_damping, E, G);
     for (std::size_t k = 0; k < b.count; ++k) {
-      const auto [n1, n2, swapped] = ends(p, b.i[k], b.j[k]);
+      const auto [n1, n2, swapped] = beam::ends_of(p, b.i[k], b.j[k]);
       const beam::Reference ref = beam::load(b.state + k * beam::kStateSize);
       const double inv_l0 = 1 / ref.l0;
-      const double r = p_.radius_ratio * std::min(p.radius[n1], p.radius[n2]);
-      const double area = std::numbers::pi * r * r, second_moment = area * r * r / 4;  // A_b, J_b
+      const auto [r, area, second_moment] = beam::section_of(p_.radius_ratio, p.radius[n1], p.radius[n2]);
       const beam::Deformation g = beam::deform(ref, p.position[n1], p.position[n2], p.orientation[n1], p.orientation[n2]);
       const auto [strain, curvature] = beam::strain_curvature(g, inv_l0);  // Gamma, kappa
       if (p_.breakage) {
         const shard::BondStress s = beam::stress_of(strain, curvature, E, G, r);
         // The effect: the compressed fibre of the bond against sigma_crush = sigma_crit / ratio.
-        const double crushing =
-            std::max(0.0, -E * strain.x()) + E * r * std::hypot(curvature.y(), curvature.z());
+        const double crushing = std::max(0.0, -E * strain.x()) + s.bending;
         if (s.sigma_vm >= p_.strength || p_.crushing_ratio * crushing >= p_.strength) {
           beam::write_broken(b, k, s);
           continue;
         }
       }
-      const beam::Rates rates = beam::rates_of(g, p.velocity[n1], p.velocity[n2], p.omega[n1], p.omega[n2]);
+      const beam::Rates rates =
+          beam::rates_of(g, p.velocity[n1], p.velocity[n2], p.omega[n1], p.omega[n2], p_.damping != 0);
       const Vec3 force(E * area * strain.x(), p_.shear_coefficient * G * area * strain.y(),
                        p_.shear_coefficient * G * area * strain.z());  // eq. 3, 5
       const Vec3 torque(2 * G * second_moment * curvature.x(), E * second_moment * curvature.y(),
@@ -103,16 +102,6 @@ class CrushingBond final : public shard::BondModel {
   }
 
  private:
-  struct Ends {
-    Index first, second;
-    bool swapped;
-  };
-  // The first end is the smaller stable id, as in the shipped beam: the state survives reordering.
-  static Ends ends(const shard::ParticleView& p, Index i, Index j) {
-    const bool swapped = p.id ? p.id[j] < p.id[i] : j < i;
-    return swapped ? Ends{j, i, true} : Ends{i, j, false};
-  }
-
   Params p_;
 };
 

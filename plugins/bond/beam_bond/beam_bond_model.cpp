@@ -12,31 +12,6 @@
 #include "beam_stress.hpp"
 
 namespace shard::beam {
-namespace {
-
-// The bond's own "first" particle is the one with the smaller stable id, so the state stays
-// valid when the kernel reorders particles or lists a bond the other way round, and a swapped
-// bond runs exactly the same arithmetic.
-struct Ends {
-  Index first, second;
-  bool swapped;  // first is batch.j
-};
-
-Ends ends_of(const ParticleView& p, Index i, Index j) {
-  const bool swapped = p.id ? p.id[j] < p.id[i] : j < i;
-  return swapped ? Ends{j, i, true} : Ends{i, j, false};
-}
-
-struct Section {
-  double radius, area, second_moment;  // r_b, A_b = pi r_b^2, J_b = pi r_b^4 / 4
-};
-
-Section section_of(double lambda, double r1, double r2) {
-  const double r = lambda * std::min(r1, r2);
-  return {r, std::numbers::pi * r * r, std::numbers::pi * r * r * r * r / 4};
-}
-
-}  // namespace
 
 BeamBondParams BeamBondParams::from(const ParamSet& p) {
   BeamBondParams b;
@@ -52,7 +27,20 @@ BeamBondParams BeamBondParams::from(const ParamSet& p) {
   return b;
 }
 
-BeamBond::BeamBond(const BeamBondParams& params) : p_(params), shear_modulus_(params.effective_shear_modulus()) {
+BeamBond::BeamBond(const BeamBondParams& params)
+    : p_(params),
+      shear_modulus_(params.effective_shear_modulus()),
+      rotational_(params.rotational_damping, params.youngs_modulus, shear_modulus_) {
+  block_.youngs = p_.youngs_modulus;
+  block_.shear = shear_modulus_;
+  block_.shear_coefficient = p_.shear_coefficient;
+  block_.radius_ratio = p_.radius_ratio;
+  block_.damping = p_.damping;
+  block_.strength = p_.critical_stress;
+  block_.bend_scale = rotational_.bend_scale();
+  block_.twist_over_bend = rotational_.twist_over_bend();
+  block_.breakage = p_.breakage;
+  block_.viscous_force = p_.damping != 0;
   if (!(p_.youngs_modulus > 0) || !(shear_modulus_ > 0) || !(p_.shear_coefficient > 0) || !(p_.radius_ratio > 0))
     throw std::invalid_argument("beam_bond: youngs_modulus, shear modulus, shear_coefficient and radius_ratio must be > 0");
 }
@@ -103,8 +91,7 @@ void BeamBond::compute_bond(BondBatch& batch, std::size_t k) const {
   const double E = p_.youngs_modulus;
   const double G = shear_modulus_;
   const double a_s = p_.shear_coefficient;
-  const RotationalDamping rotational(p_.rotational_damping, E, G);
-  const bool viscous_force = p_.damping != 0;
+  const bool viscous_force = block_.viscous_force;
 
   const Ends e = ends_of(p, batch.i[k], batch.j[k]);
   const Index n1 = e.first, n2 = e.second;
@@ -136,7 +123,7 @@ void BeamBond::compute_bond(BondBatch& batch, std::size_t k) const {
   const Rates r = rates_of(g, p.velocity[n1], p.velocity[n2], p.omega[n1], p.omega[n2], viscous_force);
   Vec3 force = elastic_force;
   if (viscous_force) force += p_.damping * r.v12;
-  const Vec3 damping_torque = rotational.torque(sec.second_moment, inv_l0, p.inertia[n1], p.inertia[n2], r.omega_rel);
+  const Vec3 damping_torque = rotational_.torque(sec.second_moment, inv_l0, p.inertia[n1], p.inertia[n2], r.omega_rel);
 
   const PairLoads loads = pair_loads(g, force, elastic_torque + damping_torque, e.swapped);
   batch.force[k] = loads.force_on_i;
@@ -152,17 +139,6 @@ void BeamBond::compute_reference(BondBatch& batch) const {
 // leaves go through the per-bond path.
 void BeamBond::compute(BondBatch& batch) const {
   const ParticleView& p = batch.particles;
-  BlockConstants c;
-  c.youngs = p_.youngs_modulus;
-  c.shear = shear_modulus_;
-  c.shear_coefficient = p_.shear_coefficient;
-  c.radius_ratio = p_.radius_ratio;
-  c.damping = p_.damping;
-  c.strength = p_.critical_stress;
-  c.bend_scale = p_.rotational_damping * std::sqrt(p_.youngs_modulus);
-  c.twist_over_bend = std::sqrt(2 * shear_modulus_ / p_.youngs_modulus);
-  c.breakage = p_.breakage;
-  c.viscous_force = p_.damping != 0;
 
   static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(Quat) == 4 * sizeof(double));
   BlockOutput out;
@@ -191,7 +167,7 @@ void BeamBond::compute(BondBatch& batch) const {
     out.torque_i = batch.torque_i[base].data();
     out.torque_j = batch.torque_j[base].data();
     out.energy = batch.energy + base;
-    evaluate_block(in, out, n, c);
+    evaluate_block(in, out, n, block_);
     for (std::size_t l = 0; l < n; ++l)
       if (out.fallback[l]) compute_bond(batch, base + l);
   }

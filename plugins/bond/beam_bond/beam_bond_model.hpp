@@ -2,6 +2,8 @@
 // The seed paper's beam bond (model.md sec. 3, seed eq. 3-13) as a BondModel.
 #include <cstddef>
 
+#include "beam_batch.hpp"
+#include "beam_geometry.hpp"
 #include "shard/bond_model.hpp"
 #include "shard/params.hpp"
 
@@ -38,12 +40,15 @@ class BeamBond final : public BondModel {
   void compute_reference(BondBatch& batch) const;
 
   const BeamBondParams& params() const { return p_; }
+  const BlockConstants& block_constants() const { return block_; }
 
  private:
   void compute_bond(BondBatch& batch, std::size_t k) const;
 
   BeamBondParams p_;
   double shear_modulus_;  // G_b actually used
+  RotationalDamping rotational_;  // eq. 6-7 coefficients
+  BlockConstants block_;          // the same parameters as the blocked lanes read them
 };
 
 }  // namespace shard::beam

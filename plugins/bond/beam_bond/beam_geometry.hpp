@@ -33,9 +33,36 @@
 #include <cmath>
 #include <cstddef>
 
+#include <algorithm>
+#include <numbers>
+
+#include "shard/particles.hpp"
 #include "shard/types.hpp"
 
 namespace shard::beam {
+
+// The bond's own "first" particle is the one with the smaller stable id, so the state stays
+// valid when the kernel reorders particles or lists a bond the other way round, and a swapped
+// bond runs exactly the same arithmetic.
+struct Ends {
+  Index first, second;
+  bool swapped;  // first is batch.j
+};
+
+inline Ends ends_of(const ParticleView& p, Index i, Index j) {
+  const bool swapped = p.id ? p.id[j] < p.id[i] : j < i;
+  return swapped ? Ends{j, i, true} : Ends{i, j, false};
+}
+
+// The bond's cross-section (eq. 3-5): radius lambda min(r1, r2).
+struct Section {
+  double radius, area, second_moment;  // r_b, A_b = pi r_b^2, J_b = pi r_b^4 / 4
+};
+
+inline Section section_of(double lambda, double r1, double r2) {
+  const double r = lambda * std::min(r1, r2);
+  return {r, std::numbers::pi * r * r, std::numbers::pi * r * r * r * r / 4};
+}
 
 // Per-bond state in the kernel array: l0, then b1 and b2 as (w, x, y, z).
 inline constexpr std::size_t kStateSize = 9;
@@ -181,6 +208,9 @@ class RotationalDamping {
  public:
   RotationalDamping(double factor, double youngs, double shear)
       : bend_scale_(factor * std::sqrt(youngs)), twist_over_bend_(std::sqrt(2 * shear / youngs)) {}
+
+  double bend_scale() const { return bend_scale_; }            // factor sqrt(E)
+  double twist_over_bend() const { return twist_over_bend_; }  // sqrt(2 G / E)
 
   Vec3 torque(double second_moment, double inv_l0, double inertia1, double inertia2, const Vec3& omega_rel) const {
     const double inertia_r = inertia1 * inertia2 / (inertia1 + inertia2);

@@ -14,31 +14,11 @@
 #include "weibull_strength.hpp"
 
 namespace shard::beam_plus {
-namespace {
 
-// As in beam_bond: the bond's first particle is the one with the smaller stable id, so the state
-// survives reordering and a swapped bond runs the same arithmetic.
-struct Ends {
-  Index first, second;
-  bool swapped;
-};
-
-Ends ends_of(const ParticleView& p, Index i, Index j) {
-  const bool swapped = p.id ? p.id[j] < p.id[i] : j < i;
-  return swapped ? Ends{j, i, true} : Ends{i, j, false};
-}
-
-struct Section {
-  double radius, area, second_moment;  // r_b, A_b = pi r_b^2, J_b = pi r_b^4 / 4
-};
-
-Section section_of(double lambda, double r1, double r2) {
-  const double r = lambda * std::min(r1, r2);
-  return {r, std::numbers::pi * r * r, std::numbers::pi * r * r * r * r / 4};
-}
-
-
-}  // namespace
+using beam::Ends;
+using beam::ends_of;
+using beam::Section;
+using beam::section_of;
 
 BeamBondPlusParams BeamBondPlusParams::from(const ParamSet& p) {
   BeamBondPlusParams b;
@@ -147,7 +127,8 @@ void BeamBondPlus::compute(BondBatch& batch) const {
 
     // Rates conjugate to Gamma and kappa (beam_geometry.hpp): v12 = l0 dGamma/dt,
     // omega_rel = d theta/dt = l0 dkappa/dt. Zero for rigid motion of the pair.
-    const beam::Rates r = beam::rates_of(g, p.velocity[n1], p.velocity[n2], p.omega[n1], p.omega[n2]);
+    // Only eq. 4's damping reads v12 (the Maxwell arm works on strain increments).
+    const beam::Rates r = beam::rates_of(g, p.velocity[n1], p.velocity[n2], p.omega[n1], p.omega[n2], b.damping != 0);
     const Vec3& v12 = r.v12;
     const Vec3& omega_rel = r.omega_rel;
 

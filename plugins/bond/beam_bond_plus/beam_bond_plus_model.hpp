@@ -32,9 +32,9 @@ struct BeamBondPlusParams {
 inline constexpr std::size_t kStrengthSlot = 9;
 inline constexpr std::size_t kDamageSlot = 10;
 inline constexpr std::size_t kStateSize = 11;
-inline constexpr std::size_t kPreviousStrainSlot = 11;  // Gamma (3), then kappa (3)
-inline constexpr std::size_t kArmStrainSlot = 17;       // h_Gamma (3), then h_kappa (3)
-inline constexpr std::size_t kViscousStateSize = 23;
+inline constexpr std::size_t kPreviousStrainSlot = kStateSize;         // Gamma (3), then kappa (3)
+inline constexpr std::size_t kArmStrainSlot = kPreviousStrainSlot + 6;  // h_Gamma (3), then h_kappa (3)
+inline constexpr std::size_t kViscousStateSize = kArmStrainSlot + 6;
 
 class BeamBondPlus final : public BondModel {
  public:

@@ -18,7 +18,7 @@ shard::PluginInfo beam_bond_plus_info() {
   info.kind = shard::PluginKind::Bond;
   info.name = "beam_bond_plus";
   info.version = "1.1.0";
-  info.doc = "beam_bond + Weibull strength scatter, cohesive softening, Kelvin-Voigt viscosity, "
+  info.doc = "beam_bond + Weibull strength scatter, cohesive softening, standard-linear-solid (Maxwell arm) viscosity, "
              "tension/compression asymmetry (docs/effects.md)";
   // beam_bond's own parameters, with the two whose meaning the effects widen re-documented.
   info.params = shard::beam::beam_bond_params();
