@@ -36,7 +36,7 @@ double cpu_seconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-// FNV-1a over the bits of every particle's position, orientation, velocity and spin, taken
+// FNV-1a (bonded and pack lines) over the bits of every particle's position, orientation, velocity and spin, taken
 // in stable-id order: equal hashes mean a bit-identical state whatever the internal numbering, so
 // a speed-up can be checked not to have moved a single bit (docs/performance.md).
 std::uint64_t state_hash(const Particles& p) {
@@ -117,10 +117,12 @@ void pack_run(const char* name, std::size_t target, std::int64_t steps) {
   const double n = static_cast<double>(sim.particles().size());
   std::printf(
       "bench_kernel %s: particles=%zu threads=%d steps=%lld dt=%.3e contacts=%zu rebuilds=%lld seconds=%.3f "
-      "cpu_seconds=%.3f ms_per_step=%.3f particle_steps_per_s=%.4g ns_per_particle_step=%.1f\n",
+      "cpu_seconds=%.3f ms_per_step=%.3f particle_steps_per_s=%.4g ns_per_particle_step=%.1f cpu_ns_per_particle_step=%.1f "
+      "state_hash=%016llx\n",
       name, sim.particles().size(), omp_get_max_threads(), static_cast<long long>(steps), sim.dt(),
       sim.contact_count(), static_cast<long long>(sim.neighbour_rebuilds()), busy, cpu, 1e3 * busy / static_cast<double>(steps),
-      n * static_cast<double>(steps) / busy, 1e9 * busy / (n * static_cast<double>(steps)));
+      n * static_cast<double>(steps) / busy, 1e9 * busy / (n * static_cast<double>(steps)),
+      1e9 * cpu / (n * static_cast<double>(steps)), static_cast<unsigned long long>(state_hash(sim.particles())));
 }
 
 }  // namespace

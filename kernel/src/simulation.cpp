@@ -15,16 +15,22 @@
 namespace shard {
 namespace {
 
-// Per-step contact arrays, sized to the neighbour list and reused (no allocation per step).
-// Thread t compacts the contacts of its pair range [begin, end) to [begin, begin + count).
+// The contact model is called on blocks of this many touching pairs. A block's geometry, history
+// and forces (~200 bytes per contact) stay in L1 from the geometry pass through the model to the
+// scatter; one array for all of a thread's contacts (6 MB in the bonded block) went out to memory
+// and came back twice per step.
+constexpr std::size_t kContactBlock = 128;
+
+// One thread's block of touching pairs, structure of arrays (the ContactBatch layout).
 struct ContactArrays {
+  std::size_t count = 0;
   std::vector<Index> i, j;
   std::vector<std::size_t> pair;
   std::vector<Vec3> normal, velocity, omega_rel, force, couple;
   std::vector<double> overlap, r_eff, m_eff, energy, history;
-  void reserve(std::size_t n, std::size_t stride) {
-    if (i.size() >= n) return;
-    n += n / 4 + 16;
+  void reserve(std::size_t stride) {
+    const std::size_t n = kContactBlock;
+    if (i.size() == n && history.size() == n * stride) return;
     i.resize(n);
     j.resize(n);
     pair.resize(n);
@@ -46,6 +52,7 @@ struct ContactArrays {
 // (and left zero again): no atomics, no locks, and a fixed order of every sum.
 struct alignas(64) ThreadShare {
   std::vector<Vec3> force, torque;
+  ContactArrays block;
   std::vector<Vec3> wall_force, wall_torque;
   double contact_energy = 0;
   std::size_t contacts = 0;
@@ -66,16 +73,16 @@ constexpr std::size_t kReorderMinParticles = 10000;
 }  // namespace
 
 struct ContactWorkspace {
-  ContactArrays contacts;
   std::vector<ThreadShare> threads;
   SpatialOrder order;
   double order_cell = 1;  // m: the Morton grid, one neighbour-search cell
 
   // Buffers for `team` threads over n particles; allocates only when the team or n changes.
-  void prepare(int team, std::size_t n, std::size_t walls) {
+  void prepare(int team, std::size_t n, std::size_t walls, std::size_t history_stride) {
     if (threads.size() < static_cast<std::size_t>(team)) threads.resize(static_cast<std::size_t>(team));
     for (std::size_t t = 0; t < threads.size(); ++t) {
       ThreadShare& s = threads[t];
+      s.block.reserve(history_stride);
       const std::size_t size = t == 0 ? 0 : n;
       if (s.force.size() != size) {
         s.force.assign(size, Vec3::Zero());
@@ -239,11 +246,10 @@ void Simulation::compute_forces() {
   if (contact_) {
     update_neighbours();
     pairs = neighbours_->size();
-    ws.contacts.reserve(pairs, neighbours_->history_stride());
   }
   const std::size_t m = bond_ ? bonds_.size() : 0;
   const int team = team_for(n + pairs + m);
-  ws.prepare(team, n, walls_.size());
+  ws.prepare(team, n, walls_.size(), neighbours_->history_stride());
   const bool gravity = !gravity_.isZero();
   int used = 1;
 #pragma omp parallel num_threads(team)
@@ -313,29 +319,28 @@ void Simulation::compute_forces() {
   if (bond_broke) record_broken_bonds();
 }
 
-void Simulation::contact_chunk(std::size_t begin, std::size_t end, Vec3* force, Vec3* torque, int thread) {
-  const auto& p = particles_;
-  ContactArrays& ws = workspace_->contacts;
-  ThreadShare& share = workspace_->threads[static_cast<std::size_t>(thread)];
-  const std::size_t stride = neighbours_->history_stride();
-  const auto& first = neighbours_->first();
-  const auto& second = neighbours_->second();
-  auto& history = neighbours_->history();
-  const auto slot = [stride](std::size_t k) { return static_cast<std::ptrdiff_t>(k * stride); };
-  // A pair that is not touching keeps a zero history. Most listed pairs of a bonded solid are not
-  // touching and already zero: reading leaves their cache lines clean, rewriting would dirty them.
-  const auto forget = [&](std::size_t k) {
-    double* h = history.data() + slot(k);
-    for (std::size_t q = 0; q < stride; ++q)
-      if (h[q] != 0.0) {
-        std::fill_n(h, stride, 0.0);
-        return;
-      }
-  };
+namespace {
 
-  // Geometry of the touching pairs; pairs that stopped touching lose their history.
-  std::size_t c = begin;
-  for (std::size_t k = begin; k < end; ++k) {
+// A pair that is not touching keeps a zero history. Most listed pairs of a bonded solid are not
+// touching and already zero: reading leaves their cache lines clean, rewriting would dirty them.
+void forget(double* h, std::size_t stride) {
+  for (std::size_t q = 0; q < stride; ++q)
+    if (h[q] != 0.0) {
+      std::fill_n(h, stride, 0.0);
+      return;
+    }
+}
+
+// Geometry of the touching pairs of [k, end), appended to `block` until it is full; pairs that
+// stopped touching lose their history. Returns the first pair not looked at.
+std::size_t collect_contacts(const Particles& p, const std::vector<Wall>& walls, NeighbourList& list, std::size_t k,
+                             std::size_t end, ContactArrays& block) {
+  const std::size_t stride = list.history_stride();
+  const Index* first = list.first().data();
+  const Index* second = list.second().data();
+  double* history = list.history().data();
+  std::size_t c = 0;
+  for (; k < end && c < kContactBlock; ++k) {
     const Index a = first[k], b = second[k];
     const double ra = p.radius[a];
     Vec3 n;
@@ -347,7 +352,7 @@ void Simulation::contact_chunk(std::size_t begin, std::size_t end, Vec3* force, 
       const double dist2 = d.squaredNorm();
       const double reach = ra + p.radius[b];
       if (dist2 >= reach * reach || dist2 == 0.0) {
-        forget(k);
+        forget(history + k * stride, stride);
         continue;
       }
       const double dist = std::sqrt(dist2);
@@ -360,10 +365,10 @@ void Simulation::contact_chunk(std::size_t begin, std::size_t end, Vec3* force, 
       r_eff = ra * p.radius[b] / reach;
       m_eff = p.mass[a] * p.mass[b] / (p.mass[a] + p.mass[b]);
     } else {
-      const Wall& w = walls_[static_cast<std::size_t>(-1 - b)];
+      const Wall& w = walls[static_cast<std::size_t>(-1 - b)];
       double distance;
       if (!wall_contact(w, p.position[a], ra, n, distance) || distance >= ra) {
-        forget(k);
+        forget(history + k * stride, stride);
         continue;
       }
       overlap = ra - distance;
@@ -373,66 +378,92 @@ void Simulation::contact_chunk(std::size_t begin, std::size_t end, Vec3* force, 
       r_eff = ra;
       m_eff = p.mass[a];
     }
-    ws.i[c] = a;
-    ws.j[c] = b;
-    ws.pair[c] = k;
-    ws.normal[c] = n;
-    ws.overlap[c] = overlap;
-    ws.velocity[c] = p.velocity[a] + p.omega[a].cross(arm_a) - vel_b;
-    ws.omega_rel[c] = p.omega[a] - omega_b;
-    ws.r_eff[c] = r_eff;
-    ws.m_eff[c] = m_eff;
-    std::copy_n(history.begin() + slot(k), stride, ws.history.begin() + slot(c));
+    block.i[c] = a;
+    block.j[c] = b;
+    block.pair[c] = k;
+    block.normal[c] = n;
+    block.overlap[c] = overlap;
+    block.velocity[c] = p.velocity[a] + p.omega[a].cross(arm_a) - vel_b;
+    block.omega_rel[c] = p.omega[a] - omega_b;
+    block.r_eff[c] = r_eff;
+    block.m_eff[c] = m_eff;
+    std::copy_n(history + k * stride, stride, block.history.data() + c * stride);
     ++c;
   }
-  const std::size_t count = c - begin;
-  share.contacts = count;
-  if (count == 0) return;
+  block.count = c;
+  return k;
+}
 
+void run_model(const ContactModel& model, double dt, ContactArrays& block) {
   ContactBatch batch;
-  batch.count = count;
-  batch.dt = dt_;
-  batch.i = ws.i.data() + begin;
-  batch.j = ws.j.data() + begin;
-  batch.normal = ws.normal.data() + begin;
-  batch.overlap = ws.overlap.data() + begin;
-  batch.velocity = ws.velocity.data() + begin;
-  batch.omega_rel = ws.omega_rel.data() + begin;
-  batch.r_eff = ws.r_eff.data() + begin;
-  batch.m_eff = ws.m_eff.data() + begin;
-  batch.history = ws.history.data() + begin * stride;
-  batch.force = ws.force.data() + begin;
-  batch.couple = ws.couple.data() + begin;
-  batch.energy = ws.energy.data() + begin;
-  std::fill_n(batch.force, count, Vec3::Zero());
-  std::fill_n(batch.couple, count, Vec3::Zero());
-  std::fill_n(batch.energy, count, 0.0);
-  contact_->compute(batch);
+  batch.count = block.count;
+  batch.dt = dt;
+  batch.i = block.i.data();
+  batch.j = block.j.data();
+  batch.normal = block.normal.data();
+  batch.overlap = block.overlap.data();
+  batch.velocity = block.velocity.data();
+  batch.omega_rel = block.omega_rel.data();
+  batch.r_eff = block.r_eff.data();
+  batch.m_eff = block.m_eff.data();
+  batch.history = block.history.data();
+  batch.force = block.force.data();
+  batch.couple = block.couple.data();
+  batch.energy = block.energy.data();
+  std::fill_n(batch.force, batch.count, Vec3::Zero());
+  std::fill_n(batch.couple, batch.count, Vec3::Zero());
+  std::fill_n(batch.energy, batch.count, 0.0);
+  model.compute(batch);
+}
 
-  // Scatter in contact order into this thread's share.
-  double energy = 0;
-  for (std::size_t k = begin; k < c; ++k) {
-    const Index a = ws.i[k], b = ws.j[k];
-    const Vec3& f = ws.force[k];
-    const Vec3& n = ws.normal[k];
-    const double overlap = ws.overlap[k];
-    energy += ws.energy[k];
+// The block's forces into this thread's share, in contact order; the history back to the list.
+// Returns `energy` plus the block's energies, summed in contact order.
+double scatter_contacts(const Particles& p, const std::vector<Wall>& walls, NeighbourList& list,
+                        const ContactArrays& block, Vec3* force, Vec3* torque, ThreadShare& share, double energy) {
+  const std::size_t stride = list.history_stride();
+  double* history = list.history().data();
+  for (std::size_t k = 0; k < block.count; ++k) {
+    const Index a = block.i[k], b = block.j[k];
+    const Vec3& f = block.force[k];
+    const Vec3& n = block.normal[k];
+    const double overlap = block.overlap[k];
+    energy += block.energy[k];
     force[a] += f;
     const Vec3 arm_a = b >= 0 ? Vec3(-(p.radius[a] - 0.5 * overlap) * n) : Vec3(-(p.radius[a] - overlap) * n);
-    torque[a] += arm_a.cross(f) + ws.couple[k];
+    torque[a] += arm_a.cross(f) + block.couple[k];
     if (b >= 0) {
       const Vec3 arm_b = (p.radius[b] - 0.5 * overlap) * n;
       force[b] -= f;
-      torque[b] += arm_b.cross(-f) - ws.couple[k];
+      torque[b] += arm_b.cross(-f) - block.couple[k];
     } else {
       const auto w = static_cast<std::size_t>(-1 - b);
-      const Wall& wall = walls_[w];
+      const Wall& wall = walls[w];
       const Vec3 contact_point = p.position[a] + arm_a;
       share.wall_force[w] -= f;
-      share.wall_torque[w] += (contact_point - (wall.point + wall.displacement)).cross(-f) - ws.couple[k];
+      share.wall_torque[w] += (contact_point - (wall.point + wall.displacement)).cross(-f) - block.couple[k];
     }
-    std::copy_n(ws.history.begin() + slot(k), stride, history.begin() + slot(ws.pair[k]));
+    std::copy_n(block.history.data() + k * stride, stride, history + block.pair[k] * stride);
   }
+  return energy;
+}
+
+}  // namespace
+
+// The thread's pairs block by block: geometry, model, scatter. The energy is summed in contact
+// order across the blocks, so the result does not depend on the block size.
+void Simulation::contact_chunk(std::size_t begin, std::size_t end, Vec3* force, Vec3* torque, int thread) {
+  ThreadShare& share = workspace_->threads[static_cast<std::size_t>(thread)];
+  ContactArrays& block = share.block;
+  double energy = 0;
+  std::size_t contacts = 0;
+  for (std::size_t k = begin; k < end;) {
+    k = collect_contacts(particles_, walls_, *neighbours_, k, end, block);
+    if (block.count == 0) continue;
+    contacts += block.count;
+    run_model(*contact_, dt_, block);
+    energy = scatter_contacts(particles_, walls_, *neighbours_, block, force, torque, share, energy);
+  }
+  share.contacts = contacts;
   share.contact_energy = energy;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Pair contact models (model.md sec. 2). The kernel finds the touching pairs and their geometry;
-// the model turns geometry into force in one batch call per step. A model never sees the
+// the model turns geometry into force in batch calls (blocks of touching pairs, each thread its
+// own; a contact's result must not depend on the others in its batch). A model never sees the
 // neighbour list, so the same model serves particle-particle and particle-wall contacts.
 #include <cstddef>
 #include <string>
