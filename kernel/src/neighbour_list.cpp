@@ -154,6 +154,7 @@ void NeighbourList::find_pairs(const Particles& particles, const std::vector<Wal
 
 void NeighbourList::carry_history(std::size_t particle_count) {
   new_history_.assign(new_i_.size() * stride_, 0.0);
+  new_touching_.assign(new_i_.size(), 0);
   if (stride_ == 0 || i_.empty()) return;
   // Group the old pairs by their smaller index (counting sort), then look each new pair up in
   // its group of at most a dozen.
@@ -179,6 +180,7 @@ void NeighbourList::carry_history(std::size_t particle_count) {
       if (i_[o] == a && j_[o] == b) {
         std::copy_n(history_.begin() + static_cast<std::ptrdiff_t>(o * stride_), stride_,
                     new_history_.begin() + static_cast<std::ptrdiff_t>(k * stride_));
+        new_touching_[k] = touching_[o];
         break;
       }
     }
@@ -198,6 +200,7 @@ void NeighbourList::rebuild(const Particles& particles, const std::vector<Wall>&
   std::swap(i_, new_i_);
   std::swap(j_, new_j_);
   std::swap(history_, new_history_);
+  std::swap(touching_, new_touching_);
   position_at_build_ = particles.position;
   wall_displacement_at_build_.resize(walls.size());
   for (std::size_t w = 0; w < walls.size(); ++w) wall_displacement_at_build_[w] = walls[w].displacement;

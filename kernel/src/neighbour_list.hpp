@@ -33,6 +33,11 @@ class NeighbourList {
   const std::vector<Index>& first() const { return i_; }
   const std::vector<Index>& second() const { return j_; }  // j < 0: wall -1 - j
   std::vector<double>& history() { return history_; }
+  // Per pair: 1 if it touched at the last force pass, so its history may be non-zero; 0 means
+  // the history is zero. The contact pass keeps it; it follows the pairs like the history, and a
+  // restored list derives it from the history. The contact pass reads this byte instead of the
+  // history of the many pairs that are not touching.
+  std::vector<std::uint8_t>& touching() { return touching_; }
   std::size_t history_stride() const { return stride_; }
   std::int64_t rebuilds() const { return rebuilds_; }
   double skin() const { return skin_; }
@@ -53,9 +58,11 @@ class NeighbourList {
   std::size_t stride_;
   std::vector<Index> i_, j_;
   std::vector<double> history_;
+  std::vector<std::uint8_t> touching_;
   // Double buffers reused at every rebuild so rebuilding does not allocate once warmed up.
   std::vector<Index> new_i_, new_j_;
   std::vector<double> new_history_;
+  std::vector<std::uint8_t> new_touching_;
   std::vector<Vec3> position_at_build_;
   std::vector<Vec3> wall_displacement_at_build_;
   // Cell list: particles sorted by cell (counting sort), grid geometry of the last build.

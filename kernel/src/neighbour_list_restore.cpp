@@ -35,6 +35,11 @@ void NeighbourList::restore(const NeighbourState& s) {
   i_ = s.first;
   j_ = s.second;
   history_ = s.history;
+  // Not in the checkpoint: a pair with a non-zero history is taken to have touched.
+  touching_.assign(i_.size(), 0);
+  for (std::size_t k = 0; k < i_.size(); ++k)
+    for (std::size_t q = 0; q < stride_; ++q)
+      if (history_[k * stride_ + q] != 0.0) touching_[k] = 1;
   position_at_build_ = s.position_at_build;
   wall_displacement_at_build_ = s.wall_displacement_at_build;
   rebuilds_ = s.rebuilds;

@@ -15,7 +15,8 @@
 namespace shard {
 namespace {
 
-// The contact model is called on blocks of this many touching pairs. A block's geometry, history
+// The contact pass looks at tiles of this many listed pairs and calls the contact model on the
+// touching ones, a block of at most as many contacts. A block's geometry, history
 // and forces (~200 bytes per contact) stay in L1 from the geometry pass through the model to the
 // scatter; one array for all of a thread's contacts (6 MB in the bonded block) went out to memory
 // and came back twice per step.
@@ -26,6 +27,7 @@ struct ContactArrays {
   std::size_t count = 0;
   std::vector<Index> i, j;
   std::vector<std::size_t> pair;
+  std::vector<std::uint8_t> candidate;  // per pair of the tile being looked at
   std::vector<Vec3> normal, velocity, omega_rel, force, couple;
   std::vector<double> overlap, r_eff, m_eff, energy, history;
   void reserve(std::size_t stride) {
@@ -34,6 +36,7 @@ struct ContactArrays {
     i.resize(n);
     j.resize(n);
     pair.resize(n);
+    candidate.resize(n);
     normal.resize(n);
     velocity.resize(n);
     omega_rel.resize(n);
@@ -321,27 +324,69 @@ void Simulation::compute_forces() {
 
 namespace {
 
-// A pair that is not touching keeps a zero history. Most listed pairs of a bonded solid are not
-// touching and already zero: reading leaves their cache lines clean, rewriting would dirty them.
-void forget(double* h, std::size_t stride) {
-  for (std::size_t q = 0; q < stride; ++q)
-    if (h[q] != 0.0) {
-      std::fill_n(h, stride, 0.0);
-      return;
-    }
+// Copies one contact's history. Every shipped model keeps 3 doubles, which a call to memmove
+// (what std::copy_n becomes for a run-time length) costs several times over.
+void copy_history(const double* from, double* to, std::size_t stride) {
+  if (stride == 3) {
+    to[0] = from[0];
+    to[1] = from[1];
+    to[2] = from[2];
+  } else {
+    std::copy_n(from, stride, to);
+  }
 }
 
-// Geometry of the touching pairs of [k, end), appended to `block` until it is full; pairs that
-// stopped touching lose their history. Returns the first pair not looked at.
+// 1 for each pair of [0, count) that may touch: a particle pair within reach (the very test and
+// arithmetic of the geometry pass, so both agree bit for bit) and every wall pair (whose test is
+// not worth vectorising: the geometry pass makes it). No branch: whether a listed pair of a solid
+// touches is close to random, and a branch on it is mispredicted.
+void mark_candidates(const Vec3* position, const double* radius, const Index* first, const Index* second,
+                     std::size_t count, std::uint8_t* candidate) {
+  const double* x = position->data();
+  for (std::size_t q = 0; q < count; ++q) {
+    const std::size_t a = static_cast<std::size_t>(first[q]);
+    const bool wall = second[q] < 0;
+    const std::size_t b = wall ? a : static_cast<std::size_t>(second[q]);
+    const double dx = x[3 * a] - x[3 * b], dy = x[3 * a + 1] - x[3 * b + 1], dz = x[3 * a + 2] - x[3 * b + 2];
+    const double dist2 = (dx * dx + dy * dy) + dz * dz;  // Eigen's squaredNorm order
+    const double reach = radius[a] + radius[b];
+    candidate[q] = static_cast<std::uint8_t>(wall | (!(dist2 >= reach * reach) & (dist2 != 0.0)));
+  }
+}
+
+// The candidates of [k, stop) in pair order into block.pair; a pair that touched and is no longer
+// a candidate loses its history. Returns the number of candidates.
+std::size_t compact_candidates(NeighbourList& list, std::size_t k, std::size_t stop, ContactArrays& block) {
+  const std::size_t stride = list.history_stride();
+  std::uint8_t* touching = list.touching().data();
+  double* history = list.history().data();
+  std::size_t c = 0;
+  for (std::size_t q = k; q < stop; ++q) {
+    const std::uint8_t now = block.candidate[q - k];
+    if (touching[q] & ~now) std::fill_n(history + q * stride, stride, 0.0);
+    touching[q] = now;
+    block.pair[c] = q;
+    c += now;
+  }
+  return c;
+}
+
+// Geometry of the touching pairs of the next tile of [k, end) into `block`; pairs that stopped
+// touching lose their history. Returns the first pair not looked at.
 std::size_t collect_contacts(const Particles& p, const std::vector<Wall>& walls, NeighbourList& list, std::size_t k,
                              std::size_t end, ContactArrays& block) {
+  const std::size_t stop = std::min(end, k + kContactBlock);
+  mark_candidates(p.position.data(), p.radius.data(), list.first().data() + k, list.second().data() + k, stop - k,
+                  block.candidate.data());
+  const std::size_t candidates = compact_candidates(list, k, stop, block);
   const std::size_t stride = list.history_stride();
   const Index* first = list.first().data();
   const Index* second = list.second().data();
   double* history = list.history().data();
   std::size_t c = 0;
-  for (; k < end && c < kContactBlock; ++k) {
-    const Index a = first[k], b = second[k];
+  for (std::size_t q = 0; q < candidates; ++q) {
+    const std::size_t pair = block.pair[q];
+    const Index a = first[pair], b = second[pair];
     const double ra = p.radius[a];
     Vec3 n;
     double overlap;
@@ -349,13 +394,8 @@ std::size_t collect_contacts(const Particles& p, const std::vector<Wall>& walls,
     double r_eff, m_eff;
     if (b >= 0) {
       const Vec3 d = p.position[a] - p.position[b];
-      const double dist2 = d.squaredNorm();
+      const double dist = std::sqrt(d.squaredNorm());
       const double reach = ra + p.radius[b];
-      if (dist2 >= reach * reach || dist2 == 0.0) {
-        forget(history + k * stride, stride);
-        continue;
-      }
-      const double dist = std::sqrt(dist2);
       n = d / dist;
       overlap = reach - dist;
       arm_a = -(ra - 0.5 * overlap) * n;
@@ -368,7 +408,8 @@ std::size_t collect_contacts(const Particles& p, const std::vector<Wall>& walls,
       const Wall& w = walls[static_cast<std::size_t>(-1 - b)];
       double distance;
       if (!wall_contact(w, p.position[a], ra, n, distance) || distance >= ra) {
-        forget(history + k * stride, stride);
+        std::fill_n(history + pair * stride, stride, 0.0);
+        list.touching()[pair] = 0;
         continue;
       }
       overlap = ra - distance;
@@ -380,18 +421,18 @@ std::size_t collect_contacts(const Particles& p, const std::vector<Wall>& walls,
     }
     block.i[c] = a;
     block.j[c] = b;
-    block.pair[c] = k;
+    block.pair[c] = pair;
     block.normal[c] = n;
     block.overlap[c] = overlap;
     block.velocity[c] = p.velocity[a] + p.omega[a].cross(arm_a) - vel_b;
     block.omega_rel[c] = p.omega[a] - omega_b;
     block.r_eff[c] = r_eff;
     block.m_eff[c] = m_eff;
-    std::copy_n(history + k * stride, stride, block.history.data() + c * stride);
+    copy_history(history + pair * stride, block.history.data() + c * stride, stride);
     ++c;
   }
   block.count = c;
-  return k;
+  return stop;
 }
 
 void run_model(const ContactModel& model, double dt, ContactArrays& block) {
@@ -442,7 +483,7 @@ double scatter_contacts(const Particles& p, const std::vector<Wall>& walls, Neig
       share.wall_force[w] -= f;
       share.wall_torque[w] += (contact_point - (wall.point + wall.displacement)).cross(-f) - block.couple[k];
     }
-    std::copy_n(block.history.data() + k * stride, stride, history + block.pair[k] * stride);
+    copy_history(block.history.data() + k * stride, history + block.pair[k] * stride, stride);
   }
   return energy;
 }
