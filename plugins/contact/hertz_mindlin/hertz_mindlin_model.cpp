@@ -7,6 +7,7 @@
 #include "../common/tangential_spring.hpp"
 #include "hertz_damping.hpp"
 #include "hertz_equations.hpp"
+#include "hertz_lanes.hpp"
 
 namespace shard {
 
@@ -46,6 +47,10 @@ TimeStepLimit HertzMindlin::time_step_limit(double min_radius, double density) c
 }
 
 void HertzMindlin::compute(ContactBatch& batch) const {
+  hertz::compute_lanes(batch, {e_star_, g_star_, damping_, material_.friction});
+}
+
+void HertzMindlin::compute_reference(ContactBatch& batch) const {
   for (std::size_t k = 0; k < batch.count; ++k) {
     const Vec3& n = batch.normal[k];
     const Vec3& v = batch.velocity[k];

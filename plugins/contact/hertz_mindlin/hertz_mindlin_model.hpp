@@ -22,7 +22,10 @@ class HertzMindlin final : public ContactModel {
 
   std::size_t history_size() const override;
   TimeStepLimit time_step_limit(double min_radius, double density) const override;
+  // The batch in SIMD lanes (hertz_lanes.hpp), bit-identical to compute_reference.
   void compute(ContactBatch& batch) const override;
+  // One contact at a time through the equation helpers, as hertz_mindlin_plus computes them.
+  void compute_reference(ContactBatch& batch) const;
 
   double effective_young_modulus() const { return e_star_; }
   double effective_shear_modulus() const { return g_star_; }
