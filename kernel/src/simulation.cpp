@@ -8,6 +8,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "drift_lanes.hpp"
 #include "neighbour_list.hpp"
 #include "parallel.hpp"
 #include "spatial_order.hpp"
@@ -79,6 +80,14 @@ struct ContactWorkspace {
   std::vector<ThreadShare> threads;
   SpatialOrder order;
   double order_cell = 1;  // m: the Morton grid, one neighbour-search cell
+  // The first half-step's turn per particle: angle, unit axis, rotation quaternion (x, y, z, w).
+  std::vector<double> turn_angle, turn_axis, turn_rotation;
+
+  void prepare_drift(std::size_t n) {
+    turn_angle.resize(n);
+    turn_axis.resize(3 * n);
+    turn_rotation.resize(4 * n);
+  }
 
   // Buffers for `team` threads over n particles; allocates only when the team or n changes.
   void prepare(int team, std::size_t n, std::size_t walls, std::size_t history_stride) {
@@ -191,25 +200,31 @@ void Simulation::run(std::int64_t steps) {
   for (std::int64_t s = 0; s < steps; ++s) step();
 }
 
+// Spheres have isotropic inertia: the lab-frame angular velocity is constant over the drift, so the
+// exact rotation is one turn of |omega| dt about omega. The kick and drift and the turn run in
+// SIMD lanes (drift_lanes.hpp); only the turn's sin and cos, from libm, one particle at a time.
 void Simulation::integrate_first_half() {
   const std::size_t n = particles_.size();
   const double h = 0.5 * dt_;
   auto& p = particles_;
-#pragma omp parallel for schedule(static) num_threads(team_for(n))
-  for (std::size_t k = 0; k < n; ++k) {
-    if (p.flags[k] & kFixed) continue;
-    if (!(p.flags[k] & kPrescribed)) {
-      p.velocity[k] += h * p.force[k] / p.mass[k];
-      p.omega[k] += h * p.torque[k] / p.inertia[k];
+  auto& ws = *workspace_;
+  ws.prepare_drift(n);
+  const DriftLanes lanes{p.position.data()->data(), p.velocity.data()->data(), p.omega.data()->data(),
+                         p.orientation.data()->coeffs().data(), p.force.data()->data(), p.torque.data()->data(),
+                         p.mass.data(), p.inertia.data(), p.flags.data()};
+  double* angle = ws.turn_angle.data();
+  double* axis = ws.turn_axis.data();
+  double* rotation = ws.turn_rotation.data();
+#pragma omp parallel num_threads(team_for(n))
+  {
+    const Range r = range_of(n, omp_get_thread_num(), omp_get_num_threads());
+    kick_and_drift(lanes, r.begin, r.end, h, dt_, angle, axis);
+    for (std::size_t k = r.begin; k < r.end; ++k) {
+      if (!(angle[k] > 0)) continue;
+      const Quat turn(Eigen::AngleAxisd(angle[k], Vec3(axis[3 * k], axis[3 * k + 1], axis[3 * k + 2])));
+      std::copy_n(turn.coeffs().data(), 4, rotation + 4 * k);
     }
-    p.position[k] += dt_ * p.velocity[k];
-    // Spheres have isotropic inertia: the lab-frame angular velocity is constant over the drift,
-    // so the exact rotation is one turn of |omega| dt about omega.
-    const double angle = p.omega[k].norm() * dt_;
-    if (angle > 0) {
-      p.orientation[k] = Quat(Eigen::AngleAxisd(angle, p.omega[k] / p.omega[k].norm())) * p.orientation[k];
-      p.orientation[k].normalize();
-    }
+    turn(lanes, r.begin, r.end, angle, rotation);
   }
   for (auto& w : walls_) w.displacement += dt_ * w.velocity;
 }
