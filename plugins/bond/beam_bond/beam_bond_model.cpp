@@ -2,13 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numbers>
 #include <stdexcept>
 
 #include "beam_batch.hpp"
 #include "beam_geometry.hpp"
-#include "damped_step.hpp"
+#include "bond_step.hpp"
 #include "beam_stress.hpp"
 
 namespace shard::beam {
@@ -59,27 +58,11 @@ void BeamBond::initialize(BondBatch& batch) const {
 }
 
 // Eq. 12: t_bond = 0.17 sqrt(m / K), lightest bonded particle, stiffest bond K = E_b A_b / l0.
+// The "with damping" name only when there is a stiffest bond to shorten: no bonds, no limit.
 TimeStepLimit BeamBond::time_step_limit(const BondBatch& batch) const {
-  const ParticleView& p = batch.particles;
-  double lightest = std::numeric_limits<double>::infinity();
-  double stiffest = 0, softest = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < batch.count; ++k) {
-    const Index i = batch.i[k], j = batch.j[k];
-    const double l0 = batch.state[k * kStateSize];
-    const Section sec = section_of(p_.radius_ratio, p.radius[i], p.radius[j]);
-    const double axial = p_.youngs_modulus * sec.area / l0;
-    stiffest = std::max(stiffest, axial);
-    softest = std::min(softest, axial);
-    lightest = std::min({lightest, p.mass[i], p.mass[j]});
-  }
   TimeStepLimit limit;
-  limit.name = "beam_bond t_bond (eq. 12)";
-  if (stiffest > 0) {
-    limit.critical = damped_step(0.17 * std::sqrt(lightest / stiffest), p_.damping / softest);
-    if (p_.damping > 0) limit.name = "beam_bond t_bond (eq. 12, with eq. 4's damping)";
-  } else {
-    limit.critical = std::numeric_limits<double>::infinity();
-  }
+  limit.name = p_.damping > 0 ? "beam_bond t_bond (eq. 12, with eq. 4's damping)" : "beam_bond t_bond (eq. 12)";
+  limit.critical = eq12_step(batch, kStateSize, p_.radius_ratio, {p_.youngs_modulus, p_.youngs_modulus}, p_.damping);
   limit.recommended = limit.critical;
   return limit;
 }
