@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 #include "beam_batch.hpp"
 #include "beam_geometry.hpp"
@@ -26,10 +27,13 @@ BeamBondParams BeamBondParams::from(const ParamSet& p) {
   return b;
 }
 
-BeamBond::BeamBond(const BeamBondParams& params)
+BeamBond::BeamBond(const BeamBondParams& params, BlockIsa isa)
     : p_(params),
       shear_modulus_(params.effective_shear_modulus()),
-      rotational_(params.rotational_damping, params.youngs_modulus, shear_modulus_) {
+      rotational_(params.rotational_damping, params.youngs_modulus, shear_modulus_),
+      block_step_(block_function(isa)) {
+  if (!runs_here(isa))
+    throw std::invalid_argument(std::string("beam_bond: this CPU cannot run the ") + name_of(isa) + " block step");
   block_.youngs = p_.youngs_modulus;
   block_.shear = shear_modulus_;
   block_.shear_coefficient = p_.shear_coefficient;
@@ -150,7 +154,7 @@ void BeamBond::compute(BondBatch& batch) const {
     out.torque_i = batch.torque_i[base].data();
     out.torque_j = batch.torque_j[base].data();
     out.energy = batch.energy + base;
-    evaluate_block(in, out, n, block_);
+    block_step_(in, out, n, block_);
     for (std::size_t l = 0; l < n; ++l)
       if (out.fallback[l]) compute_bond(batch, base + l);
   }
