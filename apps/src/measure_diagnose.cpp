@@ -88,7 +88,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
       for (std::size_t i = 0; i < values.size(); ++i) c.parameters.push_back(values[i] * clamp_base_factor(1 + lr.base_step[i]));
       ModelPlan plan = with_parameters(o->model, o->params, c.parameters);
       if (effect) {
-        c.effect_value = effect->neutral + clamp_effect_scale(lr.effect_scale[0]) * (effect->plausible - effect->neutral);
+        c.effect_value = effect->value_at(clamp_effect_scale(lr.effect_scale[0]));
         plan = with_effect(plan, *effect, c.effect_value);
       }
       confirmations.push_back(c);
