@@ -47,7 +47,7 @@ struct Fit {
     return m;
   }
   double value_of(const std::vector<double>& x) const {
-    return effect->neutral + x.back() * (effect->plausible - effect->neutral);
+    return effect->value_at(x.back());
   }
   double objective(const std::vector<double>& x) {
     const double chi2 = simulate_and_compare(*simulator, *measured, *metadata, {model(x)}, std::cerr).front().chi_square();
@@ -117,8 +117,10 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
       x[i] = clamp_base_factor(1 + lr.base_step[i]);
     }
     if (fit.effect) {
-      lower.back() = 0, upper.back() = 4;  // from neutral to four plausible sizes
-      x.back() = clamp_effect_scale(lr.effect_scale.front());
+      // From neutral to four plausible sizes, inside the effect's physical range.
+      lower.back() = std::max(0.0, fit.effect->scale_min());
+      upper.back() = std::min(4.0, fit.effect->scale_max());
+      x.back() = std::clamp(clamp_effect_scale(lr.effect_scale.front()), lower.back(), upper.back());
     }
     const RateComparison before = lin.base_comparison;
     nlopt::opt opt(nlopt::LN_BOBYQA, static_cast<unsigned>(n));

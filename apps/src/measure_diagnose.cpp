@@ -88,7 +88,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
       for (std::size_t i = 0; i < values.size(); ++i) c.parameters.push_back(values[i] * clamp_base_factor(1 + lr.base_step[i]));
       ModelPlan plan = with_parameters(o->model, o->params, c.parameters);
       if (effect) {
-        c.effect_value = effect->neutral + clamp_effect_scale(lr.effect_scale[0]) * (effect->plausible - effect->neutral);
+        c.effect_value = effect->value_at(clamp_effect_scale(lr.effect_scale[0]));
         plan = with_effect(plan, *effect, c.effect_value);
       }
       confirmations.push_back(c);
@@ -133,7 +133,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
     // structured excess, both information criteria prefer it and what remains is noise.
     std::string verdict = d.verdict;
     ConfirmationDecision decision;
-    if (verdict != "adequate" && confirmations.size() > 1) {
+    if (verdict != kAdequate && confirmations.size() > 1) {
       std::vector<RefitOutcome> refits;
       for (std::size_t k = 1; k < confirmations.size(); ++k) refits.push_back({confirmations[k].name, confirmations[k].chi_square});
       decision = decide_from_refits(confirmations[0].chi_square, refits, lin.base.values.size(), o->params.size());
@@ -147,8 +147,16 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
                       "(p = {:.3g} against chi^2({})); base NRMSE {:.1f} %.\n\n",
                       d.chi_square, lin.base.values.size(), d.chi_square_unabsorbed, d.p_value,
                       lin.base.values.size() - o->params.size(), 100 * lin.base_comparison.nrmse());
-    if (verdict == "adequate")
+    if (verdict == kAdequate && confirmations.empty())
       md += "The residual left after the base parameters is compatible with noise: no effect is needed.\n\n";
+    else if (verdict == kAdequate)
+      md += fmt::format("The base parameters refitted (simulated, not predicted) leave chi^2 {:.1f} over {} degrees of "
+                        "freedom, p = {:.2g}: compatible with noise, so no effect is needed. The score test's lead "
+                        "({}, p = {:.2g}) was not borne out by the refits below; an effect too weak for these data "
+                        "cannot be told from noise (more specimens or another rate would).\n\n",
+                        confirmations[0].chi_square, lin.base.values.size() - o->params.size(), decision.base_p,
+                        d.ranking.empty() ? "-" : d.ranking.front().name,
+                        d.ranking.empty() ? 1.0 : d.ranking.front().p_value);
     else if (verdict == kUnexplained) {
       md += fmt::format("No candidate explains the structured residual: the missing physics is not in the library "
                         "({}).",
@@ -186,7 +194,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
     if (!confirmations.empty()) {
       md += fmt::format("\nConfirmation runs (simulated, not predicted; excess chi^2 of the base refit over its {} "
                         "degrees of freedom: {:.1f}):\n\n| model | chi^2 | NRMSE | dAIC vs base refit | dBIC | share of "
-                        "excess | p after | values |\n|---|---|---|---|---|---|---|---|\n",
+                        "excess | p after | p of the drop | values |\n|---|---|---|---|---|---|---|---|---|\n",
                         lin.base.values.size() - o->params.size(), decision.excess);
       for (std::size_t k = 0; k < confirmations.size(); ++k) {
         const auto& c = confirmations[k];
@@ -195,12 +203,13 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
         for (std::size_t i = 0; i < c.parameters.size(); ++i) v += fmt::format("{}{}={:.4g}", v.empty() ? "" : ", ", o->params[i], c.parameters[i]);
         if (c.name != "base refit") v += fmt::format(", {}={:.4g}", c.name, c.effect_value);
         if (!c.failure.empty()) {
-          md += fmt::format("| {} | run failed | - | - | - | - | - | {} |\n", c.name, v);
+          md += fmt::format("| {} | run failed | - | - | - | - | - | - | {} |\n", c.name, v);
           continue;
         }
-        md += fmt::format("| {} | {:.1f} | {:.1f} % | {:+.1f} | {:+.1f} | {} | {} | {} |\n", c.name, c.chi_square,
+        md += fmt::format("| {} | {:.1f} | {:.1f} % | {:+.1f} | {:+.1f} | {} | {} | {} | {} |\n", c.name, c.chi_square,
                           100 * c.nrmse, c.delta_aic, c.delta_bic, ce ? fmt::format("{:.0f} %", 100 * ce->share_explained) : "-",
-                          ce ? fmt::format("{:.2g}", ce->p_after) : "-", v);
+                          ce ? fmt::format("{:.2g}", ce->p_after) : fmt::format("{:.2g}", decision.base_p),
+                          ce ? fmt::format("{:.2g}", ce->p_drop) : "-", v);
       }
     }
     for (const auto& c : confirmations)
@@ -259,11 +268,12 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
       const ConfirmedEffect* ce = k > 0 && k - 1 < decision.effects.size() ? &decision.effects[k - 1] : nullptr;
       const auto& c = confirmations[k];
       json += fmt::format("{}{{\"name\": \"{}\", \"chi_square\": {}, \"nrmse\": {}, \"delta_aic\": {}, "
-                          "\"delta_bic\": {}, \"share_explained\": {}, \"p_after\": {}, \"value\": {:.9g}, "
+                          "\"delta_bic\": {}, \"share_explained\": {}, \"p_after\": {}, \"p_drop\": {}, \"value\": {:.9g}, "
                           "\"failure\": \"{}\"}}",
                           k ? ", " : "", json_escape(c.name), number(c.chi_square), number(c.nrmse),
                           number(c.delta_aic), number(c.delta_bic), number(ce ? ce->share_explained : 0.0),
-                          number(ce ? ce->p_after : 1.0), c.effect_value, json_escape(c.failure));
+                          number(ce ? ce->p_after : decision.base_p), number(ce ? ce->p_drop : 1.0), c.effect_value,
+                          json_escape(c.failure));
     }
     std::string rivals;
     for (const auto& r : decision.rivals) rivals += fmt::format("{}\"{}\"", rivals.empty() ? "" : ", ", json_escape(r));

@@ -185,7 +185,9 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
 
   RunSummary summary;
   summary.particles = sim.particles().size();
-  summary.bonds_initial = sim.bonds().size();
+  // The network as the run began: a restart counts the bonds broken before it too, so the progress
+  // line's intact / initial and broken add up.
+  summary.bonds_initial = sim.bonds().size() + static_cast<std::size_t>(sim.bonds_broken());
   summary.dt = sim.dt();
   log(fmt::format("scene {}: {} particles, {} bonds, {} walls", scene.file.string(), summary.particles,
                   summary.bonds_initial, sim.walls().size()));

@@ -6,10 +6,11 @@ void Bonds::resize(std::size_t n) {
   i.resize(n);
   j.resize(n);
   state.resize(n * stride);
-  force.assign(n, Vec3::Zero());
-  torque_i.assign(n, Vec3::Zero());
-  torque_j.assign(n, Vec3::Zero());
-  energy.assign(n, 0.0);
+  const std::size_t loads = keeps_loads ? n : 0;
+  force.assign(loads, Vec3::Zero());
+  torque_i.assign(loads, Vec3::Zero());
+  torque_j.assign(loads, Vec3::Zero());
+  energy.assign(loads, 0.0);
   broken.assign(n, 0);
   stress.assign(n, BondStress{});
 }
@@ -23,10 +24,12 @@ std::size_t Bonds::remove_broken() {
       i[kept] = i[k];
       j[kept] = j[k];
       for (std::size_t s = 0; s < stride; ++s) state[kept * stride + s] = state[k * stride + s];
-      force[kept] = force[k];
-      torque_i[kept] = torque_i[k];
-      torque_j[kept] = torque_j[k];
-      energy[kept] = energy[k];
+      if (keeps_loads) {
+        force[kept] = force[k];
+        torque_i[kept] = torque_i[k];
+        torque_j[kept] = torque_j[k];
+        energy[kept] = energy[k];
+      }
     }
     ++kept;
   }
@@ -35,10 +38,11 @@ std::size_t Bonds::remove_broken() {
   i.resize(kept);
   j.resize(kept);
   state.resize(kept * stride);
-  force.resize(kept);
-  torque_i.resize(kept);
-  torque_j.resize(kept);
-  energy.resize(kept);
+  const std::size_t loads = keeps_loads ? kept : 0;
+  force.resize(loads);
+  torque_i.resize(loads);
+  torque_j.resize(loads);
+  energy.resize(loads);
   broken.assign(kept, 0);
   stress.resize(kept);
   return removed;

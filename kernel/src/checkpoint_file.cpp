@@ -114,10 +114,12 @@ void write_bonds(hid_t file, const Bonds& b) {
   put(g.get(), "i", b.i);
   put(g.get(), "j", b.j);
   put(g.get(), "state", b.state);
-  put(g.get(), "force", b.force);
-  put(g.get(), "torque_i", b.torque_i);
-  put(g.get(), "torque_j", b.torque_j);
-  put(g.get(), "energy", b.energy);
+  if (b.keeps_loads) {
+    put(g.get(), "force", b.force);
+    put(g.get(), "torque_i", b.torque_i);
+    put(g.get(), "torque_j", b.torque_j);
+    put(g.get(), "energy", b.energy);
+  }
   put(g.get(), "broken", b.broken);
   h5::write_dataset(g.get(), "stress", stress_table(b.stress).data(), b.stress.size(), kStressColumns);
   put(g.get(), "mode", mode_column(b.stress));
@@ -130,10 +132,13 @@ Bonds read_bonds(hid_t file) {
   b.i = get<Index>(g.get(), "i");
   b.j = get<Index>(g.get(), "j");
   b.state = get<double>(g.get(), "state");
-  b.force = get_vec3(g.get(), "force");
-  b.torque_i = get_vec3(g.get(), "torque_i");
-  b.torque_j = get_vec3(g.get(), "torque_j");
-  b.energy = get<double>(g.get(), "energy");
+  b.keeps_loads = h5::path_exists(g.get(), "force");
+  if (b.keeps_loads) {
+    b.force = get_vec3(g.get(), "force");
+    b.torque_i = get_vec3(g.get(), "torque_i");
+    b.torque_j = get_vec3(g.get(), "torque_j");
+    b.energy = get<double>(g.get(), "energy");
+  }
   b.broken = get<std::uint8_t>(g.get(), "broken");
   b.stress = read_stress(g.get(), "stress", "mode");
   return b;
@@ -263,6 +268,7 @@ void write_file(const std::filesystem::path& path, const Checkpoint& c) {
   h5::write_attribute(f, "events_taken", static_cast<std::int64_t>(s.events_taken));
   h5::write_attribute(f, "contacts", static_cast<std::int64_t>(s.contacts));
   h5::write_attribute(f, "contact_energy", s.contact_energy);
+  h5::write_attribute(f, "bond_energy", s.bond_energy);
   write_particles(f, s.particles);
   write_bonds(f, s.bonds);
   write_events(f, s.events);
@@ -351,6 +357,12 @@ Checkpoint read_checkpoint(const std::filesystem::path& path) {
     s.contact_energy = h5::read_double_attribute(f, "contact_energy");
     s.particles = read_particles(f);
     s.bonds = read_bonds(f);
+    // Checkpoints before the attribute kept every bond's energy instead.
+    if (h5::has_attribute(f, "bond_energy")) {
+      s.bond_energy = h5::read_double_attribute(f, "bond_energy");
+    } else {
+      for (double e : s.bonds.energy) s.bond_energy += e;
+    }
     s.events = read_events(f);
     s.walls = read_walls(f);
     s.neighbours = read_neighbours(f);

@@ -54,10 +54,15 @@ struct ContactArrays {
 // One thread's share of a force pass. Thread 0 adds straight into the particle arrays, thread
 // t > 0 into its own buffers, which are summed into the particles in thread order afterwards
 // (and left zero again): no atomics, no locks, and a fixed order of every sum.
+constexpr std::size_t kBondBlock = 256;  // bonds per batch call: a block's loads fit in L1
+
 struct alignas(64) ThreadShare {
   std::vector<Vec3> force, torque;
   ContactArrays block;
   std::vector<Vec3> wall_force, wall_torque;
+  std::vector<Vec3> block_force, block_torque_i, block_torque_j;
+  std::vector<double> block_energy;
+  double bond_energy = 0;
   double contact_energy = 0;
   std::size_t contacts = 0;
   bool bond_broke = false;
@@ -100,6 +105,12 @@ struct ContactWorkspace {
         s.force.assign(size, Vec3::Zero());
         s.torque.assign(size, Vec3::Zero());
       }
+      if (s.block_force.size() != kBondBlock) {
+        s.block_force.resize(kBondBlock);
+        s.block_torque_i.resize(kBondBlock);
+        s.block_torque_j.resize(kBondBlock);
+        s.block_energy.resize(kBondBlock);
+      }
       if (s.wall_force.size() != walls) {
         s.wall_force.resize(walls);
         s.wall_torque.resize(walls);
@@ -128,6 +139,7 @@ Simulation::Simulation(SimulationSetup setup)
   std::sort(setup.bonds.begin(), setup.bonds.end());
   setup.bonds.erase(std::unique(setup.bonds.begin(), setup.bonds.end()), setup.bonds.end());
   bonds_.stride = bond_ ? bond_->state_size() : 0;
+  bonds_.keeps_loads = setup.record_bond_loads;
   bonds_.resize(setup.bonds.size());
   for (std::size_t k = 0; k < setup.bonds.size(); ++k) {
     bonds_.i[k] = setup.bonds[k].first;
@@ -179,10 +191,10 @@ BondBatch Simulation::bond_batch() {
   b.j = bonds_.j.data();
   b.particles = view_of(particles_);
   b.state = bonds_.state.data();
-  b.force = bonds_.force.data();
-  b.torque_i = bonds_.torque_i.data();
-  b.torque_j = bonds_.torque_j.data();
-  b.energy = bonds_.energy.data();
+  b.force = bonds_.keeps_loads ? bonds_.force.data() : nullptr;
+  b.torque_i = bonds_.keeps_loads ? bonds_.torque_i.data() : nullptr;
+  b.torque_j = bonds_.keeps_loads ? bonds_.torque_j.data() : nullptr;
+  b.energy = bonds_.keeps_loads ? bonds_.energy.data() : nullptr;
   b.broken = bonds_.broken.data();
   b.stress = bonds_.stress.data();
   return b;
@@ -282,6 +294,7 @@ void Simulation::compute_forces() {
     share.contact_energy = 0;
     share.contacts = 0;
     share.bond_broke = false;
+    share.bond_energy = 0;
     if (t == 0) used = nt;
 #pragma omp barrier
     Vec3* force = t == 0 ? p.force.data() : share.force.data();
@@ -313,7 +326,7 @@ void Simulation::compute_forces() {
       }
     }
   }
-  double energy = 0;
+  double energy = 0, bond_energy = 0;
   std::size_t contacts = 0;
   bool bond_broke = false;
   for (auto& w : walls_) {
@@ -324,6 +337,7 @@ void Simulation::compute_forces() {
     const ThreadShare& share = ws.threads[static_cast<std::size_t>(t)];
     energy += share.contact_energy;
     contacts += share.contacts;
+    bond_energy += share.bond_energy;
     bond_broke = bond_broke || share.bond_broke;
     for (std::size_t w = 0; w < walls_.size(); ++w) {
       walls_[w].force += share.wall_force[w];
@@ -334,6 +348,7 @@ void Simulation::compute_forces() {
     contacts_ = contacts;
     contact_energy_ = energy;
   }
+  bond_energy_ = bond_energy;
   if (bond_broke) record_broken_bonds();
 }
 
@@ -523,22 +538,32 @@ void Simulation::contact_chunk(std::size_t begin, std::size_t end, Vec3* force, 
   share.contact_energy = energy;
 }
 
-// The bond range is run in blocks small enough that a block's outputs are still in L1 when they
-// are scattered (one sweep over the whole range would write them out to memory and read them back).
+// The bond range is run in blocks whose loads go to this thread's block buffer, still in L1 when
+// they are added to the particles. Per-bond arrays, unless the run records them, would only be
+// written out to memory for nobody to read.
 void Simulation::bond_chunk(std::size_t begin, std::size_t end, Vec3* force, Vec3* torque, int thread) {
-  constexpr std::size_t kBlock = 256;
+  constexpr std::size_t kBlock = kBondBlock;
   const bool writes_every_output = bond_->writes_every_output();
+  ThreadShare& share = workspace_->threads[static_cast<std::size_t>(thread)];
   bool broke = false;
+  double energy = 0;
   for (std::size_t first = begin; first < end; first += kBlock) {
     BondBatch b = bond_batch();
     b.count = std::min(kBlock, end - first);
     b.i += first;
     b.j += first;
     b.state += first * bonds_.stride;
-    b.force += first;
-    b.torque_i += first;
-    b.torque_j += first;
-    b.energy += first;
+    if (bonds_.keeps_loads) {
+      b.force += first;
+      b.torque_i += first;
+      b.torque_j += first;
+      b.energy += first;
+    } else {
+      b.force = share.block_force.data();
+      b.torque_i = share.block_torque_i.data();
+      b.torque_j = share.block_torque_j.data();
+      b.energy = share.block_energy.data();
+    }
     b.broken += first;
     b.stress += first;
     if (!writes_every_output) {
@@ -557,6 +582,7 @@ void Simulation::bond_chunk(std::size_t begin, std::size_t end, Vec3* force, Vec
         }
         b.broken[k] = 0;
       }
+      energy += b.energy[k];
       const Index i = b.i[k], j = b.j[k];
       force[i] += b.force[k];
       force[j] -= b.force[k];
@@ -564,7 +590,8 @@ void Simulation::bond_chunk(std::size_t begin, std::size_t end, Vec3* force, Vec
       torque[j] += b.torque_j[k];
     }
   }
-  workspace_->threads[static_cast<std::size_t>(thread)].bond_broke = broke;
+  share.bond_broke = broke;
+  share.bond_energy = energy;
 }
 
 // Break events in bond order, whatever the thread count; then the broken bonds are dropped.
@@ -598,7 +625,7 @@ Energies Simulation::energies() const {
     e.kinetic += 0.5 * p.mass[k] * p.velocity[k].squaredNorm() + 0.5 * p.inertia[k] * p.omega[k].squaredNorm();
     e.gravity -= p.mass[k] * gravity_.dot(p.position[k]);
   }
-  for (double b : bonds_.energy) e.bond += b;
+  e.bond = bond_energy_;
   e.contact = contact_energy_;
   return e;
 }

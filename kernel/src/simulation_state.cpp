@@ -26,8 +26,9 @@ void require_consistent(const Bonds& b, std::size_t particles, std::size_t strid
         "the checkpoint's bonds carry {} state values each, the bond model {}: restart with the bond model the "
         "run was started with",
         b.stride, stride));
-  const bool ok = b.j.size() == m && b.state.size() == m * stride && b.force.size() == m &&
-                  b.torque_i.size() == m && b.torque_j.size() == m && b.energy.size() == m &&
+  const std::size_t loads = b.keeps_loads ? m : 0;
+  const bool ok = b.j.size() == m && b.state.size() == m * stride && b.force.size() == loads &&
+                  b.torque_i.size() == loads && b.torque_j.size() == loads && b.energy.size() == loads &&
                   b.broken.size() == m && b.stress.size() == m;
   if (!ok) throw std::invalid_argument("the checkpoint's bond arrays have different lengths");
   for (std::size_t k = 0; k < m; ++k)
@@ -53,6 +54,7 @@ SimulationState Simulation::export_state() const {
   s.neighbours = neighbours_->state();
   s.contacts = contacts_;
   s.contact_energy = contact_energy_;
+  s.bond_energy = bond_energy_;
   return s;
 }
 
@@ -72,7 +74,18 @@ void Simulation::import_state(const SimulationState& s) {
   time_ = s.time;
   dt_ = s.dt;
   particles_ = s.particles;
+  // The loads are outputs of the last step, not inputs of the next: this run keeps them or not
+  // whatever the run that wrote the checkpoint did.
+  const bool keeps_loads = bonds_.keeps_loads;
   bonds_ = s.bonds;
+  if (bonds_.keeps_loads != keeps_loads) {
+    const std::size_t loads = keeps_loads ? bonds_.size() : 0;
+    bonds_.keeps_loads = keeps_loads;
+    bonds_.force.assign(loads, Vec3::Zero());
+    bonds_.torque_i.assign(loads, Vec3::Zero());
+    bonds_.torque_j.assign(loads, Vec3::Zero());
+    bonds_.energy.assign(loads, 0.0);
+  }
   bonds_broken_ = s.bonds_broken;
   events_ = s.events;
   events_taken_ = s.events_taken;
@@ -84,6 +97,7 @@ void Simulation::import_state(const SimulationState& s) {
   }
   contacts_ = s.contacts;
   contact_energy_ = s.contact_energy;
+  bond_energy_ = s.bond_energy;
 }
 
 }  // namespace shard

@@ -100,10 +100,12 @@ void SpatialOrder::apply(Particles& p, Bonds& bonds) {
   for (std::size_t k = 0; k < m; ++k) bond_order_[static_cast<std::size_t>(bond_start_[key(k)]++)] = k;
   gather(bonds.i, bond_scratch_.i, bond_order_);
   gather(bonds.j, bond_scratch_.j, bond_order_);
-  gather(bonds.force, bond_scratch_.force, bond_order_);
-  gather(bonds.torque_i, bond_scratch_.torque_i, bond_order_);
-  gather(bonds.torque_j, bond_scratch_.torque_j, bond_order_);
-  gather(bonds.energy, bond_scratch_.energy, bond_order_);
+  if (bonds.keeps_loads) {
+    gather(bonds.force, bond_scratch_.force, bond_order_);
+    gather(bonds.torque_i, bond_scratch_.torque_i, bond_order_);
+    gather(bonds.torque_j, bond_scratch_.torque_j, bond_order_);
+    gather(bonds.energy, bond_scratch_.energy, bond_order_);
+  }
   gather(bonds.broken, bond_scratch_.broken, bond_order_);
   gather(bonds.stress, bond_scratch_.stress, bond_order_);
   const std::size_t stride = bonds.stride;

@@ -35,6 +35,7 @@ inline SimulationSetup pair_setup(const BondModel& model) {
   s.bonds = {{0, 1}};
   s.bond = &model;
   s.dt = 0;  // auto: eq. 12
+  s.record_bond_loads = true;  // the tests read the bond's force and torques
   return s;
 }
 

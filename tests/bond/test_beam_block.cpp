@@ -4,6 +4,8 @@
 // breakage, and block sizes that leave a partial last block.
 #include <doctest/doctest.h>
 
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "beam_batch.hpp"
@@ -21,8 +23,16 @@ struct Counts {
   std::size_t compared = 0, broken = 0;
 };
 
-Counts compare(const BeamBondParams& params, std::size_t pairs, std::uint64_t seed) {
-  const BeamBond model(params);
+// Every instruction set this CPU runs, the widest first.
+std::vector<BlockIsa> runnable() {
+  std::vector<BlockIsa> out;
+  for (const BlockIsa isa : {BlockIsa::Avx512, BlockIsa::Avx2, BlockIsa::Baseline})
+    if (runs_here(isa)) out.push_back(isa);
+  return out;
+}
+
+Counts compare(const BeamBondParams& params, std::size_t pairs, std::uint64_t seed, BlockIsa isa) {
+  const BeamBond model(params, isa);
   test::HandBonds a = test::random_pairs<test::HandBonds>(pairs, seed, {true, true});
   a.initialize(model);
   test::HandBonds b = a;
@@ -42,28 +52,40 @@ Counts compare(const BeamBondParams& params, std::size_t pairs, std::uint64_t se
 
 }  // namespace
 
-TEST_CASE("blocked beam_bond step is bit-identical to the per-bond path") {
+TEST_CASE("blocked beam_bond step is bit-identical to the per-bond path, on every instruction set") {
   BeamBondParams defaults;
-  SUBCASE("Table I defaults (no force damping)") {
-    const Counts n = compare(defaults, 1001, 3);
-    MESSAGE(n.compared, " bond evaluations, ", n.broken, " breaks");
-    CHECK(n.broken > 100);
+  for (const BlockIsa isa : runnable()) {
+    const std::string isa_name = name_of(isa);
+    CAPTURE(isa_name);
+    MESSAGE("block step ", std::string(name_of(isa)));
+    SUBCASE("Table I defaults (no force damping)") {
+      const Counts n = compare(defaults, 1001, 3, isa);
+      MESSAGE(n.compared, " bond evaluations, ", n.broken, " breaks");
+      CHECK(n.broken > 100);
+    }
+    SUBCASE("viscous force and rotational damping") {
+      BeamBondParams p = defaults;
+      p.damping = 1e-3;
+      p.rotational_damping = 0.5;
+      p.radius_ratio = 0.8;
+      p.shear_modulus = 4e6;
+      compare(p, 777, 5, isa);
+    }
+    SUBCASE("no breakage, no rotational damping") {
+      BeamBondParams p = defaults;
+      p.breakage = false;
+      p.rotational_damping = 0;
+      const Counts n = compare(p, 130, 9, isa);
+      CHECK(n.broken == 0);
+    }
   }
-  SUBCASE("viscous force and rotational damping") {
-    BeamBondParams p = defaults;
-    p.damping = 1e-3;
-    p.rotational_damping = 0.5;
-    p.radius_ratio = 0.8;
-    p.shear_modulus = 4e6;
-    compare(p, 777, 5);
-  }
-  SUBCASE("no breakage, no rotational damping") {
-    BeamBondParams p = defaults;
-    p.breakage = false;
-    p.rotational_damping = 0;
-    const Counts n = compare(p, 130, 9);
-    CHECK(n.broken == 0);
-  }
+}
+
+TEST_CASE("the baseline block step runs everywhere; a wider one is refused where the CPU lacks it") {
+  CHECK(runs_here(BlockIsa::Baseline));
+  CHECK(runs_here(widest_block_isa()));
+  for (const BlockIsa isa : {BlockIsa::Avx512, BlockIsa::Avx2})
+    if (!runs_here(isa)) CHECK_THROWS_AS(BeamBond(BeamBondParams{}, isa), std::invalid_argument);
 }
 
 TEST_CASE("the blocked lanes take the common case: small rotations, below strength") {
@@ -98,8 +120,12 @@ TEST_CASE("the blocked lanes take the common case: small rotations, below streng
   out.torque_i = s.torque_i[0].data();
   out.torque_j = s.torque_j[0].data();
   out.energy = s.energy.data();
-  evaluate_block(in, out, kBlockLanes, c);
-  for (std::size_t l = 0; l < kBlockLanes; ++l) CHECK(out.fallback[l] == (l == 3 || l == 5 || l == 7 ? 1 : 0));
+  for (const BlockIsa isa : runnable()) {
+    const std::string isa_name = name_of(isa);
+    CAPTURE(isa_name);
+    block_function(isa)(in, out, kBlockLanes, c);
+    for (std::size_t l = 0; l < kBlockLanes; ++l) CHECK(out.fallback[l] == (l == 3 || l == 5 || l == 7 ? 1 : 0));
+  }
   // And the whole model agrees with the per-bond path on them.
   test::HandBonds r = s;
   BondBatch rb = r.batch(model);

@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "beam_setup.hpp"
 
@@ -176,4 +177,26 @@ TEST_CASE("eq. 4's dashpot shrinks the step by 1 / (sqrt(1 + z^2) + z), z = (c /
     const double z = c / K / t0;
     CHECK(damped.time_step_limit(bb).critical / t0 == doctest::Approx(1 / (std::sqrt(1 + z * z) + z)).epsilon(1e-3));
   }
+}
+
+TEST_CASE("eq. 12 takes the lightest particle and the stiffest bond, the dashpot the softest bond") {
+  // Two bonds of different sizes: 0.35 mm spheres (K = 7037 N/m, m = 6.681e-7 kg) and 0.5 mm
+  // spheres (K = 12.8e6 pi (0.5e-3)^2 / 1e-3 = 10053 N/m). The step pairs the small spheres' mass
+  // with the big bond's stiffness; eq. 4's tau = c / K comes from the small, softer bond. Two
+  // fields of one bond each would give neither.
+  auto p = breakable();
+  p.damping = 0.3;  // N s/m, bar_pull's
+  const beam::BeamBond model(p);
+  HandBonds w;
+  const Index a = w.add_sphere(Vec3(0, 0, 0), 0.35e-3), b = w.add_sphere(Vec3(0.7e-3, 0, 0), 0.35e-3);
+  const Index c = w.add_sphere(Vec3(0, 5e-3, 0), 0.5e-3), d = w.add_sphere(Vec3(1e-3, 5e-3, 0), 0.5e-3);
+  w.add_bond(a, b);
+  w.add_bond(c, d);
+  w.initialize(model);
+  BondBatch batch = w.batch(model);
+  const double m_light = 3720 * 4.0 / 3.0 * std::numbers::pi * std::pow(0.35e-3, 3);
+  const double K_stiff = 12.8e6 * std::numbers::pi * 0.25e-6 / 1e-3, K_soft = 12.8e6 * std::numbers::pi * 0.1225e-6 / 0.7e-3;
+  const double t = 0.17 * std::sqrt(m_light / K_stiff);
+  const double z = p.damping / K_soft / t;
+  CHECK(model.time_step_limit(batch).critical == doctest::Approx(t / (std::sqrt(1 + z * z) + z)).epsilon(1e-12));
 }

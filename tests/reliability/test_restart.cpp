@@ -76,6 +76,7 @@ TEST_CASE("interrupted at step k and restarted: final state and run file bit-ide
     CHECK(resumed.restarted_from == k);
     CHECK(resumed.steps == reference.steps);
     CHECK(resumed.bonds_broken == reference.bonds_broken);
+    CHECK(resumed.bonds_initial == reference.bonds_initial);  // also when bonds broke before the stop
     CHECK(resumed.peak_load == reference.peak_load);
     CHECK(same_bits(resumed.load, reference.load));
     require_identical(read_checkpoint(dir / "run.checkpoint.h5").simulation, final_reference.simulation);

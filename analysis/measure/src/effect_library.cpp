@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <toml++/toml.h>
 
@@ -30,6 +31,10 @@ double CandidateEffect::scale_min() const {
 double CandidateEffect::scale_max() const {
   const double step = plausible - neutral;
   return step > 0 ? (max - neutral) / step : (min - neutral) / step;
+}
+
+double CandidateEffect::value_at(double scale) const {
+  return std::clamp(neutral + scale * (plausible - neutral), min, max);
 }
 
 std::vector<std::string> CandidateEffect::overrides(double value) const {

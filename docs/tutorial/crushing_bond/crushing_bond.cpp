@@ -19,7 +19,7 @@
 
 #include "shard/beam/beam_geometry.hpp"
 #include "shard/beam/beam_stress.hpp"
-#include "shard/beam/damped_step.hpp"
+#include "shard/beam/bond_step.hpp"
 #include "shard/plugin.hpp"
 
 namespace {
@@ -51,15 +51,7 @@ class CrushingBond final : public shard::BondModel {
 
   // Eq. 12 with eq. 4's dashpot (the shipped beam's limit); crushing adds no stiffness.
   shard::TimeStepLimit time_step_limit(const shard::BondBatch& b) const override {
-    double lightest = std::numeric_limits<double>::infinity(), stiffest = 0, softest = lightest;
-    for (std::size_t k = 0; k < b.count; ++k) {
-      const auto sec = shard::beam::section_of(p_.radius_ratio, b.particles.radius[b.i[k]], b.particles.radius[b.j[k]]);
-      const double axial = p_.youngs * sec.area / b.state[k * shard::beam::kStateSize];
-      stiffest = std::max(stiffest, axial), softest = std::min(softest, axial);
-      lightest = std::min({lightest, b.particles.mass[b.i[k]], b.particles.mass[b.j[k]]});
-    }
-    const double t = stiffest > 0 ? shard::beam::damped_step(0.17 * std::sqrt(lightest / stiffest), p_.damping / softest)
-                                  : std::numeric_limits<double>::infinity();
+    const double t = shard::beam::eq12_step(b, shard::beam::kStateSize, p_.radius_ratio, {p_.youngs, p_.youngs}, p_.damping);
     return {"crushing_bond t_bond (eq. 12)", t, t};
   }
 

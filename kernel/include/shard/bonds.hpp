@@ -13,7 +13,11 @@ struct Bonds {
   std::vector<Index> i, j;       // particle indices in the current ordering
   std::size_t stride = 0;        // model state doubles per bond
   std::vector<double> state;     // stride * size()
-  std::vector<Vec3> force, torque_i, torque_j;  // last step's outputs
+  // Each bond's last force, torques and energy, kept only when `keeps_loads` (empty otherwise):
+  // the step needs them only until they are added to the particles, and writing them out for
+  // every bond costs ~150 bytes of memory traffic per bond per step (docs/performance.md).
+  bool keeps_loads = false;
+  std::vector<Vec3> force, torque_i, torque_j;
   std::vector<double> energy;
   std::vector<std::uint8_t> broken;
   std::vector<BondStress> stress;

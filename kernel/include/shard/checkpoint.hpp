@@ -47,6 +47,7 @@ struct SimulationState {
   NeighbourState neighbours;
   std::size_t contacts = 0;
   double contact_energy = 0;  // J
+  double bond_energy = 0;     // J
 };
 
 // A checkpoint: the simulation state plus the run loop's own counters and load curve, stored as

@@ -26,6 +26,9 @@ struct SimulationSetup {
   double dt = 0;                // 0 = auto: min of the models' recommended steps
   double skin = 0;              // Verlet skin, m; 0 = 0.2 * largest radius
   double global_damping = 0;    // numerical damping fraction, off by default
+  // Keep every bond's last force, torques and energy in bonds() (tests, post-processing); off,
+  // they live only in a per-thread block buffer until they are added to the particles.
+  bool record_bond_loads = false;
 };
 
 struct Energies {
@@ -102,6 +105,7 @@ class Simulation {
   std::vector<BondBreakEvent> events_;
   std::size_t events_taken_ = 0;
   double contact_energy_ = 0;
+  double bond_energy_ = 0;
 };
 
 }  // namespace shard

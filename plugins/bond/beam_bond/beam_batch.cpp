@@ -179,16 +179,8 @@ template <bool breakage, bool viscous>
   }
 }
 
-}  // namespace
-
-// AVX2 and AVX-512 clones run 4 and 8 lanes of the same IEEE operations (and hardware gathers);
-// beam_batch.cpp is compiled with -ffp-contract=off, so no clone fuses a multiply-add and each
-// rounds exactly as the x86-64-v2 per-bond path does (the AVX-512 target would otherwise use FMA).
-// Not under ASan: an ifunc resolver may run before the sanitizer runtime is initialised.
-#if defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
-__attribute__((target_clones("avx512f", "avx2", "default")))
-#endif
-void evaluate_block(const BlockInput& in, BlockOutput& out, std::size_t n, const BlockConstants& c) {
+[[gnu::always_inline]] inline void evaluate_any(const BlockInput& in, BlockOutput& out, std::size_t n,
+                                                const BlockConstants& c) {
   if (c.breakage) {
     if (c.viscous_force) evaluate_lanes<true, true>(in, out, n, c);
     else evaluate_lanes<true, false>(in, out, n, c);
@@ -196,6 +188,64 @@ void evaluate_block(const BlockInput& in, BlockOutput& out, std::size_t n, const
     if (c.viscous_force) evaluate_lanes<false, true>(in, out, n, c);
     else evaluate_lanes<false, false>(in, out, n, c);
   }
+}
+
+void evaluate_baseline(const BlockInput& in, BlockOutput& out, std::size_t n, const BlockConstants& c) {
+  evaluate_any(in, out, n, c);
+}
+
+// AVX2 and AVX-512 run 4 and 8 lanes of the same IEEE operations; beam_batch.cpp is compiled with
+// -ffp-contract=off, so neither fuses a multiply-add and each rounds exactly as the x86-64-v2
+// per-bond path does (the AVX-512 target would otherwise use FMA). Chosen at run time by a plain
+// CPU test rather than an ifunc, which may run before the sanitizer runtime is initialised.
+#if defined(__x86_64__)
+[[gnu::target("avx2")]] void evaluate_avx2(const BlockInput& in, BlockOutput& out, std::size_t n,
+                                           const BlockConstants& c) {
+  evaluate_any(in, out, n, c);
+}
+
+[[gnu::target("avx512f")]] void evaluate_avx512(const BlockInput& in, BlockOutput& out, std::size_t n,
+                                                const BlockConstants& c) {
+  evaluate_any(in, out, n, c);
+}
+#endif
+
+}  // namespace
+
+const char* name_of(BlockIsa isa) {
+  switch (isa) {
+    case BlockIsa::Avx512: return "avx512f";
+    case BlockIsa::Avx2: return "avx2";
+    case BlockIsa::Baseline: break;
+  }
+  return "x86-64-v2";
+}
+
+bool runs_here(BlockIsa isa) {
+#if defined(__x86_64__)
+  switch (isa) {
+    case BlockIsa::Avx512: return __builtin_cpu_supports("avx512f");
+    case BlockIsa::Avx2: return __builtin_cpu_supports("avx2");
+    case BlockIsa::Baseline: break;
+  }
+#endif
+  return isa == BlockIsa::Baseline;
+}
+
+BlockFunction block_function(BlockIsa isa) {
+  switch (isa) {
+#if defined(__x86_64__)
+    case BlockIsa::Avx512: return evaluate_avx512;
+    case BlockIsa::Avx2: return evaluate_avx2;
+#endif
+    default: return evaluate_baseline;
+  }
+}
+
+BlockIsa widest_block_isa() {
+  for (const BlockIsa isa : {BlockIsa::Avx512, BlockIsa::Avx2})
+    if (runs_here(isa)) return isa;
+  return BlockIsa::Baseline;
 }
 
 }  // namespace shard::beam

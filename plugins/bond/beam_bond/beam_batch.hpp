@@ -54,7 +54,14 @@ struct BlockOutput {
   std::int64_t fallback[kBlockLanes];  // 1: lane not evaluated, run the per-bond path
 };
 
-// Lanes [0, n), n <= kBlockLanes.
-void evaluate_block(const BlockInput& in, BlockOutput& out, std::size_t n, const BlockConstants& c);
+// The block step evaluates lanes [0, n), n <= kBlockLanes. It is compiled for each instruction
+// set (8 lanes of AVX-512, 4 of AVX2, 2 of the x86-64-v2 baseline); all round identically, and the
+// tests check every one the CPU can run.
+enum class BlockIsa { Baseline, Avx2, Avx512 };
+using BlockFunction = void (*)(const BlockInput&, BlockOutput&, std::size_t, const BlockConstants&);
+const char* name_of(BlockIsa isa);
+bool runs_here(BlockIsa isa);
+BlockFunction block_function(BlockIsa isa);  // precondition: runs_here(isa)
+BlockIsa widest_block_isa();
 
 }  // namespace shard::beam

@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 #include "beam_batch.hpp"
 #include "beam_geometry.hpp"
-#include "damped_step.hpp"
+#include "bond_step.hpp"
 #include "beam_stress.hpp"
 
 namespace shard::beam {
@@ -27,10 +27,13 @@ BeamBondParams BeamBondParams::from(const ParamSet& p) {
   return b;
 }
 
-BeamBond::BeamBond(const BeamBondParams& params)
+BeamBond::BeamBond(const BeamBondParams& params, BlockIsa isa)
     : p_(params),
       shear_modulus_(params.effective_shear_modulus()),
-      rotational_(params.rotational_damping, params.youngs_modulus, shear_modulus_) {
+      rotational_(params.rotational_damping, params.youngs_modulus, shear_modulus_),
+      block_step_(block_function(isa)) {
+  if (!runs_here(isa))
+    throw std::invalid_argument(std::string("beam_bond: this CPU cannot run the ") + name_of(isa) + " block step");
   block_.youngs = p_.youngs_modulus;
   block_.shear = shear_modulus_;
   block_.shear_coefficient = p_.shear_coefficient;
@@ -59,27 +62,11 @@ void BeamBond::initialize(BondBatch& batch) const {
 }
 
 // Eq. 12: t_bond = 0.17 sqrt(m / K), lightest bonded particle, stiffest bond K = E_b A_b / l0.
+// The "with damping" name only when there is a stiffest bond to shorten: no bonds, no limit.
 TimeStepLimit BeamBond::time_step_limit(const BondBatch& batch) const {
-  const ParticleView& p = batch.particles;
-  double lightest = std::numeric_limits<double>::infinity();
-  double stiffest = 0, softest = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < batch.count; ++k) {
-    const Index i = batch.i[k], j = batch.j[k];
-    const double l0 = batch.state[k * kStateSize];
-    const Section sec = section_of(p_.radius_ratio, p.radius[i], p.radius[j]);
-    const double axial = p_.youngs_modulus * sec.area / l0;
-    stiffest = std::max(stiffest, axial);
-    softest = std::min(softest, axial);
-    lightest = std::min({lightest, p.mass[i], p.mass[j]});
-  }
   TimeStepLimit limit;
-  limit.name = "beam_bond t_bond (eq. 12)";
-  if (stiffest > 0) {
-    limit.critical = damped_step(0.17 * std::sqrt(lightest / stiffest), p_.damping / softest);
-    if (p_.damping > 0) limit.name = "beam_bond t_bond (eq. 12, with eq. 4's damping)";
-  } else {
-    limit.critical = std::numeric_limits<double>::infinity();
-  }
+  limit.name = p_.damping > 0 ? "beam_bond t_bond (eq. 12, with eq. 4's damping)" : "beam_bond t_bond (eq. 12)";
+  limit.critical = eq12_step(batch, kStateSize, p_.radius_ratio, {p_.youngs_modulus, p_.youngs_modulus}, p_.damping);
   limit.recommended = limit.critical;
   return limit;
 }
@@ -167,7 +154,7 @@ void BeamBond::compute(BondBatch& batch) const {
     out.torque_i = batch.torque_i[base].data();
     out.torque_j = batch.torque_j[base].data();
     out.energy = batch.energy + base;
-    evaluate_block(in, out, n, block_);
+    block_step_(in, out, n, block_);
     for (std::size_t l = 0; l < n; ++l)
       if (out.fallback[l]) compute_bond(batch, base + l);
   }

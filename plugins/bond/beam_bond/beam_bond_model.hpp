@@ -28,7 +28,8 @@ struct BeamBondParams {
 
 class BeamBond final : public BondModel {
  public:
-  explicit BeamBond(const BeamBondParams& params);
+  // `isa`: the block step's instruction set, the widest this CPU runs unless a test picks one.
+  explicit BeamBond(const BeamBondParams& params, BlockIsa isa = widest_block_isa());
 
   std::size_t state_size() const override;
   void initialize(BondBatch& batch) const override;
@@ -49,6 +50,7 @@ class BeamBond final : public BondModel {
   double shear_modulus_;  // G_b actually used
   RotationalDamping rotational_;  // eq. 6-7 coefficients
   BlockConstants block_;          // the same parameters as the blocked lanes read them
+  BlockFunction block_step_;
 };
 
 }  // namespace shard::beam

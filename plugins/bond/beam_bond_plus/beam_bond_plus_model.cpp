@@ -2,14 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numbers>
 #include <stdexcept>
 
 #include "beam_geometry.hpp"
 #include "beam_stress.hpp"
 #include "cohesive_softening.hpp"
-#include "damped_step.hpp"
+#include "bond_step.hpp"
 #include "maxwell_arm.hpp"
 #include "weibull_strength.hpp"
 
@@ -75,28 +74,14 @@ void BeamBondPlus::initialize(BondBatch& batch) const {
 // Eq. 12 with the stiffer of the tensile and compressive axial springs, plus the Maxwell arm's
 // beta E_b when viscosity is on (the most a step can see of it, maxwell_arm.hpp).
 TimeStepLimit BeamBondPlus::time_step_limit(const BondBatch& batch) const {
-  const ParticleView& p = batch.particles;
   const double arm = viscous() ? p_.viscous_modulus_ratio : 0.0;
-  const double axial_modulus = (std::max(1.0, p_.compression_stiffness_ratio) + arm) * p_.base.youngs_modulus;
+  const double E = p_.base.youngs_modulus;
   // eq. 4's dashpot against the softest axial spring (damped_step.hpp).
-  const double softest_modulus = std::min(1.0, p_.compression_stiffness_ratio) * p_.base.youngs_modulus;
-  double lightest = std::numeric_limits<double>::infinity();
-  double stiffest = 0, softest = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < batch.count; ++k) {
-    const Index i = batch.i[k], j = batch.j[k];
-    const double l0 = batch.state[k * state_size()];
-    const Section sec = section_of(p_.base.radius_ratio, p.radius[i], p.radius[j]);
-    stiffest = std::max(stiffest, axial_modulus * sec.area / l0);
-    softest = std::min(softest, softest_modulus * sec.area / l0);
-    lightest = std::min({lightest, p.mass[i], p.mass[j]});
-  }
+  const beam::AxialModuli moduli{(std::max(1.0, p_.compression_stiffness_ratio) + arm) * E,
+                                 std::min(1.0, p_.compression_stiffness_ratio) * E};
   TimeStepLimit limit;
   limit.name = "beam_bond_plus t_bond (eq. 12)";
-  if (stiffest > 0) {
-    limit.critical = beam::damped_step(0.17 * std::sqrt(lightest / stiffest), p_.base.damping / softest);
-  } else {
-    limit.critical = std::numeric_limits<double>::infinity();
-  }
+  limit.critical = beam::eq12_step(batch, state_size(), p_.base.radius_ratio, moduli, p_.base.damping);
   limit.recommended = limit.critical;
   return limit;
 }

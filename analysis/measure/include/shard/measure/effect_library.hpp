@@ -48,6 +48,10 @@ struct CandidateEffect {
   // [min, max] as multiples of the trial step plausible - neutral, from neutral.
   double scale_min() const;
   double scale_max() const;
+  // The value `scale` trial steps from neutral, kept inside [min, max]: a linear step or an
+  // optimiser's bound must not ask a plugin for a negative friction (the run fails and the effect
+  // drops out of the diagnosis), and at the bound neutral + scale * step can round past it.
+  double value_at(double scale) const;
 };
 
 // Reads the library; errors name the file, line and column.
