@@ -1,22 +1,11 @@
 #include "drift_lanes.hpp"
 
-#include <bit>
 #include <cmath>
 
+#include "shard/lane_select.hpp"
 #include "shard/particles.hpp"
 
 namespace shard {
-namespace {
-
-// c ? a : b through the bits: GCC sinks the side only one arm of `?:` uses into a branch that,
-// floating point being allowed to trap, it cannot turn back into a blend; the loop would not
-// vectorise.
-inline double select(bool c, double a, double b) {
-  const std::uint64_t mask = -static_cast<std::uint64_t>(c);
-  return std::bit_cast<double>((std::bit_cast<std::uint64_t>(a) & mask) | (std::bit_cast<std::uint64_t>(b) & ~mask));
-}
-
-}  // namespace
 
 // The clones run 2, 4 and 8 lanes of the same IEEE operations; the file is compiled with
 // -ffp-contract=off (no multiply-add fused in any clone). Not under ASan: an ifunc resolver may run
@@ -40,24 +29,24 @@ void kick_and_drift(const DriftLanes& p, std::size_t begin, std::size_t end, dou
     const bool held = (flags[k] & (kFixed | kPrescribed)) != 0;
     // v += h * F / m, omega += h * T / I (Eigen: (h * F_c) / m per component).
     const double m = mass[k], I = inertia[k];
-    const double vx = select(held, v[3 * k], v[3 * k] + h * f[3 * k] / m);
-    const double vy = select(held, v[3 * k + 1], v[3 * k + 1] + h * f[3 * k + 1] / m);
-    const double vz = select(held, v[3 * k + 2], v[3 * k + 2] + h * f[3 * k + 2] / m);
-    const double wx = select(held, w[3 * k], w[3 * k] + h * t[3 * k] / I);
-    const double wy = select(held, w[3 * k + 1], w[3 * k + 1] + h * t[3 * k + 1] / I);
-    const double wz = select(held, w[3 * k + 2], w[3 * k + 2] + h * t[3 * k + 2] / I);
+    const double vx = lane_select(held, v[3 * k], v[3 * k] + h * f[3 * k] / m);
+    const double vy = lane_select(held, v[3 * k + 1], v[3 * k + 1] + h * f[3 * k + 1] / m);
+    const double vz = lane_select(held, v[3 * k + 2], v[3 * k + 2] + h * f[3 * k + 2] / m);
+    const double wx = lane_select(held, w[3 * k], w[3 * k] + h * t[3 * k] / I);
+    const double wy = lane_select(held, w[3 * k + 1], w[3 * k + 1] + h * t[3 * k + 1] / I);
+    const double wz = lane_select(held, w[3 * k + 2], w[3 * k + 2] + h * t[3 * k + 2] / I);
     v[3 * k] = vx;
     v[3 * k + 1] = vy;
     v[3 * k + 2] = vz;
     w[3 * k] = wx;
     w[3 * k + 1] = wy;
     w[3 * k + 2] = wz;
-    x[3 * k] = select(fixed, x[3 * k], x[3 * k] + dt * vx);
-    x[3 * k + 1] = select(fixed, x[3 * k + 1], x[3 * k + 1] + dt * vy);
-    x[3 * k + 2] = select(fixed, x[3 * k + 2], x[3 * k + 2] + dt * vz);
+    x[3 * k] = lane_select(fixed, x[3 * k], x[3 * k] + dt * vx);
+    x[3 * k + 1] = lane_select(fixed, x[3 * k + 1], x[3 * k + 1] + dt * vy);
+    x[3 * k + 2] = lane_select(fixed, x[3 * k + 2], x[3 * k + 2] + dt * vz);
     // |omega| dt and omega / |omega| (Eigen's norm: the first two squares as one packet).
     const double norm = std::sqrt((wx * wx + wy * wy) + wz * wz);
-    angle[k] = select(fixed, 0.0, norm * dt);
+    angle[k] = lane_select(fixed, 0.0, norm * dt);
     axis[3 * k] = wx / norm;
     axis[3 * k + 1] = wy / norm;
     axis[3 * k + 2] = wz / norm;
@@ -83,10 +72,10 @@ void turn(const DriftLanes& p, std::size_t begin, std::size_t end, const double*
     const double root = std::sqrt(n2);
     const bool scale = n2 > 0.0;
     const bool turns = angle[k] > 0.0;
-    q[4 * k] = select(turns, select(scale, x / root, x), bx);
-    q[4 * k + 1] = select(turns, select(scale, y / root, y), by);
-    q[4 * k + 2] = select(turns, select(scale, z / root, z), bz);
-    q[4 * k + 3] = select(turns, select(scale, w / root, w), bw);
+    q[4 * k] = lane_select(turns, lane_select(scale, x / root, x), bx);
+    q[4 * k + 1] = lane_select(turns, lane_select(scale, y / root, y), by);
+    q[4 * k + 2] = lane_select(turns, lane_select(scale, z / root, z), bz);
+    q[4 * k + 3] = lane_select(turns, lane_select(scale, w / root, w), bw);
   }
 }
 

@@ -1,8 +1,8 @@
 #include "hertz_lanes.hpp"
 
-#include <bit>
 #include <cmath>
-#include <cstdint>
+
+#include "shard/lane_select.hpp"
 
 namespace shard::hertz {
 namespace {
@@ -14,14 +14,6 @@ inline double dot3(double ax, double ay, double az, double bx, double by, double
 
 // std::max(0.0, x), NaN and -0 included.
 inline double clamp_at_zero(double x) { return 0.0 < x ? x : 0.0; }
-
-// c ? a : b through the bits. With `?:` GCC sinks the computation of the side only one arm uses
-// into a branch, and (floating point may trap) cannot turn that branch back into a blend, so the
-// loop would not vectorise; a bitwise select uses both sides unconditionally.
-inline double select(bool c, double a, double b) {
-  const std::uint64_t mask = -static_cast<std::uint64_t>(c);
-  return std::bit_cast<double>((std::bit_cast<std::uint64_t>(a) & mask) | (std::bit_cast<std::uint64_t>(b) & ~mask));
-}
 
 }  // namespace
 
@@ -75,9 +67,9 @@ void compute_lanes(ContactBatch& batch, const LaneConstants& c) {
     const bool flat = new_length == 0.0;
     const double scale = old_length / new_length;
     const double qx = px * scale, qy = py * scale, qz = pz * scale;
-    const double xi_x = select(flat, 0.0, qx) + tx * dt;
-    const double xi_y = select(flat, 0.0, qy) + ty * dt;
-    const double xi_z = select(flat, 0.0, qz) + tz * dt;
+    const double xi_x = lane_select(flat, 0.0, qx) + tx * dt;
+    const double xi_y = lane_select(flat, 0.0, qy) + ty * dt;
+    const double xi_z = lane_select(flat, 0.0, qz) + tz * dt;
 
     // Spring and dashpot, capped by Coulomb; a sliding contact's spring holds the capped force.
     const double s_t = tangential_factor * root_r_delta;
@@ -89,8 +81,8 @@ void compute_lanes(ContactBatch& batch, const LaneConstants& c) {
     const double cap = limit / magnitude;
     const double cx = fx * cap, cy = fy * cap, cz = fz * cap;
     const double rx = -cx / s_t, ry = -cy / s_t, rz = -cz / s_t;
-    const double ft_x = select(sticks, fx, cx), ft_y = select(sticks, fy, cy), ft_z = select(sticks, fz, cz);
-    const double sx = select(sticks, xi_x, rx), sy = select(sticks, xi_y, ry), sz = select(sticks, xi_z, rz);
+    const double ft_x = lane_select(sticks, fx, cx), ft_y = lane_select(sticks, fy, cy), ft_z = lane_select(sticks, fz, cz);
+    const double sx = lane_select(sticks, xi_x, rx), sy = lane_select(sticks, xi_y, ry), sz = lane_select(sticks, xi_z, rz);
     history[3 * k] = sx;
     history[3 * k + 1] = sy;
     history[3 * k + 2] = sz;
