@@ -237,6 +237,15 @@ TEST_CASE("hidden bond viscosity (tau_v 5 ms, data at 0.02 and 0.1 m/s): named, 
   check_found_and_calibrated(h);
 }
 
+TEST_CASE("hidden support friction 0.1: named, sized at its physical bound, calibrated") {
+  // Lubricated or PTFE-faced rollers: steel on PTFE or greased steel slides at mu 0.05-0.1, against
+  // the particles' 0.67. The linear refit overshoots past frictionless (it asked for
+  // wall_friction = -0.067, which the plugin refuses, and weibull_strength was named); the refit
+  // and calibrate-effect now stop at the physical bound 0, i.e. 1.175 trial steps from neutral.
+  check_found_and_calibrated({"friction", " --set contact.plugin=hertz_mindlin_plus --set contact.wall_friction=0.1",
+                              "support_friction", 0.1, 0.67});
+}
+
 TEST_CASE("a seating toe outside the library is an unexplained structured residual, not a wrong name") {
   // Rough sawn faces: the pins and rollers first close a gap of loose surface grains, a
   // hyperbolic closure w + g F / (F + F_h) (synthetic.hpp). g = 0.3 mm, F_h = 0.3 N (15 % of the
