@@ -16,3 +16,18 @@ function(shard_add_plugin NAME)
   endif()
   add_dependencies(shard_all_plugins ${NAME})
 endfunction()
+
+# A plugin's model as a static library, so tests can drive it directly and the plugin module
+# wraps it. EXACT_LANES: sources whose SIMD lanes must round exactly as the scalar reference, so
+# no a * b + c may be fused into one rounding (GCC would in an AVX-512 version, whose target
+# enables FMA).
+function(shard_add_plugin_model NAME)
+  cmake_parse_arguments(ARG "" "" "SOURCES;EXACT_LANES" ${ARGN})
+  add_library(${NAME} STATIC ${ARG_SOURCES} ${ARG_EXACT_LANES})
+  if(ARG_EXACT_LANES)
+    set_source_files_properties(${ARG_EXACT_LANES} PROPERTIES COMPILE_OPTIONS -ffp-contract=off)
+  endif()
+  target_include_directories(${NAME} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
+  target_link_libraries(${NAME} PUBLIC shard::plugin_api)
+  set_target_properties(${NAME} PROPERTIES CXX_VISIBILITY_PRESET hidden VISIBILITY_INLINES_HIDDEN ON)
+endfunction()

@@ -6,13 +6,18 @@ void Bonds::resize(std::size_t n) {
   i.resize(n);
   j.resize(n);
   state.resize(n * stride);
-  const std::size_t loads = keeps_loads ? n : 0;
+  set_keeps_loads(keeps_loads);
+  broken.assign(n, 0);
+  stress.assign(n, BondStress{});
+}
+
+void Bonds::set_keeps_loads(bool keep) {
+  keeps_loads = keep;
+  const std::size_t loads = keep ? size() : 0;
   force.assign(loads, Vec3::Zero());
   torque_i.assign(loads, Vec3::Zero());
   torque_j.assign(loads, Vec3::Zero());
   energy.assign(loads, 0.0);
-  broken.assign(n, 0);
-  stress.assign(n, BondStress{});
 }
 
 std::size_t Bonds::remove_broken() {

@@ -191,10 +191,11 @@ BondBatch Simulation::bond_batch() {
   b.j = bonds_.j.data();
   b.particles = view_of(particles_);
   b.state = bonds_.state.data();
-  b.force = bonds_.keeps_loads ? bonds_.force.data() : nullptr;
-  b.torque_i = bonds_.keeps_loads ? bonds_.torque_i.data() : nullptr;
-  b.torque_j = bonds_.keeps_loads ? bonds_.torque_j.data() : nullptr;
-  b.energy = bonds_.keeps_loads ? bonds_.energy.data() : nullptr;
+  // Empty unless the run keeps the loads; bond_chunk then points the outputs at its block buffer.
+  b.force = bonds_.force.data();
+  b.torque_i = bonds_.torque_i.data();
+  b.torque_j = bonds_.torque_j.data();
+  b.energy = bonds_.energy.data();
   b.broken = bonds_.broken.data();
   b.stress = bonds_.stress.data();
   return b;

@@ -78,14 +78,7 @@ void Simulation::import_state(const SimulationState& s) {
   // whatever the run that wrote the checkpoint did.
   const bool keeps_loads = bonds_.keeps_loads;
   bonds_ = s.bonds;
-  if (bonds_.keeps_loads != keeps_loads) {
-    const std::size_t loads = keeps_loads ? bonds_.size() : 0;
-    bonds_.keeps_loads = keeps_loads;
-    bonds_.force.assign(loads, Vec3::Zero());
-    bonds_.torque_i.assign(loads, Vec3::Zero());
-    bonds_.torque_j.assign(loads, Vec3::Zero());
-    bonds_.energy.assign(loads, 0.0);
-  }
+  if (bonds_.keeps_loads != keeps_loads) bonds_.set_keeps_loads(keeps_loads);
   bonds_broken_ = s.bonds_broken;
   events_ = s.events;
   events_taken_ = s.events_taken;

@@ -24,6 +24,8 @@ struct Bonds {
 
   std::size_t size() const { return i.size(); }
   void resize(std::size_t n);
+  // Keep the loads or not from now on; kept loads start at zero (the next step fills them).
+  void set_keeps_loads(bool keep);
   // Drops every bond with broken[k] != 0, keeping the order of the others.
   std::size_t remove_broken();
 };
