@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
   shard::add_measure_command(app, ctx);
   shard::add_new_plugin_command(app, ctx);
   std::vector<std::string> args(argv, argv + argc);
-  shard::route_calibrate_with(args);
+  shard::route_measurement_command(args);
   std::vector<char*> words;
   for (auto& a : args) words.push_back(a.data());
   try {

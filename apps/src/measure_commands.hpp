@@ -11,5 +11,7 @@ struct CommandContext;
 void add_diagnose_command(CLI::App& app, CommandContext& ctx);          // measure_diagnose.cpp
 void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx);  // measure_calibrate.cpp
 void add_history_command(CLI::App& app, CommandContext& ctx);           // measure_history.cpp
+void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx);     // measure_contrast.cpp
+void add_calibrate_contrast_command(CLI::App& app, CommandContext& ctx);  // measure_contrast_calibrate.cpp
 
 }  // namespace shard

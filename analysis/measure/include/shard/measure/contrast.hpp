@@ -1,0 +1,106 @@
+#pragma once
+// Contrast diagnosis across measurement sets (issue 15, docs/measurements.md "Contrasts").
+//
+// A lab's beams are never Shard's model: grain size, contact and bond laws, fixture and preload
+// all differ, so the best base model leaves a structured residual (the form error) before any
+// effect is missing. Labs test several batches or conditions with one fixture; the form error is
+// then common to the sets and cancels in their differences, while an effect that differs between
+// sets does not. So the question asked of each set is "how does it differ from the reference, and
+// which library effect makes the model differ in the same way?".
+//
+// Components. Each curve (a measured specimen or a simulated replicate) is reduced to a few
+// components that are comparable between a lab's beam and the model: logarithms of stiffness,
+// peak force, peak displacement and work to peak (relative changes, free of the form error's
+// scale), the nonlinearity before the peak, the post-peak ductility ln(w_half / w_peak) and the
+// force at 1.25 w_ref in units of f_ref (w_ref, f_ref: the reference's mean peak displacement and
+// force, the model's own for simulated curves).
+//
+// Noise. The specimens of one set scatter together (a stronger beam is stronger everywhere), so
+// the components are correlated. Their covariance Sigma is pooled over all sets (each specimen
+// about its own set's mean: one fixture, one lab, the same scatter structure; nu = sum(n_s) - K
+// degrees of freedom), shrunk by 10 % towards its diagonal so that a few specimens still give an
+// invertible matrix. A contrast d = mean_s - mean_r then has covariance Sigma (1/n_s + 1/n_r),
+// plus the simulated contrast's own scatter over the packing seeds (diagonal).
+//
+// "No difference" is Hotelling's T^2 = d' W d with W the inverse covariance:
+// (nu - m + 1) / (nu m) T^2 ~ F(m, nu - m + 1) when the set does not differ.
+//
+// An effect e changes the model by t_e (its simulated contrast at the trial size, per packing
+// seed against the base on the same seed: common random numbers). Its size is the generalised
+// least-squares a = t'W d / t'W t kept in the effect's physical range; what remains is
+// chi^2_e = (d - a t)' W (d - a t); the drop chi^2_0 - chi^2_e is a likelihood-ratio statistic
+// (chi^2(1) under "e plays no part"), Bonferroni over the effects tried.
+#include <string>
+#include <vector>
+
+#include "shard/measure/curve.hpp"
+#include "shard/measure/diagnosis.hpp"
+
+namespace shard::measure {
+
+// The scales that make curves of two sources comparable.
+struct ContrastScale {
+  double w_ref = 0;  // m, mean displacement at peak
+  double f_ref = 0;  // N, mean peak force
+};
+ContrastScale contrast_scale(const std::vector<Curve>& curves);
+
+const std::vector<std::string>& contrast_component_names();
+// The components of one curve; throws when the curve has no rise to a peak.
+std::vector<double> contrast_components(const Curve& c, const ContrastScale& scale);
+
+// The rows' mean, component by component.
+std::vector<double> component_mean(const std::vector<std::vector<double>>& rows);
+
+// Within-set covariance pooled over groups of rows (one group per set), shrunk towards its
+// diagonal by `shrinkage`; `dof` receives sum(n) - groups.
+std::vector<std::vector<double>> pooled_covariance(const std::vector<std::vector<std::vector<double>>>& groups,
+                                                   double shrinkage, double& dof);
+
+// P(F > (nu - m + 1)/(nu m) T^2) for F ~ F(m, nu - m + 1): Hotelling's T^2 test of a zero mean
+// difference; falls back to chi^2(m) when nu - m + 1 < 1 (fewer specimens than components).
+double hotelling_p(double t_square, double m, double nu);
+
+struct ContrastFit {
+  std::string name;
+  double scale = 0;        // a, in trial sizes from neutral (clamped to [scale_min, scale_max])
+  double u_scale = 0;      // its standard uncertainty 1 / sqrt(t'W t)
+  bool at_bound = false;   // the unclamped a lay outside the physical range
+  double chi_square = 0;   // chi^2_e = (d - a t)' W (d - a t)
+  double drop = 0;         // chi^2_0 - chi^2_e
+  double p_drop = 1;       // P(chi^2(1) > drop)
+  double p_after = 1;      // Hotelling-type p of the remainder, m - 1 components
+};
+
+struct ContrastOptions {
+  double no_difference_p = 0.05;   // T^2 test: the set does not differ above this p ...
+  double significant_p = 0.01;     // ... and no effect's drop beats this p over the n effects
+  double drop_p = 0.05;            // a named effect's drop must beat this p over the n effects
+  double remaining_p = 0.05;       // and leave a remainder compatible with noise
+  double rival_chi_square = 2.0;   // effects within this of the best are rivals
+  // Effects tried for the Bonferroni corrections (0: those passed). A confirmation that decides
+  // on the simulated refits of the top few still pays for every effect the ranking looked at.
+  std::size_t tried = 0;
+};
+
+struct ContrastDecision {
+  double chi_square = 0;  // T^2 of the contrast
+  double p_value = 1;     // Hotelling
+  std::vector<ContrastFit> fits;  // best (lowest chi^2_e) first
+  std::string verdict;            // kNoDifference, the effect's name, or kUnexplainedDifference
+  std::vector<std::string> rivals;
+};
+
+inline constexpr const char* kNoDifference = "no difference";
+inline constexpr const char* kUnexplainedDifference = "unexplained difference";
+
+// `difference` d, its inverse covariance `weight` (m x m), the effects' simulated contrasts t_e
+// (EffectSignature::signature, same components) with their admissible scales, and nu.
+ContrastDecision decide_contrast(const std::vector<double>& difference, const std::vector<std::vector<double>>& weight,
+                                 const std::vector<EffectSignature>& effects, double dof,
+                                 const ContrastOptions& options = {});
+
+// Inverse of a symmetric positive-definite matrix (throws when it is not).
+std::vector<std::vector<double>> spd_inverse(const std::vector<std::vector<double>>& a);
+
+}  // namespace shard::measure

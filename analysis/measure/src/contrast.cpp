@@ -1,0 +1,204 @@
+#include "shard/measure/contrast.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <boost/math/distributions/fisher_f.hpp>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "shard/measure/comparison.hpp"
+#include "shard/measure/features.hpp"
+#include "shard/measure/statistics.hpp"
+
+namespace shard::measure {
+namespace {
+
+// The force after the peak falls below this share of F_max where the beam has parted: the
+// ductility component reads how far past the peak that happens.
+constexpr double kPartedShare = 0.5;
+// Where the post-peak level is read, in reference peak displacements.
+constexpr double kPostPeakXi = 1.25;
+
+Eigen::MatrixXd to_matrix(const std::vector<std::vector<double>>& a) {
+  const auto n = static_cast<Eigen::Index>(a.size());
+  Eigen::MatrixXd m(n, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (static_cast<Eigen::Index>(a[static_cast<std::size_t>(i)].size()) != n)
+      throw std::invalid_argument("contrast: matrix is not square");
+    for (Eigen::Index j = 0; j < n; ++j) m(i, j) = a[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+  }
+  return m;
+}
+
+std::vector<std::vector<double>> from_matrix(const Eigen::MatrixXd& m) {
+  std::vector<std::vector<double>> a(static_cast<std::size_t>(m.rows()), std::vector<double>(static_cast<std::size_t>(m.cols())));
+  for (Eigen::Index i = 0; i < m.rows(); ++i)
+    for (Eigen::Index j = 0; j < m.cols(); ++j) a[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = m(i, j);
+  return a;
+}
+
+Eigen::VectorXd to_vector(const std::vector<double>& v) {
+  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
+double positive_log(double x, const char* what, const Curve& c) {
+  if (!(x > 0))
+    throw std::invalid_argument(fmt::format("curve '{}': {} is {:g}, not positive: the curve has no rise to a peak "
+                                            "(check the sign convention: force and displacement positive into the "
+                                            "specimen)",
+                                            c.id, what, x));
+  return std::log(x);
+}
+
+}  // namespace
+
+ContrastScale contrast_scale(const std::vector<Curve>& curves) {
+  if (curves.empty()) throw std::invalid_argument("contrast: no curves to take the scale from");
+  ContrastScale s;
+  for (const auto& c : curves) {
+    const std::size_t p = peak_index(c);
+    s.w_ref += c.displacement[p];
+    s.f_ref += c.force[p];
+  }
+  s.w_ref /= static_cast<double>(curves.size());
+  s.f_ref /= static_cast<double>(curves.size());
+  return s;
+}
+
+const std::vector<std::string>& contrast_component_names() {
+  static const std::vector<std::string> names = {
+      "ln_stiffness", "ln_peak_force", "ln_peak_displacement", "ln_work_to_peak",
+      "nonlinearity", "ductility",     "post_peak_force",
+  };
+  return names;
+}
+
+std::vector<double> contrast_components(const Curve& c, const ContrastScale& scale) {
+  const std::size_t p = peak_index(c);
+  const FeatureValues f = curve_features(c);
+  const double f_max = c.force[p];
+  const double w_peak = c.displacement[p];
+  double w_parted = c.displacement.back();
+  for (std::size_t k = p; k < c.size(); ++k)
+    if (c.force[k] < kPartedShare * f_max) {
+      w_parted = c.displacement[k];
+      break;
+    }
+  return {
+      positive_log(*f[Feature::Stiffness], "the stiffness", c),
+      positive_log(f_max, "the peak force", c),
+      positive_log(w_peak, "the displacement at peak", c),
+      positive_log(*f[Feature::WorkToPeak], "the work to peak", c),
+      *f[Feature::Nonlinearity],
+      positive_log(w_parted / w_peak, "the parting-to-peak displacement ratio", c),
+      force_at(c, kPostPeakXi * scale.w_ref) / scale.f_ref,
+  };
+}
+
+std::vector<double> component_mean(const std::vector<std::vector<double>>& rows) {
+  if (rows.empty()) throw std::invalid_argument("contrast: mean of no rows");
+  std::vector<double> m(rows.front().size(), 0.0);
+  for (const auto& r : rows)
+    for (std::size_t i = 0; i < m.size(); ++i) m[i] += r[i] / static_cast<double>(rows.size());
+  return m;
+}
+
+std::vector<std::vector<double>> pooled_covariance(const std::vector<std::vector<std::vector<double>>>& groups,
+                                                   double shrinkage, double& dof) {
+  std::size_t m = 0;
+  for (const auto& g : groups)
+    if (!g.empty()) m = g.front().size();
+  Eigen::MatrixXd s = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
+  dof = 0;
+  for (const auto& g : groups) {
+    if (g.size() < 2) continue;
+    const Eigen::VectorXd mean = to_vector(component_mean(g));
+    for (const auto& row : g) {
+      const Eigen::VectorXd d = to_vector(row) - mean;
+      s += d * d.transpose();
+    }
+    dof += static_cast<double>(g.size() - 1);
+  }
+  if (dof < 1) throw std::invalid_argument("contrast: no set has two specimens, so their scatter is unknown");
+  s /= dof;
+  // Shrinking the off-diagonal terms keeps the matrix invertible and well conditioned when the
+  // specimens are few against the components (Ledoit-Wolf's target, a fixed intensity).
+  for (Eigen::Index i = 0; i < s.rows(); ++i)
+    for (Eigen::Index j = 0; j < s.cols(); ++j)
+      if (i != j) s(i, j) *= 1 - shrinkage;
+  return from_matrix(s);
+}
+
+double hotelling_p(double t_square, double m, double nu) {
+  if (!(t_square > 0)) return 1;
+  const double d2 = nu - m + 1;
+  if (d2 < 1) return chi_square_survival(t_square, m);
+  const boost::math::fisher_f_distribution<double> f(m, d2);
+  return boost::math::cdf(boost::math::complement(f, d2 / (nu * m) * t_square));
+}
+
+std::vector<std::vector<double>> spd_inverse(const std::vector<std::vector<double>>& a) {
+  const Eigen::MatrixXd m = to_matrix(a);
+  const Eigen::LLT<Eigen::MatrixXd> llt(m);
+  if (llt.info() != Eigen::Success)
+    throw std::invalid_argument("contrast: the covariance of the components is not positive definite (identical "
+                                "specimens or a constant component)");
+  return from_matrix(llt.solve(Eigen::MatrixXd::Identity(m.rows(), m.cols())));
+}
+
+ContrastDecision decide_contrast(const std::vector<double>& difference, const std::vector<std::vector<double>>& weight,
+                                 const std::vector<EffectSignature>& effects, double dof, const ContrastOptions& options) {
+  const Eigen::VectorXd d = to_vector(difference);
+  const Eigen::MatrixXd w = to_matrix(weight);
+  if (w.rows() != d.size()) throw std::invalid_argument("contrast: weight and difference differ in size");
+  const auto m = static_cast<double>(d.size());
+  ContrastDecision out;
+  out.chi_square = d.dot(w * d);
+  out.p_value = hotelling_p(out.chi_square, m, dof);
+  for (const auto& e : effects) {
+    if (e.signature.size() != difference.size())
+      throw std::invalid_argument(fmt::format("contrast: the signature of '{}' has the wrong length", e.name));
+    const Eigen::VectorXd t = to_vector(e.signature);
+    const double tt = t.dot(w * t), td = t.dot(w * d);
+    ContrastFit fit;
+    fit.name = e.name;
+    const double raw = tt > 0 ? td / tt : 0.0;
+    fit.scale = std::clamp(raw, e.scale_min, e.scale_max);
+    fit.at_bound = fit.scale != raw;
+    fit.u_scale = tt > 0 ? 1 / std::sqrt(tt) : std::numeric_limits<double>::infinity();
+    fit.chi_square = out.chi_square - 2 * fit.scale * td + fit.scale * fit.scale * tt;
+    fit.drop = out.chi_square - fit.chi_square;
+    fit.p_drop = fit.drop > 0 ? chi_square_survival(fit.drop, 1) : 1.0;
+    fit.p_after = hotelling_p(fit.chi_square, std::max(1.0, m - 1), dof);
+    out.fits.push_back(fit);
+  }
+  std::sort(out.fits.begin(), out.fits.end(), [](const auto& a, const auto& b) { return a.chi_square < b.chi_square; });
+  const double n = static_cast<double>(std::max<std::size_t>(1, options.tried > 0 ? options.tried : effects.size()));
+  double best_p_drop = 1;
+  for (const auto& f : out.fits) best_p_drop = std::min(best_p_drop, f.p_drop);
+  if (out.p_value > options.no_difference_p && best_p_drop >= options.significant_p / n) {
+    out.verdict = kNoDifference;
+    return out;
+  }
+  const ContrastFit* named = nullptr;
+  for (const auto& f : out.fits)
+    if (f.scale != 0 && f.p_drop < options.drop_p / n && f.p_after > options.remaining_p) {
+      named = &f;
+      break;
+    }
+  if (!named) {
+    out.verdict = out.p_value > options.no_difference_p ? kNoDifference : kUnexplainedDifference;
+    return out;
+  }
+  out.verdict = named->name;
+  for (const auto& f : out.fits)
+    if (&f != named && f.scale != 0 && f.p_drop < options.drop_p / n &&
+        f.chi_square - named->chi_square < options.rival_chi_square)
+      out.rivals.push_back(f.name);
+  return out;
+}
+
+}  // namespace shard::measure

@@ -1,0 +1,118 @@
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <ostream>
+
+#include "contrast_report.hpp"
+
+namespace shard {
+
+namespace fs = std::filesystem;
+using namespace measure;
+
+void add_contrast_options(CLI::App* cmd, ContrastOptionsCli& o) {
+  cmd->add_option("sets", o.sets, "measurement folders (the reference among them)")->required();
+  add_simulation_options(cmd, o.model, o.sim);
+  cmd->get_option("--scene")->required();
+  cmd->add_option("--reference", o.reference,
+                  "the set the others are held against (folder or its name); default: the consensus of the others");
+  cmd->add_option("--param", o.params,
+                  "base parameter section.key fitted to the reference first (its value is read from the scene)");
+  cmd->add_option("--base-iterations", o.base_iterations, "Gauss-Newton iterations of the base fit")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--effects", o.library, "candidate-effect library (default: effects.toml next to the scene)");
+  cmd->add_option("--only", o.only, "try only these effects of the library (comma-separated)")->delimiter(',');
+  cmd->add_option("--confirm-iterations", o.confirm_iterations,
+                  "confirmation passes: the first at the linear size, later ones at the size the runs ask for")
+      ->check(CLI::PositiveNumber);
+}
+
+std::vector<CandidateEffect> contrast_effects(const ContrastOptionsCli& o) {
+  const fs::path library = o.library.empty() ? o.model.scene.parent_path() / "effects.toml" : o.library;
+  if (!fs::exists(library))
+    throw std::runtime_error(fmt::format("{}: the effect library (candidate effects to try) does not exist. Fix: pass "
+                                         "--effects FILE, e.g. --effects scenes/measurements/effects.toml",
+                                         library.string()));
+  return select_effects(read_effect_library(library), o.only);
+}
+
+void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>& effects,
+                       const ContrastStudy::Simulated& base, std::vector<SetDiagnosis>& sets, int count, int iterations,
+                       std::ostream& log) {
+  struct Trial {
+    std::size_t effect = 0;
+    double scale = 0;
+    ContrastStudy::Simulated run;
+    bool has_run = false;
+  };
+  std::vector<std::vector<Trial>> trials(sets.size());
+  for (std::size_t s = 0; s < sets.size(); ++s) {
+    if (sets[s].linear.verdict == kNoDifference) continue;  // nothing to confirm
+    int taken = 0;
+    for (const auto& f : sets[s].linear.fits) {
+      if (taken >= count) break;
+      if (f.scale == 0 || !(f.drop > 0)) continue;
+      for (std::size_t e = 0; e < effects.size(); ++e)
+        if (effects[e].name == f.name) trials[s].push_back({e, f.scale, {}, false});
+      ++taken;
+    }
+  }
+  auto signature_of = [&](const SetDiagnosis& d, const Trial& t) {
+    const CandidateEffect& e = effects[t.effect];
+    return EffectSignature{e.name, e.value_at(t.scale) - e.neutral, study.model_contrast(d.contrast, t.run, base), 1, 1};
+  };
+  for (int pass = 0; pass < iterations; ++pass) {
+    std::vector<ModelPlan> models;
+    std::vector<std::pair<std::size_t, std::size_t>> owner;
+    for (std::size_t s = 0; s < sets.size(); ++s)
+      for (std::size_t k = 0; k < trials[s].size(); ++k) {
+        Trial& t = trials[s][k];
+        if (t.has_run) {
+          // The simulated contrast at this size, scaled by a*, fits best: run there when a* is
+          // more than 20 % from 1 (an effect's signature is not linear in its size).
+          const EffectSignature sig = signature_of(sets[s], t);
+          const auto fit = decide_contrast(sets[s].contrast.difference, sets[s].contrast.weight,
+                                           {{sig.name, sig.trial_size, sig.signature, 0, 1e9}}, study.dof());
+          const double a = fit.fits.front().scale;
+          if (!(std::abs(a - 1) > 0.2) || a == 0) continue;
+          const CandidateEffect& e = effects[t.effect];
+          t.scale = std::clamp(t.scale * a, e.scale_min(), e.scale_max());
+        }
+        models.push_back(with_effect(study.base(), effects[t.effect], effects[t.effect].value_at(t.scale)));
+        owner.emplace_back(s, k);
+      }
+    if (models.empty()) break;
+    log << fmt::format("diagnose: confirmation pass {}: {} runs of effects at their fitted sizes\n", pass + 1, models.size());
+    auto runs = study.simulate(models, log);
+    for (std::size_t m = 0; m < models.size(); ++m) {
+      Trial& t = trials[owner[m].first][owner[m].second];
+      t.run = std::move(runs[m]);
+      t.has_run = true;
+    }
+  }
+  ContrastOptions decide;
+  decide.tried = effects.size();
+  for (std::size_t s = 0; s < sets.size(); ++s) {
+    SetDiagnosis& d = sets[s];
+    if (trials[s].empty()) continue;
+    std::vector<EffectSignature> sig;
+    for (const auto& t : trials[s]) sig.push_back(signature_of(d, t));
+    d.decision = decide_contrast(d.contrast.difference, d.contrast.weight, sig, study.dof(), decide);
+    d.confirmed_values.clear();
+    for (const auto& f : d.decision.fits)
+      for (const auto& t : trials[s])
+        if (effects[t.effect].name == f.name) d.confirmed_values.push_back(effects[t.effect].value_at(t.scale));
+    const std::string& show = d.decision.verdict == kUnexplainedDifference || d.decision.verdict == kNoDifference
+                                  ? d.decision.fits.front().name
+                                  : d.decision.verdict;
+    for (const auto& t : trials[s])
+      if (effects[t.effect].name == show) {
+        d.after = study.curve_contrast(d.contrast, t.run, base);
+        d.after_effect = show;
+        d.after_value = effects[t.effect].value_at(t.scale);
+      }
+  }
+}
+
+}  // namespace shard

@@ -1,0 +1,202 @@
+#include "contrast_report.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <stdexcept>
+
+#include "shard/measure/report.hpp"
+
+namespace shard {
+
+namespace fs = std::filesystem;
+using namespace measure;
+
+namespace {
+
+const CandidateEffect* effect_named(const ContrastReport& r, const std::string& name) {
+  for (const auto& e : r.effects)
+    if (e.name == name) return &e;
+  return nullptr;
+}
+
+// The fitted value of a fit: the confirmed run's value when the decision came from runs,
+// otherwise neutral + scale * trial step.
+double fitted_value(const ContrastReport& r, const SetDiagnosis& d, std::size_t k) {
+  const ContrastFit& f = d.decision.fits[k];
+  if (!d.confirmed_values.empty()) return d.confirmed_values[k];
+  const CandidateEffect* e = effect_named(r, f.name);
+  return e ? e->value_at(f.scale) : 0.0;
+}
+
+double fitted_uncertainty(const ContrastReport& r, const SetDiagnosis& d, std::size_t k) {
+  const ContrastFit& f = d.decision.fits[k];
+  const CandidateEffect* e = effect_named(r, f.name);
+  if (!e) return 0;
+  // u_scale is in units of the signature's own size: the confirmed run's distance from neutral
+  // or the trial step.
+  const double unit = d.confirmed_values.empty() ? e->plausible - e->neutral : d.confirmed_values[k] - e->neutral;
+  return std::abs(f.u_scale * unit);
+}
+
+std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
+  const ContrastDecision& c = d.decision;
+  const std::string& name = r.sets.names[d.set];
+  if (c.verdict == kNoDifference)
+    return fmt::format("{} does not differ from the reference beyond the specimens' scatter (Hotelling T^2 = {:.1f}, "
+                       "p = {:.2g}); no library effect's contrast is significant.",
+                       name, c.chi_square, c.p_value);
+  if (c.verdict == kUnexplainedDifference) {
+    std::string s = fmt::format("{} differs from the reference (T^2 = {:.1f}, p = {:.2g}), and no library effect "
+                                "explains the difference.",
+                                name, c.chi_square, c.p_value);
+    if (!c.fits.empty())
+      s += fmt::format(" The closest, {}, leaves chi^2 {:.1f} (p = {:.2g} for what remains): the missing physics is not "
+                       "in the library. Add it as a plugin parameter with a neutral value (shard new-plugin, "
+                       "docs/plugins.md) and an [[effect]] entry, then diagnose again.",
+                       c.fits.front().name, c.fits.front().chi_square, c.fits.front().p_after);
+    return s;
+  }
+  const CandidateEffect* e = effect_named(r, c.verdict);
+  std::string s = fmt::format("{} differs from the reference (T^2 = {:.1f}, p = {:.2g}) by {}: {} = {:.4g} +- {:.2g} {} "
+                              "leaves chi^2 {:.1f} (p = {:.2g} for what remains; the drop has p = {:.2g}).",
+                              name, c.chi_square, c.p_value, c.verdict, e ? e->parameter : c.verdict,
+                              fitted_value(r, d, 0), fitted_uncertainty(r, d, 0), e ? e->unit : "",
+                              c.fits.front().chi_square, c.fits.front().p_after, c.fits.front().p_drop);
+  if (c.fits.front().at_bound) s += " The size sits at the bound of its physical range.";
+  for (const auto& rival : c.rivals) {
+    const CandidateEffect* x = effect_named(r, rival);
+    s += fmt::format(" {} explains it almost as well (within {:g} in chi^2): these data cannot tell them apart{}.", rival,
+                     ContrastOptions{}.rival_chi_square,
+                     x && !x->separated_by.empty() ? fmt::format("; {} would", x->separated_by) : "");
+  }
+  return s;
+}
+
+}  // namespace
+
+std::string contrast_markdown(const ContrastReport& r) {
+  const auto& names = contrast_component_names();
+  std::string md = fmt::format("# Contrast diagnosis: {} sets against {}\n\n", r.sets.sets.size(),
+                               r.sets.reference ? "the reference " + r.sets.names[*r.sets.reference]
+                                                : std::string("the consensus of the others"));
+  md += fmt::format("Components per curve: {}. Specimen scatter pooled over all sets: {:g} degrees of freedom. "
+                    "Effects tried: {}.\n\n",
+                    fmt::join(names, ", "), r.study.dof(), r.effects.size());
+  md += "## The base model and its form error\n\n";
+  if (r.calibration.keys.empty())
+    md += "Base parameters as in the scene (no --param given).\n\n";
+  else {
+    for (std::size_t k = 0; k < r.calibration.path.size(); ++k) md += fmt::format("{}. {}\n", k + 1, r.calibration.path[k]);
+    for (const auto& key : r.calibration.at_bound)
+      md += fmt::format("\n{}'s last step was clamped to a factor of 2: the base fit did not converge in the "
+                        "iterations given (--base-iterations).\n",
+                        key);
+  }
+  const Comparison& fe = r.calibration.form_error;
+  md += fmt::format("\nAgainst the reference the fitted base model leaves NRMSE {:.1f} %: {}\n\n", 100 * fe.nrmse, fe.verdict);
+  md += "| regime | mean residual | force error |\n|---|---|---|\n";
+  for (const auto& g : fe.regimes)
+    if (g.points() > 0)
+      md += fmt::format("| {} | {:+.2f} | {:+.1f} % |\n", regime_name(g.regime), g.mean_residual, 100 * g.relative_error);
+  md += "\nThis form error is common to sets tested with one fixture; it cancels in the contrasts below.\n\n";
+  md += "## Verdicts\n\n| set | T^2 | p (no difference) | verdict | value | contrast NRMSE: base -> with effect |\n"
+        "|---|---|---|---|---|---|\n";
+  for (const auto& d : r.diagnoses) {
+    const ContrastDecision& c = d.decision;
+    const bool named = c.verdict != kNoDifference && c.verdict != kUnexplainedDifference;
+    const CandidateEffect* e = named ? effect_named(r, c.verdict) : nullptr;
+    md += fmt::format("| {} | {:.1f} | {:.2g} | {} | {} | {:.2f} % -> {} |\n", r.sets.names[d.set], c.chi_square, c.p_value,
+                      c.verdict,
+                      named ? fmt::format("{:.4g} +- {:.2g} {}", fitted_value(r, d, 0), fitted_uncertainty(r, d, 0),
+                                          e ? e->unit : "")
+                            : "-",
+                      100 * d.before.nrmse,
+                      d.after_effect.empty() ? "-" : fmt::format("{:.2f} % ({})", 100 * d.after.nrmse, d.after_effect));
+  }
+  md += "\nContrast NRMSE: RMS difference between the measured contrast curve (set mean - reference mean) and the "
+        "model's, over the displacement range both cover, in units of the reference's peak force.\n";
+  for (const auto& d : r.diagnoses) {
+    md += fmt::format("\n## {}\n\n{}\n\n", r.sets.names[d.set], verdict_text(r, d));
+    md += "| component | measured difference | u |\n|---|---|---|\n";
+    for (std::size_t i = 0; i < d.contrast.names.size(); ++i)
+      md += fmt::format("| {} | {:+.4g} | {:.2g} |\n", d.contrast.names[i], d.contrast.difference[i],
+                        1 / std::sqrt(d.contrast.weight[i][i]));
+    md += fmt::format("\n{} | size | +- | chi^2 after | drop | p of the drop | p after | at bound |\n"
+                      "|---|---|---|---|---|---|---|---|\n",
+                      d.confirmed_values.empty() ? "| effect (linear, from the signatures)" : "| effect (simulated at its size)");
+    for (std::size_t k = 0; k < d.decision.fits.size(); ++k) {
+      const ContrastFit& f = d.decision.fits[k];
+      md += fmt::format("| {} | {:.4g} | {:.2g} | {:.1f} | {:.1f} | {:.2g} | {:.2g} | {} |\n", f.name,
+                        fitted_value(r, d, k), fitted_uncertainty(r, d, k), f.chi_square, f.drop, f.p_drop, f.p_after,
+                        f.at_bound ? "yes" : "");
+    }
+  }
+  md += fmt::format("\nLargest kinetic/elastic energy ratio of the runs before breakage: {:.2g}.\n", r.max_kinetic_to_elastic);
+  return md;
+}
+
+std::string contrast_json(const ContrastReport& r) {
+  std::string j = fmt::format("{{\"reference\": \"{}\", \"dof\": {:.9g}, \"form_error_nrmse\": {:.9g}, \"base\": {{",
+                              r.sets.reference ? json_escape(r.sets.names[*r.sets.reference]) : "", r.study.dof(),
+                              r.calibration.form_error.nrmse);
+  for (std::size_t k = 0; k < r.calibration.keys.size(); ++k)
+    j += fmt::format("{}\"{}\": {:.9g}", k ? ", " : "", json_escape(r.calibration.keys[k]), r.calibration.values[k]);
+  j += "}, \"sets\": [";
+  for (std::size_t s = 0; s < r.diagnoses.size(); ++s) {
+    const SetDiagnosis& d = r.diagnoses[s];
+    const ContrastDecision& c = d.decision;
+    j += fmt::format("{}{{\"name\": \"{}\", \"t_square\": {:.9g}, \"p_value\": {:.9g}, \"verdict\": \"{}\", "
+                     "\"nrmse_base\": {:.9g}, \"nrmse_effect\": {:.9g}, \"effect_shown\": \"{}\", \"fits\": [",
+                     s ? ", " : "", json_escape(r.sets.names[d.set]), c.chi_square, c.p_value, json_escape(c.verdict),
+                     d.before.nrmse, d.after_effect.empty() ? d.before.nrmse : d.after.nrmse, json_escape(d.after_effect));
+    for (std::size_t k = 0; k < c.fits.size(); ++k) {
+      const ContrastFit& f = c.fits[k];
+      j += fmt::format("{}{{\"name\": \"{}\", \"value\": {:.9g}, \"u_value\": {:.9g}, \"chi_square\": {:.9g}, "
+                       "\"p_drop\": {:.9g}, \"p_after\": {:.9g}, \"at_bound\": {}}}",
+                       k ? ", " : "", json_escape(f.name), fitted_value(r, d, k), fitted_uncertainty(r, d, k), f.chi_square,
+                       f.p_drop, f.p_after, f.at_bound);
+    }
+    j += "], \"rivals\": [";
+    for (std::size_t k = 0; k < c.rivals.size(); ++k) j += fmt::format("{}\"{}\"", k ? ", " : "", json_escape(c.rivals[k]));
+    j += "]}";
+  }
+  return j + "]}\n";
+}
+
+void plot_contrasts(const ContrastReport& r, const fs::path& image) {
+  const fs::path dat = fs::path(image).replace_extension(".dat"), gp = fs::path(image).replace_extension(".gp");
+  {
+    std::ofstream out(dat);
+    for (const auto& d : r.diagnoses) {
+      out << "# " << r.sets.names[d.set] << "\n# xi measured u base effect\n";
+      for (std::size_t k = 0; k < d.before.xi.size(); ++k)
+        out << fmt::format("{:.6g} {:.6g} {:.6g} {:.6g} {:.6g}\n", d.before.xi[k], d.before.measured[k],
+                           d.before.u_measured[k], d.before.simulated[k],
+                           d.after_effect.empty() ? d.before.simulated[k] : d.after.simulated[k]);
+      out << "\n\n";
+    }
+  }
+  const std::size_t n = r.diagnoses.size();
+  std::string script = fmt::format(
+      "set terminal pngcairo size 900,{} font ',9'\nset output '{}'\nset multiplot layout {},1\n"
+      "set xlabel 'w / w_ref'\nset ylabel 'dF / F_ref'\nset grid\nset key outside right\n",
+      std::max<std::size_t>(300, 260 * n), image.string(), n);
+  for (std::size_t s = 0; s < n; ++s) {
+    const SetDiagnosis& d = r.diagnoses[s];
+    script += fmt::format("set title '{}: {}'\n", r.sets.names[d.set], d.decision.verdict);
+    script += fmt::format(
+        "plot '{0}' index {1} using 1:($2-2*$3):($2+2*$3) with filledcurves lc rgb '#cfe0f0' title 'measured +-2u', "
+        "'' index {1} using 1:2 with lines lw 2 lc rgb '#1f4e79' title 'measured', "
+        "'' index {1} using 1:4 with lines dt 2 lc rgb '#888888' title 'base model', "
+        "'' index {1} using 1:5 with lines lw 2 lc rgb '#c0392b' title '{2}'\n",
+        dat.string(), s, d.after_effect.empty() ? std::string("base model") : "with " + d.after_effect);
+  }
+  script += "unset multiplot\n";
+  std::ofstream(gp) << script;
+  if (run_program("gnuplot", {gp.string()}) != 0)
+    throw std::runtime_error(fmt::format("gnuplot failed on {} (is gnuplot installed?)", gp.string()));
+}
+
+}  // namespace shard

@@ -1,0 +1,65 @@
+#pragma once
+// The contrast commands' options, per-set outcome, confirmation runs and report
+// (measure_contrast.cpp, measure_contrast_calibrate.cpp).
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "contrast_study.hpp"
+#include "shard/measure/effect_library.hpp"
+
+namespace shard {
+
+struct ContrastOptionsCli {
+  std::vector<std::filesystem::path> sets;
+  std::string reference;
+  std::filesystem::path library, out;
+  ModelPlan model;
+  SimulationOptions sim;
+  std::vector<std::string> params;
+  std::vector<std::string> only;
+  int base_iterations = 3;
+  int confirm = 2;
+  int confirm_iterations = 2;
+};
+
+void add_contrast_options(CLI::App* cmd, ContrastOptionsCli& o);
+// The library (--effects, or effects.toml beside the scene) and its --only selection.
+std::vector<measure::CandidateEffect> contrast_effects(const ContrastOptionsCli& o);
+
+struct SetDiagnosis {
+  std::size_t set = 0;
+  ContrastStudy::Contrast contrast;
+  measure::ContrastDecision linear;    // from the signatures at the plausible sizes
+  measure::ContrastDecision decision;  // from the confirmation runs (the linear one when none ran)
+  std::vector<double> confirmed_values;  // effect values of decision.fits' runs, by fit name order
+  ContrastStudy::CurveContrast before, after;  // base model; with the named (or best) effect
+  std::string after_effect;
+  double after_value = 0;
+};
+
+// Simulates each set's best `count` effects at their linear sizes, then (up to `iterations` in
+// all) at the size the simulated contrast asks for; the decision is taken on those runs.
+void confirm_contrasts(ContrastStudy& study, const std::vector<measure::CandidateEffect>& effects,
+                       const ContrastStudy::Simulated& base, std::vector<SetDiagnosis>& sets, int count, int iterations,
+                       std::ostream& log);
+
+struct ContrastReport {
+  const ContrastSets& sets;
+  const std::vector<measure::CandidateEffect>& effects;
+  const BaseCalibration& calibration;
+  const ContrastStudy& study;
+  const std::vector<SetDiagnosis>& diagnoses;
+  double max_kinetic_to_elastic = 0;
+};
+
+std::string contrast_markdown(const ContrastReport& r);
+std::string contrast_json(const ContrastReport& r);
+// One panel per set: measured contrast with its +-2u band, the base model's and the named
+// effect's simulated contrasts (gnuplot).
+void plot_contrasts(const ContrastReport& r, const std::filesystem::path& image);
+
+}  // namespace shard

@@ -1,0 +1,448 @@
+#include "contrast_study.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <ostream>
+#include <stdexcept>
+
+#include "shard/measure/statistics.hpp"
+
+namespace shard {
+
+namespace fs = std::filesystem;
+using namespace measure;
+
+namespace {
+
+constexpr double kGeometryTolerance = 0.02;  // as Simulator::check_inputs: 2 % is a different fixture
+constexpr double kShrinkage = 0.1;           // off-diagonal shrinkage of the pooled covariance
+constexpr double kBaseStep = 0.05;           // relative step of a base parameter for its Jacobian
+constexpr std::size_t kCurvePoints = 60;
+
+bool same_rate(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(std::abs(a), std::abs(b)); }
+
+std::string folder_name(const fs::path& folder) {
+  const fs::path p = folder.lexically_normal();
+  return (p.has_filename() ? p.filename() : p.parent_path().filename()).string();
+}
+
+void check_geometry(const ContrastSets& s) {
+  const std::size_t first = s.reference.value_or(0);
+  const Specimen& ref = s.sets[first].specimens.front();
+  struct Dim {
+    const char* name;
+    double Specimen::*field;
+  };
+  const Dim dims[] = {{"span", &Specimen::span}, {"pin distance", &Specimen::pin_distance},
+                      {"width", &Specimen::width}, {"height", &Specimen::height}};
+  for (std::size_t k = 0; k < s.sets.size(); ++k)
+    for (const auto& sp : s.sets[k].specimens)
+      for (const auto& d : dims)
+        if (std::abs(sp.*d.field - ref.*d.field) > kGeometryTolerance * ref.*d.field)
+          throw std::runtime_error(fmt::format(
+              "{}/specimens.csv: specimen {} has {} {:.4g} mm, but {} specimen {} has {:.4g} mm (more than 2 % apart). "
+              "A contrast holds specimen and fixture fixed so that the model's form error cancels; diagnose sets of "
+              "another geometry on their own (shard diagnose SET) or with a reference of their geometry",
+              s.sets[k].folder.string(), sp.id, d.name, 1e3 * (sp.*d.field), s.names[first], ref.id, 1e3 * (ref.*d.field)));
+}
+
+// Mean and sample variance over the seeds of a - b (paired on the seed: common random numbers).
+void paired(const std::vector<std::vector<double>>& a, const std::vector<std::vector<double>>& b, std::vector<double>& mean,
+            std::vector<double>& var_of_mean) {
+  const std::size_t n = a.size(), m = a.front().size();
+  mean.assign(m, 0.0);
+  var_of_mean.assign(m, 0.0);
+  for (std::size_t i = 0; i < m; ++i) {
+    std::vector<double> d(n);
+    for (std::size_t k = 0; k < n; ++k) d[k] = a[k][i] - b[k][i];
+    mean[i] = measure::mean(d);
+    const double s = sample_sd(d);
+    var_of_mean[i] = s * s / static_cast<double>(n);
+  }
+}
+
+std::vector<double> median_of(const std::vector<std::vector<double>>& rows) {
+  std::vector<double> out(rows.front().size());
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    std::vector<double> v;
+    for (const auto& r : rows) v.push_back(r[i]);
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    out[i] = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+  }
+  return out;
+}
+
+}  // namespace
+
+ContrastSets read_contrast_sets(const std::vector<fs::path>& folders, const std::string& reference) {
+  if (folders.size() < 2)
+    throw std::runtime_error(fmt::format("a contrast needs at least two measurement sets, got {}: give the reference "
+                                         "and the sets to hold against it (shard diagnose REF SET_A ... --reference REF)",
+                                         folders.size()));
+  ContrastSets s;
+  for (const auto& f : folders) {
+    s.sets.push_back(read_measurements(f));
+    s.names.push_back(folder_name(f));
+    for (std::size_t k = 0; k + 1 < s.names.size(); ++k)
+      if (s.names[k] == s.names.back())
+        throw std::runtime_error(fmt::format("two measurement sets are named '{}' ({} and {}): rename one folder",
+                                             s.names.back(), folders[k].string(), f.string()));
+  }
+  if (!reference.empty()) {
+    for (std::size_t k = 0; k < folders.size(); ++k) {
+      std::error_code ec;
+      if (s.names[k] == reference || s.names[k] == folder_name(reference) || fs::equivalent(folders[k], reference, ec))
+        s.reference = k;
+    }
+    if (!s.reference) {
+      std::string names;
+      for (const auto& n : s.names) names += (names.empty() ? "" : ", ") + n;
+      throw std::runtime_error(fmt::format("--reference {}: not among the sets given ({}). Fix: add its folder to the "
+                                           "list of sets, or name one of them",
+                                           reference, names));
+    }
+  }
+  for (std::size_t k = 0; k < s.sets.size(); ++k) {
+    const RateGroups g = rate_groups(s.sets[k], 0);
+    for (std::size_t r = 0; r < g.rates.size(); ++r)
+      if (g.specimens[r].size() < 2)
+        throw std::runtime_error(fmt::format(
+            "{}: {} specimen at {:g} m/s; a contrast needs at least two specimens per set and rate (their scatter "
+            "is the noise a difference is judged against). Fix: add replicates, or leave this set out",
+            s.sets[k].folder.string(), g.specimens[r].size(), g.rates[r]));
+  }
+  check_geometry(s);
+  return s;
+}
+
+ContrastStudy::ContrastStudy(const ContrastSets& sets, Simulator& simulator, ModelPlan base)
+    : sets_(sets), simulator_(simulator), base_(std::move(base)) {
+  // The scales come from the reference's slowest rate, or without a reference from the rate most
+  // specimens were tested at.
+  std::map<double, std::size_t> count;
+  for (std::size_t k = 0; k < sets_.sets.size(); ++k)
+    for (const auto& sp : sets_.sets[k].specimens)
+      if (!sets_.reference || *sets_.reference == k) ++count[sp.loading_rate];
+  scale_rate_ = std::max_element(count.begin(), count.end(), [](auto& a, auto& b) { return a.second < b.second; })->first;
+  if (sets_.reference) scale_rate_ = count.begin()->first;
+  std::vector<Curve> scale_curves;
+  for (std::size_t k = 0; k < sets_.sets.size(); ++k)
+    if (!sets_.reference || *sets_.reference == k)
+      for (const auto& sp : sets_.sets[k].specimens)
+        if (same_rate(sp.loading_rate, scale_rate_)) scale_curves.push_back(sp.curve);
+  measured_scale_ = contrast_scale(scale_curves);
+
+  std::vector<std::vector<std::vector<double>>> pooled;
+  for (std::size_t k = 0; k < sets_.sets.size(); ++k) {
+    const RateGroups g = rate_groups(sets_.sets[k], 0);
+    const std::vector<double> reference_rates =
+        sets_.reference ? sets_.sets[*sets_.reference].loading_rates() : g.rates;
+    for (std::size_t r = 0; r < g.rates.size(); ++r) {
+      ContrastGroup group;
+      group.set = k;
+      group.rate = g.rates[r];
+      group.reference_rate = *std::min_element(reference_rates.begin(), reference_rates.end(), [&](double a, double b) {
+        return std::abs(std::log(a / group.rate)) < std::abs(std::log(b / group.rate));
+      });
+      for (const auto& sp : g.specimens[r]) group.components.push_back(contrast_components(sp.curve, measured_scale_));
+      pooled.push_back(group.components);
+      groups_.push_back(std::move(group));
+    }
+  }
+  covariance_ = pooled_covariance(pooled, kShrinkage, dof_);
+}
+
+std::vector<double> ContrastStudy::rates() const {
+  std::vector<double> r;
+  auto add = [&](double v) {
+    for (double x : r)
+      if (same_rate(x, v)) return;
+    r.push_back(v);
+  };
+  add(scale_rate_);
+  for (const auto& g : groups_) add(g.rate), add(g.reference_rate);
+  std::sort(r.begin(), r.end());
+  return r;
+}
+
+std::size_t ContrastStudy::rate_index(double rate) const {
+  const auto r = rates();
+  for (std::size_t k = 0; k < r.size(); ++k)
+    if (same_rate(r[k], rate)) return k;
+  throw std::logic_error("contrast: a rate that was not simulated");
+}
+
+std::vector<ContrastStudy::Simulated> ContrastStudy::simulate(const std::vector<ModelPlan>& models, std::ostream& log) {
+  std::vector<Specimen> every;
+  for (const auto& s : sets_.sets) every.insert(every.end(), s.specimens.begin(), s.specimens.end());
+  if (!models.empty()) simulator_.check_inputs(models.front(), every);
+  const auto r = rates();
+  std::vector<ModelPlan> runs;
+  for (const auto& m : models)
+    for (double v : r) {
+      ModelPlan at = m;
+      at.loading_rate = v;
+      runs.push_back(std::move(at));
+    }
+  const auto sims = simulator_.simulate(runs, log);
+  std::vector<Simulated> out(models.size());
+  for (std::size_t m = 0; m < models.size(); ++m)
+    for (std::size_t k = 0; k < r.size(); ++k) {
+      std::vector<Curve> curves;
+      for (const auto& sp : sims[m * r.size() + k]) curves.push_back(sp.curve);
+      out[m].curves.push_back(std::move(curves));
+    }
+  return out;
+}
+
+ContrastScale ContrastStudy::simulated_scale(const Simulated& base) const {
+  return contrast_scale(base.curves[rate_index(scale_rate_)]);
+}
+
+std::vector<std::vector<double>> ContrastStudy::components(const Simulated& model, double rate,
+                                                           const Simulated& base) const {
+  const ContrastScale scale = simulated_scale(base);
+  std::vector<std::vector<double>> rows;
+  for (const auto& c : model.curves[rate_index(rate)]) rows.push_back(contrast_components(c, scale));
+  return rows;
+}
+
+BaseCalibration ContrastStudy::calibrate_base(const std::vector<std::string>& keys, int iterations, std::ostream& log) {
+  BaseCalibration cal;
+  cal.keys = keys;
+  for (const auto& k : keys) cal.start.push_back(scene_number(base_, k, {}));
+  cal.values = cal.start;
+  // The reference's (or the consensus') logarithms of stiffness, peak force and peak displacement.
+  constexpr std::size_t kTargets = 3;
+  std::vector<std::vector<double>> means;
+  for (const auto& g : groups_)
+    if (same_rate(g.rate, scale_rate_) && (!sets_.reference || g.set == *sets_.reference))
+      means.push_back(component_mean(g.components));
+  const std::vector<double> target = median_of(means);
+  std::vector<Specimen> reference;
+  for (std::size_t k = 0; k < sets_.sets.size(); ++k)
+    if (!sets_.reference || *sets_.reference == k)
+      for (const auto& sp : sets_.sets[k].specimens)
+        if (same_rate(sp.loading_rate, scale_rate_)) reference.push_back(sp);
+
+  auto features_of = [&](const std::vector<Specimen>& sims) {
+    std::vector<std::vector<double>> rows;
+    for (const auto& s : sims) rows.push_back(contrast_components(s.curve, contrast_scale({s.curve})));
+    return component_mean(rows);
+  };
+  const double log_step = std::log1p(kBaseStep);
+  std::vector<Specimen> final_sims;
+  for (int it = 0; it <= iterations; ++it) {
+    std::vector<ModelPlan> models{with_parameters(base_, keys, cal.values)};
+    if (it < iterations)
+      for (std::size_t i = 0; i < keys.size(); ++i) {
+        std::vector<double> v = cal.values;
+        v[i] *= 1 + kBaseStep;
+        models.push_back(with_parameters(base_, keys, v));
+      }
+    for (auto& m : models) m.loading_rate = scale_rate_;
+    const auto sims = simulator_.simulate(models, log);
+    const std::vector<double> f = features_of(sims[0]);
+    Eigen::VectorXd r(kTargets);
+    for (std::size_t i = 0; i < kTargets; ++i) r(static_cast<Eigen::Index>(i)) = target[i] - f[i];
+    std::string values;
+    for (std::size_t i = 0; i < keys.size(); ++i) values += fmt::format("{}{}={:.4g}", i ? ", " : "", keys[i], cal.values[i]);
+    cal.path.push_back(fmt::format("{}: stiffness {:+.1f} %, peak force {:+.1f} %, peak displacement {:+.1f} % against "
+                                   "the reference",
+                                   values, 100 * std::expm1(-r(0)), 100 * std::expm1(-r(1)), 100 * std::expm1(-r(2))));
+    log << "contrast: base " << cal.path.back() << '\n';
+    if (it == iterations) {
+      final_sims = sims[0];
+      break;
+    }
+    Eigen::MatrixXd J(kTargets, static_cast<Eigen::Index>(keys.size()));
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      const std::vector<double> fi = features_of(sims[1 + i]);
+      for (std::size_t t = 0; t < kTargets; ++t)
+        J(static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(i)) = (fi[t] - f[t]) / log_step;
+    }
+    const Eigen::VectorXd step = J.colPivHouseholderQr().solve(r);
+    cal.at_bound.clear();
+    double largest = 0;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      // A factor of two per iteration at most: a Jacobian taken 5 % away does not hold further.
+      double s = step(static_cast<Eigen::Index>(i));
+      if (std::abs(s) > std::log(2.0)) {
+        s = std::copysign(std::log(2.0), s);
+        cal.at_bound.push_back(keys[i]);
+      }
+      largest = std::max(largest, std::abs(s));
+      cal.values[i] *= std::exp(s);
+    }
+    if (largest < 0.005) {  // converged: the next pass only re-runs what is cached
+      iterations = it + 1;
+    }
+  }
+  base_ = with_parameters(base_, keys, cal.values);
+  cal.form_error = compare(reference, sets_.sets[sets_.reference.value_or(0)].metadata, final_sims);
+  return cal;
+}
+
+ContrastStudy::Contrast ContrastStudy::contrast(std::size_t set, const Simulated& base) const {
+  Contrast c;
+  const std::size_t m = contrast_component_names().size();
+  struct Block {
+    std::vector<double> d, var_base;
+    Eigen::MatrixXd own, shared;
+    std::string shared_key;
+  };
+  std::vector<Block> blocks;
+  Eigen::MatrixXd sigma(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
+  for (std::size_t i = 0; i < m; ++i)
+    for (std::size_t j = 0; j < m; ++j) sigma(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = covariance_[i][j];
+  for (std::size_t gi = 0; gi < groups_.size(); ++gi) {
+    const ContrastGroup& g = groups_[gi];
+    if (g.set != set) continue;
+    Block b;
+    const std::vector<double> mean = component_mean(g.components);
+    std::vector<double> ref_mean;
+    double ref_weight = 0;  // the reference mean's covariance is ref_weight * Sigma
+    if (sets_.reference) {
+      for (const auto& h : groups_)
+        if (h.set == *sets_.reference && same_rate(h.rate, g.reference_rate)) {
+          ref_mean = component_mean(h.components);
+          ref_weight = 1.0 / static_cast<double>(h.components.size());
+        }
+      b.shared_key = fmt::format("reference@{}", g.reference_rate);
+    } else {
+      // The consensus: the median of the other sets' means at this rate. Its variance is taken
+      // as the median's large-sample pi/2 times that of the pooled mean of those specimens.
+      std::vector<std::vector<double>> others;
+      double n_others = 0;
+      for (const auto& h : groups_)
+        if (h.set != set && same_rate(h.rate, g.rate)) {
+          others.push_back(component_mean(h.components));
+          n_others += static_cast<double>(h.components.size());
+        }
+      if (others.size() < 2)
+        throw std::runtime_error(fmt::format("{}: fewer than two other sets were tested at {:g} m/s, so there is no "
+                                             "consensus to hold it against. Fix: name a reference with --reference",
+                                             sets_.names[set], g.rate));
+      ref_mean = median_of(others);
+      ref_weight = std::numbers::pi / 2 / n_others;
+      b.shared_key = fmt::format("consensus-without-{}@{}", set, g.rate);
+    }
+    std::vector<double> base_shift(m, 0.0), base_var(m, 0.0);
+    if (!same_rate(g.rate, g.reference_rate))
+      paired(components(base, g.rate, base), components(base, g.reference_rate, base), base_shift, base_var);
+    for (std::size_t i = 0; i < m; ++i) b.d.push_back(mean[i] - ref_mean[i] - base_shift[i]);
+    b.var_base = base_var;
+    b.own = sigma / static_cast<double>(g.components.size());
+    b.shared = sigma * ref_weight;
+    for (std::size_t i = 0; i < m; ++i) {
+      c.names.push_back(fmt::format("{}@{:g}", contrast_component_names()[i], g.rate));
+      c.difference.push_back(b.d[i]);
+    }
+    c.groups.push_back(gi);
+    blocks.push_back(std::move(b));
+  }
+  const auto n = static_cast<Eigen::Index>(blocks.size() * m);
+  Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(n, n);
+  const auto mm = static_cast<Eigen::Index>(m);
+  for (std::size_t a = 0; a < blocks.size(); ++a)
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      auto block = cov.block(static_cast<Eigen::Index>(a) * mm, static_cast<Eigen::Index>(b) * mm, mm, mm);
+      if (blocks[a].shared_key == blocks[b].shared_key) block += blocks[a].shared;
+      if (a == b) {
+        block += blocks[a].own;
+        for (std::size_t i = 0; i < m; ++i) block(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)) += blocks[a].var_base[i];
+      }
+    }
+  std::vector<std::vector<double>> cv(static_cast<std::size_t>(n), std::vector<double>(static_cast<std::size_t>(n)));
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index j = 0; j < n; ++j) cv[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = cov(i, j);
+  c.weight = spd_inverse(cv);
+  if (blocks.size() == 1)  // one rate: the component names need no rate
+    c.names.assign(contrast_component_names().begin(), contrast_component_names().end());
+  return c;
+}
+
+std::vector<double> ContrastStudy::model_contrast(const Contrast& c, const Simulated& with_effect,
+                                                  const Simulated& base) const {
+  std::vector<double> out;
+  for (std::size_t gi : c.groups) {
+    std::vector<double> mean, var;
+    paired(components(with_effect, groups_[gi].rate, base), components(base, groups_[gi].rate, base), mean, var);
+    out.insert(out.end(), mean.begin(), mean.end());
+  }
+  return out;
+}
+
+ContrastStudy::CurveContrast ContrastStudy::curve_contrast(const Contrast& c, const Simulated& model,
+                                                           const Simulated& base) const {
+  CurveContrast out;
+  const ContrastScale ms = measured_scale_, ss = simulated_scale(base);
+  double sum = 0;
+  for (std::size_t gi : c.groups) {
+    const ContrastGroup& g = groups_[gi];
+    auto curves_of = [&](std::size_t set, double rate) {
+      std::vector<Curve> v;
+      for (const auto& sp : sets_.sets[set].specimens)
+        if (same_rate(sp.loading_rate, rate)) v.push_back(sp.curve);
+      return v;
+    };
+    const std::vector<Curve> own = curves_of(g.set, g.rate);
+    std::vector<std::vector<Curve>> refs;
+    if (sets_.reference) {
+      refs.push_back(curves_of(*sets_.reference, g.reference_rate));
+    } else {
+      for (std::size_t k = 0; k < sets_.sets.size(); ++k)
+        if (k != g.set && !curves_of(k, g.rate).empty()) refs.push_back(curves_of(k, g.rate));
+    }
+    double xi_end = 3;
+    auto limit = [&](const std::vector<Curve>& v) {
+      for (const auto& cv : v) xi_end = std::min(xi_end, cv.displacement.back() / ms.w_ref);
+    };
+    limit(own);
+    for (const auto& r : refs) limit(r);
+    auto mean_sd = [](const std::vector<Curve>& v, double w, double& sd) {
+      std::vector<double> f;
+      for (const auto& cv : v) f.push_back(force_at(cv, w));
+      sd = sample_sd(f);
+      return measure::mean(f);
+    };
+    for (std::size_t k = 0; k < kCurvePoints; ++k) {
+      const double xi = xi_end * static_cast<double>(k) / static_cast<double>(kCurvePoints - 1);
+      double sd_own = 0, sd_ref = 0;
+      const double f_own = mean_sd(own, xi * ms.w_ref, sd_own);
+      double f_ref = 0;
+      if (refs.size() == 1) {
+        f_ref = mean_sd(refs.front(), xi * ms.w_ref, sd_ref);
+      } else {
+        std::vector<std::vector<double>> means;
+        for (const auto& r : refs) {
+          double sd = 0;
+          means.push_back({mean_sd(r, xi * ms.w_ref, sd)});
+          sd_ref = std::max(sd_ref, sd);
+        }
+        f_ref = median_of(means).front();
+      }
+      const double n_own = static_cast<double>(own.size()), n_ref = static_cast<double>(refs.front().size());
+      const auto& sim_own = model.curves[rate_index(g.rate)];
+      const auto& sim_ref = base.curves[rate_index(g.reference_rate)];
+      double s_own = 0, s_ref = 0;
+      for (const auto& cv : sim_own) s_own += force_at(cv, xi * ss.w_ref) / static_cast<double>(sim_own.size());
+      for (const auto& cv : sim_ref) s_ref += force_at(cv, xi * ss.w_ref) / static_cast<double>(sim_ref.size());
+      out.xi.push_back(xi);
+      out.measured.push_back((f_own - f_ref) / ms.f_ref);
+      out.u_measured.push_back(std::sqrt(sd_own * sd_own / n_own + sd_ref * sd_ref / n_ref) / ms.f_ref);
+      out.simulated.push_back((s_own - s_ref) / ss.f_ref);
+      sum += std::pow(out.measured.back() - out.simulated.back(), 2);
+    }
+  }
+  out.nrmse = out.xi.empty() ? 0 : std::sqrt(sum / static_cast<double>(out.xi.size()));
+  return out;
+}
+
+}  // namespace shard

@@ -1,0 +1,106 @@
+#pragma once
+// What `shard diagnose SET_A SET_B ...` and `shard calibrate SETS --reference R --with EFFECT`
+// share (docs/measurements.md "Contrasts"): the sets read and checked against each other, the
+// base model calibrated on the reference, the model's contrasts simulated on common packing
+// seeds, and each set's measured contrast with its covariance. The statistics are
+// shard/measure/contrast.hpp; this file turns measurement folders and runs into their inputs.
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "measure_plan.hpp"
+#include "shard/measure/contrast.hpp"
+
+namespace shard {
+
+struct ContrastSets {
+  std::vector<measure::MeasurementSet> sets;
+  std::vector<std::string> names;      // folder names, unique
+  std::optional<std::size_t> reference;  // index into sets; none: each set against the consensus of the others
+};
+
+// Reads the folders; throws (naming them) when a set has fewer than two specimens at a rate, when
+// the sets' specimen geometry differs by more than 2 %, when `reference` is not among them, or
+// when fewer than two sets are given.
+ContrastSets read_contrast_sets(const std::vector<std::filesystem::path>& folders, const std::string& reference);
+
+// One (set, loading rate) group: its specimens' components and the reference it is held against.
+struct ContrastGroup {
+  std::size_t set = 0;
+  double rate = 0;          // m/s
+  double reference_rate = 0;  // the rate of the reference group (the nearest the reference has)
+  std::vector<std::vector<double>> components;  // one row per specimen
+};
+
+// The base parameters fitted to the reference: Gauss-Newton on the logarithms of stiffness,
+// peak force and peak displacement (the form-free part of a curve), relative steps of 5 %.
+struct BaseCalibration {
+  std::vector<std::string> keys;
+  std::vector<double> start, values;
+  std::vector<std::string> path;  // one line per iteration
+  std::vector<std::string> at_bound;  // parameters whose step was clamped in the last iteration
+  measure::Comparison form_error;     // the calibrated base against the reference
+};
+
+class ContrastStudy {
+ public:
+  ContrastStudy(const ContrastSets& sets, Simulator& simulator, ModelPlan base);
+
+  const std::vector<ContrastGroup>& groups() const { return groups_; }
+  const measure::ContrastScale& measured_scale() const { return measured_scale_; }
+  double dof() const { return dof_; }
+  const std::vector<std::vector<double>>& covariance() const { return covariance_; }
+
+  BaseCalibration calibrate_base(const std::vector<std::string>& keys, int iterations, std::ostream& log);
+  const ModelPlan& base() const { return base_; }
+
+  // The rates every model must run at (all groups' rates and their references').
+  std::vector<double> rates() const;
+
+  // The simulated curves of a model at each rate of rates(), per packing seed; one batch for all.
+  struct Simulated {
+    std::vector<std::vector<measure::Curve>> curves;  // [rate][seed]
+  };
+  std::vector<Simulated> simulate(const std::vector<ModelPlan>& models, std::ostream& log);
+
+  // The measured contrast of `set` (its groups concatenated) minus what the base model predicts
+  // from the test conditions alone (another rate), with the inverse of its covariance.
+  struct Contrast {
+    std::vector<std::string> names;
+    std::vector<double> difference;
+    std::vector<std::vector<double>> weight;
+    std::vector<std::size_t> groups;  // indices into groups()
+  };
+  Contrast contrast(std::size_t set, const Simulated& base) const;
+  // The model's contrast of `set`'s groups: effect minus base on each seed, averaged.
+  std::vector<double> model_contrast(const Contrast& c, const Simulated& with_effect, const Simulated& base) const;
+
+  // The contrast as curves: measured (set mean - reference mean) and simulated (model at the
+  // set's rate - base at the reference's rate) forces in units of the peak force, against
+  // displacement in units of the peak displacement; `nrmse` is their RMS difference.
+  struct CurveContrast {
+    std::vector<double> xi, measured, u_measured, simulated;
+    double nrmse = 0;
+  };
+  CurveContrast curve_contrast(const Contrast& c, const Simulated& model, const Simulated& base) const;
+
+ private:
+  std::size_t rate_index(double rate) const;
+  // The model's scale: its base's mean peak at the reference's (or the most common) rate.
+  measure::ContrastScale simulated_scale(const Simulated& base) const;
+  // Components of every seed of `model` at `rate`.
+  std::vector<std::vector<double>> components(const Simulated& model, double rate, const Simulated& base) const;
+
+  const ContrastSets& sets_;
+  Simulator& simulator_;
+  ModelPlan base_;
+  std::vector<ContrastGroup> groups_;
+  measure::ContrastScale measured_scale_;
+  double scale_rate_ = 0;  // the rate whose curves set both scales
+  std::vector<std::vector<double>> covariance_;
+  double dof_ = 0;
+};
+
+}  // namespace shard

@@ -1,0 +1,123 @@
+// The statistics of the contrast diagnosis (shard/measure/contrast.hpp) on cases with known
+// answers: Hotelling's test against Student's t, the pooled covariance by hand, the components of
+// an analytic curve, and the decision on differences made of known signatures.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "shard/measure/contrast.hpp"
+
+using namespace shard::measure;
+
+namespace {
+
+std::vector<std::vector<double>> identity(std::size_t n) {
+  std::vector<std::vector<double>> w(n, std::vector<double>(n, 0.0));
+  for (std::size_t i = 0; i < n; ++i) w[i][i] = 1;
+  return w;
+}
+
+// A brittle test: linear rise F = k w to F_max, then a drop to zero over two readings.
+Curve brittle(double k, double f_max, double dw) {
+  Curve c;
+  c.id = "analytic";
+  const double w_peak = f_max / k;
+  for (double w = 0; w <= w_peak * (1 + 1e-12); w += dw) {
+    c.displacement.push_back(w);
+    c.force.push_back(k * w);
+  }
+  c.displacement.push_back(w_peak + dw), c.force.push_back(0.4 * f_max);
+  c.displacement.push_back(w_peak + 2 * dw), c.force.push_back(0.0);
+  for (std::size_t i = 0; i < c.size(); ++i) c.time.push_back(static_cast<double>(i));
+  c.u_displacement.assign(c.size(), 1e-7);
+  c.u_force.assign(c.size(), 1e-3);
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("Hotelling's test of one component is Student's two-sided t test") {
+  // t(0.975, 10) = 2.228139 (tables): T^2 = t^2 with nu = 10 has p = 0.05.
+  CHECK(hotelling_p(2.228139 * 2.228139, 1, 10) == doctest::Approx(0.05).epsilon(1e-4));
+  // More degrees of freedom approach the normal: t(0.975, 1e6) -> 1.959964.
+  CHECK(hotelling_p(1.959964 * 1.959964, 1, 1e6) == doctest::Approx(0.05).epsilon(1e-3));
+  CHECK(hotelling_p(0, 3, 20) == 1.0);
+  // Fewer specimens than components: the F test has no denominator degrees of freedom and the
+  // chi-square(m) limit is used (P(chi^2(2) > 2 ln 20) = 0.05 exactly).
+  CHECK(hotelling_p(2 * std::log(20.0), 2, 1) == doctest::Approx(0.05).epsilon(1e-9));
+}
+
+TEST_CASE("pooled covariance: each group about its own mean, off-diagonal shrunk") {
+  // Group 1: (0,0), (2,2): deviations (-1,-1), (1,1). Group 2: (10,0), (10,4): (0,-2), (0,2).
+  // Sum of outer products: [[2, 2], [2, 10]], dof = 2, so [[1, 1], [1, 5]].
+  double dof = 0;
+  const auto s = pooled_covariance({{{0, 0}, {2, 2}}, {{10, 0}, {10, 4}}, {{7, 7}}}, 0.1, dof);
+  CHECK(dof == 2);  // the one-specimen group adds nothing
+  CHECK(s[0][0] == doctest::Approx(1));
+  CHECK(s[1][1] == doctest::Approx(5));
+  CHECK(s[0][1] == doctest::Approx(0.9));
+  CHECK(s[1][0] == doctest::Approx(0.9));
+  const auto inv = spd_inverse(s);
+  CHECK(inv[0][0] * s[0][0] + inv[0][1] * s[1][0] == doctest::Approx(1));
+  CHECK(inv[0][0] * s[0][1] + inv[0][1] * s[1][1] == doctest::Approx(0).epsilon(1e-12));
+  CHECK_THROWS(spd_inverse({{1, 1}, {1, 1}}));
+}
+
+TEST_CASE("components of an analytic brittle curve") {
+  const double k = 2e4, f_max = 40, dw = 1e-5;
+  const Curve c = brittle(k, f_max, dw);
+  const ContrastScale scale = contrast_scale({c});
+  CHECK(scale.f_ref == doctest::Approx(f_max));
+  CHECK(scale.w_ref == doctest::Approx(f_max / k));
+  const auto x = contrast_components(c, scale);
+  REQUIRE(x.size() == contrast_component_names().size());
+  CHECK(x[0] == doctest::Approx(std::log(k)).epsilon(1e-9));          // the elastic fit of a line is exact
+  CHECK(x[1] == doctest::Approx(std::log(f_max)));
+  CHECK(x[2] == doctest::Approx(std::log(f_max / k)));
+  CHECK(x[3] == doctest::Approx(std::log(0.5 * f_max * f_max / k)).epsilon(1e-6));  // trapezoids of a line
+  CHECK(x[4] == doctest::Approx(0).epsilon(1e-9));                    // linear to the peak
+  CHECK(x[5] == doctest::Approx(std::log((f_max / k + dw) / (f_max / k))));  // 0.4 F_max < F_max / 2: parted at the first reading after the peak
+  CHECK(x[6] == doctest::Approx(0.0));  // at 1.25 w_ref the beam has parted
+  Curve flat = c;
+  for (auto& f : flat.force) f = -f;
+  CHECK_THROWS(contrast_components(flat, scale));  // no rise: a sign convention error, said so
+}
+
+TEST_CASE("decision: the effect that made the difference is named with its size") {
+  const std::vector<double> a{1, 0.5, 0, 0}, b{0, 0, 1, -1};
+  const auto w = identity(4);
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<EffectSignature> effects{{"a", 1, a, 0, inf}, {"b", 1, b, 0, inf}};
+  // d = 3 a + noise of unit scale: chi^2_0 = 11.25 + ..., the drop is 3^2 |a|^2.
+  const std::vector<double> d{3.0 + 0.3, 1.5 - 0.2, 0.4, 0.5};
+  const auto c = decide_contrast(d, w, effects, 40);
+  CHECK(c.verdict == "a");
+  REQUIRE(c.fits.size() == 2);
+  CHECK(c.fits.front().name == "a");
+  // a = (3.3 + 0.65) / 1.25 = 3.16; what remains: d - a t.
+  CHECK(c.fits.front().scale == doctest::Approx(3.16));
+  CHECK(c.fits.front().u_scale == doctest::Approx(1 / std::sqrt(1.25)));
+  CHECK(c.fits.front().p_after > 0.05);
+  CHECK(c.fits.back().name == "b");
+  CHECK(c.fits.back().at_bound);  // b would be wanted reversed: clamped to its neutral bound
+  CHECK(c.fits.back().scale == 0.0);
+  CHECK(c.rivals.empty());
+}
+
+TEST_CASE("decision: no difference, and a difference no effect explains") {
+  const auto w = identity(4);
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<EffectSignature> effects{{"a", 1, {1, 0.5, 0, 0}, 0, inf}, {"b", 1, {0, 0, 1, -1}, 0, inf}};
+  CHECK(decide_contrast({0.5, -0.3, 0.2, 0.1}, w, effects, 40).verdict == kNoDifference);
+  // Large, and orthogonal to both signatures: something outside the library.
+  const auto c = decide_contrast({1.0, -2.0, 4.0, 4.0}, w, effects, 40);
+  CHECK(c.p_value < 1e-3);
+  CHECK(c.verdict == kUnexplainedDifference);
+  // Two effects that explain it equally are rivals.
+  std::vector<EffectSignature> twins{{"a", 1, {1, 1, 0, 0}, 0, inf}, {"a2", 1, {1, 1, 0.01, 0}, 0, inf}};
+  const auto t = decide_contrast({4.0, 4.1, 0.1, 0.0}, w, twins, 40);
+  CHECK((t.verdict == "a" || t.verdict == "a2"));
+  CHECK(t.rivals.size() == 1);
+}
