@@ -100,9 +100,13 @@ void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>&
     for (const auto& t : trials[s]) sig.push_back(signature_of(d, t));
     d.decision = decide_contrast(d.contrast.difference, d.contrast.weight, sig, study.dof(), decide);
     d.confirmed_values.clear();
-    for (const auto& f : d.decision.fits)
+    for (auto& f : d.decision.fits)
       for (const auto& t : trials[s])
-        if (effects[t.effect].name == f.name) d.confirmed_values.push_back(effects[t.effect].value_at(t.scale));
+        if (effects[t.effect].name == f.name) {
+          d.confirmed_values.push_back(effects[t.effect].value_at(t.scale));
+          // A run's size is fixed; it is at a bound when the size it was run at is.
+          f.at_bound = t.scale <= effects[t.effect].scale_min() || t.scale >= effects[t.effect].scale_max();
+        }
     const std::string& show = d.decision.verdict == kUnexplainedDifference || d.decision.verdict == kNoDifference
                                   ? d.decision.fits.front().name
                                   : d.decision.verdict;

@@ -180,7 +180,7 @@ void plot_contrasts(const ContrastReport& r, const fs::path& image) {
   }
   const std::size_t n = r.diagnoses.size();
   std::string script = fmt::format(
-      "set terminal pngcairo size 900,{} font ',9'\nset output '{}'\nset multiplot layout {},1\n"
+      "set terminal pngcairo noenhanced size 900,{} font ',9'\nset output '{}'\nset multiplot layout {},1\n"
       "set xlabel 'w / w_ref'\nset ylabel 'dF / F_ref'\nset grid\nset key outside right\n",
       std::max<std::size_t>(300, 260 * n), image.string(), n);
   for (std::size_t s = 0; s < n; ++s) {

@@ -400,9 +400,11 @@ ContrastStudy::CurveContrast ContrastStudy::curve_contrast(const Contrast& c, co
       for (std::size_t k = 0; k < sets_.sets.size(); ++k)
         if (k != g.set && !curves_of(k, g.rate).empty()) refs.push_back(curves_of(k, g.rate));
     }
-    double xi_end = 3;
+    // To failure: the longest curve sets the range (a shorter one is continued with its last,
+    // post-failure force), so a set or a model that fails later is judged there too.
+    double xi_end = 0;
     auto limit = [&](const std::vector<Curve>& v) {
-      for (const auto& cv : v) xi_end = std::min(xi_end, cv.displacement.back() / ms.w_ref);
+      for (const auto& cv : v) xi_end = std::max(xi_end, std::min(3.0, cv.displacement.back() / ms.w_ref));
     };
     limit(own);
     for (const auto& r : refs) limit(r);

@@ -171,7 +171,10 @@ ContrastDecision decide_contrast(const std::vector<double>& difference, const st
     fit.u_scale = tt > 0 ? 1 / std::sqrt(tt) : std::numeric_limits<double>::infinity();
     fit.chi_square = out.chi_square - 2 * fit.scale * td + fit.scale * fit.scale * tt;
     fit.drop = out.chi_square - fit.chi_square;
-    fit.p_drop = fit.drop > 0 ? chi_square_survival(fit.drop, 1) : 1.0;
+    // The weight is estimated from nu specimens' scatter, so the drop is referred to Hotelling's
+    // distribution of one component with the degrees of freedom the m-dimensional estimate leaves
+    // (a t test with nu - m + 1 of them): chi^2(1) made a null set's chance direction significant.
+    fit.p_drop = fit.drop > 0 ? hotelling_p(fit.drop, 1, dof - m + 1) : 1.0;
     fit.p_after = hotelling_p(fit.chi_square, std::max(1.0, m - 1), dof);
     out.fits.push_back(fit);
   }

@@ -28,8 +28,9 @@
 // An effect e changes the model by t_e (its simulated contrast at the trial size, per packing
 // seed against the base on the same seed: common random numbers). Its size is the generalised
 // least-squares a = t'W d / t'W t kept in the effect's physical range; what remains is
-// chi^2_e = (d - a t)' W (d - a t); the drop chi^2_0 - chi^2_e is a likelihood-ratio statistic
-// (chi^2(1) under "e plays no part"), Bonferroni over the effects tried.
+// chi^2_e = (d - a t)' W (d - a t); the drop chi^2_0 - chi^2_e is a likelihood-ratio statistic,
+// referred (W being estimated) to Hotelling's distribution of one component with nu - m + 1
+// degrees of freedom, Bonferroni over the effects tried.
 #include <string>
 #include <vector>
 
@@ -68,7 +69,7 @@ struct ContrastFit {
   bool at_bound = false;   // the unclamped a lay outside the physical range
   double chi_square = 0;   // chi^2_e = (d - a t)' W (d - a t)
   double drop = 0;         // chi^2_0 - chi^2_e
-  double p_drop = 1;       // P(chi^2(1) > drop)
+  double p_drop = 1;       // hotelling_p(drop, 1, nu - m + 1)
   double p_after = 1;      // Hotelling-type p of the remainder, m - 1 components
 };
 
