@@ -2,7 +2,8 @@
 // calibrate-contrast): adds the effect to the model of one set and fits its size so that the
 // model's contrast against the reference matches the measured one (NLopt COBYLA on the
 // contrast's chi^2, one run per packing seed per evaluation, common random numbers). The
-// contrast NRMSE before and after, and both model versions in <work>/history.jsonl, show the fall.
+// contrast NRMSE before and after (calibrate.md, calibrate.json), and both model versions in
+// <work>/history.jsonl, show the fall.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <nlopt.hpp>
@@ -16,6 +17,7 @@
 #include "contrast_report.hpp"
 #include "measure_commands.hpp"
 #include "shard/app/commands.hpp"
+#include "shard/measure/report.hpp"
 
 namespace shard {
 namespace {
@@ -127,6 +129,12 @@ void add_calibrate_contrast_command(CLI::App& app, CommandContext& ctx) {
     md += fmt::format("\nThe contrast NRMSE fell by {:.0f} %.\n", 100 * (1 - after.nrmse / before.nrmse));
     fs::create_directories(o->out);
     std::ofstream(o->out / "calibrate.md") << md;
+    std::ofstream(o->out / "calibrate.json") << fmt::format(
+        "{{\"set\": \"{}\", \"reference\": \"{}\", \"effect\": \"{}\", \"value\": {:.9g}, \"at_bound\": {}, "
+        "\"evaluations\": {}, \"chi_square_before\": {:.9g}, \"chi_square_after\": {:.9g}, \"nrmse_before\": {:.9g}, "
+        "\"nrmse_after\": {:.9g}}}\n",
+        json_escape(sets.names[target]), json_escape(sets.names[*sets.reference]), json_escape(effect.name), fitted,
+        at_bound, fit.evaluations, chi0, fit.best, before.nrmse, after.nrmse);
     fmt::print("{}", md);
 
     const std::string label = o->label.empty() ? sets.names[target] : o->label;
