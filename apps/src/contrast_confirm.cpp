@@ -107,9 +107,11 @@ void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>&
           // A run's size is fixed; it is at a bound when the size it was run at is.
           f.at_bound = t.scale <= effects[t.effect].scale_min() || t.scale >= effects[t.effect].scale_max();
         }
-    const std::string& show = d.decision.verdict == kUnexplainedDifference || d.decision.verdict == kNoDifference
-                                  ? d.decision.fits.front().name
-                                  : d.decision.verdict;
+    // A named effect is shown with its run; for an unexplained difference the closest effect, so
+    // the plot shows how far the library gets; nothing when there is no difference to explain.
+    if (d.decision.verdict == kNoDifference) continue;
+    const std::string& show =
+        d.decision.verdict == kUnexplainedDifference ? d.decision.fits.front().name : d.decision.verdict;
     for (const auto& t : trials[s])
       if (effects[t.effect].name == show) {
         d.after = study.curve_contrast(d.contrast, t.run, base);
