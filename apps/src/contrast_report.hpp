@@ -24,6 +24,7 @@ struct ContrastOptionsCli {
   int base_iterations = 3;
   int confirm = 2;
   int confirm_iterations = 2;
+  double finer = 0;  // > 0: the base also fitted at diameters this factor smaller (form error vs resolution)
 };
 
 void add_contrast_options(CLI::App* cmd, ContrastOptionsCli& o);
@@ -54,6 +55,8 @@ struct ContrastReport {
   const ContrastStudy& study;
   const std::vector<SetDiagnosis>& diagnoses;
   double max_kinetic_to_elastic = 0;
+  const BaseCalibration* finer = nullptr;  // the base fitted at a finer packing, when asked for
+  double finer_factor = 0;
 };
 
 std::string contrast_markdown(const ContrastReport& r);

@@ -15,6 +15,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "contrast_report.hpp"
 #include "contrast_study.hpp"
@@ -35,6 +36,10 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
   auto* cmd = app.add_subcommand("diagnose-sets", "which library effect makes each measurement set differ from the "
                                                   "reference (also: shard diagnose SET_A SET_B ...)");
   add_contrast_options(cmd, *o);
+  cmd->add_option("--finer", o->finer,
+                  "also fit the base at generator diameters this factor smaller (e.g. 0.8) and report whether the "
+                  "form error shrinks with resolution")
+      ->check(CLI::Range(0.2, 1.0));
   cmd->add_option("--confirm", o->confirm, "best effects per set confirmed by simulated runs at their fitted size");
   cmd->add_option("--out", o->out, "folder for diagnose.md, diagnose.json and contrasts.png")->default_val("diagnose");
   cmd->callback([o, &ctx] {
@@ -43,6 +48,16 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
     Simulator simulator(o->sim, ctx.plugin_dirs);
     ContrastStudy study(sets, simulator, o->model);
     const BaseCalibration cal = study.calibrate_base(o->params, o->params.empty() ? 0 : o->base_iterations, std::cerr);
+    // Does resolution explain the form error? The same base fit at a finer packing.
+    std::optional<BaseCalibration> finer;
+    if (o->finer > 0) {
+      ModelPlan fine = o->model;
+      for (const char* key : {"generator.diameter_min", "generator.diameter_max"})
+        fine.overrides.push_back(fmt::format("{}={:.9g}", key, o->finer * scene_number(o->model, key, ctx.plugin_dirs)));
+      ContrastStudy fine_study(sets, simulator, fine);
+      fmt::print(stderr, "diagnose: the base fit again with diameters x {:g}\n", o->finer);
+      finer = fine_study.calibrate_base(o->params, o->params.empty() ? 0 : o->base_iterations, std::cerr);
+    }
 
     std::vector<ModelPlan> models{study.base()};
     for (const auto& e : effects) models.push_back(with_effect(study.base(), e, e.plausible));
@@ -67,7 +82,8 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
     }
     confirm_contrasts(study, effects, sims[0], out, o->confirm, o->confirm_iterations, std::cerr);
 
-    const ContrastReport report{sets, effects, cal, study, out, simulator.max_kinetic_to_elastic()};
+    const ContrastReport report{sets,     effects, cal, study, out, simulator.max_kinetic_to_elastic(),
+                                finer ? &*finer : nullptr, o->finer};
     fs::create_directories(o->out);
     const std::string md = contrast_markdown(report);
     std::ofstream(o->out / "diagnose.md") << md;
