@@ -4,13 +4,6 @@
 
 namespace shard::h5 {
 
-QuietErrors::QuietErrors() {
-  H5Eget_auto2(H5E_DEFAULT, &old_func_, &old_data_);
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-}
-
-QuietErrors::~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, old_func_, old_data_); }
-
 namespace {
 
 herr_t collect_message(unsigned depth, const H5E_error2_t* error, void* client) {
