@@ -17,7 +17,8 @@ int main(int argc, char** argv) {
   CLI::App app{"Shard: bonded-particle DEM for the breakage of complex-shaped bodies"};
   app.require_subcommand(1);
   shard::CommandContext ctx;
-  app.add_option("--plugin-dir", ctx.plugin_dirs, "extra folder to search for plugins (repeatable)");
+  app.add_option("--plugin-dir", ctx.plugin_dirs, "extra folder to search for plugins (repeatable)")
+      ->check(CLI::ExistingDirectory);
   shard::add_run_command(app, ctx);
   shard::add_plugins_command(app, ctx);
   shard::add_bending_command(app, ctx);  // bending, calibrate

@@ -93,9 +93,9 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
   cmd->add_option("--label", o->label, "name of the new model version in the history");
   cmd->add_option("--out", o->out, "folder for calibrate.md, calibrate.json and compare plots");
   cmd->callback([o, &ctx] {
-    prepare_output_folder(o->out, "--out");
     const MeasurementSet set = read_measurements(o->measurements);
     const RateGroups measured = rate_groups(set, o->rate);
+    prepare_output_folder(o->out, "--out");  // after the cheap reads, before the simulations
     const fs::path library = o->library.empty() ? o->model.scene.parent_path() / "effects.toml" : o->library;
     std::vector<CandidateEffect> effects;
     if (!o->effect.empty()) effects = select_effects(read_effect_library(library), {o->effect});

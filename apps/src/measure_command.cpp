@@ -45,8 +45,8 @@ void add_compare(CLI::App& app, CommandContext& ctx) {
   cmd->add_option("--label", o->label, "name of this model version in the history");
   add_simulation_options(cmd, o->model, o->sim);
   cmd->callback([o, &ctx] {
-    prepare_output_folder(o->out, "--out");
     const MeasurementSet set = read_measurements(o->measurements);
+    prepare_output_folder(o->out, "--out");  // after the cheap reads, before the simulations
     std::vector<Specimen> sims;
     Metadata unit;
     unit.load_cell_uncertainty = 1;

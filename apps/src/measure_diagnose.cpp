@@ -68,9 +68,9 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
       ->check(number_from(0, false, "0 (no confirmation runs) or a number of effects"));
   cmd->add_option("--out", o->out, "folder for diagnose.md and diagnose.json");
   cmd->callback([o, &ctx] {
-    prepare_output_folder(o->out, "--out");
     const MeasurementSet set = read_measurements(o->measurements);
     const RateGroups measured = rate_groups(set, o->rate);
+    prepare_output_folder(o->out, "--out");  // after the cheap reads, before the simulations
     const fs::path library = o->library.empty() ? o->model.scene.parent_path() / "effects.toml" : o->library;
     const auto effects = select_effects(read_effect_library(library), o->only);
     std::vector<double> values;

@@ -149,6 +149,8 @@ TEST_CASE("numeric options out of range are refused while parsing, in one line")
   // A CLI11 mistake of another kind (an unknown option) takes the same one-line form.
   o = run_shard("run " + scene + " --thread 2", dir);
   CHECK(require_one_line_error(o).find("--thread") != std::string::npos);
+  o = run_shard("--plugin-dir nowhere plugins", dir);  // was searched silently
+  CHECK(require_one_line_error(o).find("nowhere") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(dir / "run.h5"));
 }
 
