@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "hdf5_handle.hpp"
+#include "shard/hdf5_quiet.hpp"
 
 namespace shard::analysis {
 
@@ -75,9 +76,16 @@ std::string frame_name(std::int64_t k) {
   return buffer;
 }
 
+// Every member holds a QuietHdf5Errors: HDF5's failures arrive as one RunFileError, not as its
+// error stack on stderr.
 RunFile::RunFile(const std::filesystem::path& path, Mode mode) : path_(path) {
-  if (!std::filesystem::exists(path)) throw RunFileError("run file not found: " + path.string());
-  if (H5Fis_hdf5(path.c_str()) <= 0) throw RunFileError("not an HDF5 file: " + path.string());
+  const QuietHdf5Errors quiet;
+  if (!std::filesystem::exists(path))
+    throw RunFileError(path.string() + ": no such run file; give the run.h5 that `shard run` wrote");
+  if (std::filesystem::is_directory(path))
+    throw RunFileError(path.string() + ": is a folder, not a run file; give the run.h5 inside it");
+  if (H5Fis_hdf5(path.c_str()) <= 0)
+    throw RunFileError(path.string() + ": not an HDF5 file, so not a run file; give the run.h5 that `shard run` wrote");
   file_ = H5Fopen(path.c_str(), mode == Mode::read ? H5F_ACC_RDONLY : H5F_ACC_RDWR, H5P_DEFAULT);
   if (file_ < 0) {
     throw RunFileError("cannot open " + path.string() +
@@ -85,15 +93,18 @@ RunFile::RunFile(const std::filesystem::path& path, Mode mode) : path_(path) {
   }
   if (!h5::has_link(file_, "frames")) {
     H5Fclose(file_);
-    throw RunFileError(path.string() + " has no /frames group (not a Shard run file?)");
+    throw RunFileError(path.string() + ": has no /frames group, so it is no Shard run file (a checkpoint?); give "
+                       "the run.h5 that `shard run` wrote");
   }
 }
 
 RunFile::~RunFile() {
+  const QuietHdf5Errors quiet;
   if (file_ >= 0) H5Fclose(file_);
 }
 
 std::vector<std::int64_t> RunFile::frames() const {
+  const QuietHdf5Errors quiet;
   const h5::Handle group = h5::open_group(file_, "frames", "/frames");
   H5G_info_t info{};
   if (H5Gget_info(group.get(), &info) < 0) throw RunFileError("cannot list /frames");
@@ -118,6 +129,7 @@ std::vector<std::int64_t> RunFile::frames() const {
 }
 
 Frame RunFile::read_frame(std::int64_t k, std::optional<double> density) const {
+  const QuietHdf5Errors quiet;
   const std::string where = frame_path(k);
   if (!h5::has_link(file_, "frames/" + frame_name(k))) {
     throw RunFileError(path_.string() + " has no frame " + std::to_string(k) + " (" + where + ")");
@@ -170,6 +182,7 @@ Frame RunFile::read_frame(std::int64_t k, std::optional<double> density) const {
 }
 
 void RunFile::write_fragment_labels(std::int64_t k, const std::vector<Index>& labels) {
+  const QuietHdf5Errors quiet;
   const std::string where = frame_path(k);
   const h5::Handle group = h5::open_group(file_, where, where);
   const std::vector<hsize_t> id_shape = h5::dataset_shape(group.get(), "id", where + "/id");
@@ -183,6 +196,7 @@ void RunFile::write_fragment_labels(std::int64_t k, const std::vector<Index>& la
 
 void RunFile::write_fragment_table(std::int64_t k, const std::vector<Fragment>& fragments,
                                    const SizeDistribution& fsd) {
+  const QuietHdf5Errors quiet;
   if (!h5::has_link(file_, "fragments")) h5::create_group(file_, "fragments", "/fragments");
   const std::string where = "/fragments/" + frame_name(k);
   if (h5::has_link(file_, where) && H5Ldelete(file_, where.c_str(), H5P_DEFAULT) < 0) {

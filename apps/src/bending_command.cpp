@@ -11,6 +11,8 @@
 #include <sstream>
 
 #include "bending_commands.hpp"
+#include "option_checks.hpp"
+#include "output_folder.hpp"
 #include "shard/app/commands.hpp"
 #include "shard/app/run_command.hpp"
 #include "shard/bending/bending_plot.hpp"
@@ -110,7 +112,7 @@ int calibrate_command(CalibrateCliOptions& o, const CommandContext& ctx) {
     throw std::runtime_error(fmt::format("--modulus {}: expected local (the beam's own deflection under the pins, as "
                                          "local instrumentation measures it) or pins (the pin travel)", o.modulus));
   const bool use_local = o.modulus == "local";
-  std::filesystem::create_directories(o.out_dir);
+  prepare_output_folder(o.out_dir, "--out");
   PluginHost host;
   load_plugins(host, ctx.plugin_dirs, std::cerr);
   auto [e_b, sigma] = scene_bond_parameters(o, host);
@@ -273,9 +275,11 @@ void add_bending_command(CLI::App& app, CommandContext& ctx) {
                                                "else 180, the seed)");
   c->add_option("--modulus", co->modulus, "E to match: local (eq. 14 on the beam's own deflection under the pins, the "
                                           "seed's local instrumentation; default) or pins (eq. 14 on the pin travel)");
-  c->add_option("--tolerance", co->tolerance, "relative tolerance on E and F_max (default 0.03)");
-  c->add_option("--max-runs", co->max_runs, "give up after this many runs (default 20)");
-  c->add_option("--threads", co->threads, "OpenMP threads per run");
+  c->add_option("--tolerance", co->tolerance, "relative tolerance on E and F_max (default 0.03)")
+      ->check(number_from(0, true, "a positive fraction, e.g. 0.03 for 3 %"));
+  c->add_option("--max-runs", co->max_runs, "give up after this many runs (default 20)")
+      ->check(number_from(1, false, "at least 1 run"));
+  c->add_option("--threads", co->threads, "OpenMP threads per run")->check(thread_count());
   add_geometry_options(*c, co->geometry);
   c->callback([co, te, &ctx] {
     co->target_e_given = te->count() > 0;

@@ -11,6 +11,8 @@
 #include <memory>
 
 #include "bending_commands.hpp"
+#include "option_checks.hpp"
+#include "output_folder.hpp"
 #include "shard/app/commands.hpp"
 #include "shard/app/run_command.hpp"
 #include "shard/bending/bending_run.hpp"
@@ -58,7 +60,7 @@ int rate_check_command(const RateCheckCliOptions& o, const CommandContext& ctx) 
   PluginHost host;
   load_plugins(host, ctx.plugin_dirs, std::cerr);
   const Scene scene = load_scene(o.scene, o.overrides, host);
-  std::filesystem::create_directories(o.out_dir);
+  prepare_output_folder(o.out_dir, "--out");
   std::ofstream log(o.out_dir / "rate_check.log");
 
   auto run = [&](const std::vector<std::string>& overrides, const std::string& name) {
@@ -111,7 +113,7 @@ void add_bending_rate_check_command(CLI::App& app, CommandContext& ctx) {
   c->add_option("--factor", o->factor, "reduced rate as a fraction of the scene's (default 0.5)");
   c->add_option("--max-force-change", o->criteria.force_max, "criterion on |F_max change| (default 0.03)");
   c->add_option("--max-stiffness-change", o->criteria.stiffness, "criterion on |stiffness change| (default 0.02)");
-  c->add_option("--threads", o->threads, "OpenMP threads per run");
+  c->add_option("--threads", o->threads, "OpenMP threads per run")->check(thread_count());
   c->callback([o, &ctx] { ctx.exit_code = rate_check_command(*o, ctx); });
 }
 

@@ -7,12 +7,18 @@
 
 #include "shard/app/command_routing.hpp"
 #include "shard/app/commands.hpp"
+#include "shard/hdf5_quiet.hpp"
 
 int main(int argc, char** argv) {
+  // Before HDF5's first use, which the guard below is: see run_scene (run_command.cpp).
+  H5dont_atexit();
+  // No HDF5 error stack reaches the terminal: every failure is reported as one line below.
+  const shard::QuietHdf5Errors quiet_hdf5;
   CLI::App app{"Shard: bonded-particle DEM for the breakage of complex-shaped bodies"};
   app.require_subcommand(1);
   shard::CommandContext ctx;
-  app.add_option("--plugin-dir", ctx.plugin_dirs, "extra folder to search for plugins (repeatable)");
+  app.add_option("--plugin-dir", ctx.plugin_dirs, "extra folder to search for plugins (repeatable)")
+      ->check(CLI::ExistingDirectory);
   shard::add_run_command(app, ctx);
   shard::add_plugins_command(app, ctx);
   shard::add_bending_command(app, ctx);  // bending, calibrate
@@ -26,7 +32,12 @@ int main(int argc, char** argv) {
   try {
     app.parse(static_cast<int>(words.size()), words.data());
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version arrive as ParseErrors with exit code 0: CLI11 prints them.
+    if (e.get_exit_code() == 0) return app.exit(e);
+    // A bad option or value is a one-line error like every other (docs/errors.md).
+    fmt::print(stderr, "shard: error: {}; `shard --help` lists the commands, `shard COMMAND --help` their options\n",
+               e.what());
+    return 1;
   } catch (const std::exception& e) {
     fmt::print(stderr, "shard: error: {}\n", e.what());
     return 1;

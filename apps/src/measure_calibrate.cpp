@@ -16,6 +16,8 @@
 
 #include "measure_commands.hpp"
 #include "measure_plan.hpp"
+#include "option_checks.hpp"
+#include "output_folder.hpp"
 #include "shard/app/commands.hpp"
 #include "shard/measure/report.hpp"
 
@@ -86,12 +88,14 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
   cmd->add_option("--param", o->params, "base parameter section.key fitted along (value read from the scene)");
   cmd->add_option("--effects", o->library, "candidate-effect library (default: effects.toml next to the scene)");
   cmd->add_option("--rate", o->rate, "loading rate to use (m/s)");
-  cmd->add_option("--max-evaluations", o->max_evaluations, "objective evaluations (each is one run per seed)");
+  cmd->add_option("--max-evaluations", o->max_evaluations, "objective evaluations (each is one run per seed)")
+      ->check(number_from(1, false, "at least 1 evaluation"));
   cmd->add_option("--label", o->label, "name of the new model version in the history");
   cmd->add_option("--out", o->out, "folder for calibrate.md, calibrate.json and compare plots");
   cmd->callback([o, &ctx] {
     const MeasurementSet set = read_measurements(o->measurements);
     const RateGroups measured = rate_groups(set, o->rate);
+    prepare_output_folder(o->out, "--out");  // after the cheap reads, before the simulations
     const fs::path library = o->library.empty() ? o->model.scene.parent_path() / "effects.toml" : o->library;
     std::vector<CandidateEffect> effects;
     if (!o->effect.empty()) effects = select_effects(read_effect_library(library), {o->effect});
@@ -150,7 +154,6 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
     const ModelPlan final_model = fit.model(best);
     const RateComparison after = simulate_and_compare(simulator, measured, set.metadata, {final_model}, std::cerr).front();
 
-    fs::create_directories(o->out);
     // One figure per loading rate: before.png, after.png (the slowest), then before@<rate>.png.
     for (std::size_t k = 0; k < before.at.size(); ++k) {
       const std::string suffix = k == 0 ? "" : fmt::format("@{:g}", before.rates[k]);

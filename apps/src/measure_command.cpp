@@ -14,6 +14,7 @@
 
 #include "measure_commands.hpp"
 #include "measure_plan.hpp"
+#include "output_folder.hpp"
 #include "shard/app/commands.hpp"
 #include "shard/measure/comparison.hpp"
 #include "shard/measure/measurements.hpp"
@@ -45,6 +46,7 @@ void add_compare(CLI::App& app, CommandContext& ctx) {
   add_simulation_options(cmd, o->model, o->sim);
   cmd->callback([o, &ctx] {
     const MeasurementSet set = read_measurements(o->measurements);
+    prepare_output_folder(o->out, "--out");  // after the cheap reads, before the simulations
     std::vector<Specimen> sims;
     Metadata unit;
     unit.load_cell_uncertainty = 1;
@@ -70,7 +72,6 @@ void add_compare(CLI::App& app, CommandContext& ctx) {
     CompareOptions options;
     options.judge_fracture = o->sim.judge_fracture;
     const Comparison c = compare(measured, set.metadata, sims, options);
-    fs::create_directories(o->out);
     std::ofstream(o->out / "compare.md") << comparison_markdown(c);
     std::ofstream(o->out / "compare.json") << comparison_json(c);
     plot_comparison(c, o->out / "compare.png", fmt::format("{} vs {}", set.metadata.name, o->label));
@@ -129,6 +130,7 @@ void add_synth(CLI::App& app, CommandContext& ctx) {
       ->delimiter(',')
       ->check(CLI::PositiveNumber);
   cmd->callback([o, &ctx] {
+    prepare_output_folder(o->out, "--out");
     MeasurementSet set;
     set.metadata.name = o->name;
     set.metadata.load_cell_uncertainty = std::max(std::hypot(o->sensor.force_noise, o->sensor.force_offset), 1e-12);

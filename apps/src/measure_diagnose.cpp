@@ -15,6 +15,8 @@
 
 #include "measure_commands.hpp"
 #include "measure_plan.hpp"
+#include "option_checks.hpp"
+#include "output_folder.hpp"
 #include "shard/app/commands.hpp"
 #include "shard/measure/confirmation.hpp"
 #include "shard/measure/report.hpp"
@@ -62,11 +64,13 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
       ->required();
   cmd->add_option("--effects", o->library, "candidate-effect library (default: effects.toml next to the scene)");
   cmd->add_option("--only", o->only, "try only these effects of the library (comma-separated)")->delimiter(',');
-  cmd->add_option("--refit", o->refit, "effects confirmed by a refit run (0: none)");
+  cmd->add_option("--refit", o->refit, "effects confirmed by a refit run (0: none)")
+      ->check(number_from(0, false, "0 (no confirmation runs) or a number of effects"));
   cmd->add_option("--out", o->out, "folder for diagnose.md and diagnose.json");
   cmd->callback([o, &ctx] {
     const MeasurementSet set = read_measurements(o->measurements);
     const RateGroups measured = rate_groups(set, o->rate);
+    prepare_output_folder(o->out, "--out");  // after the cheap reads, before the simulations
     const fs::path library = o->library.empty() ? o->model.scene.parent_path() / "effects.toml" : o->library;
     const auto effects = select_effects(read_effect_library(library), o->only);
     std::vector<double> values;
@@ -279,7 +283,6 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
     for (const auto& r : decision.rivals) rivals += fmt::format("{}\"{}\"", rivals.empty() ? "" : ", ", json_escape(r));
     json += fmt::format("], \"excess\": {:.9g}, \"partial\": \"{}\", \"rivals\": [{}]}}\n", decision.excess,
                         json_escape(decision.best_partial), rivals);
-    fs::create_directories(o->out);
     std::ofstream(o->out / "diagnose.md") << md;
     std::ofstream(o->out / "diagnose.json") << json;
     fmt::print("{}", md);

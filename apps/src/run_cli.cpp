@@ -5,6 +5,7 @@
 #include <iostream>
 #include <memory>
 
+#include "option_checks.hpp"
 #include "shard/app/commands.hpp"
 #include "shard/app/run_command.hpp"
 #include "shard/plugin_host.hpp"
@@ -43,10 +44,11 @@ void add_run_command(CLI::App& app, CommandContext& ctx) {
   auto* cmd = app.add_subcommand("run", "run a scene file");
   cmd->add_option("scene", options->scene, "scene .toml (not with --restart)");
   cmd->add_option("--restart", options->restart, "continue run.h5 from its checkpoint run.checkpoint.h5");
-  cmd->add_option("--checkpoint-every", options->checkpoint_every, "frames between checkpoints (0: only when stopping)");
+  cmd->add_option("--checkpoint-every", options->checkpoint_every, "frames between checkpoints (0: only when stopping)")
+      ->check(number_from(0, false, "0 (checkpoint only when stopping) or a number of frames"));
   cmd->add_option("--set", options->overrides, "override a scene key, e.g. --set bond.youngs_modulus=13e6");
   cmd->add_option("--out", options->out_dir, "output folder");
-  cmd->add_option("--threads", options->threads, "OpenMP threads (default: all cores)");
+  cmd->add_option("--threads", options->threads, "OpenMP threads (default: all cores)")->check(thread_count());
   cmd->add_flag("--quiet", options->quiet, "no progress line");
   cmd->callback([options, &ctx] {
     options->plugin_dirs = ctx.plugin_dirs;

@@ -17,6 +17,7 @@
 #include <ostream>
 
 #include "numerical_health.hpp"
+#include "output_folder.hpp"
 #include "run_restart.hpp"
 #include "shard/analysis/components.hpp"
 #include "shard/bending/quasi_static.hpp"
@@ -171,6 +172,14 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
     fmt::print(log_stream,
                "warning: breakage = true but the scene has no [bond] section: nothing can break. Add [bond] "
                "(plugin = \"beam_bond\") or remove breakage\n");
+  // The output folder before the generator: an unusable --out must not cost the packing's time.
+  if (!restarting) {
+    prepare_output_folder(options.out_dir, "--out");
+    const auto run_file = options.out_dir / scene.output_file;
+    if (std::filesystem::is_directory(run_file))
+      throw OutputError(fmt::format("the run file '{}' is a folder; remove it or choose another folder with --out",
+                                    run_file.string()));
+  }
   SceneInstance inst = instantiate(scene, host, log);
   Simulation& sim = *inst.simulation;
   NumericalHealth health(sim);
@@ -232,12 +241,6 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
     moved_aside.replace_extension(".interrupted.h5");
     std::filesystem::rename(options.restart, moved_aside);
   } else {
-    std::error_code error;
-    std::filesystem::create_directories(options.out_dir, error);
-    if (error)
-      throw OutputError(fmt::format("cannot create the output folder '{}': {}. Choose a folder you can write to "
-                                    "with --out",
-                                    options.out_dir.string(), error.message()));
     summary.output = options.out_dir / scene.output_file;
   }
   const std::filesystem::path checkpoint_file = checkpoint_path_for(summary.output);

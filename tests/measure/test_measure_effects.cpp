@@ -79,6 +79,10 @@ TEST_CASE("library errors name the file, line and the valid keys") {
   }
   const auto same = write_file("same.toml", "[[effect]]\nname = \"a\"\nparameter = \"bond.x\"\nneutral = 1\nplausible = 1\n");
   CHECK_THROWS_WITH_AS(read_effect_library(same), doctest::Contains("plausible equals neutral"), std::runtime_error);
+  const std::string effect = "[[effect]]\nname = \"a\"\nparameter = \"bond.x\"\nneutral = 0\nplausible = 1\n";
+  const auto twice = write_file("twice.toml", effect + effect);
+  CHECK_THROWS_WITH_AS(read_effect_library(twice), doctest::Contains("twice.toml:7:8: effect name 'a' is used twice"),
+                       std::runtime_error);
   const auto lib = read_effect_library(fs::path(SHARD_SOURCE_DIR) / "scenes/measurements/effects.toml");
   CHECK_THROWS_WITH_AS(select_effects(lib, {"gravitee"}), doctest::Contains("machine_compliance"), std::runtime_error);
 }

@@ -3,6 +3,7 @@
 // before it. The kill lands at varying moments of the following writes (series blocks, frame
 // datasets, flushes) so each trial interrupts a different operation.
 #include <doctest/doctest.h>
+#include <hdf5.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -121,5 +122,7 @@ TEST_CASE("a run killed with SIGKILL keeps every frame flushed before the kill")
     REQUIRE(WIFSIGNALED(status));  // the child was writing, not failed
     REQUIRE(reported >= kFramesBeforeKill);
     check_file(path, reported);
+    // The reader closed everything it opened, also on a torn file.
+    CHECK(H5Fget_obj_count(static_cast<hid_t>(H5F_OBJ_ALL), H5F_OBJ_ALL) == 0);
   }
 }

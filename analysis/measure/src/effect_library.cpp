@@ -103,6 +103,12 @@ std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& fi
       throw std::runtime_error(fmt::format("{}: effect '{}': plausible equals neutral, the trial run would not switch "
                                            "it on",
                                            where(file, node), e.name));
+    // Effects are chosen by name (--with, --only) and ranked by name: one name, one effect.
+    for (const auto& earlier : out)
+      if (earlier.name == e.name)
+        throw std::runtime_error(fmt::format("{}: effect name '{}' is used twice in the library; give each [[effect]] "
+                                             "its own name",
+                                             where(file, *t->get("name")), e.name));
     out.push_back(std::move(e));
   }
   return out;

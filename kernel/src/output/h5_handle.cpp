@@ -1,36 +1,55 @@
 #include "h5_handle.hpp"
 
+#include <algorithm>
+#include <vector>
+
 #include "shard/output.hpp"
 
 namespace shard::h5 {
 
-QuietErrors::QuietErrors() {
-  H5Eget_auto2(H5E_DEFAULT, &old_func_, &old_data_);
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-}
-
-QuietErrors::~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, old_func_, old_data_); }
-
 namespace {
 
 herr_t collect_message(unsigned depth, const H5E_error2_t* error, void* client) {
-  auto& text = *static_cast<std::string*>(client);
-  // The outermost two frames ("unable to open file" ...) repeat the context Shard already
-  // gives; the deeper ones carry the cause (permission denied, no such file, ...).
-  if (depth > 0 && error->desc != nullptr && error->desc[0] != '\0') {
-    if (!text.empty()) text += "; ";
-    text += error->desc;
-  }
+  auto& frames = *static_cast<std::vector<std::string>*>(client);
+  // The outermost frame ("unable to open file" ...) repeats the context Shard already gives;
+  // the deeper ones carry the cause (permission denied, no such file, ...).
+  if (depth > 0 && error->desc != nullptr && error->desc[0] != '\0') frames.emplace_back(error->desc);
   return 0;
+}
+
+// The quoted value of `key = '...'` in a file driver's message, or "".
+std::string quoted_field(const std::string& text, const std::string& key) {
+  const std::string tag = key + " = '";
+  const auto start = text.find(tag);
+  if (start == std::string::npos) return {};
+  const auto end = text.find('\'', start + tag.size());
+  return end == std::string::npos ? std::string() : text.substr(start + tag.size(), end - start - tag.size());
+}
+
+// The file driver's message spans lines and lists time, descriptor and buffer address; the file
+// name and its "error message" (e.g. 'File too large') are what a user needs.
+std::string tidy(std::string text) {
+  const std::string cause = quoted_field(text, "error message");
+  const auto colon = text.find(':');
+  if (!cause.empty() && colon != std::string::npos) {
+    const std::string file = quoted_field(text, "filename");
+    text = text.substr(0, colon) + (file.empty() ? "" : " on '" + file + "'") + ": " + cause;
+  }
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  return text;
 }
 
 }  // namespace
 
 std::string take_error_stack() {
-  std::string text;
-  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, collect_message, &text);
+  std::vector<std::string> frames;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, collect_message, &frames);
   H5Eclear2(H5E_DEFAULT);
-  return text;
+  if (frames.empty()) return {};
+  // The first frame says what failed, the innermost why; the two dozen between are HDF5's call path.
+  const std::string cause = tidy(frames.back());
+  if (frames.size() == 1) return cause;
+  return tidy(frames.front()) + (frames.size() > 2 ? "; ...; " : "; ") + cause;
 }
 
 void fail(const std::string& context) {

@@ -8,6 +8,8 @@
 #include <string>
 #include <utility>
 
+#include "shard/hdf5_quiet.hpp"
+
 namespace shard::h5 {
 
 // Owns one identifier and closes it with the matching H5?close on destruction.
@@ -42,19 +44,8 @@ class Handle {
   Closer closer_ = nullptr;
 };
 
-// Turns off HDF5's automatic error printing for this scope and restores the previous handler,
-// so Shard never changes the behaviour of other HDF5 users in the same process.
-class QuietErrors {
- public:
-  QuietErrors();
-  ~QuietErrors();
-  QuietErrors(const QuietErrors&) = delete;
-  QuietErrors& operator=(const QuietErrors&) = delete;
-
- private:
-  H5E_auto2_t old_func_ = nullptr;
-  void* old_data_ = nullptr;
-};
+// Turns off HDF5's automatic error printing for this scope (shard/hdf5_quiet.hpp).
+using QuietErrors = QuietHdf5Errors;
 
 // The innermost messages of the current HDF5 error stack, one line; clears the stack.
 std::string take_error_stack();

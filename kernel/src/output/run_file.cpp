@@ -43,7 +43,8 @@ std::string frame_path(std::size_t k) { return fmt::format("frames/{:06d}", k); 
 h5::Handle open_file(const std::filesystem::path& path) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error))
-    throw OutputError("run file '" + path.string() + "' does not exist or is not a file");
+    throw OutputError("run file '" + path.string() +
+                      "' does not exist or is not a file; give the run.h5 that `shard run` wrote");
   // A running job holds an exclusive lock on its file; reading what it has flushed is the point
   // of flushing, so a locked file is opened again without locking. (Not the first choice:
   // within the writer's own process HDF5 refuses a second open with other locking flags.)
@@ -58,11 +59,14 @@ h5::Handle open_file(const std::filesystem::path& path) {
   if (id < 0) {
     const std::string cause = h5::take_error_stack();
     throw OutputError("cannot open the run file '" + path.string() + "' as HDF5" +
-                      (cause.empty() ? "" : " (" + cause + ")"));
+                      (cause.empty() ? "" : " (" + cause + ")") +
+                      "; it is no HDF5 file or is damaged: give the run.h5 that `shard run` wrote");
   }
   h5::Handle file(id, H5Fclose);
   if (!h5::has_attribute(file.get(), "abi_version") || !h5::path_exists(file.get(), "frames"))
-    throw OutputError("'" + path.string() + "' is an HDF5 file but not a Shard run file");
+    throw OutputError("'" + path.string() +
+                      "' is an HDF5 file but not a Shard run file (a checkpoint?); give the run.h5 "
+                      "that `shard run` wrote");
   return file;
 }
 

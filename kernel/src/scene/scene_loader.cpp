@@ -195,6 +195,10 @@ Wall read_wall(const toml::table& t, const std::string& file, const std::filesys
   Section s(&t, file, "wall");
   Wall w;
   w.name = s.text("name", fmt::format("wall{}", index));
+  // The name becomes an HDF5 group of the run file (series/walls/<name>).
+  if (w.name.empty() || w.name.find('/') != std::string::npos || w.name == "." || w.name == "..")
+    s.fail("name", fmt::format("= '{}' cannot name a wall: use a non-empty name without '/', e.g. \"pin_left\"",
+                               w.name));
   const std::string shape = s.text("shape", "");
   w.velocity = s.vec3("velocity", Vec3::Zero());
   if (shape == "plane") {
@@ -445,6 +449,11 @@ Scene load_scene_text(const std::string& text, const std::filesystem::path& file
 
   Section out(root["output"].as_table(), file, "output");
   scene.output_file = out.text("file", "run.h5");
+  // A bare .h5 name: the .xmf index and the checkpoint are named after it in the same folder.
+  if (scene.output_file.find('/') != std::string::npos || std::filesystem::path(scene.output_file).extension() != ".h5")
+    out.fail("file", fmt::format("= '{}' is not a run file name: use a file name ending in .h5, e.g. \"run.h5\" (the "
+                                 "folder is chosen with --out)",
+                                 scene.output_file));
   scene.frame_interval = out.number("frame_interval", 0, 0, 1e300, "s");
   scene.series_interval = out.number("series_interval", 0, 0, 1e300, "s");
   out.finish();
@@ -465,7 +474,15 @@ Scene load_scene_text(const std::string& text, const std::filesystem::path& file
     for (const auto& w : *walls) {
       const auto* t = w.as_table();
       if (!t) throw SceneError(fmt::format("{}: [[wall]] entries must be tables", where(file, w.source())));
-      scene.walls.push_back(read_wall(*t, file, scene.dir, k++));
+      Wall wall = read_wall(*t, file, scene.dir, k++);
+      // Each wall has its own series in the run file, found by name (and --set wall.NAME.key).
+      for (const auto& earlier : scene.walls)
+        if (earlier.name == wall.name) {
+          const toml::node* name = t->get("name");
+          throw SceneError(fmt::format("{}: [wall] name '{}' is used by two walls; give each [[wall]] its own name",
+                                       where(file, name ? name->source() : t->source()), wall.name));
+        }
+      scene.walls.push_back(std::move(wall));
     }
   } else if (root.contains("wall")) {
     throw SceneError(fmt::format("{}: walls are an array of tables: write [[wall]], not [wall]",

@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "shard/hdf5_quiet.hpp"
+
 namespace shard::from_file {
 
 namespace {
@@ -28,21 +30,6 @@ class Handle {
   herr_t (*close_)(hid_t);
 };
 
-// HDF5 prints its error stack to stderr by default; failures here become exceptions instead.
-class QuietErrors {
- public:
-  QuietErrors() {
-    H5Eget_auto2(H5E_DEFAULT, &function_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, function_, data_); }
-  QuietErrors(const QuietErrors&) = delete;
-  QuietErrors& operator=(const QuietErrors&) = delete;
-
- private:
-  H5E_auto2_t function_ = nullptr;
-  void* data_ = nullptr;
-};
 
 bool link_exists(hid_t parent, const std::string& path) {
   // Each path component must exist before the next is asked for.
@@ -143,7 +130,7 @@ T read_scalar_attribute(hid_t group, const char* name, const std::string& where)
 }  // namespace
 
 RunFrame read_run_frame(const std::filesystem::path& path, long frame) {
-  const QuietErrors quiet;
+  const QuietHdf5Errors quiet;  // failures here become exceptions instead
   const std::string file_name = path.string();
   if (!std::filesystem::exists(path)) throw std::runtime_error(fmt::format("run file '{}' does not exist", file_name));
   if (H5Fis_hdf5(file_name.c_str()) <= 0)
