@@ -115,8 +115,8 @@ TEST_CASE("a torus whose seam vertices differ in the last bits is welded shut") 
   CHECK(mesh.vertices.size() == 97 * 49);
   CHECK(inspect_mesh(mesh).open_edges == 288);
   const double tolerance = default_weld_tolerance(mesh);
-  // 1e-6 of the 28.7 mm diagonal: 2.9e-8 m, 30 times the 2 float32 ulps (2 x 9.3e-10 m at 14 mm)
-  // that separate the seams, and 1/10^4 of the 0.39 mm shortest edge.
+  // 1e-6 of the 40.4 mm diagonal: 4.0e-8 m, 14 times the up to 3 float32 ulps (3 x 9.5e-10 m at
+  // 14 mm) that separate the seams, and 1/10^4 of the 0.39 mm shortest edge.
   CHECK(tolerance == doctest::Approx(1e-6 * std::sqrt(2 * 28e-3 * 28e-3 + 8e-3 * 8e-3)).epsilon(1e-6));
   const SolidRepair repair = repair_closed_solid(mesh, "torus.stl");
   CHECK(repair.weld.vertices_welded == 145);
@@ -156,8 +156,8 @@ TEST_CASE("an L-prism whose caps meet the walls at T-junctions is geometrically 
 }
 
 TEST_CASE("cracks narrower than the gap tolerance are accepted, wider ones and missing faces refused") {
-  // Seam shifted by 1 um: 35 times the weld tolerance (not welded, not a T-junction), 1/29 of the
-  // default gap tolerance 1e-3 x 28.7 mm.
+  // Seam shifted by 1 um (units: mm): 25 times the weld tolerance 1e-6 x 40.4 mm (not welded, not a
+  // T-junction), 1/40 of the default gap tolerance 1e-3 x 40.4 mm.
   auto cracked = test::seamed_torus(10.0, 4.0, 96, 48, false, 1e-3);
   const SolidRepair repair = repair_closed_solid(cracked, "cracked.stl");
   CHECK(repair.weld.vertices_welded == 2);  // the three shifted copies of the seams' corner coincide
@@ -197,4 +197,52 @@ TEST_CASE("a clean mesh passes the repair unchanged, bit for bit") {
     REQUIRE(repaired.vertices.size() == read.vertices.size());
     CHECK(std::memcmp(repaired.vertices.data(), read.vertices.data(), read.vertices.size() * sizeof(Vec3)) == 0);
   }
+}
+
+namespace {
+// Cube [0,10]^3 whose +x and +y faces are each cut by a vertical slit `width` wide in their middle
+// (y = 5 and x = 5): two cracks 10 long, open to the rays of a point on the cube's axis.
+TriangleMesh slit_cube(double width) {
+  TriangleMesh m = test::box_mesh(Vec3::Zero(), Vec3::Constant(10.0));
+  m.faces.erase(m.faces.begin() + 10, m.faces.begin() + 12);  // +x quad
+  m.faces.erase(m.faces.begin() + 6, m.faces.begin() + 8);    // +y quad
+  auto vertex = [&](const Vec3& p) {
+    for (std::size_t k = 0; k < m.vertices.size(); ++k)
+      if (m.vertices[k] == p) return static_cast<Index>(k);
+    m.vertices.push_back(p);
+    return static_cast<Index>(m.vertices.size() - 1);
+  };
+  auto rectangle = [&](const Vec3& c, const Vec3& e1, const Vec3& e2) {  // outward normal e1 x e2
+    const Index a = vertex(c), b = vertex(c + e1), d = vertex(c + e1 + e2), e = vertex(c + e2);
+    m.faces.push_back({a, b, d});
+    m.faces.push_back({a, d, e});
+  };
+  const double half = 5.0 - 0.5 * width;
+  rectangle(Vec3(10, 0, 0), Vec3(0, half, 0), Vec3(0, 0, 10));
+  rectangle(Vec3(10, 10 - half, 0), Vec3(0, half, 0), Vec3(0, 0, 10));
+  rectangle(Vec3(0, 10, 0), Vec3(0, 0, 10), Vec3(half, 0, 0));
+  rectangle(Vec3(10 - half, 10, 0), Vec3(0, 0, 10), Vec3(half, 0, 0));
+  return m;
+}
+}  // namespace
+
+TEST_CASE("where two rays pass through cracks, the winding number decides") {
+  TriangleMesh cube = slit_cube(0.01);
+  // Slits 0.01 wide: below the default gap tolerance 1e-3 x 17.3; their area 2 x 0.1 leaves
+  // |0.1 (1,0,0) + 0.1 (0,1,0)| x 17.3 / (3 x 1000) = 0.08 % of the volume undecided (< 0.1 %).
+  const SolidRepair repair = repair_closed_solid(cube, "slit_cube.stl");
+  CHECK(repair.edges.largest_gap == doctest::Approx(0.01).epsilon(1e-9));
+  // (The divergence-theorem volume misses the slits' flux, 2 x 10 x 0.1 / 3, measured from the origin.)
+  CHECK(repair.edges.volume_ambiguity ==
+        doctest::Approx(0.1 * std::sqrt(2.0) * std::sqrt(300.0) / (3.0 * (1000.0 - 2.0 / 3.0))).epsilon(1e-9));
+  // From the centre the +x and +y rays leave through the slits: one crossing of three, so the ray
+  // majority calls the centre outside. Seen from there each slit (0.01 x 10 at distance 5)
+  // subtends ~0.003 sr, so the winding number is 1 - 2 x 0.003 / (4 pi) = 0.9995: inside.
+  const Vec3 centre(5, 5, 5);
+  CHECK_FALSE(InsideTest(cube, SignRule::RayMajority).inside(centre));
+  CHECK(InsideTest(cube, SignRule::WindingWhenRaysDisagree).inside(centre));
+  CHECK(winding_number(cube, centre) == doctest::Approx(0.9995).epsilon(3e-4));
+  // Outside, the rule changes nothing: a point on the slits' line beyond the cube.
+  CHECK_FALSE(InsideTest(cube, SignRule::WindingWhenRaysDisagree).inside(Vec3(-1, 5, 5)));
+  CHECK_FALSE(InsideTest(cube, SignRule::WindingWhenRaysDisagree).inside(Vec3(5, 5, 11)));
 }

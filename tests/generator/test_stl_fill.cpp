@@ -238,7 +238,7 @@ TEST_CASE("a torus with last-bit seams is welded, filled, and its field is the t
 }
 
 TEST_CASE("a torus with a 1 um seam crack is signed by the winding number like the closed one") {
-  // Shift 1e-3 mm: above the weld tolerance (2.9e-5 mm), below the gap tolerance (0.029 mm).
+  // Shift 1e-3 mm: above the weld tolerance (4.0e-5 mm), below the gap tolerance (0.040 mm).
   auto cracked = test::seamed_torus(10.0, 4.0, 96, 48, false, 1e-3);
   for (Vec3& v : cracked.vertices) v *= 0.001;
   const geometry::SolidRepair repair = geometry::repair_closed_solid(cracked, "cracked.stl");
