@@ -45,32 +45,53 @@ std::vector<Edge> open_edges_of(const TriangleMesh& mesh) {
   return open;
 }
 
-// Uniform grid over the open edges: each edge is listed in every cell its bounding box, grown by
-// `margin`, touches, so the edges within `margin` of a point are all listed in the point's cell.
+// Uniform grid over the open edges: each edge is listed in every cell that a point within
+// `margin` of it can lie in, so the edges within `margin` of a point are all listed in the point's
+// cell. An edge is walked along its length (not by its bounding box, whose cell count grows with
+// the cube of its length): O(length / cell) cells per edge.
 class EdgeGrid {
  public:
   EdgeGrid(const TriangleMesh& mesh, const std::vector<Edge>& edges, double cell, double margin)
-      : cell_(cell), origin_(bounding_box(mesh).lower - Vec3::Constant(margin + cell)) {
-    for (std::size_t e = 0; e < edges.size(); ++e) {
-      const Vec3& a = mesh.vertices[edges[e].a];
-      const Vec3& b = mesh.vertices[edges[e].b];
-      for_cells(a.cwiseMin(b) - Vec3::Constant(margin), a.cwiseMax(b) + Vec3::Constant(margin),
-                [&](std::uint64_t key) { cells_[key].push_back(e); });
-    }
+      : cell_(cell), origin_(bounding_box(mesh).lower - Vec3::Constant(margin + 2.0 * cell)) {
+    for (std::size_t e = 0; e < edges.size(); ++e)
+      along(mesh.vertices[edges[e].a], mesh.vertices[edges[e].b], margin, [&](std::uint64_t key) { cells_[key].push_back(e); });
   }
-  // Calls visit(edge index) for the edges listed in the cells of the box [lo, hi]; an edge can
+  // Calls visit(edge index) for the edges listed in the cells along the segment a-b; an edge can
   // come more than once.
   template <class Visit>
-  void edges_near(const Vec3& lo, const Vec3& hi, Visit&& visit) const {
-    for_cells(lo, hi, [&](std::uint64_t key) {
-      if (const auto it = cells_.find(key); it != cells_.end())
-        for (std::size_t e : it->second) visit(e);
-    });
+  void edges_along(const Vec3& a, const Vec3& b, Visit&& visit) const {
+    along(a, b, 0.0, [&](std::uint64_t key) { visit_cell(key, visit); });
+  }
+  // The same for the cells of the box [lo, hi] (a few cells: the box is at most a cell wide).
+  template <class Visit>
+  void edges_in_box(const Vec3& lo, const Vec3& hi, Visit&& visit) const {
+    for_box(lo, hi, [&](std::uint64_t key) { visit_cell(key, visit); });
   }
 
  private:
   template <class Visit>
-  void for_cells(const Vec3& lo, const Vec3& hi, Visit&& visit) const {
+  void visit_cell(std::uint64_t key, Visit& visit) const {
+    if (const auto it = cells_.find(key); it != cells_.end())
+      for (std::size_t e : it->second) visit(e);
+  }
+  // The cells within `margin` of the segment, each once: boxes of half-width margin + step / 2
+  // around points `step` <= cell apart cover every point within `margin` of the segment.
+  template <class Visit>
+  void along(const Vec3& a, const Vec3& b, double margin, Visit&& visit) const {
+    const double length = (b - a).norm();
+    const auto steps = static_cast<std::size_t>(std::ceil(length / cell_));
+    const double reach = margin + 0.5 * (steps > 0 ? length / static_cast<double>(steps) : 0.0);
+    keys_.clear();
+    for (std::size_t s = 0; s <= steps; ++s) {
+      const Vec3 p = steps > 0 ? Vec3(a + (b - a) * (static_cast<double>(s) / static_cast<double>(steps))) : a;
+      for_box(p - Vec3::Constant(reach), p + Vec3::Constant(reach), [&](std::uint64_t key) { keys_.push_back(key); });
+    }
+    std::sort(keys_.begin(), keys_.end());
+    keys_.erase(std::unique(keys_.begin(), keys_.end()), keys_.end());
+    for (std::uint64_t key : keys_) visit(key);
+  }
+  template <class Visit>
+  void for_box(const Vec3& lo, const Vec3& hi, Visit&& visit) const {
     const Eigen::Array3d l = ((lo - origin_) / cell_).array().floor().max(0.0);
     const Eigen::Array3d h = ((hi - origin_) / cell_).array().floor().max(0.0);
     for (auto i = static_cast<std::uint64_t>(l.x()); i <= static_cast<std::uint64_t>(h.x()); ++i)
@@ -81,6 +102,7 @@ class EdgeGrid {
   double cell_;
   Vec3 origin_;
   std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells_;
+  mutable std::vector<std::uint64_t> keys_;  // scratch of along(); the grid is used by one thread
 };
 
 }  // namespace
@@ -111,7 +133,7 @@ OpenEdgeReport classify_open_edges(const TriangleMesh& mesh, double on_edge_tole
     const Vec3& a = v[edges[e].a];
     const Vec3& b = v[edges[e].b];
     stops.assign({{0.0, edges[e].a}, {1.0, edges[e].b}});
-    grid.edges_near(a.cwiseMin(b), a.cwiseMax(b), [&](std::size_t f) {
+    grid.edges_along(a, b, [&](std::size_t f) {
       for (Index w : {edges[f].a, edges[f].b}) {
         if (w == edges[e].a || w == edges[e].b) continue;
         double t = 0.0;
@@ -128,7 +150,7 @@ OpenEdgeReport classify_open_edges(const TriangleMesh& mesh, double on_edge_tole
       const Vec3& p = v[stops[s].second];
       const Vec3& q = v[stops[s + 1].second];
       bool piece = false;
-      grid.edges_near(p, p, [&](std::size_t f) {
+      grid.edges_in_box(p, p, [&](std::size_t f) {
         if (piece || f == e || direction(edges[f]).dot(direction(edges[e])) >= 0.0) return;
         double t = 0.0;
         piece = segment_distance(p, v[edges[f].a], v[edges[f].b], t) <= tol &&
@@ -150,7 +172,7 @@ OpenEdgeReport classify_open_edges(const TriangleMesh& mesh, double on_edge_tole
     if (covered[e]) continue;
     const Vec3 mid = 0.5 * (v[edges[e].a] + v[edges[e].b]);
     double width = std::numeric_limits<double>::infinity();
-    grid.edges_near(mid - Vec3::Constant(gap_tolerance), mid + Vec3::Constant(gap_tolerance), [&](std::size_t f) {
+    grid.edges_in_box(mid - Vec3::Constant(gap_tolerance), mid + Vec3::Constant(gap_tolerance), [&](std::size_t f) {
       // Covered edges count as the far side too: a crack whose sides slide along each other is
       // covered in places, and the uncovered pieces next to them face the covered ones.
       if (f == e || direction(edges[f]).dot(direction(edges[e])) >= 0.0) return;
