@@ -1,5 +1,5 @@
 // libFuzzer target: any byte string read as an STL file either gives a mesh that the checks
-// (closedness, orientation, volume, self-intersection) can inspect, or throws StlError.
+// (welding, closedness with T-junctions and gaps, orientation, volume, self-intersection) can inspect, or throws StlError.
 // read_stl takes a path, so each input is written to a per-process temporary file.
 #include <unistd.h>
 
@@ -9,6 +9,7 @@
 #include <fstream>
 #include <string>
 
+#include "shard/geometry/mesh_repair.hpp"
 #include "shard/geometry/stl.hpp"
 
 namespace {
@@ -31,6 +32,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     (void)report;
     (void)shard::geometry::count_self_intersections(mesh, 4);
     if (!mesh.vertices.empty()) (void)shard::geometry::bounding_box(mesh);
+    shard::geometry::TriangleMesh welded = mesh;
+    try {
+      (void)shard::geometry::repair_closed_solid(welded, file);  // weld, T-junctions, gaps
+    } catch (const shard::geometry::StlError&) {
+    }
     shard::geometry::require_closed_solid(mesh, file);
   } catch (const shard::geometry::StlError&) {
   }

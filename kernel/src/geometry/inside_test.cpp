@@ -2,10 +2,24 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace shard::geometry {
 
-InsideTest::InsideTest(const TriangleMesh& mesh) : mesh_(mesh) {
+double winding_number(const TriangleMesh& mesh, const Vec3& point) {
+  double solid_angle = 0.0;
+  for (const auto& f : mesh.faces) {
+    const Vec3 a = mesh.vertices[f[0]] - point;
+    const Vec3 b = mesh.vertices[f[1]] - point;
+    const Vec3 c = mesh.vertices[f[2]] - point;
+    const double la = a.norm(), lb = b.norm(), lc = c.norm();
+    // tan(Omega / 2) = a.(b x c) / (|a||b||c| + (a.b)|c| + (b.c)|a| + (c.a)|b|)
+    solid_angle += 2.0 * std::atan2(a.dot(b.cross(c)), la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb);
+  }
+  return solid_angle / (4.0 * std::numbers::pi);
+}
+
+InsideTest::InsideTest(const TriangleMesh& mesh, SignRule rule) : mesh_(mesh), rule_(rule) {
   const Box box = bounding_box(mesh);
   const int n = std::clamp(static_cast<int>(2.0 * std::sqrt(static_cast<double>(mesh.faces.size()))), 1, 512);
   for (int axis = 0; axis < 3; ++axis) {
@@ -81,6 +95,10 @@ bool InsideTest::odd_crossings(const AxisGrid& g, const Vec3& p) const {
 bool InsideTest::inside(const Vec3& point) const {
   int votes = 0;
   for (const AxisGrid& g : grids_) votes += odd_crossings(g, point) ? 1 : 0;
+  // Rays agree everywhere except next to a crack or a T-junction seam, so the O(faces) winding
+  // number is evaluated at few points.
+  if (rule_ == SignRule::WindingWhenRaysDisagree && votes != 0 && votes != 3)
+    return winding_number(mesh_, point) >= 0.5;
   return votes >= 2;
 }
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <unordered_map>
 
+#include "shard/geometry/mesh_repair.hpp"
 #include "shard/geometry/stl.hpp"
 
 namespace shard::geometry {
@@ -66,15 +67,33 @@ Box bounding_box(const TriangleMesh& mesh) {
 }
 
 void require_closed_solid(const TriangleMesh& mesh, const std::filesystem::path& file) {
+  require_closed_solid(mesh, file, SolidTolerances{});
+}
+
+OpenEdgeReport require_closed_solid(const TriangleMesh& mesh, const std::filesystem::path& file,
+                                    SolidTolerances tolerances) {
   const std::string name = file.string();
   if (mesh.faces.empty())
     throw StlError(fmt::format("STL file '{}' has no triangles: export the body as a closed surface", name));
   const MeshReport report = inspect_mesh(mesh);
-  if (report.open_edges > 0)
-    throw StlError(fmt::format("STL file '{}' is not closed: {} open edges (holes in the surface). A body "
-                               "to fill must be watertight; close the holes (e.g. MeshLab 'Close Holes' "
-                               "or re-export as a solid)",
-                               name, report.open_edges));
+  OpenEdgeReport edges;
+  if (report.open_edges > 0) {
+    const Box box = bounding_box(mesh);
+    const double weld = tolerances.weld > 0.0 ? tolerances.weld : default_weld_tolerance(mesh);
+    const double gap = tolerances.gap > 0.0 ? tolerances.gap : kDefaultRelativeGap * (box.upper - box.lower).norm();
+    edges = classify_open_edges(mesh, weld, gap);
+    if (!edges.geometrically_closed() && !(edges.largest_gap <= gap))
+      throw StlError(fmt::format("STL file '{}' is not closed: {} open edges (holes in the surface; {} of them "
+                                 "border openings wider than the gap tolerance {:.3g} m). A body to fill must be "
+                                 "watertight; close the holes (e.g. MeshLab 'Close Holes' or re-export as a solid)",
+                                 name, report.open_edges, edges.gap_edges, gap));
+    if (!edges.geometrically_closed() && !(edges.volume_ambiguity <= kMaxVolumeAmbiguity))
+      throw StlError(fmt::format("STL file '{}' is not closed: {} open edges border cracks at most {:.3g} m wide, "
+                                 "but together they leave {:.2g} % of the volume undecided (limit {:.2g} %). Close "
+                                 "the cracks (e.g. MeshLab 'Close Holes' or re-export as a solid)",
+                                 name, report.open_edges, edges.largest_gap, 100.0 * edges.volume_ambiguity,
+                                 100.0 * kMaxVolumeAmbiguity));
+  }
   if (report.nonmanifold_edges > 0)
     throw StlError(fmt::format("STL file '{}' is not closed: {} non-manifold edges (shared by more than "
                                "two faces). Separate or union the touching parts before filling",
@@ -94,6 +113,7 @@ void require_closed_solid(const TriangleMesh& mesh, const std::filesystem::path&
                                "crossing found). Merge overlapping parts with a boolean union before "
                                "filling",
                                name));
+  return edges;
 }
 
 }  // namespace shard::geometry

@@ -8,6 +8,7 @@
 #include "shard/geometry/generator_params.hpp"
 #include "shard/geometry/packing_io.hpp"
 #include "shard/geometry/packing_quality.hpp"
+#include "shard/geometry/mesh_repair.hpp"
 #include "shard/geometry/stl.hpp"
 #include "run_frame.hpp"
 
@@ -90,8 +91,8 @@ GeneratedBody FromFile::generate(const GeneratorContext& context) const {
   geometry::QualityInputs inputs;
   if (!settings_.body.empty()) {
     const auto body_path = geometry::resolve_against(context.scene_dir, settings_.body);
-    const auto mesh = geometry::read_stl(body_path, settings_.scale);
-    geometry::require_closed_solid(mesh, body_path);
+    auto mesh = geometry::read_stl(body_path, settings_.scale);
+    geometry::repair_closed_solid(mesh, body_path);  // welds and accepts what stl_fill accepts
     inputs.body_volume = geometry::signed_volume(mesh);
   }
   inputs.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

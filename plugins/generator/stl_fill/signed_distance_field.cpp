@@ -17,11 +17,12 @@ struct SignedDistanceField::Impl {
   Vec3 origin;  // the mesh is voxelized relative to its lower corner: small float32 coordinates
   geometry::TriangleMesh mesh;
   geometry::InsideTest inside;
-  Impl(openvdb::FloatGrid::Ptr g, const Vec3& o, const geometry::TriangleMesh& m)
-      : grid(std::move(g)), accessor(grid->getConstAccessor()), origin(o), mesh(m), inside(mesh) {}
+  Impl(openvdb::FloatGrid::Ptr g, const Vec3& o, const geometry::TriangleMesh& m, geometry::SignRule rule)
+      : grid(std::move(g)), accessor(grid->getConstAccessor()), origin(o), mesh(m), inside(mesh, rule) {}
 };
 
-SignedDistanceField::SignedDistanceField(const geometry::TriangleMesh& mesh, double voxel, double band)
+SignedDistanceField::SignedDistanceField(const geometry::TriangleMesh& mesh, double voxel, double band,
+                                         geometry::SignRule rule)
     : voxel_(voxel) {
   if (!(voxel > 0.0) || !(band >= voxel))
     throw std::invalid_argument("SignedDistanceField: need voxel > 0 and band >= voxel");
@@ -41,11 +42,12 @@ SignedDistanceField::SignedDistanceField(const geometry::TriangleMesh& mesh, dou
   const auto transform = openvdb::math::Transform::createLinearTransform(voxel);
   // OpenVDB decides the sign by flooding from outside, which makes an enclosed cavity solid and
   // corrupts the values next to it. So OpenVDB provides the unsigned distance and the sign comes
-  // from an exact ray-parity test. Interpolating |d| is exact wherever all eight corners lie on
+  // from an exact ray-parity test (settled by the winding number where the mesh is closed only
+  // geometrically and the rays disagree). Interpolating |d| is exact wherever all eight corners lie on
   // one side, i.e. deeper than ~1.7 voxels, and spheres are at least two voxels in radius.
   const auto width = static_cast<float>(std::ceil(band / voxel));
   auto grid = openvdb::tools::meshToUnsignedDistanceField<openvdb::FloatGrid>(*transform, points, triangles, {}, width);
-  impl_ = std::make_unique<Impl>(std::move(grid), origin, mesh);
+  impl_ = std::make_unique<Impl>(std::move(grid), origin, mesh, rule);
 }
 
 SignedDistanceField::~SignedDistanceField() = default;

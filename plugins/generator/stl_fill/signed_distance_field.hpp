@@ -4,6 +4,7 @@
 // Shard sees, so OpenVDB's heavy templates compile once and link only into this plugin.
 #include <memory>
 
+#include "shard/geometry/inside_test.hpp"
 #include "shard/geometry/stl.hpp"
 #include "shard/types.hpp"
 
@@ -14,7 +15,10 @@ class SignedDistanceField {
   // Unsigned distance voxelized by OpenVDB in a band of `band` [m] around the surface, signed by
   // an exact ray-parity test (so enclosed cavities stay empty); beyond the band distance()
   // returns -band inside and +band outside. `voxel` is the grid spacing [m].
-  SignedDistanceField(const geometry::TriangleMesh& mesh, double voxel, double band);
+  // `rule`: RayMajority for a closed mesh; WindingWhenRaysDisagree for one closed only
+  // geometrically (T-junctions) or up to small cracks (mesh_repair.hpp).
+  SignedDistanceField(const geometry::TriangleMesh& mesh, double voxel, double band,
+                      geometry::SignRule rule = geometry::SignRule::RayMajority);
   ~SignedDistanceField();
   SignedDistanceField(const SignedDistanceField&) = delete;
   SignedDistanceField& operator=(const SignedDistanceField&) = delete;

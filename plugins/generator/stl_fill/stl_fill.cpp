@@ -2,11 +2,13 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
 #include "shard/geometry/advancing_front.hpp"
 #include "shard/geometry/generator_params.hpp"
+#include "shard/geometry/mesh_repair.hpp"
 #include "shard/geometry/packing_io.hpp"
 #include "shard/geometry/packing_quality.hpp"
 #include "shard/geometry/stl.hpp"
@@ -34,6 +36,12 @@ std::vector<ParamSpec> stl_fill_params() {
             geometry::kNonNegative),
       param("seed_offset", ParamType::Integer, "1", "added to the scene seed for this body", 0.0),
       param("save", ParamType::String, "", "optional CSV path to store the packing for from_file", std::string()),
+      param("weld_tolerance", ParamType::Number, "m",
+            "vertices closer than this are one vertex; 0 = 1e-6 x bounding-box diagonal (at least 8 float32 ulps)",
+            0.0, geometry::kNonNegative),
+      param("gap_tolerance", ParamType::Number, "m",
+            "cracks up to this wide count as closed; 0 = min(1e-3 x bounding-box diagonal, diameter_min / 2)", 0.0,
+            geometry::kNonNegative),
       param("max_hole_fraction", ParamType::Number, "1",
             "error if more of the body than this stays further than d_max from any sphere", 0.02, {0.0, 1.0}),
   };
@@ -52,6 +60,8 @@ StlFillSettings stl_fill_settings(const ParamSet& params) {
   s.seed_offset = params.integer("seed_offset");
   s.save = params.text("save");
   s.max_hole_fraction = params.number("max_hole_fraction");
+  s.weld_tolerance = params.number("weld_tolerance");
+  s.gap_tolerance = params.number("gap_tolerance");
   return s;
 }
 
@@ -61,14 +71,21 @@ GeneratedBody StlFill::generate(const GeneratorContext& context) const {
     if (context.log) context.log("stl_fill: " + line);
   };
   const auto path = geometry::resolve_against(context.scene_dir, settings_.file);
-  geometry::TriangleMesh mesh = geometry::read_stl(path, settings_.scale);
-  for (Vec3& v : mesh.vertices) v += settings_.offset;
-  geometry::require_closed_solid(mesh, path);
-
   const geometry::SizeDistribution psd =
       settings_.psd_table.empty()
           ? geometry::SizeDistribution::uniform(settings_.diameter_min, settings_.diameter_max)
           : geometry::SizeDistribution::from_table(geometry::resolve_against(context.scene_dir, settings_.psd_table));
+  geometry::TriangleMesh mesh = geometry::read_stl(path, settings_.scale);
+  // Welded before the offset: the float32 floor of the weld tolerance belongs to the file's coordinates.
+  geometry::SolidTolerances tolerances{settings_.weld_tolerance, settings_.gap_tolerance};
+  if (!(tolerances.gap > 0.0)) {
+    // A crack narrower than the smallest sphere's radius cannot let a sphere out or change which fit.
+    const geometry::Box box = geometry::bounding_box(mesh);
+    tolerances.gap = std::min(geometry::kDefaultRelativeGap * (box.upper - box.lower).norm(), 0.5 * psd.d_min());
+  }
+  const geometry::SolidRepair repair = geometry::repair_closed_solid(mesh, path, tolerances);
+  for (Vec3& v : mesh.vertices) v += settings_.offset;
+  log(fmt::format("'{}': {}", path.string(), repair.summary()));
   const double voxel = settings_.voxel_size > 0.0 ? settings_.voxel_size : psd.d_min() / 4.0;
   geometry::Box bounds = geometry::bounding_box(mesh);
   const double body_volume = geometry::signed_volume(mesh);
@@ -79,7 +96,9 @@ GeneratedBody StlFill::generate(const GeneratorContext& context) const {
                                           "'scale' (0.001 for a file in mm)",
                                           path.string(), smallest_extent, psd.d_max()));
   // A band of r_max plus a few voxels keeps "SDF <= -r" exact for every candidate sphere.
-  const SignedDistanceField field(mesh, voxel, 0.5 * psd.d_max() + 3.0 * voxel);
+  const SignedDistanceField field(
+      mesh, voxel, 0.5 * psd.d_max() + 3.0 * voxel,
+      repair.edges.open_edges == 0 ? geometry::SignRule::RayMajority : geometry::SignRule::WindingWhenRaysDisagree);
   const geometry::SignedDistance distance = [&field](const Vec3& p) { return field.distance(p); };
   const auto seconds_since_start = [&start] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

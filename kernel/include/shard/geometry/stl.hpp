@@ -25,7 +25,8 @@ class StlError : public std::runtime_error {
 
 // Reads a binary or ASCII STL (detected by content, not by extension), multiplies coordinates by
 // `scale` (an STL in mm with scale 0.001 gives metres) and merges vertices with identical float32
-// coordinates, which is how STL writers repeat a shared corner. Faces that collapse to a line
+// coordinates, which is how STL writers repeat a shared corner (corners that differ in the last
+// bits are welded within a tolerance by weld_vertices(), mesh_repair.hpp). Faces that collapse to a line
 // after merging are dropped. Throws StlError on a missing, unreadable, truncated or empty file.
 // Open surfaces are accepted here (walls may be open); require_closed_solid() checks bodies.
 TriangleMesh read_stl(const std::filesystem::path& file, double scale = 1.0);
@@ -55,9 +56,10 @@ double signed_volume(const TriangleMesh& mesh);
 // Uses a uniform grid over face bounding boxes, so it runs in about O(faces).
 std::size_t count_self_intersections(const TriangleMesh& mesh, std::size_t stop_after = 1);
 
-// The checks a body to be filled must pass: non-empty, closed (watertight), consistently
+// The checks a body to be filled must pass: non-empty, closed (watertight; T-junctions and cracks
+// narrower than the default gap tolerance count as closed: mesh_repair.hpp), consistently
 // oriented, outward normals (positive volume), not self-intersecting. Throws StlError naming
-// `file` and the fix.
+// `file` and the fix. It does not weld: repair_closed_solid() (mesh_repair.hpp) welds, then checks.
 void require_closed_solid(const TriangleMesh& mesh, const std::filesystem::path& file);
 
 // Axis-aligned bounds of the vertices.
