@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <ostream>
 
 #include "contrast_report.hpp"
@@ -45,6 +46,7 @@ void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>&
     double scale = 0;
     ContrastStudy::Simulated run;
     bool has_run = false;
+    bool failed = false;
   };
   std::vector<std::vector<Trial>> trials(sets.size());
   for (std::size_t s = 0; s < sets.size(); ++s) {
@@ -84,12 +86,33 @@ void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>&
       }
     if (models.empty()) break;
     log << fmt::format("diagnose: confirmation pass {}: {} runs of effects at their fitted sizes\n", pass + 1, models.size());
-    auto runs = study.simulate(models, log);
+    // One batch; when a run fails (a size the plugin refuses, or an unstable one) the models are
+    // run one by one (finished runs are cached) and a failed trial is dropped with its reason.
+    std::vector<std::optional<ContrastStudy::Simulated>> runs(models.size());
+    try {
+      auto all = study.simulate(models, log);
+      for (std::size_t m = 0; m < models.size(); ++m) runs[m] = std::move(all[m]);
+    } catch (const std::exception&) {
+      for (std::size_t m = 0; m < models.size(); ++m) try {
+          runs[m] = std::move(study.simulate({models[m]}, log).front());
+        } catch (const std::exception& e) {
+          const std::string what = e.what();
+          const Trial& t = trials[owner[m].first][owner[m].second];
+          log << fmt::format("diagnose: {} at {:.4g} did not run and is left out: {}\n", effects[t.effect].name,
+                             effects[t.effect].value_at(t.scale), what.substr(0, what.find('\n')));
+        }
+    }
     for (std::size_t m = 0; m < models.size(); ++m) {
       Trial& t = trials[owner[m].first][owner[m].second];
-      t.run = std::move(runs[m]);
-      t.has_run = true;
+      if (runs[m]) {
+        t.run = std::move(*runs[m]);
+        t.has_run = true;
+      } else {
+        t.failed = true;
+      }
     }
+    for (auto& per_set : trials)
+      std::erase_if(per_set, [](const Trial& t) { return t.failed; });
   }
   ContrastOptions decide;
   decide.tried = effects.size();
@@ -116,6 +139,7 @@ void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>&
       if (effects[t.effect].name == show) {
         d.after = study.curve_contrast(d.contrast, t.run, base);
         d.after_effect = show;
+        d.after_components = study.model_contrast(d.contrast, t.run, base);
         d.after_value = effects[t.effect].value_at(t.scale);
       }
   }

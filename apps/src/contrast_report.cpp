@@ -135,10 +135,19 @@ std::string contrast_markdown(const ContrastReport& r) {
         "model's, over the displacement range both cover, in units of the reference's peak force.\n";
   for (const auto& d : r.diagnoses) {
     md += fmt::format("\n## {}\n\n{}\n\n", r.sets.names[d.set], verdict_text(r, d));
-    md += "| component | measured difference | u |\n|---|---|---|\n";
-    for (std::size_t i = 0; i < d.contrast.names.size(); ++i)
-      md += fmt::format("| {} | {:+.4g} | {:.2g} |\n", d.contrast.names[i], d.contrast.difference[i],
-                        1 / std::sqrt(d.contrast.weight[i][i]));
+    const bool shown = !d.after_components.empty();
+    md += fmt::format("| component | measured difference | u |{}\n|---|---|---|{}\n",
+                      shown ? fmt::format(" model with {} = {:.4g} | (model - measured) / u |", d.after_effect, d.after_value)
+                            : "",
+                      shown ? "---|---|" : "");
+    for (std::size_t i = 0; i < d.contrast.names.size(); ++i) {
+      // u: the marginal standard uncertainty of the difference (the weight is the inverse covariance).
+      const double u = 1 / std::sqrt(d.contrast.weight[i][i]);
+      md += fmt::format("| {} | {:+.4g} | {:.2g} |{}\n", d.contrast.names[i], d.contrast.difference[i], u,
+                        shown ? fmt::format(" {:+.4g} | {:+.1f} |", d.after_components[i],
+                                            (d.after_components[i] - d.contrast.difference[i]) / u)
+                              : "");
+    }
     md += fmt::format("\n{} | size | +- | chi^2 after | drop | p of the drop | p after | at bound |\n"
                       "|---|---|---|---|---|---|---|---|\n",
                       d.confirmed_values.empty() ? "| effect (linear, from the signatures)" : "| effect (simulated at its size)");

@@ -40,6 +40,7 @@ struct SetDiagnosis {
   ContrastStudy::CurveContrast before, after;  // base model; with the named (or best) effect
   std::string after_effect;
   double after_value = 0;
+  std::vector<double> after_components;  // the shown effect's simulated contrast, per component
 };
 
 // Simulates each set's best `count` effects at their linear sizes, then (up to `iterations` in

@@ -150,7 +150,7 @@ ContrastStudy::ContrastStudy(const ContrastSets& sets, Simulator& simulator, Mod
       group.reference_rate = *std::min_element(reference_rates.begin(), reference_rates.end(), [&](double a, double b) {
         return std::abs(std::log(a / group.rate)) < std::abs(std::log(b / group.rate));
       });
-      for (const auto& sp : g.specimens[r]) group.components.push_back(contrast_components(sp.curve, measured_scale_));
+      for (const auto& sp : g.specimens[r]) group.components.push_back(contrast_components(sp.curve));
       pooled.push_back(group.components);
       groups_.push_back(std::move(group));
     }
@@ -205,11 +205,9 @@ ContrastScale ContrastStudy::simulated_scale(const Simulated& base) const {
   return contrast_scale(base.curves[rate_index(scale_rate_)]);
 }
 
-std::vector<std::vector<double>> ContrastStudy::components(const Simulated& model, double rate,
-                                                           const Simulated& base) const {
-  const ContrastScale scale = simulated_scale(base);
+std::vector<std::vector<double>> ContrastStudy::components(const Simulated& model, double rate) const {
   std::vector<std::vector<double>> rows;
-  for (const auto& c : model.curves[rate_index(rate)]) rows.push_back(contrast_components(c, scale));
+  for (const auto& c : model.curves[rate_index(rate)]) rows.push_back(contrast_components(c));
   return rows;
 }
 
@@ -233,7 +231,7 @@ BaseCalibration ContrastStudy::calibrate_base(const std::vector<std::string>& ke
 
   auto features_of = [&](const std::vector<Specimen>& sims) {
     std::vector<std::vector<double>> rows;
-    for (const auto& s : sims) rows.push_back(contrast_components(s.curve, contrast_scale({s.curve})));
+    for (const auto& s : sims) rows.push_back(contrast_components(s.curve));
     return component_mean(rows);
   };
   const double log_step = std::log1p(kBaseStep);
@@ -335,7 +333,7 @@ ContrastStudy::Contrast ContrastStudy::contrast(std::size_t set, const Simulated
     }
     std::vector<double> base_shift(m, 0.0), base_var(m, 0.0);
     if (!same_rate(g.rate, g.reference_rate))
-      paired(components(base, g.rate, base), components(base, g.reference_rate, base), base_shift, base_var);
+      paired(components(base, g.rate), components(base, g.reference_rate), base_shift, base_var);
     for (std::size_t i = 0; i < m; ++i) b.d.push_back(mean[i] - ref_mean[i] - base_shift[i]);
     b.var_base = base_var;
     b.own = sigma / static_cast<double>(g.components.size());
@@ -373,7 +371,7 @@ std::vector<double> ContrastStudy::model_contrast(const Contrast& c, const Simul
   std::vector<double> out;
   for (std::size_t gi : c.groups) {
     std::vector<double> mean, var;
-    paired(components(with_effect, groups_[gi].rate, base), components(base, groups_[gi].rate, base), mean, var);
+    paired(components(with_effect, groups_[gi].rate), components(base, groups_[gi].rate), mean, var);
     out.insert(out.end(), mean.begin(), mean.end());
   }
   return out;

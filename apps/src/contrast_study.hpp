@@ -91,7 +91,7 @@ class ContrastStudy {
   // The model's scale: its base's mean peak at the reference's (or the most common) rate.
   measure::ContrastScale simulated_scale(const Simulated& base) const;
   // Components of every seed of `model` at `rate`.
-  std::vector<std::vector<double>> components(const Simulated& model, double rate, const Simulated& base) const;
+  std::vector<std::vector<double>> components(const Simulated& model, double rate) const;
 
   const ContrastSets& sets_;
   Simulator& simulator_;

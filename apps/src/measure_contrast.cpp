@@ -18,6 +18,7 @@
 #include <optional>
 
 #include "contrast_report.hpp"
+#include "output_folder.hpp"
 #include "contrast_study.hpp"
 #include "measure_commands.hpp"
 #include "shard/app/commands.hpp"
@@ -45,6 +46,7 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
   cmd->callback([o, &ctx] {
     const ContrastSets sets = read_contrast_sets(o->sets, o->reference);
     const auto effects = contrast_effects(*o);
+    prepare_output_folder(o->out, "--out");  // after the cheap reads, before the simulations
     Simulator simulator(o->sim, ctx.plugin_dirs);
     ContrastStudy study(sets, simulator, o->model);
     const BaseCalibration cal = study.calibrate_base(o->params, o->params.empty() ? 0 : o->base_iterations, std::cerr);
@@ -84,7 +86,6 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
 
     const ContrastReport report{sets,     effects, cal, study, out, simulator.max_kinetic_to_elastic(),
                                 finer ? &*finer : nullptr, o->finer};
-    fs::create_directories(o->out);
     const std::string md = contrast_markdown(report);
     std::ofstream(o->out / "diagnose.md") << md;
     std::ofstream(o->out / "diagnose.json") << contrast_json(report);

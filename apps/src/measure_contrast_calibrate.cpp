@@ -15,6 +15,7 @@
 #include <memory>
 
 #include "contrast_report.hpp"
+#include "output_folder.hpp"
 #include "measure_commands.hpp"
 #include "shard/app/commands.hpp"
 #include "shard/measure/report.hpp"
@@ -84,6 +85,7 @@ void add_calibrate_contrast_command(CLI::App& app, CommandContext& ctx) {
       throw std::runtime_error(fmt::format("--target {}: not among the sets given, or it is the reference", o->target));
     const auto effects = select_effects(contrast_effects(*o), {o->effect});
     const CandidateEffect& effect = effects.front();
+    prepare_output_folder(o->out, "--out");  // after the cheap reads, before the simulations
     Simulator simulator(o->sim, ctx.plugin_dirs);
     ContrastStudy study(sets, simulator, o->model);
     const BaseCalibration cal = study.calibrate_base(o->params, o->params.empty() ? 0 : o->base_iterations, std::cerr);
@@ -127,7 +129,6 @@ void add_calibrate_contrast_command(CLI::App& app, CommandContext& ctx) {
     md += fmt::format("| base | {:.2f} | {:.2f} % |\n| base + {} | {:.2f} | {:.2f} % |\n", chi0, 100 * before.nrmse,
                       effect.name, fit.best, 100 * after.nrmse);
     md += fmt::format("\nThe contrast NRMSE fell by {:.0f} %.\n", 100 * (1 - after.nrmse / before.nrmse));
-    fs::create_directories(o->out);
     std::ofstream(o->out / "calibrate.md") << md;
     std::ofstream(o->out / "calibrate.json") << fmt::format(
         "{{\"set\": \"{}\", \"reference\": \"{}\", \"effect\": \"{}\", \"value\": {:.9g}, \"at_bound\": {}, "

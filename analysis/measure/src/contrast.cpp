@@ -19,8 +19,6 @@ namespace {
 // The force after the peak falls below this share of F_max where the beam has parted: the
 // ductility component reads how far past the peak that happens.
 constexpr double kPartedShare = 0.5;
-// Where the post-peak level is read, in reference peak displacements.
-constexpr double kPostPeakXi = 1.25;
 
 Eigen::MatrixXd to_matrix(const std::vector<std::vector<double>>& a) {
   const auto n = static_cast<Eigen::Index>(a.size());
@@ -71,12 +69,12 @@ ContrastScale contrast_scale(const std::vector<Curve>& curves) {
 const std::vector<std::string>& contrast_component_names() {
   static const std::vector<std::string> names = {
       "ln_stiffness", "ln_peak_force", "ln_peak_displacement", "ln_work_to_peak",
-      "nonlinearity", "ductility",     "post_peak_force",
+      "nonlinearity", "ductility",
   };
   return names;
 }
 
-std::vector<double> contrast_components(const Curve& c, const ContrastScale& scale) {
+std::vector<double> contrast_components(const Curve& c) {
   const std::size_t p = peak_index(c);
   const FeatureValues f = curve_features(c);
   const double f_max = c.force[p];
@@ -94,7 +92,6 @@ std::vector<double> contrast_components(const Curve& c, const ContrastScale& sca
       positive_log(*f[Feature::WorkToPeak], "the work to peak", c),
       *f[Feature::Nonlinearity],
       positive_log(w_parted / w_peak, "the parting-to-peak displacement ratio", c),
-      force_at(c, kPostPeakXi * scale.w_ref) / scale.f_ref,
   };
 }
 

@@ -8,12 +8,12 @@
 // sets does not. So the question asked of each set is "how does it differ from the reference, and
 // which library effect makes the model differ in the same way?".
 //
-// Components. Each curve (a measured specimen or a simulated replicate) is reduced to a few
-// components that are comparable between a lab's beam and the model: logarithms of stiffness,
-// peak force, peak displacement and work to peak (relative changes, free of the form error's
-// scale), the nonlinearity before the peak, the post-peak ductility ln(w_half / w_peak) and the
-// force at 1.25 w_ref in units of f_ref (w_ref, f_ref: the reference's mean peak displacement and
-// force, the model's own for simulated curves).
+// Components. Each curve (a measured specimen or a simulated replicate) is reduced to six
+// numbers that are comparable between a lab's beam and the model: logarithms of stiffness, peak
+// force, peak displacement and work to peak (relative changes, free of the form error's scale),
+// the nonlinearity before the peak and the post-peak ductility ln(w_parted / w_peak). A force
+// read at a fixed displacement past the peak was tried and dropped: it is a step in where the
+// beam parts, and on foreign truth it alone pulled a machine-compliance fit to half the truth.
 //
 // Noise. The specimens of one set scatter together (a stronger beam is stronger everywhere), so
 // the components are correlated. Their covariance Sigma is pooled over all sets (each specimen
@@ -39,7 +39,7 @@
 
 namespace shard::measure {
 
-// The scales that make curves of two sources comparable.
+// The scales that make curves of two sources comparable (the contrast curves of the report).
 struct ContrastScale {
   double w_ref = 0;  // m, mean displacement at peak
   double f_ref = 0;  // N, mean peak force
@@ -48,7 +48,7 @@ ContrastScale contrast_scale(const std::vector<Curve>& curves);
 
 const std::vector<std::string>& contrast_component_names();
 // The components of one curve; throws when the curve has no rise to a peak.
-std::vector<double> contrast_components(const Curve& c, const ContrastScale& scale);
+std::vector<double> contrast_components(const Curve& c);
 
 // The rows' mean, component by component.
 std::vector<double> component_mean(const std::vector<std::vector<double>>& rows);
