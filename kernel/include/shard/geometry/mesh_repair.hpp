@@ -40,6 +40,7 @@ struct OpenEdgeReport {
   // running the other way (across a crack: its width; across a hole: its diameter). Infinity when
   // some gap edge has no such edge within the gap tolerance.
   double largest_gap = 0.0;
+  std::size_t wide_gap_edges = 0;  // gap edges with no such edge within the gap tolerance
   // Largest change of the enclosed (divergence-theorem) volume with the reference point, relative
   // to the volume: |sum of face area vectors| x bounding-box diagonal / (3 V). 0 for a closed
   // surface; it bounds how much the openings leave inside and outside undecided.
