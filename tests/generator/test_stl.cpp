@@ -177,6 +177,11 @@ TEST_CASE("cracks narrower than the gap tolerance are accepted, wider ones and m
   CHECK_THROWS_WITH_AS(repair_closed_solid(strict, "cracked.stl", SolidTolerances{0.0, 0.5e-3}),
                        doctest::Contains("'cracked.stl' is not closed: 288 open edges"), StlError);
 
+  // A weld tolerance as large as the body's edges would collapse it: refused, naming the key.
+  auto cube = test::box_mesh(Vec3::Zero(), Vec3::Constant(10.0));
+  CHECK_THROWS_WITH_AS(repair_closed_solid(cube, "cube.stl", SolidTolerances{20.0, 0.0}),
+                       doctest::Contains("collapsed 12 of its 12 faces"), StlError);
+
   // A box with one face (two triangles) missing: a 10 x 10 hole.
   auto lidless = test::box_mesh(Vec3::Zero(), Vec3::Constant(10.0));
   lidless.faces.resize(10);

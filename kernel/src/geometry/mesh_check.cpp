@@ -86,7 +86,7 @@ OpenEdgeReport require_closed_solid(const TriangleMesh& mesh, const std::filesys
       throw StlError(fmt::format("STL file '{}' is not closed: {} open edges (holes in the surface; {} of them "
                                  "border openings wider than the gap tolerance {:.3g} m). A body to fill must be "
                                  "watertight; close the holes (e.g. MeshLab 'Close Holes' or re-export as a solid)",
-                                 name, report.open_edges, edges.gap_edges, gap));
+                                 name, report.open_edges, edges.wide_gap_edges, gap));
     if (!edges.geometrically_closed() && !(edges.volume_ambiguity <= kMaxVolumeAmbiguity))
       throw StlError(fmt::format("STL file '{}' is not closed: {} open edges border cracks at most {:.3g} m wide, "
                                  "but together they leave {:.2g} % of the volume undecided (limit {:.2g} %). Close "

@@ -179,7 +179,10 @@ OpenEdgeReport classify_open_edges(const TriangleMesh& mesh, double on_edge_tole
       double t = 0.0;
       width = std::min(width, segment_distance(mid, v[edges[f].a], v[edges[f].b], t));
     });
-    if (width > gap_tolerance) width = std::numeric_limits<double>::infinity();
+    if (width > gap_tolerance) {
+      width = std::numeric_limits<double>::infinity();
+      ++report.wide_gap_edges;
+    }
     report.largest_gap = std::max(report.largest_gap, width);
   }
   // The openings' share of the enclosed volume: a closed surface's area vectors sum to zero.

@@ -1,8 +1,6 @@
 // Weld, then check: a body as CAD exporters and scanners write it, made fit to fill.
 #include <fmt/core.h>
 
-#include <cmath>
-
 #include "shard/geometry/mesh_repair.hpp"
 
 namespace shard::geometry {
@@ -12,7 +10,15 @@ SolidRepair repair_closed_solid(TriangleMesh& mesh, const std::filesystem::path&
   const Box box = bounding_box(mesh);
   repair.weld_tolerance = tolerances.weld > 0.0 ? tolerances.weld : default_weld_tolerance(mesh);
   repair.gap_tolerance = tolerances.gap > 0.0 ? tolerances.gap : kDefaultRelativeGap * (box.upper - box.lower).norm();
+  const std::size_t faces_read = mesh.faces.size();
   repair.weld = weld_vertices(mesh, repair.weld_tolerance);
+  // Collapsed faces are slivers at the default tolerance; a tolerance near the size of the body's
+  // features collapses most of it, and the body would be refused for holes it does not have.
+  if (repair.weld.faces_dropped * 10 > faces_read)
+    throw StlError(fmt::format("STL file '{}': welding vertices closer than {:.3g} m collapsed {} of its {} faces: "
+                               "the weld tolerance is not small against the body's edges. Lower weld_tolerance "
+                               "(0 selects 1e-6 of the body's size)",
+                               file.string(), repair.weld_tolerance, repair.weld.faces_dropped, faces_read));
   repair.edges = require_closed_solid(mesh, file, SolidTolerances{repair.weld_tolerance, repair.gap_tolerance});
   return repair;
 }

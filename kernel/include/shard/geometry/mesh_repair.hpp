@@ -40,6 +40,7 @@ struct OpenEdgeReport {
   // running the other way (across a crack: its width; across a hole: its diameter). Infinity when
   // some gap edge has no such edge within the gap tolerance.
   double largest_gap = 0.0;
+  std::size_t wide_gap_edges = 0;  // gap edges with no such edge within the gap tolerance
   // Largest change of the enclosed (divergence-theorem) volume with the reference point, relative
   // to the volume: |sum of face area vectors| x bounding-box diagonal / (3 V). 0 for a closed
   // surface; it bounds how much the openings leave inside and outside undecided.
@@ -57,10 +58,10 @@ struct SolidTolerances {
   double weld = 0.0;  // default_weld_tolerance()
   double gap = 0.0;   // kDefaultRelativeGap x bounding-box diagonal
 };
-// Default gap tolerance relative to the bounding-box diagonal. A crack of width w along the whole
-// body leaves a strip of area <= w x diagonal undecided; at 1e-3 that changes the volume of a
-// compact body by ~0.1 %, below what the packing resolves. Accepted only if volume_ambiguity is
-// below kMaxVolumeAmbiguity too.
+// Default gap tolerance relative to the bounding-box diagonal: 1e-3 of the body's size is far below
+// what a packing resolves (stl_fill also caps it at the smallest sphere's radius: no sphere passes
+// through a crack narrower than that). Many narrow cracks can still add up: they are accepted only while
+// volume_ambiguity stays below kMaxVolumeAmbiguity.
 inline constexpr double kDefaultRelativeGap = 1e-3;
 inline constexpr double kMaxVolumeAmbiguity = 1e-3;
 
