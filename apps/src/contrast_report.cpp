@@ -214,9 +214,11 @@ void plot_contrasts(const ContrastReport& r, const fs::path& image) {
     script += fmt::format(
         "plot '{0}' index {1} using 1:($2-2*$3):($2+2*$3) with filledcurves lc rgb '#cfe0f0' title 'measured +-2u', "
         "'' index {1} using 1:2 with lines lw 2 lc rgb '#1f4e79' title 'measured', "
-        "'' index {1} using 1:4 with lines dt 2 lc rgb '#888888' title 'base model', "
-        "'' index {1} using 1:5 with lines lw 2 lc rgb '#c0392b' title '{2}'\n",
-        dat.string(), s, d.after_effect.empty() ? std::string("base model") : "with " + d.after_effect);
+        "'' index {1} using 1:4 with lines dt 2 lc rgb '#888888' title 'base model'{2}\n",
+        dat.string(), s,
+        d.after_effect.empty()
+            ? std::string()
+            : fmt::format(", '' index {} using 1:5 with lines lw 2 lc rgb '#c0392b' title 'with {}'", s, d.after_effect));
   }
   script += "unset multiplot\n";
   std::ofstream(gp) << script;
