@@ -120,6 +120,14 @@ void Simulator::check_inputs(const ModelPlan& model, const std::vector<Specimen>
   if (!options_.check_geometry) return;
   const SpecimenSetup scene = pool_.specimen_setup(model.scene, model.overrides, options_.first_seed);
   auto off = [](double measured, double simulated) { return std::abs(measured - simulated) > 0.02 * simulated; };
+  for (const auto& s : specimens)
+    if (off(s.span, scene.span) || off(s.pin_distance, scene.pin_distance))
+      throw std::runtime_error(fmt::format(
+          "specimen {}: span {:.4g} mm and pin distance {:.4g} mm, but the model scene {} has span {:.4g} mm and pin "
+          "distance {:.4g} mm (specimen {:.4g} x {:.4g} x {:.4g} mm). Make a scene of the measured set-up (move its "
+          "support and pin walls, size its body), or pass --ignore-geometry to compare anyway",
+          s.id, 1e3 * s.span, 1e3 * s.pin_distance, model.scene.string(), 1e3 * scene.span, 1e3 * scene.pin_distance,
+          1e3 * scene.length, 1e3 * scene.width, 1e3 * scene.height));
   // A packing's extent across and along the load is the spheres' reach: it differs from seed to
   // seed (and from the nominal box) by up to one diameter.
   auto off_section = [&](double measured, double simulated) {
@@ -133,14 +141,6 @@ void Simulator::check_inputs(const ModelPlan& model, const std::vector<Specimen>
           "measured specimens, or pass --ignore-geometry to compare anyway",
           s.id, 1e3 * s.width, 1e3 * s.height, model.scene.string(), 1e3 * scene.width, 1e3 * scene.height,
           1e3 * scene.particle_diameter));
-  for (const auto& s : specimens)
-    if (off(s.span, scene.span) || off(s.pin_distance, scene.pin_distance))
-      throw std::runtime_error(fmt::format(
-          "specimen {}: span {:.4g} mm and pin distance {:.4g} mm, but the model scene {} has span {:.4g} mm and pin "
-          "distance {:.4g} mm (specimen {:.4g} x {:.4g} x {:.4g} mm). Make a scene of the measured set-up (move its "
-          "support and pin walls, size its body), or pass --ignore-geometry to compare anyway",
-          s.id, 1e3 * s.span, 1e3 * s.pin_distance, model.scene.string(), 1e3 * scene.span, 1e3 * scene.pin_distance,
-          1e3 * scene.length, 1e3 * scene.width, 1e3 * scene.height));
 }
 
 std::vector<Specimen> Simulator::simulate(const ModelPlan& model, std::ostream& log) {
