@@ -159,6 +159,7 @@ std::string contrast_markdown(const ContrastReport& r) {
     }
   }
   md += fmt::format("\nLargest kinetic/elastic energy ratio of the runs before breakage: {:.2g}.\n", r.max_kinetic_to_elastic);
+  if (!r.dynamic_warning.empty()) md += "\n" + r.dynamic_warning + "\n";
   return md;
 }
 
@@ -168,7 +169,7 @@ std::string contrast_json(const ContrastReport& r) {
                               r.calibration.form_error.nrmse);
   for (std::size_t k = 0; k < r.calibration.keys.size(); ++k)
     j += fmt::format("{}\"{}\": {:.9g}", k ? ", " : "", json_escape(r.calibration.keys[k]), r.calibration.values[k]);
-  j += "}, \"sets\": [";
+  j += fmt::format("}}, \"dynamic_warning\": \"{}\", \"sets\": [", json_escape(r.dynamic_warning));
   for (std::size_t s = 0; s < r.diagnoses.size(); ++s) {
     const SetDiagnosis& d = r.diagnoses[s];
     const ContrastDecision& c = d.decision;

@@ -58,6 +58,7 @@ struct ContrastReport {
   double max_kinetic_to_elastic = 0;
   const BaseCalibration* finer = nullptr;  // the base fitted at a finer packing, when asked for
   double finer_factor = 0;
+  std::string dynamic_warning;  // Simulator::dynamic_warning(): empty while the runs are quasi-static
 };
 
 std::string contrast_markdown(const ContrastReport& r);

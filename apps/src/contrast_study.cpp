@@ -51,6 +51,28 @@ void check_geometry(const ContrastSets& s) {
               s.sets[k].folder.string(), sp.id, d.name, 1e3 * (sp.*d.field), s.names[first], ref.id, 1e3 * (ref.*d.field)));
 }
 
+// The model is run and recorded as the reference's metadata says ([test]: ramp, preload); a set
+// tested otherwise would differ by its test, not by its material.
+void check_test_conditions(const ContrastSets& s) {
+  const std::size_t first = s.reference.value_or(0);
+  const TestConditions& ref = s.sets[first].metadata.test;
+  for (std::size_t k = 0; k < s.sets.size(); ++k) {
+    const TestConditions& t = s.sets[k].metadata.test;
+    auto differ = [&](const char* key, const std::string& a, const std::string& b) {
+      if (a != b)
+        throw std::runtime_error(fmt::format(
+            "{}/metadata.toml: [test] {} = {}, but {}'s is {}. A contrast holds the test fixed (the model is run as "
+            "the reference was); diagnose sets tested another way on their own, or against a reference tested "
+            "their way",
+            s.sets[k].folder.string(), key, a.empty() ? "(not given)" : a, s.names[first], b.empty() ? "(not given)" : b));
+    };
+    differ("seating_preload", t.seating_preload > 0 ? fmt::format("{:g} N", t.seating_preload) : "",
+           ref.seating_preload > 0 ? fmt::format("{:g} N", ref.seating_preload) : "");
+    differ("ramp", t.has_ramp() ? fmt::format("{} over {:g} s", t.ramp, t.ramp_time) : "",
+           ref.has_ramp() ? fmt::format("{} over {:g} s", ref.ramp, ref.ramp_time) : "");
+  }
+}
+
 // Mean and sample variance over the seeds of a - b (paired on the seed: common random numbers).
 void paired(const std::vector<std::vector<double>>& a, const std::vector<std::vector<double>>& b, std::vector<double>& mean,
             std::vector<double>& var_of_mean) {
@@ -118,6 +140,7 @@ ContrastSets read_contrast_sets(const std::vector<fs::path>& folders, const std:
             s.sets[k].folder.string(), g.specimens[r].size(), g.rates[r]));
   }
   check_geometry(s);
+  check_test_conditions(s);
   return s;
 }
 
@@ -181,7 +204,7 @@ std::size_t ContrastStudy::rate_index(double rate) const {
 std::vector<ContrastStudy::Simulated> ContrastStudy::simulate(const std::vector<ModelPlan>& models, std::ostream& log) {
   std::vector<Specimen> every;
   for (const auto& s : sets_.sets) every.insert(every.end(), s.specimens.begin(), s.specimens.end());
-  if (!models.empty()) simulator_.check_inputs(models.front(), every);
+  if (!models.empty()) simulator_.check_inputs(models.front(), every, sets_.sets[sets_.reference.value_or(0)].metadata);
   const auto r = rates();
   std::vector<ModelPlan> runs;
   for (const auto& m : models)
@@ -245,6 +268,7 @@ BaseCalibration ContrastStudy::calibrate_base(const std::vector<std::string>& ke
         models.push_back(with_parameters(base_, keys, v));
       }
     for (auto& m : models) m.loading_rate = scale_rate_;
+    simulator_.check_inputs(models.front(), reference, sets_.sets[sets_.reference.value_or(0)].metadata);
     const auto sims = simulator_.simulate(models, log);
     const std::vector<double> f = features_of(sims[0]);
     Eigen::VectorXd r(kTargets);

@@ -161,9 +161,8 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
       plot_comparison(after.at[k], o->out / ("after" + suffix + ".png"),
                       fmt::format("after: {} ({:g} m/s)", o->effect.empty() ? "base refit" : o->effect, after.rates[k]));
     }
-    HistoryEntry h = history_entry("calibrate-effect", o->label.empty() ? (o->effect.empty() ? "base refit" : "+ " + o->effect) : o->label, after.at.front());
-    h.nrmse = after.nrmse();
-    h.chi_square = after.chi_square();
+    // Every rate in the entry (regimes and features "<name>@<rate>" when there are several).
+    HistoryEntry h = history_entry("calibrate-effect", o->label.empty() ? (o->effect.empty() ? "base refit" : "+ " + o->effect) : o->label, after);
     if (fit.effect) h.effects.push_back(fit.effect->name);
     for (std::size_t i = 0; i < fit.keys.size(); ++i) h.parameters[fit.keys[i]] = fit.base_values[i] * best[i];
     if (fit.effect) h.parameters[fit.effect->parameter] = fit.value_of(best);
@@ -198,12 +197,15 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
     for (std::size_t k = 0; k < after.at.size(); ++k)
       md += fmt::format("\nVerdict after{}: {}\n", after.at.size() > 1 ? fmt::format(" at {:g} m/s", after.rates[k]) : "",
                         after.at[k].verdict);
+    const std::string dynamic = simulator.dynamic_warning();
+    if (!dynamic.empty()) md += fmt::format("\n**Warning.** {}.\n", dynamic);
     std::ofstream(o->out / "calibrate.md") << md;
     std::ofstream(o->out / "calibrate.json")
         << fmt::format("{{\"effect\": \"{}\", \"value\": {:.9g}, \"nrmse_before\": {:.9g}, \"nrmse_after\": {:.9g}, "
-                       "\"chi_square_before\": {:.9g}, \"chi_square_after\": {:.9g}, \"evaluations\": {}, \"regimes\": {{{}}}}}\n",
+                       "\"chi_square_before\": {:.9g}, \"chi_square_after\": {:.9g}, \"evaluations\": {}, \"regimes\": {{{}}}, "
+                       "\"dynamic_warning\": \"{}\"}}\n",
                        json_escape(o->effect), fit.effect ? fit.value_of(best) : 0.0, before.nrmse(), after.nrmse(),
-                       before.chi_square(), after.chi_square(), fit.evaluations, json_regimes);
+                       before.chi_square(), after.chi_square(), fit.evaluations, json_regimes, json_escape(dynamic));
     fmt::print("{}", md);
     ctx.exit_code = 0;
   });

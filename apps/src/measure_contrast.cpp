@@ -85,7 +85,7 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
     confirm_contrasts(study, effects, sims[0], out, o->confirm, o->confirm_iterations, std::cerr);
 
     const ContrastReport report{sets,     effects, cal, study, out, simulator.max_kinetic_to_elastic(),
-                                finer ? &*finer : nullptr, o->finer};
+                                finer ? &*finer : nullptr, o->finer, simulator.dynamic_warning()};
     const std::string md = contrast_markdown(report);
     std::ofstream(o->out / "diagnose.md") << md;
     std::ofstream(o->out / "diagnose.json") << contrast_json(report);
