@@ -16,8 +16,8 @@
 #   compliance   load-frame spring C = 2e-4 m/N (library: machine_compliance)   1201-1204
 #   weibull      bond strength scatter, Weibull m = 2 (library: weibull_strength) 1301-1304
 #   softening    softening ratio 1.5 (library: bond_softening)                1401-1404
-#   asymmetry    normal bond spring 4x stiffer in compression (library: compression_asymmetry) 1501-1504
-#   toe          seating toe g = 0.3 mm, F_h = 0.3 N (outside the library)   1601-1604
+#   asymmetry    normal bond spring 3x stiffer in compression (library: compression_asymmetry) 1501-1504
+#   toe          seating toe g = 0.5 mm, F_h = 0.5 N (outside the library)   1601-1604
 # Sensor model for all: 2 % specimen scatter, 0.01 N load-cell noise, 0.005 N tare sd, 1 um
 # displacement steps.
 set -euo pipefail
@@ -50,5 +50,5 @@ synth null 1101 2
 synth compliance 1201 3 --machine-compliance 2e-4
 synth weibull 1301 4 --set bond.weibull_modulus=2
 synth softening 1401 5 --set bond.softening_ratio=1.5
-synth asymmetry 1501 6 --set bond.compression_ratio=4
-synth toe 1601 7 --seating-gap 3e-4 --seating-half-force 0.3
+synth asymmetry 1501 6 --set bond.compression_ratio=3
+synth toe 1601 7 --seating-gap 5e-4 --seating-half-force 0.5
