@@ -47,6 +47,8 @@ std::vector<std::string> slowed_overrides(const RateCheckCliOptions& o, const Sc
     if (it->velocity.norm() == 0)
       throw std::runtime_error(fmt::format("{}: loading wall '{}' does not move (velocity zero)", o.scene.string(), name));
     out.push_back(fmt::format("wall.{}.velocity={}", name, vec_text(o.factor * it->velocity)));
+    if (it->motion.ramp != WallRamp::None)  // the same ramp travel at the slower speed
+      out.push_back(fmt::format("wall.{}.ramp_time={:.9g}", name, it->motion.ramp_time / o.factor));
   }
   out.push_back(fmt::format("simulation.duration={:.9g}", scene.duration / o.factor));
   return out;

@@ -176,6 +176,10 @@ Simulation::Simulation(SimulationSetup setup)
   workspace_->order_cell = 2 * std::max(r_max, 1e-12) + skin;
   for (auto& w : walls_) {
     if (w.shape != WallShape::Mesh) w.axis.normalize();
+    if (w.motion.is_profile()) {  // a ramp starts at rest
+      w.displacement = w.motion.displacement_at(time_);
+      w.velocity = w.motion.velocity_at(time_);
+    }
   }
   compute_forces();
 }
@@ -239,7 +243,15 @@ void Simulation::integrate_first_half() {
     }
     turn(lanes, r.begin, r.end, angle, rotation);
   }
-  for (auto& w : walls_) w.displacement += dt_ * w.velocity;
+  const double t_next = time_ + dt_;  // the time step() reaches
+  for (auto& w : walls_) {
+    if (w.motion.is_profile()) {
+      w.displacement = w.motion.displacement_at(t_next);
+      w.velocity = w.motion.velocity_at(t_next);
+    } else {
+      w.displacement += dt_ * w.velocity;
+    }
+  }
 }
 
 void Simulation::integrate_second_half() {

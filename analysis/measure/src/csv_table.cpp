@@ -106,15 +106,20 @@ std::size_t CsvTable::require(const std::string& name, const std::string& meanin
 void CsvTable::reject_unknown(const std::vector<std::string>& known) const {
   for (std::size_t c = 0; c < header_.size(); ++c) {
     if (std::find(known.begin(), known.end(), header_[c]) != known.end()) continue;
-    std::string closest;
-    std::size_t best = 1000;
-    for (const auto& k : known)
-      if (const auto d = edit_distance(header_[c], k); d < best) best = d, closest = k;
+    const std::string closest = closest_name(header_[c], known);
     throw MeasurementError(file_, header_line_, static_cast<long>(c + 1),
                            fmt::format("unknown column '{}'", header_[c]),
-                           best <= 3 ? fmt::format("did you mean '{}'?", closest)
-                                     : fmt::format("the known columns are: {}", fmt::join(known, ", ")));
+                           !closest.empty() ? fmt::format("did you mean '{}'?", closest)
+                                            : fmt::format("the known columns are: {}", fmt::join(known, ", ")));
   }
+}
+
+std::string closest_name(const std::string& word, const std::vector<std::string>& known) {
+  std::string closest;
+  std::size_t best = 4;
+  for (const auto& k : known)
+    if (const auto d = edit_distance(word, k); d < best) best = d, closest = k;
+  return closest;
 }
 
 const std::string& CsvTable::text(const CsvRow& row, std::size_t column) const { return row.fields.at(column); }

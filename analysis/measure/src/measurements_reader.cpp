@@ -1,8 +1,10 @@
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <sstream>
 #include <toml++/toml.h>
 
 #include "shard/measure/csv_table.hpp"
@@ -32,6 +34,66 @@ double positive_number(const toml::table& t, const std::filesystem::path& file, 
   return *v;
 }
 
+// An unknown key of metadata.toml (top level or a table), named with the nearest known one.
+[[noreturn]] void unknown_key(const std::filesystem::path& file, const toml::node& node, const std::string& key,
+                              const std::string& table, const std::vector<std::string>& known) {
+  const std::string closest = closest_name(key, known);
+  throw MeasurementError(file, line_of(node), column_of(node),
+                         fmt::format("unknown key '{}'{}", key, table.empty() ? "" : fmt::format(" in [{}]", table)),
+                         fmt::format("{}Known keys: {}. Anything else the lab records goes under [notes], which is "
+                                     "kept and never interpreted",
+                                     closest.empty() ? "" : fmt::format("did you mean '{}'? ", closest),
+                                     fmt::join(known, ", ")));
+}
+
+double test_number(const toml::table& t, const std::filesystem::path& file, const char* key, const char* unit,
+                   bool may_be_negative) {
+  const toml::node* n = t.get(key);
+  if (!n) return 0;
+  const auto v = n->value<double>();
+  if (!v || !std::isfinite(*v) || (!may_be_negative && *v < 0))
+    throw MeasurementError(file, line_of(*n), column_of(*n),
+                           fmt::format("[test] {} must be a number{}", key, may_be_negative ? "" : " >= 0"),
+                           fmt::format("write it in {}", unit));
+  return *v;
+}
+
+TestConditions read_test_conditions(const toml::table& t, const std::filesystem::path& file) {
+  static const std::vector<std::string> known = {"seating_preload", "zero_offset", "ramp", "ramp_time",
+                                                 "grain_size", "fragment_size_threshold", "notes"};
+  for (const auto& [key, node] : t)
+    if (std::find(known.begin(), known.end(), std::string(key.str())) == known.end())
+      unknown_key(file, node, std::string(key.str()), "test", known);
+  TestConditions c;
+  c.seating_preload = test_number(t, file, "seating_preload", "N (the force at which the curve's displacement is 0)", false);
+  c.zero_offset = test_number(t, file, "zero_offset", "N (the load cell's reading at zero load)", true);
+  c.ramp_time = test_number(t, file, "ramp_time", "s (the pins' time to reach the loading rate)", false);
+  c.grain_size = test_number(t, file, "grain_size", "m", false);
+  c.fragment_size_threshold = test_number(t, file, "fragment_size_threshold", "m (the smallest fragment counted)", false);
+  if (const toml::node* n = t.get("ramp")) {
+    const auto r = n->value<std::string>();
+    if (!r || !is_ramp_name(*r))
+      throw MeasurementError(file, line_of(*n), column_of(*n), "[test] ramp is not a ramp",
+                             "write ramp = \"1-cos\", \"linear\" or \"none\" (the pins' acceleration to the loading rate)");
+    c.ramp = *r;
+  }
+  if (c.has_ramp() && !(c.ramp_time > 0))
+    throw MeasurementError(file, line_of(*t.get("ramp")), column_of(*t.get("ramp")),
+                           fmt::format("[test] ramp = \"{}\" has no ramp_time", c.ramp),
+                           "add ramp_time = <s to reach the loading rate>");
+  if (!c.has_ramp() && c.ramp_time > 0)
+    throw MeasurementError(file, line_of(*t.get("ramp_time")), column_of(*t.get("ramp_time")),
+                           "[test] ramp_time is given without a ramp", "add ramp = \"1-cos\" or \"linear\"");
+  if (const toml::node* n = t.get("notes")) {
+    const auto text = n->value<std::string>();
+    if (!text)
+      throw MeasurementError(file, line_of(*n), column_of(*n), "[test] notes must be a string",
+                             "write notes = \"...\" (or use a [notes] table for structured extras)");
+    c.notes = *text;
+  }
+  return c;
+}
+
 }  // namespace
 
 std::vector<double> MeasurementSet::loading_rates() const {
@@ -56,20 +118,41 @@ Metadata read_metadata(const std::filesystem::path& file) {
                            std::string(e.description()), "write valid TOML (key = value)");
   }
   Metadata m;
+  static const std::vector<std::string> known = {"name", "notes", "uncertainty", "test"};
+  for (const auto& [key, node] : root)
+    if (std::find(known.begin(), known.end(), std::string(key.str())) == known.end())
+      unknown_key(file, node, std::string(key.str()), "", known);
   m.name = root["name"].value_or(std::string{});
+  if (const toml::node* n = root.get("notes")) {
+    if (const auto text = n->value<std::string>()) m.notes = *text;
+    else if (const auto* t = n->as_table()) {
+      std::ostringstream s;
+      s << *t;
+      m.notes = s.str();
+    } else {
+      throw MeasurementError(file, line_of(*n), column_of(*n), "notes must be text or a table",
+                             "write notes = \"...\" or a [notes] table of key = value lines");
+    }
+  }
+  if (const toml::node* n = root.get("test")) {
+    const auto* t = n->as_table();
+    if (!t)
+      throw MeasurementError(file, line_of(*n), column_of(*n), "test must be a table",
+                             "write [test] on its own line, then seating_preload = ..., ramp = ... below it");
+    m.test = read_test_conditions(*t, file);
+  }
   const toml::table* u = root["uncertainty"].as_table();
   if (!u)
     throw MeasurementError(file, 0, 0, "table [uncertainty] is missing",
                            "add [uncertainty] with load_cell (N) and displacement (m) standard uncertainties");
-  m.load_cell_uncertainty = positive_number(*u, file, "load_cell", "N", true);
-  m.displacement_uncertainty = positive_number(*u, file, "displacement", "m", true);
-  m.crack_position_uncertainty = positive_number(*u, file, "crack_position", "m", false);
   for (const auto& [key, node] : *u) {
     const std::string k(key.str());
     if (k != "load_cell" && k != "displacement" && k != "crack_position")
-      throw MeasurementError(file, line_of(node), column_of(node), fmt::format("unknown key '{}' in [uncertainty]", k),
-                             "the keys are load_cell, displacement, crack_position");
+      unknown_key(file, node, k, "uncertainty", {"load_cell", "displacement", "crack_position"});
   }
+  m.load_cell_uncertainty = positive_number(*u, file, "load_cell", "N", true);
+  m.displacement_uncertainty = positive_number(*u, file, "displacement", "m", true);
+  m.crack_position_uncertainty = positive_number(*u, file, "crack_position", "m", false);
   return m;
 }
 
@@ -98,7 +181,7 @@ Curve read_curve(const std::filesystem::path& file, const Metadata& metadata) {
                              "sort the rows by time and remove repeated rows");
     c.time.push_back(time);
     c.displacement.push_back(t.number(row, cw, "displacement in m"));
-    c.force.push_back(t.number(row, cf, "force in N"));
+    c.force.push_back(t.number(row, cf, "force in N") - metadata.test.zero_offset);
     const double uw = cuw ? t.number(row, *cuw, "standard uncertainty of the displacement in m")
                           : metadata.displacement_uncertainty;
     const double uf = cuf ? t.number(row, *cuf, "standard uncertainty of the force in N")

@@ -4,6 +4,21 @@
 #include "shard/measure/measurements.hpp"
 
 namespace shard::measure {
+namespace {
+
+// A TOML basic string's content: quotes, backslashes and control characters escaped.
+std::string toml_escape(const std::string& text) {
+  std::string out;
+  for (char ch : text) {
+    if (ch == '"' || ch == '\\') out += '\\', out += ch;
+    else if (ch == '\n') out += "\\n";
+    else if (static_cast<unsigned char>(ch) < 0x20) out += fmt::format("\\u{:04x}", static_cast<unsigned>(ch));
+    else out += ch;
+  }
+  return out;
+}
+
+}  // namespace
 
 void write_curve(const std::filesystem::path& file, const Curve& c) {
   auto out = fmt::output_file(file.string());
@@ -17,11 +32,29 @@ void write_measurements(const MeasurementSet& set, const std::filesystem::path& 
   std::filesystem::create_directories(folder / "curves");
   {
     auto meta = fmt::output_file((folder / "metadata.toml").string());
-    meta.print("name = \"{}\"\n\n[uncertainty]\nload_cell = {:.6g}      # N, standard uncertainty of a force reading\n"
+    meta.print("name = \"{}\"\n", toml_escape(set.metadata.name));
+    if (!set.metadata.notes.empty()) meta.print("notes = \"{}\"\n", toml_escape(set.metadata.notes));
+    meta.print("\n[uncertainty]\nload_cell = {:.6g}      # N, standard uncertainty of a force reading\n"
                "displacement = {:.6g}   # m, standard uncertainty of a displacement reading\n",
-               set.metadata.name, set.metadata.load_cell_uncertainty, set.metadata.displacement_uncertainty);
+               set.metadata.load_cell_uncertainty, set.metadata.displacement_uncertainty);
     if (set.metadata.crack_position_uncertainty > 0)
       meta.print("crack_position = {:.6g} # m\n", set.metadata.crack_position_uncertainty);
+    const TestConditions& t = set.metadata.test;
+    std::string test;
+    if (t.seating_preload > 0)
+      test += fmt::format("seating_preload = {:.9g}   # N: each curve starts (t = 0, d = 0) where the force reached it\n",
+                          t.seating_preload);
+    if (t.zero_offset != 0)
+      test += fmt::format("zero_offset = {:.9g}   # N: the load cell's reading at zero load, subtracted when read\n",
+                          t.zero_offset);
+    if (!t.ramp.empty()) test += fmt::format("ramp = \"{}\"\n", t.ramp);
+    if (t.ramp_time > 0) test += fmt::format("ramp_time = {:.9g}   # s, of the pins to reach the loading rate\n", t.ramp_time);
+    if (t.grain_size > 0) test += fmt::format("grain_size = {:.9g}   # m\n", t.grain_size);
+    if (t.fragment_size_threshold > 0)
+      test += fmt::format("fragment_size_threshold = {:.9g}   # m: smaller fragments were not counted\n",
+                          t.fragment_size_threshold);
+    if (!t.notes.empty()) test += fmt::format("notes = \"{}\"\n", toml_escape(t.notes));
+    if (!test.empty()) meta.print("\n[test]\n{}", test);
   }
   bool any_fragments = false;
   for (const auto& s : set.specimens) any_fragments = any_fragments || !s.fragment_sizes.empty();

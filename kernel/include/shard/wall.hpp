@@ -1,11 +1,12 @@
 #pragma once
-// Rigid walls with prescribed velocity. Each records the force and torque the particles exert
+// Rigid walls with prescribed motion (wall_motion.hpp). Each records the force and torque the particles exert
 // on it and its own displacement, so loading pins and supports are force sensors.
 #include <array>
 #include <string>
 #include <vector>
 
 #include "shard/types.hpp"
+#include "shard/wall_motion.hpp"
 
 namespace shard {
 
@@ -24,7 +25,10 @@ struct Wall {
   double length = 0;
   std::vector<std::array<Vec3, 3>> triangles;
 
-  Vec3 velocity = Vec3::Zero();      // prescribed, m/s
+  // Prescribed motion. Without a ramp or table, `velocity` is constant and `displacement` the sum
+  // of the steps; with one (motion.is_profile()), both are set from motion at every step.
+  WallMotion motion;
+  Vec3 velocity = Vec3::Zero();      // now, m/s
   Vec3 displacement = Vec3::Zero();  // since the start, m
   Vec3 force = Vec3::Zero();         // received from particles this step, N
   Vec3 torque = Vec3::Zero();        // about `point` (+ displacement), N m

@@ -9,6 +9,7 @@
 
 #include "shard/geometry/stl.hpp"
 #include "shard/scene.hpp"
+#include "wall_table_reader.hpp"
 
 namespace shard {
 namespace {
@@ -191,6 +192,38 @@ PluginChoice plugin_section(const toml::table& root, const std::string& file, co
   return choice;
 }
 
+// The wall's motion profile (wall_motion.hpp): `velocity` with an optional `ramp` over
+// `ramp_time`, or a `motion_table` along `direction`.
+void read_wall_motion(Section& s, const toml::table& t, const std::filesystem::path& dir, Wall& w) {
+  w.motion.velocity = w.velocity;
+  const std::string ramp = s.text("ramp", "none");
+  if (!parse_wall_ramp(ramp, w.motion.ramp))
+    s.fail("ramp", fmt::format("= '{}' is not a ramp; use \"1-cos\", \"linear\" or \"none\"", ramp));
+  w.motion.ramp_time = s.number("ramp_time", 0, 0, 1e300, "s");
+  if (w.motion.ramp != WallRamp::None && !(w.motion.ramp_time > 0))
+    s.fail("ramp", fmt::format("= '{}' needs ramp_time, the time in s to reach the velocity", ramp));
+  // ramp = "none" with a ramp_time switches a ramp off (what an override can do); a ramp_time
+  // alone is a forgotten ramp.
+  if (!t.contains("ramp") && t.contains("ramp_time"))
+    s.fail("ramp_time", "is set without a ramp; add ramp = \"1-cos\" or \"linear\", or remove it");
+  const std::string table = s.text("motion_table", "");
+  const Vec3 direction = s.vec3("direction", Vec3::Zero());
+  if (table.empty()) {
+    if (t.contains("direction")) s.fail("direction", "is the direction of a motion_table; without one, velocity gives it");
+    return;
+  }
+  if (t.contains("velocity"))
+    s.fail("velocity", "is given with a motion_table, which sets the velocity itself; remove one of them");
+  if (w.motion.ramp != WallRamp::None) s.fail("ramp", "is given with a motion_table; a table holds its own ramp");
+  if (direction.norm() == 0) s.fail("direction", "is missing or zero: a motion_table moves the wall along it, e.g. [0, 0, -1]");
+  const auto path = std::filesystem::path(table).is_absolute() ? std::filesystem::path(table) : dir / table;
+  w.motion.table = read_wall_table(path);
+  w.motion.table.direction = direction.normalized();
+  // The scene-level velocity is the table's mean over its rows (what the loading rate reads).
+  w.velocity = w.motion.table.travel.back() / w.motion.table.time.back() * w.motion.table.direction;
+  w.motion.velocity = w.velocity;
+}
+
 Wall read_wall(const toml::table& t, const std::string& file, const std::filesystem::path& dir, std::size_t index) {
   Section s(&t, file, "wall");
   Wall w;
@@ -230,6 +263,7 @@ Wall read_wall(const toml::table& t, const std::string& file, const std::filesys
   } else {
     s.fail("shape", fmt::format("= '{}' is not a wall shape; use \"plane\", \"cylinder\" or \"mesh\"", shape));
   }
+  read_wall_motion(s, t, dir, w);
   s.finish();
   return w;
 }

@@ -42,4 +42,8 @@ class CsvTable {
   std::vector<CsvRow> rows_;
 };
 
+// The name in `known` nearest to `word` within 3 edits (Levenshtein), or "" when none is: the
+// "did you mean" hint of every unknown column and key.
+std::string closest_name(const std::string& word, const std::vector<std::string>& known);
+
 }  // namespace shard::measure

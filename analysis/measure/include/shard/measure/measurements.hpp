@@ -1,6 +1,7 @@
 #pragma once
 // The measurement folder (docs/measurements.md):
-//   metadata.toml    load-cell and displacement uncertainty, name, notes
+//   metadata.toml    name, load-cell and displacement uncertainty, how the test was run ([test]),
+//                    free-form [notes]
 //   specimens.csv    one row per specimen: id, geometry, loading rate, optional crack position and
 //                    fragment count, optional curve / fragments file names
 //   curves/<id>.csv  time, displacement, force [, u_displacement, u_force]
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "shard/measure/curve.hpp"
+#include "shard/measure/test_conditions.hpp"
 
 namespace shard::measure {
 
@@ -19,6 +21,8 @@ struct Metadata {
   double load_cell_uncertainty = 0;     // N, standard uncertainty of one force reading
   double displacement_uncertainty = 0;  // m, standard uncertainty of one displacement reading
   double crack_position_uncertainty = 0;  // m
+  TestConditions test;                    // [test]
+  std::string notes;  // top-level `notes` (text) or [notes] (any keys, kept as TOML text); never interpreted
 };
 
 struct Specimen {
@@ -44,7 +48,8 @@ struct MeasurementSet {
 
 MeasurementSet read_measurements(const std::filesystem::path& folder);
 Metadata read_metadata(const std::filesystem::path& file);
-// Reads one curve file; missing uncertainty columns are filled from the metadata.
+// Reads one curve file; missing uncertainty columns are filled from the metadata, and the known
+// zero offset ([test] zero_offset) is subtracted from every force.
 Curve read_curve(const std::filesystem::path& file, const Metadata& metadata);
 void read_fragments(const std::filesystem::path& file, Specimen& specimen);
 
