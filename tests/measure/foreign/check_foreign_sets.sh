@@ -14,8 +14,9 @@ shard=$1 plugins=$2 sets=$3 work=$4
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 source_dir=$(cd "$here/../../.." && pwd)
 start=$(date +%s)
-bash "$here/make_foreign_sets.sh" "$shard" "$plugins" "$sets" "$work/synth" > "$work.synth.log" 2>&1 ||
-  { cat "$work.synth.log"; exit 1; }
+mkdir -p "$work"
+bash "$here/make_foreign_sets.sh" "$shard" "$plugins" "$sets" "$work/synth" > "$work/synth.log" 2>&1 ||
+  { cat "$work/synth.log"; exit 1; }
 echo "make_foreign_sets.sh: $(( $(date +%s) - start )) s wall"
 
 # feature NAME FIELD FILE: one number of compare.json's feature line.
