@@ -4,6 +4,7 @@
 // resolved scene text, run in parallel child processes.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
 #include <fstream>
@@ -26,6 +27,33 @@ namespace {
 namespace fs = std::filesystem;
 using namespace measure;
 
+// compare.md: one rate as before; several rates, the joint NRMSE and chi-square, then each rate.
+std::string rate_comparison_markdown(const RateComparison& rc, const std::string& warning) {
+  std::string md = warning.empty() ? "" : fmt::format("**Warning.** {}.\n\n", warning);
+  if (rc.at.size() == 1) return md + comparison_markdown(rc.at.front());
+  md += fmt::format("{} loading rates compared at once: joint NRMSE = {:.2f} % (RMS of the rates'), chi-square = "
+                    "{:.1f}.\n",
+                    rc.at.size(), 100 * rc.nrmse(), rc.chi_square());
+  for (std::size_t k = 0; k < rc.at.size(); ++k)
+    md += fmt::format("\n## At {:g} m/s\n\n{}", rc.rates[k], comparison_markdown(rc.at[k]));
+  return md;
+}
+
+// compare.json: one rate, the comparison's object; several, {rates, nrmse, chi_square, at: [...]}.
+// Either carries "dynamic_warning" when the model is dynamic at the data's rate.
+std::string rate_comparison_json(const RateComparison& rc, const std::string& warning) {
+  const std::string field = warning.empty() ? "" : fmt::format(",\n  \"dynamic_warning\": \"{}\"", json_escape(warning));
+  if (rc.at.size() == 1) {
+    std::string j = comparison_json(rc.at.front());
+    const auto close = j.rfind('}');
+    return j.insert(close == std::string::npos ? j.size() : j.rfind('\n', close), field);
+  }
+  std::string j = fmt::format("{{\n  \"rates\": [{}],\n  \"nrmse\": {:.9g},\n  \"chi_square\": {:.9g}{},\n  \"at\": [\n",
+                              fmt::join(rc.rates, ", "), rc.nrmse(), rc.chi_square(), field);
+  for (std::size_t k = 0; k < rc.at.size(); ++k) j += (k ? ",\n" : "") + comparison_json(rc.at[k]);
+  return j + "]\n}\n";
+}
+
 void add_compare(CLI::App& app, CommandContext& ctx) {
   struct Options {
     fs::path measurements, out = "compare";
@@ -45,39 +73,51 @@ void add_compare(CLI::App& app, CommandContext& ctx) {
   add_simulation_options(cmd, o->model, o->sim);
   cmd->callback([o, &ctx] {
     const MeasurementSet set = read_measurements(o->measurements);
-    std::vector<Specimen> sims;
-    Metadata unit;
-    unit.load_cell_uncertainty = 1;
-    for (const auto& f : o->simulated) {
-      Specimen s;
-      s.id = f.stem().string();
-      s.curve = read_curve(f, unit);
-      s.curve.u_force.assign(s.curve.size(), 0.0);
-      sims.push_back(std::move(s));
-    }
-    double ke = 0;
-    const std::vector<Specimen> measured = specimens_at_rate(set, o->rate);
-    if (!o->model.scene.empty()) {
-      Simulator simulator(o->sim, ctx.plugin_dirs);
-      simulator.check_inputs(o->model, measured);
-      // The model runs at the compared specimens' rate: --rate, or the data's only rate.
-      const std::vector<double> rates = set.loading_rates();
-      o->model.loading_rate = o->rate > 0 ? o->rate : rates.size() == 1 ? rates.front() : 0.0;
-      for (auto& s : simulator.simulate(o->model, std::cerr)) sims.push_back(std::move(s));
-      ke = simulator.max_kinetic_to_elastic();
-    }
-    if (sims.empty()) throw std::runtime_error("compare: give simulated curves with --sim or a model with --scene");
     CompareOptions options;
     options.judge_fracture = o->sim.judge_fracture;
-    const Comparison c = compare(measured, set.metadata, sims, options);
-    fs::create_directories(o->out);
-    std::ofstream(o->out / "compare.md") << comparison_markdown(c);
-    std::ofstream(o->out / "compare.json") << comparison_json(c);
-    plot_comparison(c, o->out / "compare.png", fmt::format("{} vs {}", set.metadata.name, o->label));
-    fmt::print("{}\n", comparison_markdown(c));
+    RateComparison rc;
+    std::string warning;
+    double ke = 0;
     if (!o->model.scene.empty()) {
-      fmt::print("largest kinetic/elastic energy ratio before breakage: {:.2g} (quasi-static below ~1e-2)\n", ke);
-      HistoryEntry h = history_entry("compare", o->label, c);
+      if (!o->simulated.empty())
+        throw std::runtime_error("compare: give a model with --scene or simulated curves with --sim, not both");
+      // Every rate of the set (or --rate's), the model run at each: one comparison per rate and
+      // one joint residual, in one history entry.
+      Simulator simulator(o->sim, ctx.plugin_dirs);
+      rc = simulate_and_compare(simulator, rate_groups(set, o->rate), set.metadata, {o->model}, std::cerr).front();
+      ke = simulator.max_kinetic_to_elastic();
+      warning = simulator.dynamic_warning();
+    } else {
+      if (o->simulated.empty()) throw std::runtime_error("compare: give simulated curves with --sim or a model with --scene");
+      std::vector<Specimen> sims;
+      Metadata unit;
+      unit.load_cell_uncertainty = 1;
+      for (const auto& f : o->simulated) {
+        Specimen s;
+        s.id = f.stem().string();
+        s.curve = read_curve(f, unit);
+        s.curve.u_force.assign(s.curve.size(), 0.0);
+        sims.push_back(std::move(s));
+      }
+      const std::vector<Specimen> measured = specimens_at_rate(set, o->rate);
+      rc.rates = {measured.front().loading_rate};
+      rc.at = {compare(measured, set.metadata, sims, options)};
+    }
+    fs::create_directories(o->out);
+    const std::string md = rate_comparison_markdown(rc, warning);
+    std::ofstream(o->out / "compare.md") << md;
+    std::ofstream(o->out / "compare.json") << rate_comparison_json(rc, warning);
+    for (std::size_t k = 0; k < rc.at.size(); ++k)
+      plot_comparison(rc.at[k],
+                      o->out / (rc.at.size() > 1 ? fmt::format("compare_rate{:g}.png", rc.rates[k]) : "compare.png"),
+                      fmt::format("{} vs {}{}", set.metadata.name, o->label,
+                                  rc.at.size() > 1 ? fmt::format(" at {:g} m/s", rc.rates[k]) : ""));
+    fmt::print("{}\n", md);
+    if (!warning.empty()) fmt::print(stderr, "warning: {}\n", warning);
+    if (!o->model.scene.empty()) {
+      fmt::print("largest kinetic/elastic energy ratio before breakage: {:.2g} (quasi-static at or below {:g})\n", ke,
+                 kDynamicKineticToElastic);
+      HistoryEntry h = history_entry("compare", o->label, rc);
       for (const auto& s : o->model.overrides)
         if (const auto eq = s.find('='); eq != std::string::npos) try {
             h.parameters[s.substr(0, eq)] = std::stod(s.substr(eq + 1));
@@ -86,7 +126,8 @@ void add_compare(CLI::App& app, CommandContext& ctx) {
       if (o->model.machine_compliance > 0) h.parameters["machine_compliance"] = o->model.machine_compliance;
       append_history(o->sim.work_dir, h);
     }
-    fmt::print("written: {}/compare.md, compare.json, compare.png\n", o->out.string());
+    fmt::print("written: {}/compare.md, compare.json, {}\n", o->out.string(),
+               rc.at.size() > 1 ? "compare_rate<rate>.png" : "compare.png");
     ctx.exit_code = 0;
   });
 }
@@ -102,6 +143,7 @@ void add_synth(CLI::App& app, CommandContext& ctx) {
     std::optional<double> length, width, height, span, pin_distance;
     std::vector<double> rates;
     std::uint64_t noise_seed = 1;
+    TestConditions test;  // how the simulated lab runs and records its tests
   };
   auto o = std::make_shared<Options>();
   o->sim.first_seed = 1001;  // other packings than the model's default seeds 1, 2, 3
@@ -128,9 +170,28 @@ void add_synth(CLI::App& app, CommandContext& ctx) {
                   "replicates at that rate (default: the scene's pin speed)")
       ->delimiter(',')
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--seating-preload", o->test.seating_preload,
+                  "record each curve from where the force first reaches this preload (N), with t = 0 and d = 0 there; "
+                  "written to metadata.toml [test]")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--zero-offset", o->test.zero_offset,
+                  "a known load-cell zero offset (N) added to every recorded force and written to metadata.toml, "
+                  "where the reader subtracts it");
+  cmd->add_option("--ramp", o->test.ramp, "the pins' acceleration to the loading rate: 1-cos, linear or none")
+      ->check(CLI::IsMember({"1-cos", "linear", "none"}));
+  cmd->add_option("--ramp-time", o->test.ramp_time, "time of the --ramp in s (lab time)")->check(CLI::PositiveNumber);
+  cmd->add_option("--grain-size", o->test.grain_size, "grain size written to metadata.toml (m)")->check(CLI::PositiveNumber);
+  cmd->add_option("--fragment-size-threshold", o->test.fragment_size_threshold,
+                  "fragments smaller than this (m) are not recorded; written to metadata.toml")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--notes", o->test.notes, "free text for metadata.toml [test] notes");
   cmd->callback([o, &ctx] {
+    if (o->test.has_ramp() != (o->test.ramp_time > 0))
+      throw std::runtime_error(o->test.has_ramp() ? fmt::format("--ramp {} needs --ramp-time (s)", o->test.ramp)
+                                                  : "--ramp-time needs --ramp 1-cos or --ramp linear");
     MeasurementSet set;
     set.metadata.name = o->name;
+    set.metadata.test = o->test;
     set.metadata.load_cell_uncertainty = std::max(std::hypot(o->sensor.force_noise, o->sensor.force_offset), 1e-12);
     set.metadata.displacement_uncertainty = o->sensor.displacement_step / std::sqrt(12.0);
     std::mt19937_64 rng(o->noise_seed);
@@ -138,6 +199,11 @@ void add_synth(CLI::App& app, CommandContext& ctx) {
     truth.machine_compliance = 0;  // the sensor model applies it to the true force
     o->sensor.machine_compliance = o->model.machine_compliance;
     Simulator simulator(o->sim, ctx.plugin_dirs);
+    // The truth runs with the lab's ramp and fragment threshold; the preload zeroes the recorded
+    // (noisy, compliant) signal below, as the machine does.
+    TestConditions runs = o->test;
+    runs.seating_preload = 0;
+    simulator.use_test_conditions(runs);
     if (o->rates.empty()) o->rates.push_back(simulator.pool().scene_rate(truth.scene, truth.overrides));
     SpecimenSetup setup;
     if (!o->length || !o->width || !o->height || !o->span || !o->pin_distance)
@@ -158,6 +224,9 @@ void add_synth(CLI::App& app, CommandContext& ctx) {
         s.length = setup.length, s.width = setup.width, s.height = setup.height;
         s.span = setup.span, s.pin_distance = setup.pin_distance, s.loading_rate = o->rates[k];
         s.curve = record(sim.curve, o->sensor, rng);
+        if (o->test.seating_preload > 0)
+          s.curve = zeroed_at_preload(s.curve, o->test.seating_preload, fmt::format("synthetic specimen {}", s.id));
+        for (double& f : s.curve.force) f += o->test.zero_offset;  // what the load cell reads
         // What a lab notes after the test: where the crack is and the pieces (sieved sizes).
         s.crack_position = sim.crack_position;
         s.fragment_sizes = sim.fragment_sizes;
@@ -167,6 +236,7 @@ void add_synth(CLI::App& app, CommandContext& ctx) {
     write_measurements(set, o->out);
     fmt::print("wrote {} specimens to {} (largest kinetic/elastic ratio {:.2g})\n", set.specimens.size(),
                o->out.string(), simulator.max_kinetic_to_elastic());
+    if (const std::string w = simulator.dynamic_warning(); !w.empty()) fmt::print(stderr, "warning: {}\n", w);
     ctx.exit_code = 0;
   });
 }

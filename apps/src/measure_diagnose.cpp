@@ -246,6 +246,8 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
                           s.name, 100 * s.absorbed, join(o->params));
     md += fmt::format("\nLargest kinetic/elastic energy ratio of the runs before breakage: {:.2g}.\n",
                       simulator.max_kinetic_to_elastic());
+    const std::string dynamic = simulator.dynamic_warning();
+    if (!dynamic.empty()) md += fmt::format("\n**Warning.** {}.\n", dynamic);
 
     std::string json = fmt::format("{{\"verdict\": \"{}\", \"chi_square\": {:.9g}, \"chi_square_unabsorbed\": {:.9g}, "
                                    "\"p_value\": {:.9g}, \"nrmse\": {:.9g}, \"ranking\": [",
@@ -277,8 +279,8 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
     }
     std::string rivals;
     for (const auto& r : decision.rivals) rivals += fmt::format("{}\"{}\"", rivals.empty() ? "" : ", ", json_escape(r));
-    json += fmt::format("], \"excess\": {:.9g}, \"partial\": \"{}\", \"rivals\": [{}]}}\n", decision.excess,
-                        json_escape(decision.best_partial), rivals);
+    json += fmt::format("], \"excess\": {:.9g}, \"partial\": \"{}\", \"rivals\": [{}], \"dynamic_warning\": \"{}\"}}\n",
+                        decision.excess, json_escape(decision.best_partial), rivals, json_escape(dynamic));
     fs::create_directories(o->out);
     std::ofstream(o->out / "diagnose.md") << md;
     std::ofstream(o->out / "diagnose.json") << json;

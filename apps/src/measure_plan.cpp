@@ -59,8 +59,15 @@ std::vector<std::vector<Specimen>> Simulator::simulate(const std::vector<ModelPl
                            "(shard bending-rate-check), --time-compression {:.3g} runs it there\n",
                            m.loading_rate, own / rate, own, own / rate, own / rate);
     }
-    if (rate > 0)
+    if (rate > 0) {
       for (auto& r : pool_.rate_overrides(m.scene, m.overrides, rate)) overrides.push_back(std::move(r));
+      const double own = pool_.scene_rate(m.scene, m.overrides);
+      if (own > 0 && rate / own > max_rate_factor_) max_rate_factor_ = rate / own, fastest_rate_ = rate, scene_rate_ = own;
+    }
+    // The lab's ramp in model time: the model's times are the lab's divided by the compression.
+    if (!test_.ramp.empty())
+      for (auto& r : pool_.ramp_overrides(m.scene, m.overrides, test_.ramp, test_.ramp_time / options_.time_compression))
+        overrides.push_back(std::move(r));
     for (int k = 0; k < options_.seeds; ++k) requests.push_back({m.scene, overrides, options_.first_seed + k, options_.seat});
   }
   const auto results = pool_.run(requests, log);
@@ -72,18 +79,40 @@ std::vector<std::vector<Specimen>> Simulator::simulate(const std::vector<ModelPl
       s.id = fmt::format("sim_seed{}", options_.first_seed + k);
       s.curve = models[m].machine_compliance > 0 ? with_machine_compliance(results[i].curve, models[m].machine_compliance)
                                                  : results[i].curve;
+      // Zeroed as the lab zeroed its curves: the machine's compliance is in what it recorded.
+      if (test_.seating_preload > 0)
+        s.curve = zeroed_at_preload(s.curve, test_.seating_preload,
+                                    fmt::format("the simulated curve of {} (seed {}, run {})", models[m].scene.string(),
+                                                options_.first_seed + k, results[i].key));
       max_ke_ = std::max(max_ke_, results[i].kinetic_to_elastic);
       s.crack_position = results[i].crack_position;
-      s.fragment_sizes = results[i].fragment_sizes;
+      for (double d : results[i].fragment_sizes)
+        if (d >= test_.fragment_size_threshold) s.fragment_sizes.push_back(d);
       if (!s.fragment_sizes.empty()) s.fragment_count = static_cast<double>(s.fragment_sizes.size());
       out[m].push_back(std::move(s));
     }
   return out;
 }
 
-void Simulator::check_inputs(const ModelPlan& model, const std::vector<Specimen>& specimens) {
+std::string Simulator::dynamic_warning() const {
+  const bool energetic = max_ke_ > kDynamicKineticToElastic;
+  const bool fast = max_rate_factor_ > 1.01;
+  if (!energetic && !fast) return {};
+  std::string w = fmt::format("the model is dynamic at the data's rate: kinetic/elastic energy {:.2g} before breakage "
+                              "({} the quasi-static bound {:g})",
+                              max_ke_, energetic ? "above" : "below", kDynamicKineticToElastic);
+  if (fast)
+    w += fmt::format("; the model runs at {:.3g} mm/s (the data's rate x time compression {:g}), {:.3g}x faster than "
+                     "the {:.3g} mm/s the scene was checked at",
+                     1e3 * fastest_rate_, options_.time_compression, max_rate_factor_, 1e3 * scene_rate_);
+  return w + ". Inertial forces enter the simulated curve: lower --time-compression, or check the scene at this rate "
+             "(shard bending-rate-check --set on its pin velocities)";
+}
+
+void Simulator::check_inputs(const ModelPlan& model, const std::vector<Specimen>& specimens, const Metadata& metadata) {
   if (inputs_checked_ || specimens.empty()) return;
   inputs_checked_ = true;
+  use_test_conditions(metadata.test);
   if (options_.seeds < 2)
     fmt::print(stderr,
                "warning: one packing seed: the model's packing-to-packing scatter is unknown, so the scores below count "
@@ -91,6 +120,19 @@ void Simulator::check_inputs(const ModelPlan& model, const std::vector<Specimen>
   if (!options_.check_geometry) return;
   const SpecimenSetup scene = pool_.specimen_setup(model.scene, model.overrides, options_.first_seed);
   auto off = [](double measured, double simulated) { return std::abs(measured - simulated) > 0.02 * simulated; };
+  // A packing's extent across and along the load is the spheres' reach: it differs from seed to
+  // seed (and from the nominal box) by up to one diameter.
+  auto off_section = [&](double measured, double simulated) {
+    return std::abs(measured - simulated) > std::max(0.02 * simulated, scene.particle_diameter);
+  };
+  for (const auto& s : specimens)
+    if (off_section(s.width, scene.width) || off_section(s.height, scene.height))
+      throw std::runtime_error(fmt::format(
+          "specimen {}: width {:.4g} mm and height {:.4g} mm, but the model scene {} has a body {:.4g} mm wide and "
+          "{:.4g} mm high (more than 2 % and one particle diameter, {:.3g} mm, apart). Size the scene's body to the "
+          "measured specimens, or pass --ignore-geometry to compare anyway",
+          s.id, 1e3 * s.width, 1e3 * s.height, model.scene.string(), 1e3 * scene.width, 1e3 * scene.height,
+          1e3 * scene.particle_diameter));
   for (const auto& s : specimens)
     if (off(s.span, scene.span) || off(s.pin_distance, scene.pin_distance))
       throw std::runtime_error(fmt::format(
@@ -174,7 +216,7 @@ std::vector<RateComparison> simulate_and_compare(Simulator& simulator, const Rat
   if (!models.empty()) {
     std::vector<Specimen> every_rate;
     for (const auto& at : groups.specimens) every_rate.insert(every_rate.end(), at.begin(), at.end());
-    simulator.check_inputs(models.front(), every_rate);
+    simulator.check_inputs(models.front(), every_rate, metadata);
   }
   std::vector<ModelPlan> runs;
   for (const auto& m : models)
@@ -204,6 +246,21 @@ HistoryEntry history_entry(const std::string& command, const std::string& label,
   for (const auto& g : c.regimes)
     if (g.points() > 0) h.regimes[std::string(regime_name(g.regime))] = g.mean_residual;
   for (const auto& f : c.features) h.features[std::string(feature_name(f.feature))] = f.relative_error;
+  return h;
+}
+
+HistoryEntry history_entry(const std::string& command, const std::string& label, const RateComparison& c) {
+  if (c.at.size() == 1) return history_entry(command, label, c.at.front());
+  HistoryEntry h;
+  h.command = command;
+  h.label = label;
+  h.nrmse = c.nrmse();
+  h.chi_square = c.chi_square();
+  for (std::size_t k = 0; k < c.at.size(); ++k) {
+    const HistoryEntry one = history_entry(command, label, c.at[k]);
+    for (const auto& [name, v] : one.regimes) h.regimes[fmt::format("{}@{:g}", name, c.rates[k])] = v;
+    for (const auto& [name, v] : one.features) h.features[fmt::format("{}@{:g}", name, c.rates[k])] = v;
+  }
   return h;
 }
 

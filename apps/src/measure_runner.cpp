@@ -222,6 +222,7 @@ SpecimenSetup RunPool::specimen_setup(const fs::path& scene_file, const std::vec
   s.pin_distance = bending::distance_along(frame, pins[0]->point, pins[1]->point);
   s.span = bending::distance_along(frame, supports[0]->point, supports[1]->point);
   s.length = extent.length, s.width = extent.width, s.height = extent.height;
+  for (double r : p.radius) s.particle_diameter = std::max(s.particle_diameter, 2 * r);
   return s;
 }
 
@@ -248,9 +249,25 @@ std::vector<std::string> RunPool::rate_overrides(const fs::path& scene_file, con
     if (is_load_wall(scene, w)) {
       const Vec3 v = f * w.velocity;
       out.push_back(fmt::format("wall.{}.velocity=[{:.12g}, {:.12g}, {:.12g}]", w.name, v.x(), v.y(), v.z()));
+      // The same ramp travel at the new speed: the ramp is f times shorter.
+      if (w.motion.ramp != WallRamp::None)
+        out.push_back(fmt::format("wall.{}.ramp_time={:.12g}", w.name, w.motion.ramp_time / f));
     }
   out.push_back(fmt::format("simulation.duration={:.12g}", scene.duration / f));
   if (scene.series_interval > 0) out.push_back(fmt::format("output.series_interval={:.12g}", scene.series_interval / f));
+  return out;
+}
+
+std::vector<std::string> RunPool::ramp_overrides(const fs::path& scene_file, const std::vector<std::string>& overrides,
+                                                 const std::string& ramp, double ramp_time) const {
+  const Scene scene = load_scene(scene_file, overrides, *host_);
+  std::vector<std::string> out;
+  for (const Wall& w : scene.walls)
+    if (is_load_wall(scene, w)) {
+      out.push_back(fmt::format("wall.{}.ramp=\"{}\"", w.name, ramp));
+      // With ramp = "none" a ramp_time of the scene's is ignored (the loader allows that pair).
+      if (ramp != "none") out.push_back(fmt::format("wall.{}.ramp_time={:.12g}", w.name, ramp_time));
+    }
   return out;
 }
 

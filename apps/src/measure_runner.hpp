@@ -35,6 +35,7 @@ struct RunRequest {
 // across it and along the load; the distances between the two supports and the two pins.
 struct SpecimenSetup {
   double length = 0, width = 0, height = 0, span = 0, pin_distance = 0;
+  double particle_diameter = 0;  // the largest sphere's, m
 };
 
 struct RunResult {
@@ -64,6 +65,10 @@ class RunPool {
   // inversely so that the same pin travel is simulated and recorded. Empty at the scene's rate.
   std::vector<std::string> rate_overrides(const std::filesystem::path& scene, const std::vector<std::string>& overrides,
                                           double rate) const;
+  // The overrides that accelerate the [stop] load walls along `ramp` ("1-cos", "linear", "none")
+  // over `ramp_time` s (the kernel's [[wall]] ramp).
+  std::vector<std::string> ramp_overrides(const std::filesystem::path& scene, const std::vector<std::string>& overrides,
+                                          const std::string& ramp, double ramp_time) const;
   // The specimen of a scene (generated with `seed`); throws unless the scene has two loading
   // cylinders ([stop] load_walls) and two resting cylinders (supports).
   SpecimenSetup specimen_setup(const std::filesystem::path& scene, const std::vector<std::string>& overrides,

@@ -44,6 +44,12 @@ std::vector<std::string> CandidateEffect::overrides(double value) const {
 }
 
 std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& file) {
+  if (!std::filesystem::exists(file))
+    throw std::runtime_error(fmt::format(
+        "{}: the candidate-effect library (the effects `shard diagnose` and `shard calibrate-effect` try) does not "
+        "exist. Fix: pass --effects FILE, or copy scenes/measurements/effects.toml beside the scene (the default is "
+        "effects.toml in the scene's folder)",
+        std::filesystem::absolute(file).lexically_normal().string()));
   toml::table root;
   try {
     root = toml::parse_file(file.string());
