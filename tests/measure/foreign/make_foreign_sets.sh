@@ -19,7 +19,9 @@
 #   asymmetry    normal bond spring 3x stiffer in compression (library: compression_asymmetry) 1501-1504
 #   toe          seating toe g = 0.5 mm, F_h = 0.5 N (outside the library)   1601-1604
 # Sensor model for all: 2 % specimen scatter, 0.01 N load-cell noise, 0.005 N tare sd, 1 um
-# displacement steps.
+# displacement steps. Lab conditions for all, recorded in metadata.toml [test]: the pins reach
+# 0.02 m/s along a 1-cos ramp over 25 ms (20 mm/s in 25 ms, 0.25 mm of travel); each curve starts
+# at a seating preload of 0.1 N (t = 0, d = 0 there); the load cell reads 0.02 N at zero load.
 set -euo pipefail
 if [[ $# -ne 4 ]]; then
   echo "usage: $0 SHARD PLUGIN_DIR OUT WORK" >&2
@@ -35,7 +37,8 @@ if [[ ! -f $plugins/shard_foreign_spring_bond.so ]]; then
 fi
 mkdir -p "$out" "$work"
 
-sensor=(--scatter 0.02 --force-noise 0.01 --force-offset 0.005 --displacement-step 1e-6 --seeds 4)
+sensor=(--scatter 0.02 --force-noise 0.01 --force-offset 0.005 --displacement-step 1e-6 --seeds 4
+        --ramp 1-cos --ramp-time 0.025 --seating-preload 0.1 --zero-offset 0.02)
 
 synth() {  # name first_seed noise_seed [extra synth options...]
   local name=$1 first=$2 noise=$3
