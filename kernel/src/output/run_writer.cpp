@@ -2,7 +2,7 @@
 //
 // Crash safety. HDF5 1.10 writes metadata in no crash-safe order: a kill inside H5Fflush can
 // leave a group's header or link B-tree pointing at blocks not yet written (measured with
-// tests/output/test_crash_safety.cpp and a 1500-kill soak: about 1 kill in 150 lost /frames).
+// tests/output/test_crash_safety.cpp (ctest test_output_crash) and a 1500-kill soak: about 1 kill in 150 lost /frames).
 // So:
 //  - metadata reaches the file only in H5Fflush (cache evictions off), once or twice per frame,
 //    never between frames: a kill between flushes cannot tear anything;
