@@ -1,0 +1,58 @@
+#pragma once
+// One step of `shard diagnose` (measure_diagnose.cpp): the model so far (base parameters and the
+// effects kept by earlier steps, each at a value), linearised around itself, every run scored
+// against one frozen simulated band.
+//
+// Step k's nuisance parameters are the base parameters (relative +5 % steps) and the kept effects
+// (+1/4 of a trial size, or -1/4 at the top of the range): the candidates' score test and refits
+// profile them out, so a second effect is judged on what the first leaves, with the first
+// re-sized along.
+#include <iosfwd>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "measure_plan.hpp"
+
+namespace shard {
+
+struct StepModel {
+  std::vector<double> parameters;  // values of the base parameters (keys)
+  std::vector<std::pair<const measure::CandidateEffect*, double>> kept;  // effect, value
+};
+
+ModelPlan step_plan(const ModelPlan& scene, const std::vector<std::string>& keys, const StepModel& model);
+
+// The model's trial-size units of a kept effect's value.
+double effect_scale(const measure::CandidateEffect& e, double value);
+
+// `c` with every rate's simulated band replaced by `reference`'s (with_simulated_band).
+RateComparison with_band(const RateComparison& c, const RateComparison& reference);
+
+struct StepLinearisation {
+  measure::ResidualVector base;
+  RateComparison base_comparison;                 // own band (its NRMSE and verdict text)
+  std::vector<std::vector<double>> jacobian;      // base parameters, then kept effects
+  std::vector<double> kept_scale_step;            // per kept effect, the trial sizes stepped
+  std::vector<measure::EffectSignature> signatures;  // candidates, as `candidates`
+};
+
+// `band`: the frozen band; empty: the step's base comparison is the band (the first step).
+StepLinearisation linearise_step(Simulator& simulator, const RateGroups& measured, const measure::Metadata& metadata,
+                                 const ModelPlan& scene, const std::vector<std::string>& keys, const StepModel& model,
+                                 const std::vector<const measure::CandidateEffect*>& candidates,
+                                 const RateComparison* band, std::ostream& log);
+
+// Where a linearised refit takes a step's model: base factors and effect sizes clamped as
+// clamp_base_factor / clamp_effect_scale and the effect's physical range; `at_bound` lists what
+// was clamped, e.g. "bond.youngs_modulus at 1.9 x (asked 2.4 x)".
+struct RefitPlan {
+  StepModel model;
+  std::vector<std::string> at_bound;
+  bool base_at_bound = false;  // a base parameter (not an effect) was clamped
+};
+// lr: base steps (relative) then kept effects' steps (trial sizes), as the step's Jacobian.
+RefitPlan refit_plan(const std::vector<std::string>& keys, const StepModel& start, const measure::LinearRefit& lr,
+                     const measure::CandidateEffect* added);
+
+}  // namespace shard
