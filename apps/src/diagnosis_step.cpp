@@ -35,6 +35,22 @@ ModelPlan step_plan(const ModelPlan& scene, const std::vector<std::string>& keys
 
 double effect_scale(const CandidateEffect& e, double value) { return (value - e.neutral) / (e.plausible - e.neutral); }
 
+Scoring scoring_from_name(const std::string& name) {
+  if (name == "frozen") return Scoring::FrozenBand;
+  if (name == "likelihood") return Scoring::Likelihood;
+  throw std::runtime_error(fmt::format("--scoring {}: use 'frozen' (the base model's band for every model) or "
+                                       "'likelihood' (own band plus the log-variance term)",
+                                       name));
+}
+
+double model_score(const RateComparison& c, const RateComparison& reference, Scoring scoring) {
+  if (scoring == Scoring::FrozenBand) return with_band(c, reference).chi_square();
+  double log_det = 0;
+  for (std::size_t k = 0; k < c.at.size() && k < reference.at.size(); ++k)
+    log_det += log_variance_ratio(c.at[k], reference.at[k]);
+  return c.chi_square() + log_det;
+}
+
 RateComparison with_band(const RateComparison& c, const RateComparison& reference) {
   RateComparison out = c;
   for (std::size_t k = 0; k < out.at.size(); ++k) out.at[k] = with_simulated_band(c.at[k], reference.at[k]);
@@ -44,7 +60,7 @@ RateComparison with_band(const RateComparison& c, const RateComparison& referenc
 StepLinearisation linearise_step(Simulator& simulator, const RateGroups& measured, const Metadata& metadata,
                                  const ModelPlan& scene, const std::vector<std::string>& keys, const StepModel& model,
                                  const std::vector<const CandidateEffect*>& candidates, const RateComparison* band,
-                                 std::ostream& log) {
+                                 Scoring scoring, std::ostream& log) {
   StepLinearisation l;
   std::vector<ModelPlan> models{step_plan(scene, keys, model)};
   for (std::size_t i = 0; i < keys.size(); ++i) {
@@ -67,7 +83,8 @@ StepLinearisation linearise_step(Simulator& simulator, const RateGroups& measure
   auto comparisons = simulate_and_compare(simulator, measured, metadata, models, log);
   l.base_comparison = comparisons[0];
   const RateComparison& reference = band ? *band : comparisons[0];
-  for (auto& c : comparisons) c = with_band(c, reference);
+  if (scoring == Scoring::FrozenBand)
+    for (auto& c : comparisons) c = with_band(c, reference);
   l.base = comparisons[0].residual_vector();
   std::size_t m = 1;
   for (std::size_t i = 0; i < keys.size(); ++i, ++m)

@@ -16,6 +16,13 @@
 
 namespace shard {
 
+// How a model's runs are scored against the data so that scattering more does not pay:
+//   FrozenBand  chi^2 with the reference model's simulated band (with_simulated_band);
+//   Likelihood  chi^2 with its own band plus the variance term of the Gaussian likelihood,
+//               sum ln(v / v_ref) (log_variance_ratio): a wider band costs what it hides.
+enum class Scoring { FrozenBand, Likelihood };
+Scoring scoring_from_name(const std::string& name);  // "frozen" or "likelihood"; throws otherwise
+
 struct StepModel {
   std::vector<double> parameters;  // values of the base parameters (keys)
   std::vector<std::pair<const measure::CandidateEffect*, double>> kept;  // effect, value
@@ -28,6 +35,8 @@ double effect_scale(const measure::CandidateEffect& e, double value);
 
 // `c` with every rate's simulated band replaced by `reference`'s (with_simulated_band).
 RateComparison with_band(const RateComparison& c, const RateComparison& reference);
+// The score a decision compares (a chi^2 for the frozen band; -2 ln L up to a constant).
+double model_score(const RateComparison& c, const RateComparison& reference, Scoring scoring);
 
 struct StepLinearisation {
   measure::ResidualVector base;
@@ -37,11 +46,13 @@ struct StepLinearisation {
   std::vector<measure::EffectSignature> signatures;  // candidates, as `candidates`
 };
 
-// `band`: the frozen band; empty: the step's base comparison is the band (the first step).
+// `band`: the reference band; empty: the step's base comparison is the reference (the first
+// step). With FrozenBand every run's residual vector is scored against it; with Likelihood each
+// keeps its own band (the Jacobian and signatures are differences of standardised residuals).
 StepLinearisation linearise_step(Simulator& simulator, const RateGroups& measured, const measure::Metadata& metadata,
                                  const ModelPlan& scene, const std::vector<std::string>& keys, const StepModel& model,
                                  const std::vector<const measure::CandidateEffect*>& candidates,
-                                 const RateComparison* band, std::ostream& log);
+                                 const RateComparison* band, Scoring scoring, std::ostream& log);
 
 // Where a linearised refit takes a step's model: base factors and effect sizes clamped as
 // clamp_base_factor / clamp_effect_scale and the effect's physical range; `at_bound` lists what

@@ -39,6 +39,7 @@ struct Fit {
   const RateGroups* measured = nullptr;
   const Metadata* metadata = nullptr;
   const RateComparison* band = nullptr;  // the base model's: every evaluation is scored against it
+  Scoring scoring = Scoring::Likelihood;
   ModelPlan base;
   int evaluations = 0;
   double best = std::numeric_limits<double>::infinity();
@@ -54,13 +55,13 @@ struct Fit {
     return m;
   }
   RateComparison evaluate(const std::vector<double>& x) const {
-    return with_band(simulate_and_compare(*simulator, *measured, *metadata, {model(x)}, std::cerr).front(), *band);
+    return simulate_and_compare(*simulator, *measured, *metadata, {model(x)}, std::cerr).front();
   }
   double value_of(const std::vector<double>& x) const {
     return effect->value_at(x.back());
   }
   double objective(const std::vector<double>& x) {
-    const double chi2 = evaluate(x).chi_square();
+    const double chi2 = model_score(evaluate(x), *band, scoring);
     ++evaluations;
     fmt::print(stderr, "calibrate-effect: evaluation {} chi^2 {:.2f}\n", evaluations, chi2);
     if (chi2 < best) best = chi2, best_x = x;
@@ -85,6 +86,7 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
     std::string effect;
     int max_evaluations = 16;
     std::string label;
+    std::string scoring = "likelihood";
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("calibrate-effect",
@@ -97,6 +99,9 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
   cmd->add_option("--effects", o->library, "candidate-effect library (default: effects.toml next to the scene)");
   cmd->add_option("--rate", o->rate, "loading rate to use (m/s)");
   cmd->add_option("--max-evaluations", o->max_evaluations, "objective evaluations (each is one run per seed)");
+  cmd->add_option("--scoring", o->scoring,
+                  "how the fit is judged so that scattering more does not pay: frozen (the base model's band) or "
+                  "likelihood (own band plus the Gaussian log-variance term)");
   cmd->add_option("--label", o->label, "name of the new model version in the history");
   cmd->add_option("--out", o->out, "folder for calibrate.md, calibrate.json and compare plots");
   cmd->callback([o, &ctx] {
@@ -110,6 +115,7 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
     if (o->params.empty() && effects.empty()) throw std::runtime_error("calibrate-effect: give --with EFFECT and/or --param");
     Fit fit;
     fit.keys = o->params;
+    fit.scoring = scoring_from_name(o->scoring);
     for (const auto& k : o->params) fit.base_values.push_back(scene_number(o->model, k, ctx.plugin_dirs));
     fit.effect = effects.empty() ? nullptr : &effects.front();
     Simulator simulator(o->sim, ctx.plugin_dirs);
@@ -122,7 +128,7 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
     std::vector<const CandidateEffect*> candidates;
     for (const auto& e : effects) candidates.push_back(&e);
     const StepLinearisation lin = linearise_step(simulator, measured, set.metadata, o->model, o->params,
-                                                 StepModel{fit.base_values, {}}, candidates, nullptr, std::cerr);
+                                                 StepModel{fit.base_values, {}}, candidates, nullptr, fit.scoring, std::cerr);
     fit.band = &lin.base_comparison;
     const LinearRefit lr = linear_refit(lin.base.values, lin.jacobian, lin.signatures);
     const std::size_t n = fit.keys.size() + (fit.effect ? 1 : 0);
@@ -164,6 +170,7 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
     const std::vector<double> best = fit.best_x.empty() ? x : fit.best_x;
     const ModelPlan final_model = fit.model(best);
     const RateComparison after = fit.evaluate(best);
+    auto score = [&](const RateComparison& c) { return model_score(c, before, fit.scoring); };
     // Credit: the fitted base parameters with the effect switched off (one more run per seed).
     std::optional<RateComparison> base_only;
     GainCredit credit;
@@ -171,7 +178,7 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
       std::vector<double> off = best;
       off.back() = 0;  // value_at(0): neutral
       base_only = fit.evaluate(off);
-      credit = credit_gain(before.chi_square(), base_only->chi_square(), after.chi_square());
+      credit = credit_gain(score(before), score(*base_only), score(after));
     }
 
     fs::create_directories(o->out);
@@ -184,7 +191,7 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
     }
     HistoryEntry h = history_entry("calibrate-effect", o->label.empty() ? (o->effect.empty() ? "base refit" : "+ " + o->effect) : o->label, after.at.front());
     h.nrmse = after.nrmse();
-    h.chi_square = after.chi_square();
+    h.chi_square = score(after);
     if (fit.effect) h.effects.push_back(fit.effect->name);
     for (std::size_t i = 0; i < fit.keys.size(); ++i) h.parameters[fit.keys[i]] = fit.base_values[i] * best[i];
     if (fit.effect) h.parameters[fit.effect->parameter] = fit.value_of(best);
@@ -192,7 +199,7 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
 
     std::string md = fmt::format("# calibrate-effect {}\n\n{} evaluations ({}); chi^2 {:.1f} -> {:.1f}; NRMSE {:.1f} % -> {:.1f} %\n\n",
                                  o->effect.empty() ? "(base parameters only)" : o->effect, fit.evaluations, stop,
-                                 before.chi_square(), after.chi_square(), 100 * before.nrmse(), 100 * after.nrmse());
+                                 score(before), score(after), 100 * before.nrmse(), 100 * after.nrmse());
     if (after.nrmse() > before.nrmse())
       md += fmt::format("The NRMSE rose ({:.1f} % -> {:.1f} %) although chi^2 fell: the fitted model is not closer to the "
                         "measured curves; do not adopt it.\n\n",
@@ -200,7 +207,7 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
     if (base_only) {
       md += fmt::format("Credit: of the chi^2 drop {:.1f}, the fitted base parameters with {} off make {:.1f} (chi^2 {:.1f}, "
                         "NRMSE {:.1f} %), {} at {:.4g} {} the remaining {:.1f} (p = {:.2g}). ",
-                        credit.total, fit.effect->name, credit.by_base, base_only->chi_square(), 100 * base_only->nrmse(),
+                        credit.total, fit.effect->name, credit.by_base, score(*base_only), 100 * base_only->nrmse(),
                         fit.effect->name, fit.value_of(best), fit.effect->unit, credit.by_effect, credit.effect_p);
       md += credit.effect_supported
                 ? "The effect earns its parameter.\n\n"
@@ -251,8 +258,8 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
                        "\"chi_square_base_only\": {}, \"gain_by_base\": {:.9g}, \"gain_by_effect\": {:.9g}, "
                        "\"effect_supported\": {}}}\n",
                        json_escape(o->effect), fit.effect ? fit.value_of(best) : 0.0, before.nrmse(), after.nrmse(),
-                       before.chi_square(), after.chi_square(), fit.evaluations, json_regimes,
-                       base_only ? fmt::format("{:.9g}", base_only->chi_square()) : std::string("null"), credit.by_base,
+                       score(before), score(after), fit.evaluations, json_regimes,
+                       base_only ? fmt::format("{:.9g}", score(*base_only)) : std::string("null"), credit.by_base,
                        credit.by_effect, credit.effect_supported);
     fmt::print("{}", md);
     ctx.exit_code = 0;

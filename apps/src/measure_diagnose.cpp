@@ -1,8 +1,9 @@
 // `shard diagnose`: which candidate effects explain what the calibrated base model misses.
 // 1. One parallel batch on the model's packing seeds (common random numbers): the base, each
 //    base parameter +5 % (the Jacobian), each library effect at its plausible size (signature).
-//    Every run is scored against the base model's simulated band (frozen), so a candidate cannot
-//    lower its chi^2 by scattering more.
+//    A model cannot win by scattering more: its chi^2 carries the likelihood's log-variance term
+//    against the base model's band (or, with --scoring frozen, is scored against that band), and
+//    a refit whose NRMSE rises is neither named nor kept.
 // 2. Score test on the part of the residual the base parameters cannot absorb (diagnosis.hpp).
 // 3. Confirmation: the base refit alone and the top effects refit with it (linear prediction of
 //    the sizes) are simulated; the real drop in chi-square and the information criteria decide
@@ -73,8 +74,8 @@ std::string values_text(const std::vector<std::string>& keys, const StepModel& m
 // unstable size), the models are retried one by one: finished runs are cached, and a failed
 // effect refit is reported and left out of the decision instead of ending the diagnosis.
 void run_confirmations(Simulator& simulator, const RateGroups& measured, const Metadata& metadata, const ModelPlan& scene,
-                       const std::vector<std::string>& keys, const RateComparison& band, std::vector<Confirmation>& conf,
-                       std::size_t components) {
+                       const std::vector<std::string>& keys, const RateComparison& band, Scoring scoring,
+                       std::vector<Confirmation>& conf, std::size_t components) {
   std::vector<ModelPlan> models;
   for (const auto& c : conf) models.push_back(step_plan(scene, keys, c.plan.model));
   std::vector<RateComparison> sims;
@@ -95,7 +96,7 @@ void run_confirmations(Simulator& simulator, const RateGroups& measured, const M
       conf[k].chi_square = conf[k].nrmse = std::numeric_limits<double>::infinity();
       continue;
     }
-    conf[k].chi_square = with_band(sims[k], band).chi_square();
+    conf[k].chi_square = model_score(sims[k], band, scoring);
     conf[k].nrmse = sims[k].nrmse();
     const double extra = k == 0 ? 0 : 1;
     conf[k].delta_aic = conf[k].chi_square - conf[0].chi_square + 2 * extra;
@@ -121,6 +122,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
     std::vector<std::string> only;
     int refit = 2;
     int max_effects = 2;
+    std::string scoring = "likelihood";
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("diagnose", "rank candidate effects by how much of the model's residual each explains");
@@ -136,6 +138,9 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
   cmd->add_option("--max-effects", o->max_effects,
                   "effects a stepwise diagnosis may add one after the other (1: a single effect)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--scoring", o->scoring,
+                  "how models are judged so that scattering more does not pay: frozen (the base model's band for "
+                  "every run) or likelihood (own band plus the Gaussian log-variance term)");
   cmd->add_option("--out", o->out, "folder for diagnose.md and diagnose.json");
   cmd->callback([o, &ctx] {
     const MeasurementSet set = read_measurements(o->measurements);
@@ -148,6 +153,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
     for (const auto& k : keys) model.parameters.push_back(scene_number(o->model, k, ctx.plugin_dirs));
     Simulator simulator(o->sim, ctx.plugin_dirs);
     const auto tops = static_cast<std::size_t>(std::max(0, o->refit));
+    const Scoring scoring = scoring_from_name(o->scoring);
 
     std::vector<StepRecord> steps;
     std::vector<DiagnosisStep> path;
@@ -169,7 +175,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
       fmt::print(stderr, "diagnose step {}: {}, {} parameter steps and {} effects on {} packing seeds\n", step + 1,
                  model_name(model), keys.size() + model.kept.size(), s.candidates.size(), o->sim.seeds);
       s.lin = linearise_step(simulator, measured, set.metadata, o->model, keys, model, s.candidates,
-                             step == 0 ? nullptr : &band, std::cerr);
+                             step == 0 ? nullptr : &band, scoring, std::cerr);
       if (step == 0) band = s.lin.base_comparison;
       s.diagnosis = diagnose(s.lin.base.names, s.lin.base.values, s.lin.jacobian, s.lin.signatures);
       const std::size_t m = s.lin.base.values.size(), p = s.lin.jacobian.size();
@@ -190,7 +196,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
         for (std::size_t e = 0; e < s.candidates.size(); ++e)
           if (s.candidates[e]->name == s.diagnosis.ranking[k].name && s.diagnosis.ranking[k].score > 0)
             add_refit({s.lin.signatures[e]}, s.candidates[e]);
-      run_confirmations(simulator, measured, set.metadata, o->model, keys, band, s.confirmations, m);
+      run_confirmations(simulator, measured, set.metadata, o->model, keys, band, scoring, s.confirmations, m);
       std::vector<RefitOutcome> refits;
       for (std::size_t k = 1; k < s.confirmations.size(); ++k)
         refits.push_back({s.confirmations[k].name, s.confirmations[k].chi_square, s.confirmations[k].nrmse});
@@ -247,10 +253,14 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
     std::string md = fmt::format("# Diagnosis: {}\n\nmeasurements {}, model {}, {} packing seeds, base parameters {}.\n",
                                  verdict, o->measurements.string(), o->model.scene.string(), o->sim.seeds, join(keys));
     md += fmt::format("Residual chi^2 {:.1f} over {} components; after what the base parameters can absorb {:.1f} "
-                      "(p = {:.3g} against chi^2({})); base NRMSE {:.1f} %. Every run is scored against the base "
-                      "model's simulated band (a candidate cannot win by scattering more).\n\n",
+                      "(p = {:.3g} against chi^2({})); base NRMSE {:.1f} %. {}\n\n",
                       d0.chi_square, first.lin.base.values.size(), d0.chi_square_unabsorbed, d0.p_value,
-                      first.lin.base.values.size() - keys.size(), 100 * first.lin.base_comparison.nrmse());
+                      first.lin.base.values.size() - keys.size(), 100 * first.lin.base_comparison.nrmse(),
+                      scoring == Scoring::FrozenBand
+                          ? "Every run is scored against the base model's simulated band (a candidate cannot win by "
+                            "scattering more)."
+                          : "The refits' chi^2 carry the likelihood's log-variance term against the base model's band "
+                            "(a candidate cannot win by scattering more).");
     bool base_out_of_range = false;
     for (const auto& s : steps)
       if (!s.confirmations.empty() && s.confirmations.front().plan.base_at_bound) base_out_of_range = true;
@@ -315,9 +325,10 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
                           100 * st.nrmse_after, st.p_after,
                           st.named ? "named: what remains is noise" : "kept: explains most of the excess, structure remains");
       }
-      md += fmt::format("\nThe path's model, every size refit at its last step: {}. Sizes of effects found together are "
-                        "correlated (each step re-sizes the earlier ones): `shard calibrate-effect` fits one at a time.\n\n",
-                        values_text(keys, model));
+      md += fmt::format("\nThe path's model, every size refit at its last step: {}.{}\n\n", values_text(keys, model),
+                        path.size() > 1 ? " Sizes of effects found together are correlated (each step re-sizes the earlier "
+                                          "ones)."
+                                        : "");
     }
     for (std::size_t k = 0; k < steps.size(); ++k) {
       const StepRecord& s = steps[k];

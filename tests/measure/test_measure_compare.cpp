@@ -174,7 +174,8 @@ TEST_CASE("fracture transients: crack initiation at the first significant drop, 
 
 TEST_CASE("a model that fails later than the specimens is penalised by the failure point") {
   // The grid ends at the shortest measured curve; a model whose post-peak fall comes later shows
-  // little there, but its failure displacement (half of F_max after the peak) is beyond noise.
+  // little there, but its failure displacement (half of F_max after the peak) is beyond noise,
+  // judged with judge_fracture (reported, not judged, by default).
   std::mt19937 rng(3);
   std::normal_distribution<double> scatter(0, 0.02e-3);
   std::vector<Specimen> measured, late;
@@ -185,7 +186,9 @@ TEST_CASE("a model that fails later than the specimens is penalised by the failu
   }
   Metadata meta;
   meta.load_cell_uncertainty = 0.01;
-  const Comparison c = compare(measured, meta, late);
+  CompareOptions fracture;
+  fracture.judge_fracture = true;
+  const Comparison c = compare(measured, meta, late, fracture);
   bool judged = false;
   for (const auto& f : c.features)
     if (f.feature == Feature::FailureDisplacement) {
@@ -197,11 +200,17 @@ TEST_CASE("a model that fails later than the specimens is penalised by the failu
   bool in_vector = false;
   for (const auto& n : c.residual_vector().names) in_vector = in_vector || n == "feature:failure_displacement";
   CHECK(in_vector);
-  // Not judged by default: the oscillation count and the initiation force (a fracture feature).
-  for (const auto& n : c.residual_vector().names) {
-    CHECK(n != "feature:oscillations");
+  // The oscillation count is never a score.
+  for (const auto& n : c.residual_vector().names) CHECK(n != "feature:oscillations");
+  // By default the failure point and the initiation force are reported but not judged.
+  const Comparison plain = compare(measured, meta, late);
+  for (const auto& n : plain.residual_vector().names) {
+    CHECK(n != "feature:failure_displacement");
     CHECK(n != "feature:initiation_force");
   }
+  bool reported = false;
+  for (const auto& f : plain.features) reported = reported || (f.feature == Feature::FailureDisplacement && !f.judged);
+  CHECK(reported);
 }
 
 TEST_CASE("a frozen simulated band: a model cannot lower its scores by scattering more") {

@@ -293,6 +293,36 @@ Comparison with_simulated_band(const Comparison& c, const Comparison& reference,
   return out;
 }
 
+namespace {
+
+// Combined variance per residual-vector component, by name.
+std::vector<std::pair<std::string, double>> component_variances(const Comparison& c) {
+  std::vector<std::pair<std::string, double>> v;
+  for (const auto& g : c.regimes)
+    if (g.points() > 0) {
+      double sum = 0;
+      for (std::size_t k = g.first; k < g.last; ++k)
+        sum += c.measured.u[k] * c.measured.u[k] + c.simulated.u[k] * c.simulated.u[k];
+      v.emplace_back(fmt::format("regime:{}", regime_name(g.regime)), sum / static_cast<double>(g.points()));
+    }
+  for (const auto& f : c.features)
+    if (f.judged && std::isfinite(f.score))
+      v.emplace_back(fmt::format("feature:{}", feature_name(f.feature)),
+                     f.u_measured * f.u_measured + f.u_simulated * f.u_simulated);
+  return v;
+}
+
+}  // namespace
+
+double log_variance_ratio(const Comparison& c, const Comparison& reference) {
+  const auto mine = component_variances(c), theirs = component_variances(reference);
+  double sum = 0;
+  for (const auto& [name, v] : mine)
+    for (const auto& [other, w] : theirs)
+      if (name == other && v > 0 && w > 0) sum += std::log(v / w);
+  return sum;
+}
+
 ResidualVector Comparison::residual_vector() const {
   ResidualVector v;
   for (const auto& g : regimes)

@@ -87,12 +87,12 @@ Feature feature_at(std::size_t index) {
 }
 
 bool judged_by_default(Feature f) {
-  return static_cast<std::size_t>(f) <= static_cast<std::size_t>(Feature::PostPeakWork) || f == Feature::FailureDisplacement;
+  return static_cast<std::size_t>(f) <= static_cast<std::size_t>(Feature::PostPeakWork);
 }
 
 bool fracture_feature(Feature f) {
   return f == Feature::CrackPosition || f == Feature::FragmentX50 || f == Feature::FragmentCount ||
-         f == Feature::InitiationForce;
+         f == Feature::InitiationForce || f == Feature::FailureDisplacement;
 }
 
 double significant_drop(const Curve& c) {
