@@ -36,14 +36,16 @@ ModelPlan step_plan(const ModelPlan& scene, const std::vector<std::string>& keys
 double effect_scale(const CandidateEffect& e, double value) { return (value - e.neutral) / (e.plausible - e.neutral); }
 
 Scoring scoring_from_name(const std::string& name) {
+  if (name == "own") return Scoring::Own;
   if (name == "frozen") return Scoring::FrozenBand;
   if (name == "likelihood") return Scoring::Likelihood;
-  throw std::runtime_error(fmt::format("--scoring {}: use 'frozen' (the base model's band for every model) or "
-                                       "'likelihood' (own band plus the log-variance term)",
+  throw std::runtime_error(fmt::format("--scoring {}: use 'own' (each model's own band), 'frozen' (the base model's band for "
+                                       "every model) or 'likelihood' (own band plus the log-variance term)",
                                        name));
 }
 
 double model_score(const RateComparison& c, const RateComparison& reference, Scoring scoring) {
+  if (scoring == Scoring::Own) return c.chi_square();
   if (scoring == Scoring::FrozenBand) return with_band(c, reference).chi_square();
   double log_det = 0;
   for (std::size_t k = 0; k < c.at.size() && k < reference.at.size(); ++k)

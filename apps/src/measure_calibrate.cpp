@@ -39,7 +39,7 @@ struct Fit {
   const RateGroups* measured = nullptr;
   const Metadata* metadata = nullptr;
   const RateComparison* band = nullptr;  // the base model's: every evaluation is scored against it
-  Scoring scoring = Scoring::Likelihood;
+  Scoring scoring = Scoring::Own;
   ModelPlan base;
   int evaluations = 0;
   double best = std::numeric_limits<double>::infinity();
@@ -86,7 +86,7 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
     std::string effect;
     int max_evaluations = 16;
     std::string label;
-    std::string scoring = "likelihood";
+    std::string scoring = "own";
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("calibrate-effect",
@@ -100,8 +100,8 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
   cmd->add_option("--rate", o->rate, "loading rate to use (m/s)");
   cmd->add_option("--max-evaluations", o->max_evaluations, "objective evaluations (each is one run per seed)");
   cmd->add_option("--scoring", o->scoring,
-                  "how the fit is judged so that scattering more does not pay: frozen (the base model's band) or "
-                  "likelihood (own band plus the Gaussian log-variance term)");
+                  "how the fit is scored: own (each model's band), frozen (the base model's band) or likelihood (own "
+                  "band plus the Gaussian log-variance term)");
   cmd->add_option("--label", o->label, "name of the new model version in the history");
   cmd->add_option("--out", o->out, "folder for calibrate.md, calibrate.json and compare plots");
   cmd->callback([o, &ctx] {

@@ -248,3 +248,32 @@ TEST_CASE("a frozen simulated band: a model cannot lower its scores by scatterin
   for (int i = 0; i < 3; ++i) shorter.push_back(specimen(curve(k, 0.8 * w_p, 0.1, noise, rng, noise)));
   CHECK_THROWS(with_simulated_band(l, compare(shorter, meta, tight)));
 }
+
+TEST_CASE("the likelihood's variance term charges a model for its wider band") {
+  // One regime of two points with u_m = u_s = 1 (v = 2) against a reference with u_s = 0 (v = 1),
+  // and one feature with u_m = 3, u_s = 4 (v = 25) against u_s = 0 (v = 9):
+  // sum ln(v / v_ref) = ln 2 + ln(25 / 9).
+  Comparison c;
+  c.xi = {0, 1};
+  c.measured.u = {1, 1};
+  c.simulated.u = {1, 1};
+  c.regimes[0].regime = Regime::Toe;
+  c.regimes[0].first = 0;
+  c.regimes[0].last = 2;
+  for (std::size_t r = 1; r < kRegimeCount; ++r) c.regimes[r].first = c.regimes[r].last = 2;
+  FeatureComparison f;
+  f.feature = Feature::PeakForce;
+  f.u_measured = 3;
+  f.u_simulated = 4;
+  f.score = 0.5;
+  c.features.push_back(f);
+  Comparison reference = c;
+  reference.simulated.u = {0, 0};
+  reference.features[0].u_simulated = 0;
+  CHECK(log_variance_ratio(c, reference) == doctest::Approx(std::log(2.0) + std::log(25.0 / 9.0)));
+  CHECK(log_variance_ratio(reference, reference) == 0);
+  CHECK(log_variance_ratio(reference, c) == doctest::Approx(-std::log(2.0) - std::log(25.0 / 9.0)));
+  // A feature that is not judged is not a component of the likelihood.
+  c.features[0].judged = false;
+  CHECK(log_variance_ratio(c, reference) == doctest::Approx(std::log(2.0)));
+}

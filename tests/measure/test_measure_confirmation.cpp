@@ -139,7 +139,7 @@ TEST_CASE("a refit that explains most of the excess but leaves structure is kept
   CHECK_FALSE(d.effects[1].qualifies);
 }
 
-TEST_CASE("refits of earlier steps count in the Bonferroni share of a later step") {
+TEST_CASE("ConfirmationRule::earlier_refits widens the Bonferroni share to a whole path (not used by diagnose: per step)") {
   // 19.4 -> 12.3 drops 7.1, p_drop = 0.0077: below 0.05 / 2, not below 0.05 / (2 + 5) = 0.0071.
   CHECK(decide_from_refits(19.4, {{"asymmetry", 12.3}, {"other", 25.0}}, 11, 2).verdict == "asymmetry");
   ConfirmationRule later;
