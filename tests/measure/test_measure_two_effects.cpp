@@ -8,6 +8,7 @@
 // absorb a lower peak (Weibull strength).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -55,31 +56,32 @@ TEST_CASE("machine compliance and bond softening hidden at once: both named, one
         out.string());
   const std::string json = read(out / "diagnose.json");
   INFO(json);
-  // Compliance first: it shifts the whole rise (measured: LM 40.6, its refit explains 75 % of the
-  // excess, chi^2 74.3 -> 25.1, but p after 0.0015: kept, not named); softening second, on what
-  // compliance leaves (chi^2 15.1 -> 3.5, p after 0.83: named).
-  CHECK(json.find("\"verdict\": \"machine_compliance + bond_softening\"") != std::string::npos);
+  // Measured: compliance kept first (chi^2 75.9 -> 27.8, 71 % of the excess, p after 2.4e-4),
+  // softening named second on what compliance leaves (14.0 -> 3.7, p after 0.72). At step 1 the two
+  // refits nearly tie (27.8 and 28.0), so the order is not asserted: the path must hold both, its
+  // first step must have left structure (why it went on) and its last noise (the name's meaning).
+  const auto v = json.find("\"verdict\": \"") + 12;
+  const std::string verdict = json.substr(v, json.find('"', v) - v);
+  CHECK((verdict == "machine_compliance + bond_softening" || verdict == "bond_softening + machine_compliance"));
   const auto path = json.find("\"path\": [");
   REQUIRE(path != std::string::npos);
   const auto compliance = json.find("{\"effect\": \"machine_compliance\"", path);
   const auto softening = json.find("{\"effect\": \"bond_softening\"", path);
   REQUIRE(compliance != std::string::npos);
   REQUIRE(softening != std::string::npos);
-  CHECK(compliance < softening);
-  // The first step sizes compliance alone, before softening is known: its order must be right
-  // (measured 0.89 of the truth); a factor 2 either way is the band of the single-effect test's
-  // linearised sizes (2/3..3/2) widened for the second, unmodelled effect.
+  const auto first = std::min(compliance, softening), last = std::max(compliance, softening);
+  CHECK(number_after(json, "\"p_after\": ", first) < 0.05);
+  CHECK(json.find("\"named\": false", first) < last);
+  CHECK(number_after(json, "\"p_after\": ", last) > 0.05);
+  CHECK(json.find("\"named\": true", last) != std::string::npos);
+  // Sizes: the order of each. Compliance within a factor 2 of the truth (measured 0.80 at step 1,
+  // before softening is modelled: the single-effect band 2/3..3/2 widened for the second,
+  // unmodelled effect); softening within 2/3..3/2 of the truth 3 as in the single-effect test
+  // (measured 3.9, the refit's bound of 3.9 plausible sizes: the two trade off).
   const double c = number_after(json, "\"value\": ", compliance) / 1e-4;
   CHECK(c > 0.5);
   CHECK(c < 2.0);
-  // Softening is sized at the second step with compliance re-sized along; the two trade off
-  // (measured 3.9, the refit's bound of 3.9 plausible sizes, with compliance at 5.2e-5): only the
-  // order is asserted, 2/3..3/2 of the truth 3 as in the single-effect test.
   const double s = number_after(json, "\"value\": ", softening) / 3;
   CHECK(s > 2.0 / 3.0);
   CHECK(s < 1.5);
-  // The last step leaves noise (the name's meaning), the first did not (why it went on).
-  CHECK(number_after(json, "\"p_after\": ", softening) > 0.05);
-  CHECK(number_after(json, "\"p_after\": ", compliance) < 0.05);
-  CHECK(json.find("\"named\": false", compliance) < softening);
 }
