@@ -122,3 +122,158 @@ TEST_CASE("same truth, independent noise: adequate; stiffer model: elastic regim
   plot_comparison(bad, image, "stiffer model");
   CHECK(std::filesystem::file_size(image) > 1000);
 }
+
+namespace {
+
+// A curve through the given (w, F) corners, sampled every `dw` by linear interpolation.
+Curve polyline(const std::vector<std::pair<double, double>>& corners, double dw, double u_force) {
+  Curve c;
+  for (std::size_t k = 1; k < corners.size(); ++k) {
+    const auto [w0, f0] = corners[k - 1];
+    const auto [w1, f1] = corners[k];
+    const int n = static_cast<int>(std::lround((w1 - w0) / dw));
+    for (int i = (k == 1 ? 0 : 1); i <= n; ++i) {
+      const double t = static_cast<double>(i) / n;
+      c.time.push_back(static_cast<double>(c.time.size()) * 1e-3);
+      c.displacement.push_back(w0 + t * (w1 - w0));
+      c.force.push_back(f0 + t * (f1 - f0));
+      c.u_displacement.push_back(1e-7);
+      c.u_force.push_back(u_force);
+    }
+  }
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("fracture transients: crack initiation at the first significant drop, oscillations, failure point") {
+  // Rise to 2.0 N at 1 mm, a first crack drops the load to 1.8 N (0.2 N: 8 % of F_max, above the
+  // 2 % / 5 u_F threshold of 0.05 N), a second rise to the peak 2.5 N at 1.5 mm; after it the
+  // load falls to 1.0 N, rings back up to 1.6 N and falls to 0: two reversals of dF/dw.
+  const Curve c = polyline({{0, 0}, {1e-3, 2.0}, {1.05e-3, 1.8}, {1.5e-3, 2.5}, {1.7e-3, 1.0}, {1.8e-3, 1.6}, {2.2e-3, 0}},
+                           1e-5, 0.01);
+  CHECK(significant_drop(c) == doctest::Approx(0.05));
+  const FeatureValues f = curve_features(c);
+  CHECK(*f[Feature::PeakForce] == doctest::Approx(2.5));
+  CHECK(*f[Feature::InitiationForce] == doctest::Approx(2.0));
+  CHECK(*f[Feature::Oscillations] == 2);
+  // Half of F_max, 1.25 N, is first reached on the fall from 2.5 N at 1.5 mm to 1.0 N at 1.7 mm:
+  // w = 1.5 + 0.2 x (2.5 - 1.25) / 1.5 mm.
+  CHECK(*f[Feature::FailureDisplacement] == doctest::Approx(1.5e-3 + 0.2e-3 * 1.25 / 1.5).epsilon(1e-9));
+
+  // A smooth rise and a monotone fall: initiation is the peak, no oscillation; a 0.04 N wiggle
+  // (below the 0.05 N threshold) does not count.
+  const Curve smooth = polyline({{0, 0}, {1e-3, 2.5}, {1.2e-3, 1.5}, {1.25e-3, 1.54}, {2e-3, 0.5}}, 1e-5, 0.01);
+  const FeatureValues g = curve_features(smooth);
+  CHECK(*g[Feature::InitiationForce] == doctest::Approx(2.5));
+  CHECK(*g[Feature::Oscillations] == 0);
+  // A record cut while the load is still 60 % of F_max: the failure point is its end (a lower bound).
+  const Curve cut = polyline({{0, 0}, {1e-3, 2.5}, {1.2e-3, 1.5}}, 1e-5, 0.01);
+  CHECK(*curve_features(cut)[Feature::FailureDisplacement] == doctest::Approx(1.2e-3));
+}
+
+TEST_CASE("a model that fails later than the specimens is penalised by the failure point") {
+  // The grid ends at the shortest measured curve; a model whose post-peak fall comes later shows
+  // little there, but its failure displacement (half of F_max after the peak) is beyond noise,
+  // judged with judge_fracture (reported, not judged, by default).
+  std::mt19937 rng(3);
+  std::normal_distribution<double> scatter(0, 0.02e-3);
+  std::vector<Specimen> measured, late;
+  for (int i = 0; i < 3; ++i) {
+    const double e = scatter(rng);
+    measured.push_back(specimen(polyline({{0, 0}, {1e-3, 2.5}, {1.4e-3 + e, 0.2}}, 1e-5, 0.01)));
+    late.push_back(specimen(polyline({{0, 0}, {1e-3, 2.5}, {1.1e-3 + e, 2.3}, {4.8e-3 + e, 0.2}}, 1e-5, 0.01)));
+  }
+  Metadata meta;
+  meta.load_cell_uncertainty = 0.01;
+  CompareOptions fracture;
+  fracture.judge_fracture = true;
+  const Comparison c = compare(measured, meta, late, fracture);
+  bool judged = false;
+  for (const auto& f : c.features)
+    if (f.feature == Feature::FailureDisplacement) {
+      judged = f.judged;
+      CHECK(f.beyond_noise);
+      CHECK(f.simulated > 2 * f.measured);
+    }
+  CHECK(judged);
+  bool in_vector = false;
+  for (const auto& n : c.residual_vector().names) in_vector = in_vector || n == "feature:failure_displacement";
+  CHECK(in_vector);
+  // The oscillation count is never a score.
+  for (const auto& n : c.residual_vector().names) CHECK(n != "feature:oscillations");
+  // By default the failure point and the initiation force are reported but not judged.
+  const Comparison plain = compare(measured, meta, late);
+  for (const auto& n : plain.residual_vector().names) {
+    CHECK(n != "feature:failure_displacement");
+    CHECK(n != "feature:initiation_force");
+  }
+  bool reported = false;
+  for (const auto& f : plain.features) reported = reported || (f.feature == Feature::FailureDisplacement && !f.judged);
+  CHECK(reported);
+}
+
+TEST_CASE("a frozen simulated band: a model cannot lower its scores by scattering more") {
+  // Same mean curves, 5 % too stiff; one model's replicates scatter by 10 % in force, the other's
+  // not at all. Against its own band the scattering model scores lower; rescored with the tight
+  // model's band, its residuals are the tight model's.
+  std::mt19937 rng(11);
+  const double k = 2e5, w_p = 1e-3, noise = 0.5;
+  std::vector<Specimen> measured, tight, loose;
+  for (int i = 0; i < 3; ++i) measured.push_back(specimen(curve(k, w_p, 0.1, noise, rng, noise)));
+  for (int i = 0; i < 3; ++i) tight.push_back(specimen(curve(1.05 * k, w_p, 0.1, 0, rng, noise)));
+  for (const double s : {0.9, 1.0, 1.1}) {
+    Curve c = curve(1.05 * k, w_p, 0.1, 0, rng, noise);
+    for (auto& f : c.force) f *= s;
+    loose.push_back(specimen(c));
+  }
+  Metadata meta;
+  meta.load_cell_uncertainty = noise;
+  const Comparison t = compare(measured, meta, tight), l = compare(measured, meta, loose);
+  auto chi2 = [](const Comparison& c) {
+    double x = 0;
+    for (double r : c.residual_vector().values) x += r * r;
+    return x;
+  };
+  CHECK(chi2(l) < 0.1 * chi2(t));  // the scatter hides a 5 % error
+  const Comparison frozen = with_simulated_band(l, t);
+  CHECK(frozen.simulated.u == t.simulated.u);
+  CHECK(frozen.nrmse == l.nrmse);
+  // Same means (the loose replicates average to the tight curve), same band: same residuals.
+  for (std::size_t k2 = 0; k2 < frozen.residual.size(); ++k2)
+    CHECK(frozen.residual[k2] == doctest::Approx(t.residual[k2]).epsilon(1e-9));
+  CHECK(chi2(frozen) == doctest::Approx(chi2(t)).epsilon(1e-6));
+  // Other measurements (another grid) cannot lend their band.
+  std::vector<Specimen> shorter;
+  for (int i = 0; i < 3; ++i) shorter.push_back(specimen(curve(k, 0.8 * w_p, 0.1, noise, rng, noise)));
+  CHECK_THROWS(with_simulated_band(l, compare(shorter, meta, tight)));
+}
+
+TEST_CASE("the likelihood's variance term charges a model for its wider band") {
+  // One regime of two points with u_m = u_s = 1 (v = 2) against a reference with u_s = 0 (v = 1),
+  // and one feature with u_m = 3, u_s = 4 (v = 25) against u_s = 0 (v = 9):
+  // sum ln(v / v_ref) = ln 2 + ln(25 / 9).
+  Comparison c;
+  c.xi = {0, 1};
+  c.measured.u = {1, 1};
+  c.simulated.u = {1, 1};
+  c.regimes[0].regime = Regime::Toe;
+  c.regimes[0].first = 0;
+  c.regimes[0].last = 2;
+  for (std::size_t r = 1; r < kRegimeCount; ++r) c.regimes[r].first = c.regimes[r].last = 2;
+  FeatureComparison f;
+  f.feature = Feature::PeakForce;
+  f.u_measured = 3;
+  f.u_simulated = 4;
+  f.score = 0.5;
+  c.features.push_back(f);
+  Comparison reference = c;
+  reference.simulated.u = {0, 0};
+  reference.features[0].u_simulated = 0;
+  CHECK(log_variance_ratio(c, reference) == doctest::Approx(std::log(2.0) + std::log(25.0 / 9.0)));
+  CHECK(log_variance_ratio(reference, reference) == 0);
+  CHECK(log_variance_ratio(reference, c) == doctest::Approx(-std::log(2.0) - std::log(25.0 / 9.0)));
+  // A feature that is not judged is not a component of the likelihood.
+  c.features[0].judged = false;
+  CHECK(log_variance_ratio(c, reference) == doctest::Approx(std::log(2.0)));
+}

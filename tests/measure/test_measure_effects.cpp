@@ -108,3 +108,62 @@ TEST_CASE("linear refit recovers base steps and effect sizes of an exactly linea
   const Diagnosis d = diagnose(std::vector<std::string>(m, "c"), r0, J, {s});
   CHECK(without.chi_square == doctest::Approx(d.chi_square_unabsorbed).epsilon(1e-9));
 }
+
+TEST_CASE("a plausible size scaled from the test: a tenth of the time to peak, a fraction of the compliance") {
+  const auto file = write_file("rule.toml", R"(
+[[effect]]
+name = "bond_viscosity"
+parameter = "bond.viscosity_time"
+unit = "s"
+neutral = 0.0
+min = 0.0
+plausible_from = "time_to_peak"
+plausible_factor = 0.1
+
+[[effect]]
+name = "machine_compliance"
+parameter = "machine_compliance"
+unit = "m/N"
+neutral = 0.0
+min = 0.0
+plausible_from = "secant_compliance"
+plausible_factor = 0.25
+)");
+  const auto lib = read_effect_library(file);
+  // Two rates: peaks after 50 ms and 10 ms (0.02 and 0.1 m/s to a 1 mm peak at 2.5 N). The
+  // viscosity is a tenth of the shorter time; the compliance a quarter of 1 mm / 2.5 N.
+  auto specimen_peaking_at = [](double t_peak) {
+    Specimen s;
+    for (int i = 0; i <= 20; ++i) {
+      const double t = t_peak * i / 10.0;
+      s.curve.time.push_back(t);
+      s.curve.displacement.push_back(1e-3 * i / 10.0);
+      s.curve.force.push_back(i <= 10 ? 2.5 * i / 10.0 : 2.5 * (20 - i) / 10.0);
+      s.curve.u_force.push_back(0.01);
+      s.curve.u_displacement.push_back(1e-6);
+    }
+    return s;
+  };
+  const TestScales scales = test_scales({{specimen_peaking_at(0.05)}, {specimen_peaking_at(0.01)}});
+  CHECK(scales.time_to_peak == doctest::Approx(0.01));
+  CHECK(scales.peak_force == doctest::Approx(2.5));
+  CHECK(scales.secant_compliance == doctest::Approx(4e-4));
+  const auto resolved = with_test_plausible(lib, scales);
+  CHECK(resolved[0].plausible == doctest::Approx(1e-3));
+  CHECK(resolved[1].plausible == doctest::Approx(1e-4));
+  // With the model run 5 x faster (--time-compression 5) its times are a fifth.
+  CHECK(test_scales({{specimen_peaking_at(0.01)}}, 5).time_to_peak == doctest::Approx(0.002));
+  // A rule that puts the size outside the range is refused, naming the effect and the fix.
+  auto negative = lib;
+  negative[0].plausible_factor = -0.1;
+  CHECK_THROWS_WITH_AS(with_test_plausible(negative, scales), doctest::Contains("effect 'bond_viscosity'"),
+                       std::runtime_error);
+  // An unknown scale, and a rule without its factor, are errors at the file's line.
+  CHECK_THROWS_WITH_AS(read_effect_library(write_file("bad_rule.toml", "[[effect]]\nname = \"v\"\nparameter = \"a.b\"\n"
+                                                                       "neutral = 0.0\nplausible_from = \"peak_time\"\n"
+                                                                       "plausible_factor = 0.1\n")),
+                       doctest::Contains("unknown plausible_from 'peak_time'"), std::runtime_error);
+  CHECK_THROWS_WITH_AS(read_effect_library(write_file("half_rule.toml", "[[effect]]\nname = \"v\"\nparameter = \"a.b\"\n"
+                                                                        "neutral = 0.0\nplausible_from = \"time_to_peak\"\n")),
+                       doctest::Contains("go together"), std::runtime_error);
+}

@@ -112,12 +112,39 @@ void fill_features(Comparison& c, const std::vector<Specimen>& measured, const M
     fc.u_simulated = sd_s / std::sqrt(ns);
     fc.error = fc.simulated - fc.measured;
     fc.relative_error = fc.measured != 0 ? fc.error / std::abs(fc.measured) : 0;
-    const double u = std::hypot(fc.u_measured, fc.u_simulated);
-    fc.score = u > 0 ? fc.error / u : std::numeric_limits<double>::quiet_NaN();
-    fc.judged = i < kCurveFeatureCount || options.judge_fracture;
-    fc.beyond_noise = fc.judged && u > 0 && std::abs(fc.score) > options.noise_threshold;
+    fc.judged = judged_by_default(fc.feature) || (options.judge_fracture && fracture_feature(fc.feature));
     c.features.push_back(fc);
   }
+}
+
+void score_features(Comparison& c, const CompareOptions& options) {
+  for (auto& fc : c.features) {
+    const double u = std::hypot(fc.u_measured, fc.u_simulated);
+    fc.score = u > 0 ? fc.error / u : std::numeric_limits<double>::quiet_NaN();
+    fc.beyond_noise = fc.judged && u > 0 && std::abs(fc.score) > options.noise_threshold;
+  }
+}
+
+// Dynamic transients and an early first crack are reported whatever the verdict: they say how
+// far F_max can be read as strength.
+std::string transient_note(const Comparison& c) {
+  std::string note;
+  for (const auto& f : c.features) {
+    if (f.feature == Feature::Oscillations && (f.measured >= 1 || f.simulated >= 1))
+      note += fmt::format(" Transients: {:.1f} load oscillations after the peak per measured curve, {:.1f} per simulated "
+                          "(swings above noise): a dynamic failure, where F_max may include an inertial overshoot.",
+                          f.measured, f.simulated);
+    if (f.feature == Feature::InitiationForce) {
+      double f_max_meas = 0, f_max_sim = 0;
+      for (const auto& g : c.features)
+        if (g.feature == Feature::PeakForce) f_max_meas = g.measured, f_max_sim = g.simulated;
+      if (f.measured < 0.95 * f_max_meas || f.simulated < 0.95 * f_max_sim)
+        note += fmt::format(" First significant load drop (crack initiation) at {:.4g} N measured, {:.4g} N simulated, "
+                            "before F_max ({:.4g} / {:.4g} N).",
+                            f.measured, f.simulated, f_max_meas, f_max_sim);
+    }
+  }
+  return note;
 }
 
 std::string percent(double x) { return fmt::format("{:+.1f} %", 100 * x); }
@@ -137,19 +164,32 @@ void fill_verdict(Comparison& c, const CompareOptions& options) {
       features += fmt::format("{}{} {} ({:+.1f} sigma)", features.empty() ? "" : "; ", feature_name(f.feature),
                               percent(f.relative_error), f.score);
   c.adequate = failing.empty() && features.empty();
+  const std::string note = transient_note(c);
   if (c.adequate) {
     double worst = 0;
     for (const auto& g : c.regimes) worst = std::max(worst, std::abs(g.mean_residual));
     c.verdict = fmt::format(
         "adequate: every regime and feature agrees within noise (largest regime mean residual {:.1f} sigma < {:.0f}; "
         "NRMSE {:.1f} %).",
-        worst, options.noise_threshold, 100 * c.nrmse);
+        worst, options.noise_threshold, 100 * c.nrmse) + note;
     return;
   }
   c.verdict = fmt::format("The model fails beyond noise in: {}.", failing.empty() ? "no curve regime" : failing);
   if (!features.empty()) c.verdict += fmt::format(" Features beyond noise: {}.", features);
   if (!within.empty()) c.verdict += fmt::format(" Within noise: {}.", within);
-  c.verdict += fmt::format(" NRMSE {:.1f} %.", 100 * c.nrmse);
+  c.verdict += fmt::format(" NRMSE {:.1f} %.", 100 * c.nrmse) + note;
+}
+
+// Residual per grid point, regimes, feature scores and verdict from the bands.
+void score(Comparison& c, const CompareOptions& options) {
+  c.residual.clear();
+  for (std::size_t k = 0; k < c.xi.size(); ++k) {
+    const double u = std::hypot(c.measured.u[k], c.simulated.u[k]);
+    c.residual.push_back((c.simulated.mean[k] - c.measured.mean[k]) / u);
+  }
+  fill_regimes(c, options);
+  score_features(c, options);
+  fill_verdict(c, options);
 }
 
 }  // namespace
@@ -229,17 +269,58 @@ Comparison compare(const std::vector<Specimen>& measured, const Metadata& metada
     const std::size_t a = k > 0 ? k - 1 : 0, b = std::min(k + 1, n - 1);
     const double slope = (c.measured.mean[b] - c.measured.mean[a]) / (w[b] - w[a]);
     c.measured.u[k] = std::sqrt(c.measured.u[k] + (uf2 + slope * slope * uw2) / nm);
-    const double u = std::hypot(c.measured.u[k], c.simulated.u[k]);
     const double diff = c.simulated.mean[k] - c.measured.mean[k];
-    c.residual.push_back(diff / u);
     sq += diff * diff;
   }
   c.measured_peak_force = *std::max_element(c.measured.mean.begin(), c.measured.mean.end());
   c.nrmse = std::sqrt(sq / static_cast<double>(n)) / c.measured_peak_force;
-  fill_regimes(c, options);
   fill_features(c, measured, metadata, simulated, options);
-  fill_verdict(c, options);
+  score(c, options);
   return c;
+}
+
+Comparison with_simulated_band(const Comparison& c, const Comparison& reference, const CompareOptions& options) {
+  if (reference.xi != c.xi)
+    throw std::invalid_argument("with_simulated_band: the comparisons are on different grids (other measurements)");
+  Comparison out = c;
+  out.simulated.u = reference.simulated.u;
+  for (auto& f : out.features) {
+    f.u_simulated = 0;  // a feature the reference lacks is judged on the measured band alone
+    for (const auto& g : reference.features)
+      if (g.feature == f.feature) f.u_simulated = g.u_simulated;
+  }
+  score(out, options);
+  return out;
+}
+
+namespace {
+
+// Combined variance per residual-vector component, by name.
+std::vector<std::pair<std::string, double>> component_variances(const Comparison& c) {
+  std::vector<std::pair<std::string, double>> v;
+  for (const auto& g : c.regimes)
+    if (g.points() > 0) {
+      double sum = 0;
+      for (std::size_t k = g.first; k < g.last; ++k)
+        sum += c.measured.u[k] * c.measured.u[k] + c.simulated.u[k] * c.simulated.u[k];
+      v.emplace_back(fmt::format("regime:{}", regime_name(g.regime)), sum / static_cast<double>(g.points()));
+    }
+  for (const auto& f : c.features)
+    if (f.judged && std::isfinite(f.score))
+      v.emplace_back(fmt::format("feature:{}", feature_name(f.feature)),
+                     f.u_measured * f.u_measured + f.u_simulated * f.u_simulated);
+  return v;
+}
+
+}  // namespace
+
+double log_variance_ratio(const Comparison& c, const Comparison& reference) {
+  const auto mine = component_variances(c), theirs = component_variances(reference);
+  double sum = 0;
+  for (const auto& [name, v] : mine)
+    for (const auto& [other, w] : theirs)
+      if (name == other && v > 0 && w > 0) sum += std::log(v / w);
+  return sum;
 }
 
 ResidualVector Comparison::residual_vector() const {

@@ -8,21 +8,26 @@
 
 namespace shard::measure {
 
-ConfirmationDecision decide_from_refits(double base_chi2, const std::vector<RefitOutcome>& refits, std::size_t m,
-                                        std::size_t p, const ConfirmationRule& rule) {
+ConfirmationDecision decide_from_refits(const RefitOutcome& base, const std::vector<RefitOutcome>& refits,
+                                        std::size_t m, std::size_t p, const ConfirmationRule& rule) {
   if (m < p + 2) throw std::invalid_argument("decide_from_refits: need at least two residual components beyond the base parameters");
+  const double base_chi2 = base.chi_square;
   ConfirmationDecision d;
   d.excess = base_chi2 - static_cast<double>(m - p);
   d.base_p = chi_square_survival(base_chi2, static_cast<double>(m - p));
-  const double drop_level = rule.drop_p / static_cast<double>(std::max<std::size_t>(1, refits.size()));
+  d.base_nrmse = base.nrmse;
+  const double drop_level =
+      rule.drop_p / static_cast<double>(std::max<std::size_t>(1, refits.size() + rule.earlier_refits));
   const double log_m = std::log(static_cast<double>(m));
   const ConfirmedEffect* best_named = nullptr;
+  const ConfirmedEffect* best_kept = nullptr;
   const ConfirmedEffect* best_any = nullptr;
   d.effects.reserve(refits.size());
   for (const auto& r : refits) {
     ConfirmedEffect e;
     e.name = r.name;
     e.chi_square = r.chi_square;
+    e.nrmse = r.nrmse;
     const double drop = base_chi2 - r.chi_square;
     e.share_explained = d.excess > 0 ? drop / d.excess : 0;
     e.delta_aic = -drop + 2;
@@ -30,12 +35,16 @@ ConfirmationDecision decide_from_refits(double base_chi2, const std::vector<Refi
     // A refit that could not be simulated (infinite chi^2) explains nothing.
     e.p_after = std::isfinite(r.chi_square) ? chi_square_survival(r.chi_square, static_cast<double>(m - p - 1)) : 0;
     e.p_drop = drop > 0 && std::isfinite(drop) ? chi_square_survival(drop, 1) : 1;
-    e.named = d.excess > 0 && e.share_explained >= rule.min_explained && e.delta_aic < 0 && e.delta_bic < 0 &&
-              e.p_drop < drop_level && e.p_after > rule.remaining_p;
+    // NaN on either side compares false: the rule needs both NRMSEs.
+    e.nrmse_rose = r.nrmse > base.nrmse;
+    e.qualifies = d.excess > 0 && e.share_explained >= rule.min_explained && e.delta_aic < 0 && e.delta_bic < 0 &&
+                  e.p_drop < drop_level && (rule.nrmse_may_rise || !e.nrmse_rose);
+    e.named = e.qualifies && e.p_after > rule.remaining_p;
     d.effects.push_back(e);
   }
   for (const auto& e : d.effects) {
     if (e.named && (!best_named || e.chi_square < best_named->chi_square)) best_named = &e;
+    if (e.qualifies && (!best_kept || e.chi_square < best_kept->chi_square)) best_kept = &e;
     if (e.chi_square < base_chi2 && (!best_any || e.chi_square < best_any->chi_square)) best_any = &e;
   }
   if (best_named) {
@@ -49,8 +58,31 @@ ConfirmationDecision decide_from_refits(double base_chi2, const std::vector<Refi
   } else {
     d.verdict = kUnexplained;
     if (best_any) d.best_partial = best_any->name;
+    if (best_kept) d.kept = best_kept->name;
   }
   return d;
+}
+
+ConfirmationDecision decide_from_refits(double base_chi2, const std::vector<RefitOutcome>& refits, std::size_t m,
+                                        std::size_t p, const ConfirmationRule& rule) {
+  return decide_from_refits(RefitOutcome{"base refit", base_chi2}, refits, m, p, rule);
+}
+
+GainCredit credit_gain(double before, double base_only, double with_effect) {
+  GainCredit c;
+  c.total = before - with_effect;
+  c.by_base = before - base_only;
+  c.by_effect = base_only - with_effect;
+  c.effect_p = c.by_effect > 0 ? chi_square_survival(c.by_effect, 1) : 1;
+  c.effect_supported = c.by_effect > 2 && c.effect_p < 0.05;
+  return c;
+}
+
+std::string stepwise_verdict(const std::vector<DiagnosisStep>& path) {
+  if (path.empty() || !path.back().named) return kUnexplained;
+  std::string v;
+  for (const auto& s : path) v += (v.empty() ? "" : " + ") + s.effect;
+  return v;
 }
 
 }  // namespace shard::measure

@@ -3,8 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 #include <toml++/toml.h>
+
+#include "shard/measure/features.hpp"
+#include "shard/measure/statistics.hpp"
 
 namespace shard::measure {
 namespace {
@@ -67,10 +71,21 @@ std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& fi
     CandidateEffect e;
     for (const auto& [key, value] : *t) {
       const std::string k(key.str());
-      if (k == "name" || k == "parameter" || k == "unit" || k == "separated_by" || k == "doc") {
+      if (k == "name" || k == "parameter" || k == "unit" || k == "separated_by" || k == "doc" || k == "plausible_from") {
         const auto* s = value.as_string();
         if (!s) throw std::runtime_error(fmt::format("{}: '{}' must be a string", where(file, value), k));
-        (k == "name" ? e.name : k == "parameter" ? e.parameter : k == "unit" ? e.unit : k == "doc" ? e.doc : e.separated_by) = s->get();
+        (k == "name"        ? e.name
+         : k == "parameter" ? e.parameter
+         : k == "unit"      ? e.unit
+         : k == "doc"       ? e.doc
+         : k == "plausible_from" ? e.plausible_from
+                                 : e.separated_by) = s->get();
+        if (k == "plausible_from") try {
+            TestScales{}.at(e.plausible_from);
+          } catch (const std::exception&) {
+            throw std::runtime_error(fmt::format("{}: unknown plausible_from '{}'; the scales are {}", where(file, value),
+                                                 e.plausible_from, kTestScaleNames));
+          }
       } else if (k == "value_format") {
         const auto* s = value.as_string();
         const std::string text = s ? s->get() : "";
@@ -80,10 +95,14 @@ std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& fi
               "{}: 'value_format' must be a string with one {{}} where the value goes, e.g. \"[0.0, 0.0, {{}}]\"",
               where(file, value)));
         e.value_format = text;
-      } else if (k == "neutral" || k == "plausible" || k == "min" || k == "max") {
+      } else if (k == "neutral" || k == "plausible" || k == "min" || k == "max" || k == "plausible_factor") {
         const auto v = value.value<double>();
         if (!v) throw std::runtime_error(fmt::format("{}: '{}' must be a number", where(file, value), k));
-        (k == "neutral" ? e.neutral : k == "plausible" ? e.plausible : k == "min" ? e.min : e.max) = *v;
+        (k == "neutral"     ? e.neutral
+         : k == "plausible" ? e.plausible
+         : k == "min"       ? e.min
+         : k == "max"       ? e.max
+                            : e.plausible_factor) = *v;
       } else if (k == "set") {
         const auto* a = value.as_array();
         if (!a) throw std::runtime_error(fmt::format("{}: 'set' must be an array of \"section.key=value\" strings", where(file, value)));
@@ -96,16 +115,24 @@ std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& fi
       } else {
         throw std::runtime_error(fmt::format(
             "{}: unknown key '{}' in [[effect]]; the keys are name, parameter, value_format, unit, neutral, "
-            "plausible, min, max, set, separated_by, doc",
+            "plausible, plausible_from, plausible_factor, min, max, set, separated_by, doc",
             where(file, value), k));
       }
     }
     if (e.name.empty() || e.parameter.empty())
       throw std::runtime_error(fmt::format("{}: an [[effect]] needs a name and a parameter", where(file, node)));
-    if (!(e.min <= e.neutral && e.neutral <= e.max && e.min <= e.plausible && e.plausible <= e.max))
+    if (e.plausible_from.empty() != (e.plausible_factor == 0))
+      throw std::runtime_error(fmt::format("{}: effect '{}': plausible_from and plausible_factor go together (plausible = "
+                                           "factor x the scale), e.g. plausible_from = \"time_to_peak\" and "
+                                           "plausible_factor = 0.1",
+                                           where(file, node), e.name));
+    // With a rule, plausible is set once the measurements are known (with_test_plausible).
+    const bool rule = !e.plausible_from.empty();
+    if (rule) e.plausible = std::numeric_limits<double>::quiet_NaN();
+    if (!(e.min <= e.neutral && e.neutral <= e.max && (rule || (e.min <= e.plausible && e.plausible <= e.max))))
       throw std::runtime_error(fmt::format("{}: effect '{}': neutral {:g} and plausible {:g} must lie in [min, max] = [{:g}, {:g}]",
                                            where(file, node), e.name, e.neutral, e.plausible, e.min, e.max));
-    if (e.plausible == e.neutral)
+    if (!rule && e.plausible == e.neutral)
       throw std::runtime_error(fmt::format("{}: effect '{}': plausible equals neutral, the trial run would not switch "
                                            "it on",
                                            where(file, node), e.name));
@@ -118,6 +145,49 @@ std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& fi
     out.push_back(std::move(e));
   }
   return out;
+}
+
+double TestScales::at(const std::string& name) const {
+  if (name == "time_to_peak") return time_to_peak;
+  if (name == "peak_force") return peak_force;
+  if (name == "peak_displacement") return peak_displacement;
+  if (name == "secant_compliance") return secant_compliance;
+  throw std::invalid_argument(fmt::format("unknown test scale '{}'; the scales are {}", name, kTestScaleNames));
+}
+
+TestScales test_scales(const std::vector<std::vector<Specimen>>& rate_groups, double time_compression) {
+  TestScales s;
+  std::vector<double> f, w;
+  s.time_to_peak = std::numeric_limits<double>::infinity();
+  for (const auto& group : rate_groups) {
+    std::vector<double> t;
+    for (const auto& sp : group) {
+      const std::size_t p = peak_index(sp.curve);
+      t.push_back(sp.curve.time[p] - sp.curve.time.front());
+      f.push_back(sp.curve.force[p]);
+      w.push_back(sp.curve.displacement[p]);
+    }
+    if (!t.empty()) s.time_to_peak = std::min(s.time_to_peak, mean(t) / time_compression);
+  }
+  if (f.empty()) throw std::invalid_argument("test_scales: no specimens");
+  s.peak_force = mean(f);
+  s.peak_displacement = mean(w);
+  s.secant_compliance = s.peak_displacement / s.peak_force;
+  return s;
+}
+
+std::vector<CandidateEffect> with_test_plausible(std::vector<CandidateEffect> effects, const TestScales& scales) {
+  for (auto& e : effects) {
+    if (e.plausible_from.empty()) continue;
+    const double scale = scales.at(e.plausible_from);
+    e.plausible = e.plausible_factor * scale;
+    if (!(e.min <= e.plausible && e.plausible <= e.max) || e.plausible == e.neutral)
+      throw std::runtime_error(fmt::format(
+          "effect '{}': plausible_factor {:g} x {} {:.4g} = {:.4g} {} is {}; change plausible_factor", e.name,
+          e.plausible_factor, e.plausible_from, scale, e.plausible, e.unit,
+          e.plausible == e.neutral ? "its neutral value" : fmt::format("outside [{:g}, {:g}]", e.min, e.max)));
+  }
+  return effects;
 }
 
 std::vector<CandidateEffect> select_effects(const std::vector<CandidateEffect>& library,

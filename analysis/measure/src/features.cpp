@@ -9,6 +9,19 @@ namespace shard::measure {
 namespace {
 
 constexpr double kElasticLow = 0.10, kElasticHigh = 0.60;  // fractions of F_max bounding the elastic fit
+// A load drop counts when it exceeds 2 % of F_max (a burst of breaks, not a single bond of a
+// resolved beam) and 5 force standard uncertainties (the running maximum of n noisy readings
+// sits ~3 sigma above their mean for n ~ 1000; 5 keeps noise from counting).
+constexpr double kDropFraction = 0.02, kDropNoise = 5.0;
+constexpr double kFailureFraction = 0.5;  // failure: the force has fallen to half of F_max
+
+// Linear interpolation of w between rows k - 1 and k where the force crosses `level`.
+double crossing(const Curve& c, std::size_t k, double level) {
+  if (k == 0) return c.displacement[0];
+  const double f0 = c.force[k - 1], f1 = c.force[k];
+  const double t = f0 != f1 ? std::clamp((f0 - level) / (f0 - f1), 0.0, 1.0) : 1.0;
+  return c.displacement[k - 1] + t * (c.displacement[k] - c.displacement[k - 1]);
+}
 
 // Trapezoidal integral of F dw over rows [first, last].
 double work(const Curve& c, std::size_t first, std::size_t last) {
@@ -43,6 +56,9 @@ std::string_view feature_name(Feature f) {
     case Feature::CrackPosition: return "crack_position";
     case Feature::FragmentX50: return "fragment_x50";
     case Feature::FragmentCount: return "fragment_count";
+    case Feature::InitiationForce: return "initiation_force";
+    case Feature::Oscillations: return "oscillations";
+    case Feature::FailureDisplacement: return "failure_displacement";
   }
   return "?";
 }
@@ -58,6 +74,9 @@ std::string_view feature_unit(Feature f) {
     case Feature::CrackPosition: return "m";
     case Feature::FragmentX50: return "m";
     case Feature::FragmentCount: return "1";
+    case Feature::InitiationForce: return "N";
+    case Feature::Oscillations: return "1";
+    case Feature::FailureDisplacement: return "m";
   }
   return "?";
 }
@@ -65,6 +84,21 @@ std::string_view feature_unit(Feature f) {
 Feature feature_at(std::size_t index) {
   if (index >= kFeatureCount) throw std::out_of_range("feature index");
   return static_cast<Feature>(index);
+}
+
+bool judged_by_default(Feature f) {
+  return static_cast<std::size_t>(f) <= static_cast<std::size_t>(Feature::PostPeakWork);
+}
+
+bool fracture_feature(Feature f) {
+  return f == Feature::CrackPosition || f == Feature::FragmentX50 || f == Feature::FragmentCount ||
+         f == Feature::InitiationForce || f == Feature::FailureDisplacement;
+}
+
+double significant_drop(const Curve& c) {
+  double u = 0;
+  for (double x : c.u_force) u = std::max(u, x);
+  return std::max(kDropFraction * c.force[peak_index(c)], kDropNoise * u);
 }
 
 std::size_t peak_index(const Curve& c) {
@@ -122,6 +156,37 @@ FeatureValues curve_features(const Curve& c) {
   f.sensor_uncertainty[4] = elastic_force_at_peak > 0 ? c.u_force[p] / elastic_force_at_peak : 0.0;
   f[Feature::PostPeakWork] = work(c, p, c.size() - 1);
   f.sensor_uncertainty[5] = work_uncertainty(c, p, c.size() - 1);
+
+  const double drop = significant_drop(c);
+  std::size_t top = 0;  // row of the running maximum
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    if (c.force[k] > c.force[top]) top = k;
+    if (c.force[top] - c.force[k] > drop) break;
+  }
+  f[Feature::InitiationForce] = c.force[top];
+  f.sensor_uncertainty[static_cast<std::size_t>(Feature::InitiationForce)] = c.u_force[top];
+
+  // Zig-zag count after the peak: a reversal is recorded once the force has moved by more than
+  // `drop` against the current direction from the last extreme.
+  double extreme = f_max;
+  int direction = -1, reversals = 0;
+  for (std::size_t k = p + 1; k < c.size(); ++k) {
+    const double x = c.force[k];
+    if (direction < 0 ? x < extreme : x > extreme) {
+      extreme = x;
+    } else if (std::abs(x - extreme) > drop) {
+      direction = -direction;
+      extreme = x;
+      ++reversals;
+    }
+  }
+  f[Feature::Oscillations] = reversals;
+
+  std::size_t fail = p;
+  while (fail < c.size() && c.force[fail] > kFailureFraction * f_max) ++fail;
+  const std::size_t at = std::min(fail, c.size() - 1);
+  f[Feature::FailureDisplacement] = fail < c.size() ? crossing(c, fail, kFailureFraction * f_max) : c.displacement.back();
+  f.sensor_uncertainty[static_cast<std::size_t>(Feature::FailureDisplacement)] = c.u_displacement[at];
   return f;
 }
 

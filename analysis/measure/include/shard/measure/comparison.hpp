@@ -37,7 +37,9 @@ struct CompareOptions {
   // Crack position, fragment x50 and count are always reported; they enter the verdict and the
   // residual vector that diagnose explains only when judged. On a few-hundred-sphere beam the
   // crack sits at one of two sites by the packing's chance, and three replicates do not estimate
-  // that scatter: judged, they made correct effect models fail the remainder test.
+  // that scatter: judged, they made correct effect models fail the remainder test. The crack
+  // initiation force and the failure displacement are judged with them (features.hpp:
+  // judged_by_default, fracture_feature).
   bool judge_fracture = false;
 };
 
@@ -98,5 +100,19 @@ double force_at(const Curve& c, double w);
 
 Comparison compare(const std::vector<Specimen>& measured, const Metadata& metadata,
                    const std::vector<Specimen>& simulated, const CompareOptions& options = {});
+
+// `c` rescored with the simulated band (per grid point and per feature) of `reference`, a
+// comparison of another model with the same measurements: residuals, regimes, feature scores and
+// verdict; NRMSE and means unchanged. Candidates judged on one frozen band cannot lower their
+// chi^2 by scattering more (a wider band shrinks every standardised residual): diagnose scores
+// every model against the base model's band. Throws when the grids differ.
+Comparison with_simulated_band(const Comparison& c, const Comparison& reference, const CompareOptions& options = {});
+
+// The Gaussian likelihood's variance term of `c` against `reference` over the residual vector's
+// components: sum of ln(v_c / v_ref), v the combined variance u_m^2 + u_s^2 (a regime's: its
+// points' mean; a feature's: its own). -2 ln L = chi^2 + sum ln v + const, so chi^2 plus this
+// term compares models on their likelihood: a model whose replicates scatter more pays for its
+// wider band (zero for the reference itself). Components missing on either side are skipped.
+double log_variance_ratio(const Comparison& c, const Comparison& reference);
 
 }  // namespace shard::measure

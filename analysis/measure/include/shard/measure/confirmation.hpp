@@ -26,6 +26,16 @@
 // `rival_chi_square` of the named one (2: a dAIC under 2 between two one-parameter additions,
 // "substantial support" for both in Burnham & Anderson's terms). The data cannot tell them from
 // the verdict, and the report says so with the measurement that would.
+// Scattering. A candidate's chi^2 must not fall because its replicates scatter more (a wider
+// band shrinks every standardised residual): diagnose scores every run against one frozen band
+// (Comparison::with_simulated_band), and a refit whose NRMSE rises above the base refit's is not
+// named or kept, whatever its chi^2 did (`nrmse_may_rise` = false).
+//
+// Several effects (stepwise). A refit that meets every rule but the last (it explains most of the
+// excess, significantly, and the information criteria prefer it, but structure remains) is
+// `kept`: the diagnosis adds it to the model and diagnoses the remainder with it (DiagnosisStep).
+#include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -34,11 +44,16 @@ namespace shard::measure {
 struct RefitOutcome {
   std::string name;
   double chi_square = 0;  // simulated chi^2 of the refit with this effect
+  // Its NRMSE; NaN when not known (the no-rise rule is then not applied).
+  double nrmse = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct ConfirmedEffect {
   std::string name;
   double chi_square = 0, share_explained = 0, delta_aic = 0, delta_bic = 0, p_after = 0, p_drop = 1;
+  double nrmse = std::numeric_limits<double>::quiet_NaN();
+  bool nrmse_rose = false;  // its NRMSE is above the base refit's: it won chi^2 by scattering
+  bool qualifies = false;   // every rule but "what remains is noise"
   bool named = false;
 };
 
@@ -47,22 +62,58 @@ struct ConfirmationRule {
   double remaining_p = 0.05;
   double rival_chi_square = 2.0;
   double drop_p = 0.05;
+  // Refits tried before this decision (earlier steps of a stepwise diagnosis): the Bonferroni
+  // share of drop_p counts them too.
+  std::size_t earlier_refits = 0;
+  bool nrmse_may_rise = false;
 };
 
 struct ConfirmationDecision {
   double excess = 0;                     // E
   double base_p = 0;                     // of the base refit's chi^2 against chi^2(m - p)
+  double base_nrmse = std::numeric_limits<double>::quiet_NaN();
   std::vector<ConfirmedEffect> effects;  // in the order given
   std::string verdict;                   // the named effect, "unexplained structured residual" or "adequate"
   std::string best_partial;              // the refit that lowered chi^2 most when none is named
+  std::string kept;                      // when none is named: the qualifying refit with the lowest chi^2
   std::vector<std::string> rivals;       // refits the data cannot tell from the named one
 };
 
 inline constexpr const char* kUnexplained = "unexplained structured residual";
 inline constexpr const char* kAdequate = "adequate";
 
+ConfirmationDecision decide_from_refits(const RefitOutcome& base_refit, const std::vector<RefitOutcome>& refits,
+                                        std::size_t components, std::size_t base_parameters,
+                                        const ConfirmationRule& rule = {});
+// The same without NRMSEs.
 ConfirmationDecision decide_from_refits(double base_refit_chi_square, const std::vector<RefitOutcome>& refits,
                                         std::size_t components, std::size_t base_parameters,
                                         const ConfirmationRule& rule = {});
+
+// Credit for a calibration's gain: chi^2 `before` (the base model), `base_only` (the fitted base
+// parameters with the effect at neutral) and `with_effect` (the fitted model). The base
+// parameters made before - base_only, the effect base_only - with_effect. The effect is supported
+// when its own drop beats the AIC penalty of its parameter (2) and the likelihood-ratio test,
+// P(chi^2(1) > drop) < 0.05; otherwise the gain belongs to the base parameters.
+struct GainCredit {
+  double total = 0, by_base = 0, by_effect = 0;
+  double effect_p = 1;  // P(chi^2(1) > by_effect)
+  bool effect_supported = false;
+};
+GainCredit credit_gain(double before, double base_only, double with_effect);
+
+// One step of a stepwise diagnosis: the effect added, its size, and the model before and after.
+struct DiagnosisStep {
+  std::string effect;
+  double value = 0;
+  double chi_square_before = 0, chi_square_after = 0;  // the step's base refit, the refit with the effect
+  double nrmse_before = 0, nrmse_after = 0;
+  double p_after = 0;  // of what remains, against chi^2(m - p - step)
+  bool named = false;  // what remains is noise: the path ends here
+};
+
+// "a + b" for a path whose last step is named; "unexplained structured residual" otherwise (the
+// kept steps are then partial explanations).
+std::string stepwise_verdict(const std::vector<DiagnosisStep>& path);
 
 }  // namespace shard::measure

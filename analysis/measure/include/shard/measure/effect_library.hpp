@@ -15,12 +15,24 @@
 //   separated_by = "a second loading rate"
 //   doc = "viscous bond force on the strain rate: a rate-dependent stiffness and strength"
 //
+// A plausible size that follows from the test rather than from one beam: `plausible_from` names a
+// scale of the measurements and `plausible_factor` multiplies it (plausible = factor x scale, in
+// the parameter's unit, replacing `plausible`):
+//   time_to_peak        s, the shortest mean time from the first reading to F_max over the loading
+//                       rates (model time: divided by --time-compression); a viscosity shows when
+//                       its time is a fraction of it
+//   peak_force          N, mean F_max
+//   peak_displacement   m, mean w at F_max
+//   secant_compliance   m/N, w_peak / F_max: a machine compliance is a fraction of the specimen's
+//   e.g.  plausible_from = "time_to_peak"   plausible_factor = 0.1
 // A parameter that is not a plain number in the scene (a vector such as simulation.gravity) takes
 // `value_format = "[0.0, 0.0, {}]"`: the effect's scalar value goes where {} stands.
 #include <filesystem>
 #include <limits>
 #include <string>
 #include <vector>
+
+#include "shard/measure/measurements.hpp"
 
 namespace shard::measure {
 
@@ -39,6 +51,8 @@ struct CandidateEffect {
   // The parameter's physical range (keys min, max): a diagnosis does not ask for a value outside.
   double min = -std::numeric_limits<double>::infinity();
   double max = std::numeric_limits<double>::infinity();
+  std::string plausible_from;  // "" or a scale of the measurements (above)
+  double plausible_factor = 0;
 
   bool post_processing() const { return parameter == kMachineCompliance; }
   // The overrides that put the effect at `value` into a scene (none for machine compliance).
@@ -56,6 +70,19 @@ struct CandidateEffect {
 
 // Reads the library; errors name the file, line and column.
 std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& file);
+
+// The scales of a measurement set a plausible_from rule refers to.
+struct TestScales {
+  double time_to_peak = 0, peak_force = 0, peak_displacement = 0, secant_compliance = 0;
+  double at(const std::string& name) const;  // throws for an unknown name, listing the valid ones
+};
+inline constexpr const char* kTestScaleNames = "time_to_peak, peak_force, peak_displacement, secant_compliance";
+// Specimens grouped by loading rate; time_compression: the model runs that many times faster.
+TestScales test_scales(const std::vector<std::vector<Specimen>>& rate_groups, double time_compression = 1);
+
+// The effects with every plausible_from rule applied. Throws, naming the effect, when the size is
+// outside [min, max] or equals neutral.
+std::vector<CandidateEffect> with_test_plausible(std::vector<CandidateEffect> effects, const TestScales& scales);
 
 // The library entries named in `names` (all when empty); an unknown name lists the valid ones.
 std::vector<CandidateEffect> select_effects(const std::vector<CandidateEffect>& library,

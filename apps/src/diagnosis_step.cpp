@@ -1,0 +1,140 @@
+#include "diagnosis_step.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace shard {
+
+using namespace measure;
+
+namespace {
+
+constexpr double kParameterStep = 0.05;  // relative step of the base parameters (as linearise)
+constexpr double kKeptStep = 0.25;       // step of a kept effect, in trial sizes
+
+std::vector<double> difference(const ResidualVector& r, const ResidualVector& base, const std::string& what,
+                               double scale) {
+  if (r.names != base.names)
+    throw std::runtime_error(fmt::format("{} changed which residual components exist (a regime or feature vanished); "
+                                         "use a smaller size",
+                                         what));
+  std::vector<double> d(r.values.size());
+  for (std::size_t i = 0; i < d.size(); ++i) d[i] = (r.values[i] - base.values[i]) / scale;
+  return d;
+}
+
+}  // namespace
+
+ModelPlan step_plan(const ModelPlan& scene, const std::vector<std::string>& keys, const StepModel& model) {
+  ModelPlan plan = with_parameters(scene, keys, model.parameters);
+  for (const auto& [effect, value] : model.kept) plan = with_effect(plan, *effect, value);
+  return plan;
+}
+
+double effect_scale(const CandidateEffect& e, double value) { return (value - e.neutral) / (e.plausible - e.neutral); }
+
+Scoring scoring_from_name(const std::string& name) {
+  if (name == "own") return Scoring::Own;
+  if (name == "frozen") return Scoring::FrozenBand;
+  if (name == "likelihood") return Scoring::Likelihood;
+  throw std::runtime_error(fmt::format("--scoring {}: use 'own' (each model's own band), 'frozen' (the base model's band for "
+                                       "every model) or 'likelihood' (own band plus the log-variance term)",
+                                       name));
+}
+
+double model_score(const RateComparison& c, const RateComparison& reference, Scoring scoring) {
+  if (scoring == Scoring::Own) return c.chi_square();
+  if (scoring == Scoring::FrozenBand) return with_band(c, reference).chi_square();
+  double log_det = 0;
+  for (std::size_t k = 0; k < c.at.size() && k < reference.at.size(); ++k)
+    log_det += log_variance_ratio(c.at[k], reference.at[k]);
+  return c.chi_square() + log_det;
+}
+
+RateComparison with_band(const RateComparison& c, const RateComparison& reference) {
+  RateComparison out = c;
+  for (std::size_t k = 0; k < out.at.size(); ++k) out.at[k] = with_simulated_band(c.at[k], reference.at[k]);
+  return out;
+}
+
+StepLinearisation linearise_step(Simulator& simulator, const RateGroups& measured, const Metadata& metadata,
+                                 const ModelPlan& scene, const std::vector<std::string>& keys, const StepModel& model,
+                                 const std::vector<const CandidateEffect*>& candidates, const RateComparison* band,
+                                 Scoring scoring, std::ostream& log) {
+  StepLinearisation l;
+  std::vector<ModelPlan> models{step_plan(scene, keys, model)};
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    StepModel stepped = model;
+    stepped.parameters[i] *= 1 + kParameterStep;
+    models.push_back(step_plan(scene, keys, stepped));
+  }
+  for (std::size_t j = 0; j < model.kept.size(); ++j) {
+    const auto& [effect, value] = model.kept[j];
+    const double scale = effect_scale(*effect, value);
+    // Upwards unless that leaves the physical range (value_at would clamp to the same value).
+    const double up = effect->value_at(scale + kKeptStep);
+    const double step = std::abs(effect_scale(*effect, up) - scale) > 0.5 * kKeptStep ? kKeptStep : -kKeptStep;
+    StepModel stepped = model;
+    stepped.kept[j].second = effect->value_at(scale + step);
+    l.kept_scale_step.push_back(effect_scale(*effect, stepped.kept[j].second) - scale);
+    models.push_back(step_plan(scene, keys, stepped));
+  }
+  for (const auto* e : candidates) models.push_back(with_effect(models.front(), *e, e->plausible));
+  auto comparisons = simulate_and_compare(simulator, measured, metadata, models, log);
+  l.base_comparison = comparisons[0];
+  const RateComparison& reference = band ? *band : comparisons[0];
+  if (scoring == Scoring::FrozenBand)
+    for (auto& c : comparisons) c = with_band(c, reference);
+  l.base = comparisons[0].residual_vector();
+  std::size_t m = 1;
+  for (std::size_t i = 0; i < keys.size(); ++i, ++m)
+    l.jacobian.push_back(difference(comparisons[m].residual_vector(), l.base, keys[i], kParameterStep));
+  for (std::size_t j = 0; j < model.kept.size(); ++j, ++m)
+    l.jacobian.push_back(difference(comparisons[m].residual_vector(), l.base, model.kept[j].first->name,
+                                    l.kept_scale_step[j]));
+  for (const auto* e : candidates) {
+    // The candidate switched on from its neutral value: one trial step.
+    l.signatures.push_back({e->name, e->plausible - e->neutral,
+                            difference(comparisons[m++].residual_vector(), l.base, e->name, 1.0), e->scale_min(),
+                            e->scale_max()});
+  }
+  return l;
+}
+
+RefitPlan refit_plan(const std::vector<std::string>& keys, const StepModel& start, const LinearRefit& lr,
+                     const CandidateEffect* added) {
+  RefitPlan r;
+  r.model = start;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const double asked = 1 + lr.base_step[i];
+    const double factor = clamp_base_factor(asked);
+    r.model.parameters[i] *= factor;
+    if (factor != asked) {
+      r.base_at_bound = true;
+      r.at_bound.push_back(fmt::format("{} at {:.3g} x its start (asked {:.3g} x; the refit's range is 0.55-1.9 x)", keys[i],
+                                       factor, asked));
+    }
+  }
+  auto place = [&](const CandidateEffect& e, double asked_scale) {
+    // The step of an effect is bounded like calibrate-effect's start, then by its physical range.
+    const double scale = clamp_effect_scale(asked_scale);
+    const double value = e.value_at(scale);
+    const double asked_value = e.neutral + asked_scale * (e.plausible - e.neutral);
+    if (std::abs(effect_scale(e, value) - asked_scale) > 1e-9 * std::max(1.0, std::abs(asked_scale)))
+      r.at_bound.push_back(fmt::format("{} at {:.4g} {} (asked {:.4g}; bound: {})", e.name, value, e.unit, asked_value,
+                                       value == e.min || value == e.max ? "its physical range [min, max]"
+                                                                        : "0.05-3.9 plausible sizes from neutral"));
+    return value;
+  };
+  const std::size_t p = keys.size();
+  for (std::size_t j = 0; j < start.kept.size(); ++j) {
+    const auto& [effect, value] = start.kept[j];
+    r.model.kept[j].second = place(*effect, effect_scale(*effect, value) + lr.base_step[p + j]);
+  }
+  if (added) r.model.kept.emplace_back(added, place(*added, lr.effect_scale.front()));
+  return r;
+}
+
+}  // namespace shard

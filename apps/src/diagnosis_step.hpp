@@ -1,0 +1,75 @@
+#pragma once
+// One step of `shard diagnose` (measure_diagnose.cpp): the model so far (base parameters and the
+// effects kept by earlier steps, each at a value), linearised around itself, every run scored
+// against one frozen simulated band.
+//
+// Step k's nuisance parameters are the base parameters (relative +5 % steps) and the kept effects
+// (+1/4 of a trial size, or -1/4 at the top of the range): the candidates' score test and refits
+// profile them out, so a second effect is judged on what the first leaves, with the first
+// re-sized along.
+#include <iosfwd>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "measure_plan.hpp"
+
+namespace shard {
+
+// How a model's runs are scored against the data (--scoring):
+//   Own         chi^2 with the model's own band; scattering more is stopped by the NRMSE rule
+//               (confirmation.hpp: a refit whose NRMSE rises is neither named nor kept);
+//   FrozenBand  chi^2 with the reference model's simulated band (with_simulated_band);
+//   Likelihood  chi^2 with its own band plus the variance term of the Gaussian likelihood,
+//               sum ln(v / v_ref) (log_variance_ratio).
+// Own is the default: with three packing seeds the simulated variances are estimated to ~100 %,
+// the likelihood's log term is then noise of order 1 per component (it named support friction for
+// a seating toe and Weibull strength for hidden support friction), and the frozen band charges a
+// model's genuine extra scatter as error (it lost the hidden softening). docs/measurements.md.
+enum class Scoring { Own, FrozenBand, Likelihood };
+Scoring scoring_from_name(const std::string& name);  // "own", "frozen" or "likelihood"; throws otherwise
+
+struct StepModel {
+  std::vector<double> parameters;  // values of the base parameters (keys)
+  std::vector<std::pair<const measure::CandidateEffect*, double>> kept;  // effect, value
+};
+
+ModelPlan step_plan(const ModelPlan& scene, const std::vector<std::string>& keys, const StepModel& model);
+
+// The model's trial-size units of a kept effect's value.
+double effect_scale(const measure::CandidateEffect& e, double value);
+
+// `c` with every rate's simulated band replaced by `reference`'s (with_simulated_band).
+RateComparison with_band(const RateComparison& c, const RateComparison& reference);
+// The score a decision compares (a chi^2 for the frozen band; -2 ln L up to a constant).
+double model_score(const RateComparison& c, const RateComparison& reference, Scoring scoring);
+
+struct StepLinearisation {
+  measure::ResidualVector base;
+  RateComparison base_comparison;                 // own band (its NRMSE and verdict text)
+  std::vector<std::vector<double>> jacobian;      // base parameters, then kept effects
+  std::vector<double> kept_scale_step;            // per kept effect, the trial sizes stepped
+  std::vector<measure::EffectSignature> signatures;  // candidates, as `candidates`
+};
+
+// `band`: the reference band; empty: the step's base comparison is the reference (the first
+// step). With FrozenBand every run's residual vector is scored against it; otherwise each keeps
+// its own band (the Jacobian and signatures are differences of standardised residuals).
+StepLinearisation linearise_step(Simulator& simulator, const RateGroups& measured, const measure::Metadata& metadata,
+                                 const ModelPlan& scene, const std::vector<std::string>& keys, const StepModel& model,
+                                 const std::vector<const measure::CandidateEffect*>& candidates,
+                                 const RateComparison* band, Scoring scoring, std::ostream& log);
+
+// Where a linearised refit takes a step's model: base factors and effect sizes clamped as
+// clamp_base_factor / clamp_effect_scale and the effect's physical range; `at_bound` lists what
+// was clamped, e.g. "bond.youngs_modulus at 1.9 x (asked 2.4 x)".
+struct RefitPlan {
+  StepModel model;
+  std::vector<std::string> at_bound;
+  bool base_at_bound = false;  // a base parameter (not an effect) was clamped
+};
+// lr: base steps (relative) then kept effects' steps (trial sizes), as the step's Jacobian.
+RefitPlan refit_plan(const std::vector<std::string>& keys, const StepModel& start, const measure::LinearRefit& lr,
+                     const measure::CandidateEffect* added);
+
+}  // namespace shard

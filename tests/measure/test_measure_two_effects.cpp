@@ -1,0 +1,87 @@
+// Two library effects hidden at once (issue 15): a diagnosis that names one effect at a time
+// must go on stepwise. Synthetic data on the tiny bending beam (packing seeds 1001-1003, the
+// model's 1-3; the sensor model of test_measure_hidden_effects) with machine compliance 1e-4 m/N
+// and bond softening ratio 3 hidden together; `shard diagnose --max-effects 2` must name both in
+// its path, and what remains after the second must be noise.
+// Four candidates (--only) keep the runs to ~60 (~2 min on two idle cores): the two hidden ones
+// and the two that ranked above softening in its single-effect case (compression asymmetry) or
+// absorb a lower peak (Weibull strength).
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kWork = fs::current_path() / "measure_two_effects_work";
+const std::string kScene = std::string(SHARD_SOURCE_DIR) + "/scenes/measurements/tiny_bending.toml";
+
+void shard(const std::string& args) {
+  fs::create_directories(kWork);
+  const std::string cmd = std::string(SHARD_BUILD_DIR) + "/bin/shard " + args + " >> " + (kWork / "log.txt").string() + " 2>&1";
+  INFO(cmd);
+  REQUIRE(std::system(cmd.c_str()) == 0);
+}
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+double number_after(const std::string& text, const std::string& key, std::size_t from = 0) {
+  const auto at = text.find(key, from);
+  INFO("missing " << key);
+  REQUIRE(at != std::string::npos);
+  return std::stod(text.substr(at + key.size()));
+}
+
+}  // namespace
+
+TEST_CASE("machine compliance and bond softening hidden at once: both named, one after the other") {
+  const fs::path meas = kWork / "meas", out = kWork / "diag";
+  shard("synth --scene " + kScene + " --work " + kWork.string() + " --out " + meas.string() +
+        " --scatter 0.02 --force-noise 0.01 --force-offset 0.005 --displacement-step 1e-6 --machine-compliance 1e-4"
+        " --set bond.plugin=beam_bond_plus --set bond.softening_ratio=3");
+  shard("diagnose " + meas.string() + " --scene " + kScene + " --work " + kWork.string() +
+        " --param bond.youngs_modulus --param bond.critical_stress --only "
+        "machine_compliance,bond_softening,compression_asymmetry,weibull_strength --refit 2 --max-effects 2 --out " +
+        out.string());
+  const std::string json = read(out / "diagnose.json");
+  INFO(json);
+  // Measured: compliance kept first (chi^2 75.9 -> 27.8, 71 % of the excess, p after 2.4e-4),
+  // softening named second on what compliance leaves (14.0 -> 3.7, p after 0.72). At step 1 the two
+  // refits nearly tie (27.8 and 28.0), so the order is not asserted: the path must hold both, its
+  // first step must have left structure (why it went on) and its last noise (the name's meaning).
+  const auto v = json.find("\"verdict\": \"") + 12;
+  const std::string verdict = json.substr(v, json.find('"', v) - v);
+  CHECK((verdict == "machine_compliance + bond_softening" || verdict == "bond_softening + machine_compliance"));
+  const auto path = json.find("\"path\": [");
+  REQUIRE(path != std::string::npos);
+  const auto compliance = json.find("{\"effect\": \"machine_compliance\"", path);
+  const auto softening = json.find("{\"effect\": \"bond_softening\"", path);
+  REQUIRE(compliance != std::string::npos);
+  REQUIRE(softening != std::string::npos);
+  const auto first = std::min(compliance, softening), last = std::max(compliance, softening);
+  CHECK(number_after(json, "\"p_after\": ", first) < 0.05);
+  CHECK(json.find("\"named\": false", first) < last);
+  CHECK(number_after(json, "\"p_after\": ", last) > 0.05);
+  CHECK(json.find("\"named\": true", last) != std::string::npos);
+  // Sizes: the order of each. Compliance within a factor 2 of the truth (measured 0.80 at step 1,
+  // before softening is modelled: the single-effect band 2/3..3/2 widened for the second,
+  // unmodelled effect); softening within 2/3..3/2 of the truth 3 as in the single-effect test
+  // (measured 3.9, the refit's bound of 3.9 plausible sizes: the two trade off).
+  const double c = number_after(json, "\"value\": ", compliance) / 1e-4;
+  CHECK(c > 0.5);
+  CHECK(c < 2.0);
+  const double s = number_after(json, "\"value\": ", softening) / 3;
+  CHECK(s > 2.0 / 3.0);
+  CHECK(s < 1.5);
+}
