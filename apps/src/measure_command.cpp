@@ -250,6 +250,8 @@ void add_measure_command(CLI::App& app, CommandContext& ctx) {
   add_synth(app, ctx);
   add_diagnose_command(app, ctx);
   add_calibrate_effect_command(app, ctx);
+  add_diagnose_sets_command(app, ctx);
+  add_calibrate_contrast_command(app, ctx);
   add_history_command(app, ctx);
 }
 
