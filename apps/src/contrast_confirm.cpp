@@ -24,6 +24,9 @@ void add_contrast_options(CLI::App* cmd, ContrastOptionsCli& o) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--effects", o.library, "candidate-effect library (default: effects.toml next to the scene)");
   cmd->add_option("--only", o.only, "try only these effects of the library (comma-separated)")->delimiter(',');
+  cmd->add_option("--form-tolerance", o.decide.form_tolerance,
+                  "share of an effect's simulated contrast by which the lab's may differ in form (0: exact shape)")
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--confirm-iterations", o.confirm_iterations,
                   "confirmation passes: the first at the linear size, later ones at the size the runs ask for")
       ->check(CLI::PositiveNumber);
@@ -40,7 +43,7 @@ std::vector<CandidateEffect> contrast_effects(const ContrastOptionsCli& o) {
 
 void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>& effects,
                        const ContrastStudy::Simulated& base, std::vector<SetDiagnosis>& sets, int count, int iterations,
-                       std::ostream& log) {
+                       ContrastOptions decide, std::ostream& log) {
   struct Trial {
     std::size_t effect = 0;
     double scale = 0;
@@ -114,7 +117,6 @@ void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>&
     for (auto& per_set : trials)
       std::erase_if(per_set, [](const Trial& t) { return t.failed; });
   }
-  ContrastOptions decide;
   decide.tried = effects.size();
   for (std::size_t s = 0; s < sets.size(); ++s) {
     SetDiagnosis& d = sets[s];

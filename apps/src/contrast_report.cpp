@@ -148,14 +148,14 @@ std::string contrast_markdown(const ContrastReport& r) {
                                             (d.after_components[i] - d.contrast.difference[i]) / u)
                               : "");
     }
-    md += fmt::format("\n{} | size | +- | chi^2 after | drop | p of the drop | p after | at bound |\n"
-                      "|---|---|---|---|---|---|---|---|\n",
+    md += fmt::format("\n{} | size | +- | chi^2 after | drop | p of the drop | chi^2 within the form tolerance | p after | at bound |\n"
+                      "|---|---|---|---|---|---|---|---|---|\n",
                       d.confirmed_values.empty() ? "| effect (linear, from the signatures)" : "| effect (simulated at its size)");
     for (std::size_t k = 0; k < d.decision.fits.size(); ++k) {
       const ContrastFit& f = d.decision.fits[k];
-      md += fmt::format("| {} | {:.4g} | {:.2g} | {:.1f} | {:.1f} | {:.2g} | {:.2g} | {} |\n", f.name,
-                        fitted_value(r, d, k), fitted_uncertainty(r, d, k), f.chi_square, f.drop, f.p_drop, f.p_after,
-                        f.at_bound ? "yes" : "");
+      md += fmt::format("| {} | {:.4g} | {:.2g} | {:.1f} | {:.1f} | {:.2g} | {:.1f} | {:.2g} | {} |\n", f.name,
+                        fitted_value(r, d, k), fitted_uncertainty(r, d, k), f.chi_square, f.drop, f.p_drop,
+                        f.chi_square_form, f.p_after, f.at_bound ? "yes" : "");
     }
   }
   md += fmt::format("\nLargest kinetic/elastic energy ratio of the runs before breakage: {:.2g}.\n", r.max_kinetic_to_elastic);

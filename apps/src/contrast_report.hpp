@@ -24,6 +24,7 @@ struct ContrastOptionsCli {
   int base_iterations = 3;
   int confirm = 2;
   int confirm_iterations = 2;
+  measure::ContrastOptions decide;  // --form-tolerance
   double finer = 0;  // > 0: the base also fitted at diameters this factor smaller (form error vs resolution)
 };
 
@@ -47,7 +48,7 @@ struct SetDiagnosis {
 // all) at the size the simulated contrast asks for; the decision is taken on those runs.
 void confirm_contrasts(ContrastStudy& study, const std::vector<measure::CandidateEffect>& effects,
                        const ContrastStudy::Simulated& base, std::vector<SetDiagnosis>& sets, int count, int iterations,
-                       std::ostream& log);
+                       measure::ContrastOptions decide, std::ostream& log);
 
 struct ContrastReport {
   const ContrastSets& sets;

@@ -77,12 +77,12 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
       for (std::size_t e = 0; e < effects.size(); ++e)
         sig.push_back({effects[e].name, effects[e].plausible - effects[e].neutral,
                        study.model_contrast(d.contrast, sims[1 + e], sims[0]), effects[e].scale_min(), effects[e].scale_max()});
-      d.linear = decide_contrast(d.contrast.difference, d.contrast.weight, sig, study.dof());
+      d.linear = decide_contrast(d.contrast.difference, d.contrast.weight, sig, study.dof(), o->decide);
       d.decision = d.linear;
       d.before = study.curve_contrast(d.contrast, sims[0], sims[0]);
       out.push_back(std::move(d));
     }
-    confirm_contrasts(study, effects, sims[0], out, o->confirm, o->confirm_iterations, std::cerr);
+    confirm_contrasts(study, effects, sims[0], out, o->confirm, o->confirm_iterations, o->decide, std::cerr);
 
     const ContrastReport report{sets,     effects, cal, study, out, simulator.max_kinetic_to_elastic(),
                                 finer ? &*finer : nullptr, o->finer, simulator.dynamic_warning()};

@@ -93,7 +93,7 @@ void add_calibrate_contrast_command(CLI::App& app, CommandContext& ctx) {
     const ContrastStudy::Contrast contrast = study.contrast(target, sims[0]);
     const EffectSignature sig{effect.name, effect.plausible - effect.neutral,
                               study.model_contrast(contrast, sims[1], sims[0]), effect.scale_min(), effect.scale_max()};
-    const ContrastDecision linear = decide_contrast(contrast.difference, contrast.weight, {sig}, study.dof());
+    const ContrastDecision linear = decide_contrast(contrast.difference, contrast.weight, {sig}, study.dof(), o->decide);
     const ContrastStudy::CurveContrast before = study.curve_contrast(contrast, sims[0], sims[0]);
 
     // The optimiser moves in trial steps from neutral, inside the effect's physical range and at

@@ -120,3 +120,27 @@ TEST_CASE("decision: no difference, and a difference no effect explains") {
   CHECK((t.verdict == "a" || t.verdict == "a2"));
   CHECK(t.rivals.size() == 1);
 }
+
+TEST_CASE("decision: an effect of another form is named within the form tolerance, not beyond it") {
+  const auto w = identity(4);
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<EffectSignature> effects{{"a", 1, {4, 2, 1, 0}, 0, inf}};
+  // The lab's effect: 2.5 x the library's shape, its third component 30 % off (another form).
+  const std::vector<double> d{10.0, 5.0, 2.5 * 1.3, 0.0};
+  ContrastOptions exact;
+  exact.form_tolerance = 0;
+  const auto strict = decide_contrast(d, w, effects, 60, exact);
+  // a = (40 + 10 + 3.25) / 21 = 2.536; the third component misses by 0.71 of unit noise, the
+  // others by -0.14 and -0.07: chi^2 after ~0.53, noise. A larger miss is needed to fail:
+  CHECK(strict.verdict == "a");
+  const std::vector<double> far{10.0, 5.0, 2.5 * 3.0, 0.0};  // third component 200 % off: 5 sigma
+  const auto strict_far = decide_contrast(far, w, effects, 60, exact);
+  CHECK(strict_far.verdict == kUnexplainedDifference);
+  // With a 20 % form tolerance the third component's variance grows by (0.2 a t_3)^2 ~ 0.28: a
+  // 5-sigma miss stays a miss, the model's shape is not stretched to fit anything.
+  CHECK(decide_contrast(far, w, effects, 60).verdict == kUnexplainedDifference);
+  // A miss of 40 % on a large component is 4 sigma without the tolerance, about 2 with it.
+  const std::vector<double> shaped{4.0 * 5 * 1.4, 2.0 * 5, 1.0 * 5, 0.0};
+  CHECK(decide_contrast(shaped, w, effects, 60, exact).verdict == kUnexplainedDifference);
+  CHECK(decide_contrast(shaped, w, effects, 60).verdict == "a");
+}

@@ -15,10 +15,10 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <utility>
+
+#include "shard_cli.hpp"
 
 namespace fs = std::filesystem;
 
@@ -29,35 +29,11 @@ const std::string kScene = std::string(SHARD_SOURCE_DIR) + "/scenes/measurements
 const std::string kSensor = " --scatter 0.02 --force-noise 0.01 --force-offset 0.005 --displacement-step 1e-6";
 const std::string kParams = " --param bond.youngs_modulus --param bond.critical_stress";
 
-void shard(const std::string& args) {
-  fs::create_directories(kWork);
-  const std::string cmd = std::string(SHARD_BUILD_DIR) + "/bin/shard " + args + " >> " + (kWork / "log.txt").string() + " 2>&1";
-  INFO(cmd);
-  REQUIRE(std::system(cmd.c_str()) == 0);
-}
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::size_t find(const std::string& text, const std::string& key, std::size_t from = 0) {
-  const auto at = text.find(key, from);
-  INFO("missing " << key);
-  REQUIRE(at != std::string::npos);
-  return at;
-}
-
-double number_after(const std::string& text, const std::string& key, std::size_t from = 0) {
-  return std::stod(text.substr(find(text, key, from) + key.size()));
-}
-
-std::string string_after(const std::string& text, const std::string& key, std::size_t from = 0) {
-  const auto start = find(text, key, from) + key.size();
-  return text.substr(start, text.find('"', start) - start);
-}
+void shard(const std::string& args) { shard_test::run_shard(args, kWork); }
+using shard_test::find_key;
+using shard_test::number_after;
+using shard_test::read_text;
+using shard_test::string_after;
 
 // synth + diagnose; returns diagnose.json.
 std::string diagnose_hidden(const std::string& tag, const std::string& hidden, const std::string& rates = "") {
@@ -66,7 +42,7 @@ std::string diagnose_hidden(const std::string& tag, const std::string& hidden, c
         (rates.empty() ? "" : " --rates " + rates));
   shard("diagnose " + meas.string() + " --scene " + kScene + " --work " + kWork.string() + kParams + " --refit 2 --out " +
         out.string());
-  return read(out / "diagnose.json");
+  return read_text(out / "diagnose.json");
 }
 
 // A regime gets worse beyond noise when, after the calibration, its mean standardised residual
@@ -80,7 +56,7 @@ constexpr double kRegimeNoise = 2.58;
 // Every regime the calibration reports ("toe", ... at one rate; "toe@0.02", ... at several; a
 // regime empty on the grid is not listed), each entry "name": [before, after].
 void check_no_regime_worse(const std::string& calibrate_json) {
-  const auto regimes = find(calibrate_json, "\"regimes\": {");
+  const auto regimes = find_key(calibrate_json, "\"regimes\": {");
   const auto end = calibrate_json.find('}', regimes);
   int checked = 0;
   for (auto at = calibrate_json.find('[', regimes); at < end; at = calibrate_json.find('[', at + 1)) {
@@ -116,7 +92,7 @@ void check_found_and_calibrated(const Hidden& h) {
   INFO(h.tag << ": " << json);
   CHECK(string_after(json, "\"verdict\": \"") == h.effect);  // implies "not adequate"
   // The estimate of the named effect's size from its confirmation refit.
-  const auto conf = find(json, "{\"name\": \"" + h.effect + "\", \"chi_square\"", find(json, "\"confirmations\""));
+  const auto conf = find_key(json, "{\"name\": \"" + h.effect + "\", \"chi_square\"", find_key(json, "\"confirmations\""));
   const double estimate = number_after(json, "\"value\": ", conf);
   const double ratio = (estimate - h.neutral) / (h.truth - h.neutral);
   CHECK(ratio > h.size_low);
@@ -128,7 +104,7 @@ void check_found_and_calibrated(const Hidden& h) {
   // The issue's spelling, `shard calibrate --with`, routed to calibrate-effect (command_routing.hpp).
   shard("calibrate " + (kWork / ("meas_" + h.tag)).string() + " --scene " + kScene + " --work " + kWork.string() +
         kParams + " --with " + h.effect + " --max-evaluations " + std::to_string(h.evaluations) + " --out " + out.string());
-  const std::string cal = read(out / "calibrate.json");
+  const std::string cal = read_text(out / "calibrate.json");
   INFO(cal);
   const double before = number_after(cal, "\"nrmse_before\": "), after = number_after(cal, "\"nrmse_after\": ");
   CHECK(after <= 0.5 * before);
@@ -158,10 +134,10 @@ TEST_CASE("time compression: the quasi-static tiny beam at half the data's rate 
         (kWork / "cmp_rate").string());
   shard("compare " + meas.string() + " --scene " + kScene + " --work " + kWork.string() +
         " --time-compression 0.5 --out " + (kWork / "cmp_half").string());
-  const double at_rate = number_after(read(kWork / "cmp_rate" / "compare.json"), "\"nrmse\": ");
-  const double at_half = number_after(read(kWork / "cmp_half" / "compare.json"), "\"nrmse\": ");
+  const double at_rate = number_after(read_text(kWork / "cmp_rate" / "compare.json"), "\"nrmse\": ");
+  const double at_half = number_after(read_text(kWork / "cmp_half" / "compare.json"), "\"nrmse\": ");
   CHECK(std::abs(at_half - at_rate) < 0.01);
-  CHECK(read(kWork / "log.txt").find("time compression 0.5: the model loads at 0.01 m/s") != std::string::npos);
+  CHECK(read_text(kWork / "log.txt").find("time compression 0.5: the model loads at 0.01 m/s") != std::string::npos);
 }
 
 TEST_CASE("data of another test geometry are refused, naming both set-ups") {
@@ -174,19 +150,19 @@ TEST_CASE("data of another test geometry are refused, naming both set-ups") {
                           " --scene " + main_scene + " --work " + kWork.string() + " --out " +
                           (kWork / "cmp_geometry").string() + " > " + log.string() + " 2>&1";
   CHECK(std::system(cmd.c_str()) != 0);
-  const std::string text = read(log);
+  const std::string text = read_text(log);
   INFO(text);
   CHECK(text.find("span 36 mm and pin distance 16 mm") != std::string::npos);
   CHECK(text.find("span 170 mm and pin distance 80 mm") != std::string::npos);
   CHECK(text.find("--ignore-geometry") != std::string::npos);
   // synth read the tiny beam's set-up from its scene: supports and pins, and the packing's size.
-  const std::string specimens = read(kWork / "meas_null" / "specimens.csv");
+  const std::string specimens = read_text(kWork / "meas_null" / "specimens.csv");
   CHECK(specimens.find(",0.036,0.016,0.02,") != std::string::npos);
   // ... and, as a lab notes them, the crack position and the fragments of every specimen (the
   // truth runs' own, from shard::bending), reported by compare but not judged by default.
   CHECK(specimens.find(",0.02,,") == std::string::npos);
   CHECK(fs::exists(kWork / "meas_null" / "fragments" / "sim_seed1001.csv"));
-  const std::string cmp = read(kWork / "cmp_rate" / "compare.json");
+  const std::string cmp = read_text(kWork / "cmp_rate" / "compare.json");
   CHECK(cmp.find("\"crack_position\"") != std::string::npos);
   CHECK(cmp.find("\"fragment_x50\"") != std::string::npos);
 }
@@ -197,10 +173,10 @@ TEST_CASE("hidden machine compliance 1e-4 m/N: named, sized, calibrated") {
   // crosshead adds. The specimen's own compliance is ~4e-4 m/N: the frame is a quarter of it.
   check_found_and_calibrated({"compliance", " --machine-compliance 1e-4", "machine_compliance", 1e-4, 0});
   // The confirmation refit alone (linearised sizes, simulated) halves the base refit's NRMSE.
-  const std::string json = read(kWork / "diag_compliance" / "diagnose.json");
-  const auto conf = find(json, "\"confirmations\"");
+  const std::string json = read_text(kWork / "diag_compliance" / "diagnose.json");
+  const auto conf = find_key(json, "\"confirmations\"");
   const double base_nrmse = number_after(json, "\"nrmse\": ", conf);
-  const double with_nrmse = number_after(json, "\"nrmse\": ", find(json, "machine_compliance\", \"chi", conf));
+  const double with_nrmse = number_after(json, "\"nrmse\": ", find_key(json, "machine_compliance\", \"chi", conf));
   CHECK(with_nrmse <= 0.5 * base_nrmse);
 }
 

@@ -9,11 +9,10 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
+
+#include "shard_cli.hpp"
 
 namespace fs = std::filesystem;
 
@@ -22,26 +21,9 @@ namespace {
 const fs::path kWork = fs::current_path() / "measure_two_effects_work";
 const std::string kScene = std::string(SHARD_SOURCE_DIR) + "/scenes/measurements/tiny_bending.toml";
 
-void shard(const std::string& args) {
-  fs::create_directories(kWork);
-  const std::string cmd = std::string(SHARD_BUILD_DIR) + "/bin/shard " + args + " >> " + (kWork / "log.txt").string() + " 2>&1";
-  INFO(cmd);
-  REQUIRE(std::system(cmd.c_str()) == 0);
-}
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-double number_after(const std::string& text, const std::string& key, std::size_t from = 0) {
-  const auto at = text.find(key, from);
-  INFO("missing " << key);
-  REQUIRE(at != std::string::npos);
-  return std::stod(text.substr(at + key.size()));
-}
+void shard(const std::string& args) { shard_test::run_shard(args, kWork); }
+using shard_test::number_after;
+using shard_test::read_text;
 
 }  // namespace
 
@@ -54,7 +36,7 @@ TEST_CASE("machine compliance and bond softening hidden at once: both named, one
         " --param bond.youngs_modulus --param bond.critical_stress --only "
         "machine_compliance,bond_softening,compression_asymmetry,weibull_strength --refit 2 --max-effects 2 --out " +
         out.string());
-  const std::string json = read(out / "diagnose.json");
+  const std::string json = read_text(out / "diagnose.json");
   INFO(json);
   // Measured: compliance kept first (chi^2 75.9 -> 27.8, 71 % of the excess, p after 2.4e-4),
   // softening named second on what compliance leaves (14.0 -> 3.7, p after 0.72). At step 1 the two

@@ -152,6 +152,7 @@ ContrastDecision decide_contrast(const std::vector<double>& difference, const st
   const Eigen::MatrixXd w = to_matrix(weight);
   if (w.rows() != d.size()) throw std::invalid_argument("contrast: weight and difference differ in size");
   const auto m = static_cast<double>(d.size());
+  const Eigen::MatrixXd covariance = w.llt().solve(Eigen::MatrixXd::Identity(w.rows(), w.cols()));
   ContrastDecision out;
   out.chi_square = d.dot(w * d);
   out.p_value = hotelling_p(out.chi_square, m, dof);
@@ -172,7 +173,12 @@ ContrastDecision decide_contrast(const std::vector<double>& difference, const st
     // distribution of one component with the degrees of freedom the m-dimensional estimate leaves
     // (a t test with nu - m + 1 of them): chi^2(1) made a null set's chance direction significant.
     fit.p_drop = fit.drop > 0 ? hotelling_p(fit.drop, 1, dof - m + 1) : 1.0;
-    fit.p_after = hotelling_p(fit.chi_square, std::max(1.0, m - 1), dof);
+    // The remainder judged with the effect's form tolerance (ContrastOptions::form_tolerance).
+    const Eigen::VectorXd r = d - fit.scale * t;
+    Eigen::MatrixXd c_form = covariance;
+    for (Eigen::Index i = 0; i < d.size(); ++i) c_form(i, i) += std::pow(options.form_tolerance * fit.scale * t(i), 2);
+    fit.chi_square_form = r.dot(c_form.llt().solve(r));
+    fit.p_after = hotelling_p(fit.chi_square_form, std::max(1.0, m - 1), dof);
     out.fits.push_back(fit);
   }
   std::sort(out.fits.begin(), out.fits.end(), [](const auto& a, const auto& b) { return a.chi_square < b.chi_square; });

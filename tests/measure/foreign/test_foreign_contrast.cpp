@@ -12,42 +12,23 @@
 // Slow (the model's ~100 runs; the truth's 28 are test_foreign_sets'): see docs/measurements.md.
 #include <doctest/doctest.h>
 
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
+
+#include "../shard_cli.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
 const fs::path kWork = fs::current_path() / "foreign_contrast_work";
-const std::string kShard = std::string(SHARD_BUILD_DIR) + "/bin/shard";
 const std::string kScene = std::string(SHARD_SOURCE_DIR) + "/scenes/measurements/tiny_bending.toml";
 const std::string kParams = " --param bond.youngs_modulus --param bond.critical_stress";
 
-void run(const std::string& cmd) {
-  const std::string line = cmd + " >> " + (kWork / "log.txt").string() + " 2>&1";
-  INFO(line);
-  REQUIRE(std::system(line.c_str()) == 0);
-}
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::string string_after(const std::string& text, const std::string& key, std::size_t from) {
-  const auto at = text.find(key, from);
-  INFO("missing " << key);
-  REQUIRE(at != std::string::npos);
-  const auto start = at + key.size();
-  return text.substr(start, text.find('"', start) - start);
-}
+using shard_test::number_after;
+using shard_test::read_text;
+using shard_test::string_after;
 
 // "name": "<set>" as diagnose.json writes it (appended piecewise: GCC 12 warns falsely on the
 // inlined operator+ chain, -Wrestrict).
@@ -56,13 +37,6 @@ std::string name_key(const std::string& set) {
   key += set;
   key += '"';
   return key;
-}
-
-double number_after(const std::string& text, const std::string& key) {
-  const auto at = text.find(key);
-  INFO("missing " << key);
-  REQUIRE(at != std::string::npos);
-  return std::stod(text.substr(at + key.size()));
 }
 
 }  // namespace
@@ -76,9 +50,10 @@ TEST_CASE("contrast diagnosis on foreign truth: null, four library effects, one 
   for (const char* s : {"reference", "null", "compliance", "weibull", "softening", "asymmetry", "toe"})
     folders += ' ', folders += (sets / s).string();
   const fs::path diag = kWork / "diagnose";
-  run(kShard + " diagnose" + folders + " --reference reference --scene " + kScene + " --work " + (kWork / "model").string() +
-      kParams + " --out " + diag.string());
-  const std::string json = read(diag / "diagnose.json");
+  shard_test::run_shard("diagnose" + folders + " --reference reference --scene " + kScene + " --work " +
+                            (kWork / "model").string() + kParams + " --out " + diag.string(),
+                        kWork);
+  const std::string json = read_text(diag / "diagnose.json");
   std::map<std::string, std::string> verdict;
   for (const char* s : {"null", "compliance", "weibull", "softening", "asymmetry", "toe"})
     verdict[s] = string_after(json, "\"verdict\": \"", json.find(name_key(s)));
@@ -107,10 +82,11 @@ TEST_CASE("contrast diagnosis on foreign truth: null, four library effects, one 
 
   REQUIRE_FALSE(calibrate_set.empty());
   const fs::path cal = kWork / "calibrate";
-  run(kShard + " calibrate " + (sets / "reference").string() + " " + (sets / calibrate_set).string() +
-      " --reference reference --with " + hidden.at(calibrate_set) + " --scene " + kScene + " --work " +
-      (kWork / "model").string() + kParams + " --out " + cal.string());
-  const std::string c = read(cal / "calibrate.json");
+  shard_test::run_shard("calibrate " + (sets / "reference").string() + " " + (sets / calibrate_set).string() +
+                            " --reference reference --with " + hidden.at(calibrate_set) + " --scene " + kScene +
+                            " --work " + (kWork / "model").string() + kParams + " --out " + cal.string(),
+                        kWork);
+  const std::string c = read_text(cal / "calibrate.json");
   const double before = number_after(c, "\"nrmse_before\": "), after = number_after(c, "\"nrmse_after\": ");
   MESSAGE(calibrate_set << ": contrast NRMSE " << before << " -> " << after);
   CHECK(after <= 0.5 * before);

@@ -68,9 +68,10 @@ struct ContrastFit {
   double u_scale = 0;      // its standard uncertainty 1 / sqrt(t'W t)
   bool at_bound = false;   // the unclamped a lay outside the physical range
   double chi_square = 0;   // chi^2_e = (d - a t)' W (d - a t)
+  double chi_square_form = 0;  // the same with the form tolerance in the covariance: what p_after reads
   double drop = 0;         // chi^2_0 - chi^2_e
   double p_drop = 1;       // hotelling_p(drop, 1, nu - m + 1)
-  double p_after = 1;      // Hotelling-type p of the remainder, m - 1 components
+  double p_after = 1;      // Hotelling-type p of chi_square_form, m - 1 components
 };
 
 struct ContrastOptions {
@@ -79,6 +80,13 @@ struct ContrastOptions {
   double drop_p = 0.05;            // a named effect's drop must beat this p over the n effects
   double remaining_p = 0.05;       // and leave a remainder compatible with noise
   double rival_chi_square = 2.0;   // effects within this of the best are rivals
+  // The library's effect and the lab's are the same physics in different forms (another bond
+  // law, packing, fixture), so the lab's contrast matches the simulated one only to within a
+  // share of it: the remainder test adds (form_tolerance x a t_i)^2 to each component's variance.
+  // 0 demands the library's shape exactly; on foreign truth whose preload-zeroed curves leave a
+  // noise floor of 4 % contrast NRMSE, it called compliance, softening and Weibull sets
+  // "unexplained" although their effect removed 93-98 % of T^2 (docs/measurements.md).
+  double form_tolerance = 0.2;
   // Effects tried for the Bonferroni corrections (0: those passed). A confirmation that decides
   // on the simulated refits of the top few still pays for every effect the ranking looked at.
   std::size_t tried = 0;
