@@ -4,11 +4,12 @@
 // beam_stress.hpp written out per scalar in exactly the order Eigen evaluates it there (including
 // Eigen's SSE quaternion product and its halved sum for the last row of a 3x3 product), so every
 // lane it accepts is bit-identical to the per-bond
-// path; beam_bond_plus, which keeps the per-bond path, must stay bit-identical to beam_bond at its
-// neutral values (tests/effects/test_beam_plus_neutral.cpp).
+// path. The effects variant (effects/bond_effects.hpp) composes the four effect policies into the
+// same loop, bit-identical to the per-bond path with effects (tests/bond/test_beam_block.cpp).
 //
 // Only the common case is evaluated here: q_rel within 1e-9 of unit length, a relative rotation
-// inside the arcsin series range, and (with breakage) a bond the von Mises bound says cannot break.
+// inside the arcsin series range, (with breakage) a bond the von Mises bound says cannot break and
+// (with effects) an undamaged bond.
 // Every other lane is flagged `fallback` and the caller runs the per-bond path on it.
 #include <cstddef>
 #include <cstdint>
@@ -25,6 +26,12 @@ struct BlockConstants {
   double bend_scale = 0, twist_over_bend = 0;  // RotationalDamping's factors
   bool breakage = true;
   bool viscous_force = false;  // damping != 0: v12 is needed
+  // The effects variant (per-bond strength and damage in the state, the Maxwell arm, the
+  // compressive axial modulus); the arm's factors depend on the step and are set per batch.
+  bool effects = false;
+  double compression_modulus = 0;  // r E_b
+  double arm_decay = 1, arm_gain = 0;  // MaxwellArm over this batch's step (1, 0: no arm)
+  double arm_modulus_ratio = 1;        // beta: the arm spring's energy is E_b h^2 / (2 beta)
 };
 
 // A block's inputs: its bonds' ends in the bond's own order (first = smaller stable id), their
@@ -34,7 +41,7 @@ struct BlockInput {
   const Index* first = nullptr;
   const Index* second = nullptr;
   const std::int64_t* swapped = nullptr;  // 1: the batch lists the bond from its second end
-  const double* state = nullptr;
+  const double* state = nullptr;  // kStateSize doubles per bond, kEffectsStateSize with effects
   const double* position = nullptr;
   const double* velocity = nullptr;  // read only with a viscous force
   const double* orientation = nullptr;
@@ -52,6 +59,9 @@ struct BlockOutput {
   double* torque_j = nullptr;
   double* energy = nullptr;
   std::int64_t fallback[kBlockLanes];  // 1: lane not evaluated, run the per-bond path
+  // With effects: each evaluated lane's new (Gamma, kappa) and arm strains (h_Gamma, h_kappa),
+  // for the caller to store into the state of the lanes that did not fall back.
+  double next_arm_state[12][kBlockLanes];
 };
 
 // The block step evaluates lanes [0, n), n <= kBlockLanes. It is compiled for each instruction
