@@ -1,8 +1,9 @@
 // Step-loop benchmarks of issue 8 (docs/performance.md). One summary line per benchmark, so a
 // later change can be compared line by line:
 //   bench_kernel bonded  [particles=20000] [pull_speed=0.2] [max_steps=20000]
-//   bench_kernel bonded_effects [same]  (the bond's four effect policies on at the effect
-//                                        library's plausible sizes, docs/effects.md)
+//   bench_kernel bonded_effects [same] [policies=all]  (the bond's effect policies on at the
+//       effect library's plausible sizes, docs/effects.md; policies: a comma list of
+//       weibull_strength, softening, viscosity, compression_asymmetry)
 //   bench_kernel settle  [particles=100000] [steps=1000]
 //   bench_kernel scaling [steps=200]   (dense pack at 1e4, 1e5, 3e5 spheres)
 // Threads come from OMP_NUM_THREADS; pin with taskset for stable figures.
@@ -16,6 +17,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <utility>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -75,10 +77,19 @@ double slab_force(const Simulation& sim) {
 }
 
 // The plausible sizes of scenes/measurements/effects.toml: m 4, s 1, tau_v 1e-3 s, r 2.
-const std::map<std::string, ParamValue> kAllBondEffects{{"strength_weibull_modulus", 4.0},
-                                                        {"softening_ratio", 1.0},
-                                                        {"viscosity_time", 1e-3},
-                                                        {"compression_stiffness_ratio", 2.0}};
+std::map<std::string, ParamValue> bond_effects(const std::string& policies) {
+  const std::map<std::string, std::pair<std::string, double>> size{
+      {"weibull_strength", {"strength_weibull_modulus", 4.0}},
+      {"softening", {"softening_ratio", 1.0}},
+      {"viscosity", {"viscosity_time", 1e-3}},
+      {"compression_asymmetry", {"compression_stiffness_ratio", 2.0}}};
+  std::map<std::string, ParamValue> out;
+  for (const auto& [name, param] : size)
+    if (policies == "all" || ("," + policies + ",").find("," + name + ",") != std::string::npos)
+      out[param.first] = param.second;
+  if (out.empty()) throw std::invalid_argument("bonded_effects: no policy in '" + policies + "'");
+  return out;
+}
 
 void bonded(int argc, char** argv, const char* name, const std::map<std::string, ParamValue>& bond_params) {
   const auto target = static_cast<std::size_t>(arg(argc, argv, 2, 20000));
@@ -142,7 +153,7 @@ int main(int argc, char** argv) {
     if (which == "bonded") {
       bonded(argc, argv, "bonded", {});
     } else if (which == "bonded_effects") {
-      bonded(argc, argv, "bonded_effects", kAllBondEffects);
+      bonded(argc, argv, "bonded_effects", bond_effects(argc > 5 ? argv[5] : "all"));
     } else if (which == "settle") {
       pack_run("settle", static_cast<std::size_t>(arg(argc, argv, 2, 1e5)), static_cast<std::int64_t>(arg(argc, argv, 3, 1000)));
     } else if (which == "scaling") {

@@ -87,6 +87,15 @@ TEST_CASE("blocked beam_bond step is bit-identical to the per-bond path, on ever
       MESSAGE(n.compared, " bond evaluations with effects, ", n.broken, " breaks");
       CHECK(n.broken > 100);
     }
+    SUBCASE("three effects on, without the Maxwell arm") {
+      BeamBondParams p = defaults;
+      p.effects.strength_weibull_modulus = 4;
+      p.effects.softening_ratio = 2;
+      p.effects.compression_stiffness_ratio = 0.5;
+      REQUIRE(BeamBond(p, isa).state_size() == kEffectsStateSize);
+      const Counts n = compare(p, 1001, 12, isa);
+      CHECK(n.broken > 100);
+    }
     SUBCASE("effects named at their neutral values") {
       BeamBondParams p = defaults;
       p.effects.named = {"weibull_strength", "softening", "viscosity", "compression_asymmetry"};

@@ -126,14 +126,16 @@ TEST_CASE("viscous bond: the stable step is the elastic one over sqrt(1 + beta),
     }
 }
 
-TEST_CASE("bond state: beam_bond's 9 doubles without effects, kEffectsStateSize with any") {
+TEST_CASE("bond state: beam_bond's 9 doubles without effects, 11 with any, 23 with the Maxwell arm") {
   auto p = table_one_params();
   CHECK(beam::BeamBond(p).state_size() == beam::kStateSize);
   CHECK_FALSE(beam::BeamBond(p).with_effects());
   p.effects.viscosity_time = kTau;
-  CHECK(beam::BeamBond(p).state_size() == beam::kEffectsStateSize);
+  CHECK(beam::BeamBond(p).state_size() == beam::kViscousStateSize);
   p = table_one_params();
-  p.effects.named = {"viscosity"};  // named at its neutral value: the effects variant, the arm at rest
+  p.effects.named = {"viscosity"};  // named at its neutral value: the effects variant without an arm
+  CHECK(beam::BeamBond(p).state_size() == beam::kEffectsStateSize);
+  p.effects.compression_stiffness_ratio = 2;
   CHECK(beam::BeamBond(p).state_size() == beam::kEffectsStateSize);
 }
 

@@ -30,7 +30,7 @@ struct Q {
 // energy), the compressive axial modulus; a damaged bond (softening) falls back.
 // The particle fields are read straight through the lane's indices (gathers where the ISA has
 // them): copying them into lane arrays first cost more than the arithmetic.
-template <bool breakage, bool viscous, bool effects>
+template <bool breakage, bool viscous, bool effects, bool arm>
 [[gnu::always_inline]] inline void evaluate_lanes(const BlockInput& in, BlockOutput& out, std::size_t n,
                                                   const BlockConstants& c) {
   const Index* __restrict first = in.first;
@@ -40,8 +40,8 @@ template <bool breakage, bool viscous, bool effects>
   double* __restrict torque_i = out.torque_i;
   double* __restrict torque_j = out.torque_j;
   double* __restrict energy = out.energy;
-  // The state's stride of 9 (23) defeats GCC's interleaved loads: transposed into lanes first.
-  constexpr std::size_t stride = effects ? kEffectsStateSize : kStateSize;
+  // The state's stride of 9 (11, 23) defeats GCC's interleaved loads: transposed into lanes first.
+  constexpr std::size_t stride = !effects ? kStateSize : arm ? kViscousStateSize : kEffectsStateSize;
   alignas(64) double st[stride][kBlockLanes];
   for (std::size_t l = 0; l < n; ++l)
     for (std::size_t k = 0; k < stride; ++k) st[k][l] = in.state[l * stride + k];
@@ -105,8 +105,8 @@ template <bool breakage, bool viscous, bool effects>
     const double area = std::numbers::pi * radius * radius;
     const double second_moment = std::numbers::pi * radius * radius * radius * radius / 4;
 
-    // Effects: the bond's strength and damage from its state; the Maxwell arm's strains h advanced
-    // over the step (MaxwellArm::advance; +0 without viscosity: decay 1, gain 0, h stored 0).
+    // Effects: the bond's strength and damage from its state; with the arm, its strains h advanced
+    // over the step (MaxwellArm::advance).
     double bound = strength_bound;
     bool damaged = false;
     double hsx = 0, hsy = 0, hsz = 0, hcx = 0, hcy = 0, hcz = 0;
@@ -115,6 +115,8 @@ template <bool breakage, bool viscous, bool effects>
       const double strength = st[kStrengthSlot][l];
       bound = (1 - 1e-12) * strength * strength;
       damaged = st[kDamageSlot][l] != 0;
+    }
+    if constexpr (arm) {
       constexpr std::size_t P = kPreviousStrainSlot, H = kArmStrainSlot;
       hsx = c.arm_decay * st[H][l] + c.arm_gain * (sx - st[P][l]);
       hsy = c.arm_decay * st[H + 1][l] + c.arm_gain * (sy - st[P + 1][l]);
@@ -142,7 +144,7 @@ template <bool breakage, bool viscous, bool effects>
     double Fx = axial_factor * area * sx, Fy = shear_factor * area * sy, Fz = shear_factor * area * sz;
     double Tx = twist_factor * second_moment * cx, Ty = E * second_moment * cy, Tz = E * second_moment * cz;
     double lane_energy = 0.5 * l0 * (((sx * Fx + sy * Fy) + sz * Fz) + ((cx * Tx + cy * Ty) + cz * Tz));
-    if constexpr (effects) {
+    if constexpr (arm) {
       // The arm's stress: each component's elastic modulus (E_b axial and bending, G_b shear and
       // twist, as in tension); its spring holds the energy E_b h^2 / (2 beta).
       const double aFx = E * area * hsx, aFy = shear_factor * area * hsy, aFz = shear_factor * area * hsz;
@@ -222,23 +224,23 @@ template <bool breakage, bool viscous, bool effects>
   }
 }
 
+template <bool effects, bool arm>
+[[gnu::always_inline]] inline void evaluate_law(const BlockInput& in, BlockOutput& out, std::size_t n,
+                                                const BlockConstants& c) {
+  if (c.breakage) {
+    if (c.viscous_force) evaluate_lanes<true, true, effects, arm>(in, out, n, c);
+    else evaluate_lanes<true, false, effects, arm>(in, out, n, c);
+  } else {
+    if (c.viscous_force) evaluate_lanes<false, true, effects, arm>(in, out, n, c);
+    else evaluate_lanes<false, false, effects, arm>(in, out, n, c);
+  }
+}
+
 [[gnu::always_inline]] inline void evaluate_any(const BlockInput& in, BlockOutput& out, std::size_t n,
                                                 const BlockConstants& c) {
-  if (c.effects) {
-    if (c.breakage) {
-      if (c.viscous_force) evaluate_lanes<true, true, true>(in, out, n, c);
-      else evaluate_lanes<true, false, true>(in, out, n, c);
-    } else {
-      if (c.viscous_force) evaluate_lanes<false, true, true>(in, out, n, c);
-      else evaluate_lanes<false, false, true>(in, out, n, c);
-    }
-  } else if (c.breakage) {
-    if (c.viscous_force) evaluate_lanes<true, true, false>(in, out, n, c);
-    else evaluate_lanes<true, false, false>(in, out, n, c);
-  } else {
-    if (c.viscous_force) evaluate_lanes<false, true, false>(in, out, n, c);
-    else evaluate_lanes<false, false, false>(in, out, n, c);
-  }
+  if (!c.effects) evaluate_law<false, false>(in, out, n, c);
+  else if (c.arm) evaluate_law<true, true>(in, out, n, c);
+  else evaluate_law<true, false>(in, out, n, c);
 }
 
 void evaluate_baseline(const BlockInput& in, BlockOutput& out, std::size_t n, const BlockConstants& c) {

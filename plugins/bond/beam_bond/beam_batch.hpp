@@ -29,8 +29,9 @@ struct BlockConstants {
   // The effects variant (per-bond strength and damage in the state, the Maxwell arm, the
   // compressive axial modulus); the arm's factors depend on the step and are set per batch.
   bool effects = false;
+  bool arm = false;                // effects with the Maxwell arm (viscosity_time > 0)
   double compression_modulus = 0;  // r E_b
-  double arm_decay = 1, arm_gain = 0;  // MaxwellArm over this batch's step (1, 0: no arm)
+  double arm_decay = 1, arm_gain = 0;  // MaxwellArm over this batch's step
   double arm_modulus_ratio = 1;        // beta: the arm spring's energy is E_b h^2 / (2 beta)
 };
 
@@ -41,7 +42,7 @@ struct BlockInput {
   const Index* first = nullptr;
   const Index* second = nullptr;
   const std::int64_t* swapped = nullptr;  // 1: the batch lists the bond from its second end
-  const double* state = nullptr;  // kStateSize doubles per bond, kEffectsStateSize with effects
+  const double* state = nullptr;  // kStateSize doubles per bond; kEffectsStateSize, kViscousStateSize with effects
   const double* position = nullptr;
   const double* velocity = nullptr;  // read only with a viscous force
   const double* orientation = nullptr;
@@ -59,7 +60,7 @@ struct BlockOutput {
   double* torque_j = nullptr;
   double* energy = nullptr;
   std::int64_t fallback[kBlockLanes];  // 1: lane not evaluated, run the per-bond path
-  // With effects: each evaluated lane's new (Gamma, kappa) and arm strains (h_Gamma, h_kappa),
+  // With the arm: each evaluated lane's new (Gamma, kappa) and arm strains (h_Gamma, h_kappa),
   // for the caller to store into the state of the lanes that did not fall back.
   double next_arm_state[12][kBlockLanes];
 };

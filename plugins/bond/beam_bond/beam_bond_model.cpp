@@ -57,13 +57,16 @@ BeamBond::BeamBond(const BeamBondParams& params, BlockIsa isa)
   if (!(fx.viscous_modulus_ratio > 0) || !(fx.compression_stiffness_ratio > 0))
     throw std::invalid_argument("beam_bond: viscous_modulus_ratio and compression_stiffness_ratio must be > 0");
   block_.effects = fx.any();
+  block_.arm = block_.effects && fx.viscous();
   block_.compression_modulus = fx.compression_stiffness_ratio * p_.youngs_modulus;
   block_.arm_modulus_ratio = fx.viscous_modulus_ratio;
   if (fx.strength_weibull_modulus > 0)
     weibull_scale_ = weibull_scale(p_.critical_stress, fx.strength_weibull_modulus);
 }
 
-std::size_t BeamBond::state_size() const { return block_.effects ? kEffectsStateSize : kStateSize; }
+std::size_t BeamBond::state_size() const {
+  return !block_.effects ? kStateSize : block_.arm ? kViscousStateSize : kEffectsStateSize;
+}
 
 double BeamBond::strength_of(std::int64_t id_a, std::int64_t id_b) const {
   const BondEffects& fx = p_.effects;
@@ -84,7 +87,7 @@ void BeamBond::initialize(BondBatch& batch) const {
       const std::int64_t id1 = p.id ? p.id[e.first] : e.first;
       const std::int64_t id2 = p.id ? p.id[e.second] : e.second;
       s[kStrengthSlot] = strength_of(id1, id2);
-      std::fill(s + kDamageSlot, s + kEffectsStateSize, 0.0);  // intact, unstrained, arm relaxed
+      std::fill(s + kDamageSlot, s + state_size(), 0.0);  // intact (unstrained, arm relaxed)
     }
   }
 }
@@ -123,7 +126,7 @@ void BeamBond::compute_bond(BondBatch& batch, std::size_t k) const {
 
   const Ends e = ends_of(p, batch.i[k], batch.j[k]);
   const Index n1 = e.first, n2 = e.second;
-  double* state = batch.state + k * (effects ? kEffectsStateSize : kStateSize);
+  double* state = batch.state + k * state_size();
   const Reference ref = load(state);
   const double l0 = ref.l0;
   const double inv_l0 = 1 / l0;
@@ -228,7 +231,7 @@ void BeamBond::compute_reference(BondBatch& batch) const {
 void BeamBond::compute(BondBatch& batch) const {
   const ParticleView& p = batch.particles;
   const std::size_t stride = state_size();
-  const bool arm = block_.effects && p_.effects.viscous();
+  const bool arm = block_.arm;
   BlockConstants constants = block_;
   if (arm) {  // the arm's factors depend on this batch's step
     const MaxwellArm step_arm(p_.effects.viscosity_time, p_.effects.viscous_modulus_ratio, batch.dt);

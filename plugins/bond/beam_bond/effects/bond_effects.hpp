@@ -9,7 +9,7 @@
 // value; each is exact at its neutral value, so naming it without moving its parameter reproduces
 // plain beam_bond bit for bit. Any effect on switches the law to its effects variant, which
 // composes all four at lane speed (beam_batch.hpp); the per-bond state then grows from 9 to
-// kEffectsStateSize doubles.
+// kEffectsStateSize doubles, kViscousStateSize with the Maxwell arm (viscosity_time > 0).
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -47,12 +47,14 @@ struct BondEffects {
   bool viscous() const { return viscosity_time > 0; }
 };
 
-// Per-bond state of the effects variant: beam_bond's 9 doubles (l0, b1, b2), the bond's strength,
-// its damage, the previous step's (Gamma, kappa) and the Maxwell arm's strains (h_Gamma, h_kappa).
+// Per-bond state of the effects variant: beam_bond's 9 doubles (l0, b1, b2), the bond's strength
+// and its damage; with the Maxwell arm also the previous step's (Gamma, kappa) and the arm's
+// strains (h_Gamma, h_kappa).
 inline constexpr std::size_t kStrengthSlot = 9;
 inline constexpr std::size_t kDamageSlot = 10;
+inline constexpr std::size_t kEffectsStateSize = 11;
 inline constexpr std::size_t kPreviousStrainSlot = 11;  // Gamma (3), then kappa (3)
 inline constexpr std::size_t kArmStrainSlot = 17;       // h_Gamma (3), then h_kappa (3)
-inline constexpr std::size_t kEffectsStateSize = 23;
+inline constexpr std::size_t kViscousStateSize = 23;
 
 }  // namespace shard::beam
