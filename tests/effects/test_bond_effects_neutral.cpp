@@ -5,12 +5,14 @@
 // energy, break flag and break stress must be bit-identical, and the time step too.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "../bond/random_bonds.hpp"
 #include "bond_batch.hpp"
+#include "shard/measure/effect_library.hpp"
 #include "shard/plugin_host.hpp"
 
 namespace shard::effects_test {
@@ -88,6 +90,32 @@ TEST_CASE("an unknown effect policy is refused with the valid names") {
   }
   CHECK(message.find("'sofening'") != std::string::npos);
   for (const auto& name : kPolicies) CHECK(message.find(name) != std::string::npos);
+}
+
+}  // namespace shard::effects_test
+
+namespace shard::effects_test {
+
+// The neutral value is declared in the policy's schema; the effect library repeats it for
+// `shard diagnose`, and the two must not disagree (a trial run at the library's "neutral" would
+// otherwise not be the base model).
+TEST_CASE("the effect library's bond effects use the neutral values of beam_bond's schema") {
+  PluginHost host;
+  host.load_file(SHARD_BUILD_DIR "/plugins/shard_beam_bond.so");
+  const auto& params = host.find(PluginKind::Bond, "beam_bond").info.params;
+  int bond_effects = 0;
+  for (const auto& effect : measure::read_effect_library(SHARD_SOURCE_DIR "/scenes/measurements/effects.toml")) {
+    if (effect.parameter.rfind("bond.", 0) != 0) continue;
+    CAPTURE(effect.name);
+    const std::string key = effect.parameter.substr(5);
+    const auto spec = std::find_if(params.begin(), params.end(), [&](const ParamSpec& p) { return p.name == key; });
+    REQUIRE(spec != params.end());
+    REQUIRE(spec->neutral.has_value());
+    CHECK(effect.neutral == *spec->neutral);
+    CHECK(effect.set.empty());  // the parameter alone switches the policy on
+    ++bond_effects;
+  }
+  CHECK(bond_effects == 4);
 }
 
 }  // namespace shard::effects_test
