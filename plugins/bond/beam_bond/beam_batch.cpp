@@ -125,8 +125,6 @@ template <bool breakage, bool viscous, bool effects, bool arm>
       hcy = c.arm_decay * st[H + 4][l] + c.arm_gain * (cy - st[P + 4][l]);
       hcz = c.arm_decay * st[H + 5][l] + c.arm_gain * (cz - st[P + 5][l]);
       tsx = sx + hsx, tsy = sy + hsy, tsz = sz + hsz, tcx = cx + hcx, tcy = cy + hcy, tcz = cz + hcz;
-      const double next[12] = {sx, sy, sz, cx, cy, cz, hsx, hsy, hsz, hcx, hcy, hcz};
-      for (std::size_t k = 0; k < 12; ++k) out.next_arm_state[k][l] = next[k];
     }
 
     // may_reach()
@@ -136,7 +134,13 @@ template <bool breakage, bool viscous, bool effects, bool arm>
       const double tau = G * (std::abs(tsy) + std::abs(tsz)) + G * radius * std::abs(tcx);
       reach = axial * axial + 3 * tau * tau >= bound;
     }
-    out.fallback[l] = static_cast<std::int64_t>(!unit | !series | reach | damaged);
+    const bool fallback = !unit | !series | reach | damaged;
+    out.fallback[l] = static_cast<std::int64_t>(fallback);
+    if constexpr (arm) {  // a selection, so the store needs no branch; a fallback lane keeps its state
+      const double next[12] = {sx, sy, sz, cx, cy, cz, hsx, hsy, hsz, hcx, hcy, hcz};
+      double* __restrict slots = out.state + l * kViscousStateSize + kPreviousStrainSlot;
+      for (std::size_t k = 0; k < 12; ++k) slots[k] = fallback ? st[kPreviousStrainSlot + k][l] : next[k];
+    }
 
     // Eq. 3 and 5 (with effects: the compressive axial modulus), energy.
     double axial_factor = axial_stiffness_factor;

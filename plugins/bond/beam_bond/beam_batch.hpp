@@ -60,9 +60,9 @@ struct BlockOutput {
   double* torque_j = nullptr;
   double* energy = nullptr;
   std::int64_t fallback[kBlockLanes];  // 1: lane not evaluated, run the per-bond path
-  // With the arm: each evaluated lane's new (Gamma, kappa) and arm strains (h_Gamma, h_kappa),
-  // for the caller to store into the state of the lanes that did not fall back.
-  double next_arm_state[12][kBlockLanes];
+  // With the arm: the block's state (the input's), where each evaluated lane stores its new
+  // (Gamma, kappa) and arm strains (h_Gamma, h_kappa); a fallback lane's are left for its own step.
+  double* state = nullptr;
 };
 
 // The block step evaluates lanes [0, n), n <= kBlockLanes. It is compiled for each instruction

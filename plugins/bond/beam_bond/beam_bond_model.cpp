@@ -262,19 +262,14 @@ void BeamBond::compute(BondBatch& batch) const {
       swapped[l] = e.swapped;
     }
     in.state = batch.state + base * stride;
+    out.state = batch.state + base * stride;
     out.force = batch.force[base].data();
     out.torque_i = batch.torque_i[base].data();
     out.torque_j = batch.torque_j[base].data();
     out.energy = batch.energy + base;
     block_step_(in, out, n, constants);
-    for (std::size_t l = 0; l < n; ++l) {
-      if (out.fallback[l]) {
-        compute_one(batch, base + l);
-      } else if (arm) {  // the evaluated lanes' new arm state; a fallback lane's was left for its own step
-        double* s = batch.state + (base + l) * stride + kPreviousStrainSlot;
-        for (std::size_t c = 0; c < 12; ++c) s[c] = out.next_arm_state[c][l];
-      }
-    }
+    for (std::size_t l = 0; l < n; ++l)
+      if (out.fallback[l]) compute_one(batch, base + l);
   }
 }
 
