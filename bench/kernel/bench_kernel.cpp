@@ -1,6 +1,9 @@
 // Step-loop benchmarks of issue 8 (docs/performance.md). One summary line per benchmark, so a
 // later change can be compared line by line:
 //   bench_kernel bonded  [particles=20000] [pull_speed=0.2] [max_steps=20000]
+//   bench_kernel bonded_effects [same] [policies=all]  (the bond's effect policies on at the
+//       effect library's plausible sizes, docs/effects.md; policies: a comma list of
+//       weibull_strength, softening, viscosity, compression_asymmetry)
 //   bench_kernel settle  [particles=100000] [steps=1000]
 //   bench_kernel scaling [steps=200]   (dense pack at 1e4, 1e5, 3e5 spheres)
 // Threads come from OMP_NUM_THREADS; pin with taskset for stable figures.
@@ -13,6 +16,8 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <map>
+#include <utility>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -71,11 +76,26 @@ double slab_force(const Simulation& sim) {
   return f;
 }
 
-void bonded(int argc, char** argv) {
+// The plausible sizes of scenes/measurements/effects.toml: m 4, s 1, tau_v 1e-3 s, r 2.
+std::map<std::string, ParamValue> bond_effects(const std::string& policies) {
+  const std::map<std::string, std::pair<std::string, double>> size{
+      {"weibull_strength", {"strength_weibull_modulus", 4.0}},
+      {"softening", {"softening_ratio", 1.0}},
+      {"viscosity", {"viscosity_time", 1e-3}},
+      {"compression_asymmetry", {"compression_stiffness_ratio", 2.0}}};
+  std::map<std::string, ParamValue> out;
+  for (const auto& [name, param] : size)
+    if (policies == "all" || ("," + policies + ",").find("," + name + ",") != std::string::npos)
+      out[param.first] = param.second;
+  if (out.empty()) throw std::invalid_argument("bonded_effects: no policy in '" + policies + "'");
+  return out;
+}
+
+void bonded(int argc, char** argv, const char* name, const std::map<std::string, ParamValue>& bond_params) {
   const auto target = static_cast<std::size_t>(arg(argc, argv, 2, 20000));
   const double speed = arg(argc, argv, 3, 0.2);
   const auto max_steps = static_cast<std::int64_t>(arg(argc, argv, 4, 20000));
-  const bench::Models models = bench::default_models();
+  const bench::Models models = bench::default_models(bond_params);
   Simulation sim(bench::bonded_block(target, speed, models));
   const std::size_t bonds0 = sim.bonds().size();
   double bond_steps = 0, peak = 0, force = 0;
@@ -97,10 +117,10 @@ void bonded(int argc, char** argv) {
     if (sim.bonds_broken() > 0 && force < 0.05 * peak) break;
   }
   std::printf(
-      "bench_kernel bonded: particles=%zu bonds=%zu threads=%d steps=%lld dt=%.3e contacts=%zu broken=%lld peak_force_N=%.4g "
+      "bench_kernel %s: particles=%zu bonds=%zu threads=%d steps=%lld dt=%.3e contacts=%zu broken=%lld peak_force_N=%.4g "
       "rebuilds=%lld seconds=%.3f cpu_seconds=%.3f bond_steps_per_s=%.4g ns_per_bond_step=%.2f cpu_ns_per_bond_step=%.2f "
       "parted=%s state_hash=%016llx\n",
-      sim.particles().size(), bonds0, omp_get_max_threads(), static_cast<long long>(steps), sim.dt(),
+      name, sim.particles().size(), bonds0, omp_get_max_threads(), static_cast<long long>(steps), sim.dt(),
       sim.contact_count(), static_cast<long long>(sim.bonds_broken()), peak, static_cast<long long>(sim.neighbour_rebuilds()), busy,
       cpu, bond_steps / busy, 1e9 * busy / bond_steps, 1e9 * cpu / bond_steps, steps < max_steps ? "yes" : "no",
       static_cast<unsigned long long>(state_hash(sim.particles())));
@@ -131,14 +151,16 @@ int main(int argc, char** argv) {
   const std::string which = argc > 1 ? argv[1] : "";
   try {
     if (which == "bonded") {
-      bonded(argc, argv);
+      bonded(argc, argv, "bonded", {});
+    } else if (which == "bonded_effects") {
+      bonded(argc, argv, "bonded_effects", bond_effects(argc > 5 ? argv[5] : "all"));
     } else if (which == "settle") {
       pack_run("settle", static_cast<std::size_t>(arg(argc, argv, 2, 1e5)), static_cast<std::int64_t>(arg(argc, argv, 3, 1000)));
     } else if (which == "scaling") {
       const auto steps = static_cast<std::int64_t>(arg(argc, argv, 2, 200));
       for (double n : {1e4, 1e5, 3e5}) pack_run("scaling", static_cast<std::size_t>(n), steps);
     } else {
-      std::fprintf(stderr, "usage: bench_kernel bonded|settle|scaling [args]  (see the file header)\n");
+      std::fprintf(stderr, "usage: bench_kernel bonded|bonded_effects|settle|scaling [args]  (see the file header)\n");
       return 2;
     }
   } catch (const std::exception& e) {

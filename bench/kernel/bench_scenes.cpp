@@ -42,11 +42,11 @@ PluginHost& host() {
   return h;
 }
 
-Models default_models() {
+Models default_models(const std::map<std::string, ParamValue>& bond_params) {
   auto& h = host();
   Models m;
   m.contact = h.make_contact("hertz_mindlin", h.params(PluginKind::Contact, "hertz_mindlin", {}));
-  m.bond = h.make_bond("beam_bond", h.params(PluginKind::Bond, "beam_bond", {}));
+  m.bond = h.make_bond("beam_bond", h.params(PluginKind::Bond, "beam_bond", bond_params));
   return m;
 }
 

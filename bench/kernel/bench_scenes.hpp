@@ -3,6 +3,9 @@
 #include <cstddef>
 #include <memory>
 
+#include <map>
+#include <string>
+
 #include "shard/bond_model.hpp"
 #include "shard/contact_model.hpp"
 #include "shard/plugin_host.hpp"
@@ -16,9 +19,9 @@ struct Models {
 };
 
 // Plugins from the build tree; Hertz-Mindlin and the beam bond with their default (seed Table I)
-// parameters.
+// parameters, the bond's changed by `bond_params` (e.g. its effect policies switched on).
 PluginHost& host();
-Models default_models();
+Models default_models(const std::map<std::string, ParamValue>& bond_params = {});
 
 // fcc block of 1 mm spheres, every nearest-neighbour pair bonded (box_fill, gap 0.7), about
 // `target` spheres, 2:1:1 in x. The slabs of thickness 1.5 d at both x ends are kPrescribed and

@@ -1,7 +1,8 @@
 #pragma once
 // Random bonded pairs for the bit-for-bit comparisons of two bond-step implementations
-// (test_beam_block: blocked vs per-bond beam_bond; test_beam_plus_neutral: beam_bond_plus at its
-// neutral values vs beam_bond): stretched, sheared, bent, twisted, moving, some listed the other
+// (test_beam_block: blocked vs per-bond beam_bond, with and without effects; test_effects_neutral:
+// beam_bond with its effect policies at neutral values vs plain beam_bond): stretched, sheared,
+// bent, twisted, moving, some listed the other
 // way round, and bit comparison helpers.
 #include <doctest/doctest.h>
 

@@ -1,7 +1,8 @@
 // The blocked, vectorised beam_bond step (beam_batch.hpp) against the per-bond path it replaces:
 // every force, torque, energy, break flag and break stress must be bit-identical, for small and
 // large deformations, moving ends, bonds listed either way round, with and without damping and
-// breakage, and block sizes that leave a partial last block.
+// breakage, with the effect policies composed in (their state too), and block sizes that leave a
+// partial last block.
 #include <doctest/doctest.h>
 
 #include <stdexcept>
@@ -34,6 +35,7 @@ std::vector<BlockIsa> runnable() {
 Counts compare(const BeamBondParams& params, std::size_t pairs, std::uint64_t seed, BlockIsa isa) {
   const BeamBond model(params, isa);
   test::HandBonds a = test::random_pairs<test::HandBonds>(pairs, seed, {true, true});
+  a.dt = 1e-6;  // the Maxwell arm reads the step
   a.initialize(model);
   test::HandBonds b = a;
   Counts n;
@@ -46,6 +48,8 @@ Counts compare(const BeamBondParams& params, std::size_t pairs, std::uint64_t se
     model.compute_reference(bb);
     n.compared += a.i.size();
     n.broken += test::check_same_outputs(a, b);
+    // The per-bond state too (damage, the arm's strains): the next step starts from it.
+    for (std::size_t k = 0; k < a.state.size(); ++k) REQUIRE(test::same_bits(a.state[k], b.state[k]));
   }
   return n;
 }
@@ -70,6 +74,33 @@ TEST_CASE("blocked beam_bond step is bit-identical to the per-bond path, on ever
       p.radius_ratio = 0.8;
       p.shear_modulus = 4e6;
       compare(p, 777, 5, isa);
+    }
+    SUBCASE("all four effects on, with damping") {
+      BeamBondParams p = defaults;
+      p.damping = 1e-3;
+      p.effects.strength_weibull_modulus = 4;
+      p.effects.softening_ratio = 2;
+      p.effects.viscosity_time = 2e-6;  // two steps: the arm's stress is a large share of the load
+      p.effects.compression_stiffness_ratio = 2;
+      REQUIRE(BeamBond(p, isa).with_effects());
+      const Counts n = compare(p, 1001, 11, isa);
+      MESSAGE(n.compared, " bond evaluations with effects, ", n.broken, " breaks");
+      CHECK(n.broken > 100);
+    }
+    SUBCASE("three effects on, without the Maxwell arm") {
+      BeamBondParams p = defaults;
+      p.effects.strength_weibull_modulus = 4;
+      p.effects.softening_ratio = 2;
+      p.effects.compression_stiffness_ratio = 0.5;
+      REQUIRE(BeamBond(p, isa).state_size() == kEffectsStateSize);
+      const Counts n = compare(p, 1001, 12, isa);
+      CHECK(n.broken > 100);
+    }
+    SUBCASE("effects named at their neutral values") {
+      BeamBondParams p = defaults;
+      p.effects.named = {"weibull_strength", "softening", "viscosity", "compression_asymmetry"};
+      REQUIRE(BeamBond(p, isa).with_effects());
+      compare(p, 500, 13, isa);
     }
     SUBCASE("no breakage, no rotational damping") {
       BeamBondParams p = defaults;

@@ -29,7 +29,7 @@ run(${CMAKE_COMMAND} --install "${SHARD_BUILD_DIR}" --prefix "${prefix}")
 set(shard "${prefix}/bin/shard")
 foreach(path bin/shard lib/libshard_kernel.so include/shard/plugin.hpp lib/cmake/Shard/ShardConfig.cmake
              lib/cmake/Shard/ShardTargets.cmake lib/cmake/Shard/ShardPlugin.cmake
-             lib/shard/plugins/shard_beam_bond_plus.so lib/shard/plugins/shard_hertz_mindlin_plus.so
+             lib/shard/plugins/shard_beam_bond.so lib/shard/plugins/shard_hertz_mindlin_plus.so
              share/shard/templates/contact.cpp.in)
   if(NOT EXISTS "${prefix}/${path}")
     message(FATAL_ERROR "install is missing ${path}")
@@ -39,8 +39,8 @@ endforeach()
 # The installed command runs from the prefix (its RPATH finds libshard_kernel there) and lists
 # the installed plugins when pointed at them.
 run("${shard}" --plugin-dir "${prefix}/lib/shard/plugins" plugins)
-if(NOT run_output MATCHES "bond/beam_bond_plus [^\n]*\\(${prefix}/lib/shard/plugins/shard_beam_bond_plus.so\\)")
-  message(FATAL_ERROR "installed beam_bond_plus not listed from the prefix:\n${run_output}")
+if(NOT run_output MATCHES "bond/beam_bond [^\n]*\\(${prefix}/lib/shard/plugins/shard_beam_bond.so\\)")
+  message(FATAL_ERROR "installed beam_bond not listed from the prefix:\n${run_output}")
 endif()
 
 set(strict_flags "-Wall -Wextra -Wpedantic -Wshadow -Wconversion -Werror")

@@ -4,16 +4,16 @@
 
 #include <cmath>
 
-#include "beam_plus_setup.hpp"
+#include "beam_effects_setup.hpp"
 
 namespace shard::effects_test {
 
 TEST_CASE("compression stiffness ratio scales the axial stiffness in compression only") {
-  auto p = table_one_plus();
-  p.compression_stiffness_ratio = 3;
-  const beam_plus::BeamBondPlus model(p);
+  auto p = table_one_params();
+  p.effects.compression_stiffness_ratio = 3;
+  const beam::BeamBond model(p);
   Pair pair(model);
-  const double E = p.base.youngs_modulus, A = Pair::area, l0 = Pair::l0;
+  const double E = p.youngs_modulus, A = Pair::area, l0 = Pair::l0;
   const double eps = 2e-3;
   pair.set(-eps);
   const double f_compression = pair.axial_force(model);
@@ -27,18 +27,18 @@ TEST_CASE("compression stiffness ratio scales the axial stiffness in compression
 
   // Compression does not count towards the von Mises criterion: 3x the tensile strain at break
   // in compression leaves the bond intact.
-  pair.set(-3 * p.base.critical_stress / E);
+  pair.set(-3 * p.critical_stress / E);
   pair.axial_force(model);
   CHECK_FALSE(pair.broken());
 }
 
 TEST_CASE("a stiffer compressive branch shortens the bond time step by 1/sqrt(ratio)") {
-  auto p = table_one_plus();
-  const beam_plus::BeamBondPlus symmetric(p);
-  p.compression_stiffness_ratio = 4;
-  const beam_plus::BeamBondPlus stiff(p);
-  p.compression_stiffness_ratio = 0.25;
-  const beam_plus::BeamBondPlus soft(p);
+  auto p = table_one_params();
+  const beam::BeamBond symmetric(p);
+  p.effects.compression_stiffness_ratio = 4;
+  const beam::BeamBond stiff(p);
+  p.effects.compression_stiffness_ratio = 0.25;
+  const beam::BeamBond soft(p);
   Pair a(symmetric), b(stiff), c(soft);
   const double t0 = symmetric.time_step_limit(a.scene.batch(symmetric)).critical;
   CHECK(stiff.time_step_limit(b.scene.batch(stiff)).critical == doctest::Approx(t0 / 2).epsilon(1e-12));

@@ -5,17 +5,17 @@
 
 #include <cmath>
 
-#include "beam_plus_setup.hpp"
+#include "beam_effects_setup.hpp"
 
 namespace shard::effects_test {
 
 TEST_CASE("softening: linear to the peak, linear to zero, work to break (1 + s) times the peak energy") {
-  auto p = table_one_plus();
-  p.softening_ratio = 2;
-  const beam_plus::BeamBondPlus model(p);
+  auto p = table_one_params();
+  p.effects.softening_ratio = 2;
+  const beam::BeamBond model(p);
   Pair pair(model);
-  const double E = p.base.youngs_modulus, sc = p.base.critical_stress, A = Pair::area, l0 = Pair::l0;
-  const double eps0 = sc / E, eps_f = eps0 * (1 + p.softening_ratio);
+  const double E = p.youngs_modulus, sc = p.critical_stress, A = Pair::area, l0 = Pair::l0;
+  const double eps0 = sc / E, eps_f = eps0 * (1 + p.effects.softening_ratio);
   const double peak_force = sc * A;
 
   // 3000 equal strain steps to 1.01 eps_f: eps0 and eps_f are grid points (1/3 and 1 of 3000 * ...).
@@ -49,15 +49,15 @@ TEST_CASE("softening: linear to the peak, linear to zero, work to break (1 + s) 
   // step is a triangle ending at eps_f within one step h.
   CHECK(work == doctest::Approx(expected_work).epsilon(2e-3));
   // Against brittle (s = 0): work is (1 + s) times the elastic energy at the peak.
-  CHECK(work / (0.5 * peak_force * eps0 * l0) == doctest::Approx(1 + p.softening_ratio).epsilon(2e-3));
+  CHECK(work / (0.5 * peak_force * eps0 * l0) == doctest::Approx(1 + p.effects.softening_ratio).epsilon(2e-3));
 }
 
 TEST_CASE("softening: damage is irreversible, unloading follows the secant, stored energy scales by 1 - D") {
-  auto p = table_one_plus();
-  p.softening_ratio = 1;
-  const beam_plus::BeamBondPlus model(p);
+  auto p = table_one_params();
+  p.effects.softening_ratio = 1;
+  const beam::BeamBond model(p);
   Pair pair(model);
-  const double E = p.base.youngs_modulus, sc = p.base.critical_stress, A = Pair::area, l0 = Pair::l0;
+  const double E = p.youngs_modulus, sc = p.critical_stress, A = Pair::area, l0 = Pair::l0;
   const double eps0 = sc / E, eps_f = 2 * eps0;
   const double eps_mid = 1.5 * eps0;  // half way down: force sc A / 2, D = 1 - (sc/2)/(E eps_mid) = 2/3
   pair.set(eps_mid);
@@ -83,12 +83,12 @@ TEST_CASE("softening: damage is irreversible, unloading follows the secant, stor
 }
 
 TEST_CASE("softening ratio 0 is brittle: the bond breaks the step sigma_vm reaches sigma_crit") {
-  const auto p = table_one_plus();
-  const beam_plus::BeamBondPlus model(p);
+  const auto p = table_one_params();
+  const beam::BeamBond model(p);
   Pair pair(model);
-  const double eps0 = p.base.critical_stress / p.base.youngs_modulus;
+  const double eps0 = p.critical_stress / p.youngs_modulus;
   pair.set(eps0 * (1 - 1e-9));
-  CHECK(pair.axial_force(model) == doctest::Approx(p.base.critical_stress * Pair::area).epsilon(1e-8));
+  CHECK(pair.axial_force(model) == doctest::Approx(p.critical_stress * Pair::area).epsilon(1e-8));
   CHECK_FALSE(pair.broken());
   pair.set(eps0 * (1 + 1e-9));
   pair.axial_force(model);

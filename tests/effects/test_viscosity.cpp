@@ -8,7 +8,7 @@
 
 #include <cmath>
 
-#include "beam_plus_setup.hpp"
+#include "beam_effects_setup.hpp"
 
 namespace shard::effects_test {
 namespace {
@@ -16,10 +16,10 @@ namespace {
 constexpr double kTau = 2e-4;  // s, tau_v
 constexpr double kBeta = 1.0;  // tau_r = 2e-4 s
 
-beam_plus::BeamBondPlusParams viscous_params(double beta = kBeta) {
-  auto p = table_one_plus();
-  p.viscosity_time = kTau;
-  p.viscous_modulus_ratio = beta;
+beam::BeamBondParams viscous_params(double beta = kBeta) {
+  auto p = table_one_params();
+  p.effects.viscosity_time = kTau;
+  p.effects.viscous_modulus_ratio = beta;
   return p;
 }
 
@@ -39,9 +39,9 @@ double ramp(Pair& pair, const BondModel& model, double eps_from, double eps_to, 
 
 TEST_CASE("viscous bond: a constant-rate pull follows E_b A_b (eps + tau_v r (1 - exp(-t / tau_r)))") {
   const auto p = viscous_params();
-  const beam_plus::BeamBondPlus model(p);
+  const beam::BeamBond model(p);
   Pair pair(model);
-  const double E = p.base.youngs_modulus, A = Pair::area, dt = pair.scene.dt;
+  const double E = p.youngs_modulus, A = Pair::area, dt = pair.scene.dt;
   const double tau_r = kTau / kBeta;
   const double rate = 5.0;  // 1/s: eps = 5e-3 after 1 ms, stress ~1/4 of sigma_crit
   double eps = 0, f = 0;
@@ -72,9 +72,9 @@ TEST_CASE("viscous bond: a constant-rate pull follows E_b A_b (eps + tau_v r (1 
 TEST_CASE("viscous bond: a jump fast against tau_r meets (1 + beta) E_b, slow loading only E_b") {
   for (const double beta : {0.5, 1.0, 4.0}) {
     const auto p = viscous_params(beta);
-    const beam_plus::BeamBondPlus model(p);
+    const beam::BeamBond model(p);
     Pair pair(model);
-    const double E = p.base.youngs_modulus, A = Pair::area;
+    const double E = p.youngs_modulus, A = Pair::area;
     const double eps = 1e-3;
     const double x = pair.scene.dt * beta / kTau;  // dt / tau_r
     const double gain = beta * (1 - std::exp(-x)) / x;
@@ -84,17 +84,17 @@ TEST_CASE("viscous bond: a jump fast against tau_r meets (1 + beta) E_b, slow lo
   }
   // The same strain reached over 50 tau_r: the arm stress is tau_v r of strain, 2 % of eps.
   const auto p = viscous_params();
-  const beam_plus::BeamBondPlus model(p);
+  const beam::BeamBond model(p);
   Pair pair(model);
-  const double E = p.base.youngs_modulus, A = Pair::area;
+  const double E = p.youngs_modulus, A = Pair::area;
   const double f = ramp(pair, model, 0, 1e-3, 10000);
   CHECK(f == doctest::Approx(E * A * 1e-3 * (1 + kTau / 1e-2)).epsilon(1e-3));
 }
 
 TEST_CASE("viscous bond: the breakage criterion sees the arm's stress") {
   const auto p = viscous_params();
-  const beam_plus::BeamBondPlus model(p);
-  const double E = p.base.youngs_modulus, sc = p.base.critical_stress;
+  const beam::BeamBond model(p);
+  const double E = p.youngs_modulus, sc = p.critical_stress;
   const double eps = 0.6 * sc / E;  // 40 % below the static strength
   {
     Pair slow(model);
@@ -111,26 +111,32 @@ TEST_CASE("viscous bond: the breakage criterion sees the arm's stress") {
 }
 
 TEST_CASE("viscous bond: the stable step is the elastic one over sqrt(1 + beta), whatever tau_v") {
-  auto p = table_one_plus();
-  const beam_plus::BeamBondPlus elastic(p);
+  auto p = table_one_params();
+  const beam::BeamBond elastic(p);
   Pair a(elastic);
   const double t0 = elastic.time_step_limit(a.scene.batch(elastic)).critical;
   for (const double tau : {2e-6, 2e-4, 1e-1})
     for (const double beta : {1.0, 3.0}) {
-      p.viscosity_time = tau;
-      p.viscous_modulus_ratio = beta;
-      const beam_plus::BeamBondPlus viscous(p);
+      p.effects.viscosity_time = tau;
+      p.effects.viscous_modulus_ratio = beta;
+      const beam::BeamBond viscous(p);
       Pair b(viscous);
       const double t1 = viscous.time_step_limit(b.scene.batch(viscous)).critical;
       CHECK(t1 / t0 == doctest::Approx(1 / std::sqrt(1 + beta)).epsilon(1e-12));
     }
 }
 
-TEST_CASE("viscous bond: off, the state is beam_bond's plus strength and damage") {
-  auto p = table_one_plus();
-  CHECK(beam_plus::BeamBondPlus(p).state_size() == beam_plus::kStateSize);
-  p.viscosity_time = kTau;
-  CHECK(beam_plus::BeamBondPlus(p).state_size() == beam_plus::kViscousStateSize);
+TEST_CASE("bond state: beam_bond's 9 doubles without effects, 11 with any, 23 with the Maxwell arm") {
+  auto p = table_one_params();
+  CHECK(beam::BeamBond(p).state_size() == beam::kStateSize);
+  CHECK_FALSE(beam::BeamBond(p).with_effects());
+  p.effects.viscosity_time = kTau;
+  CHECK(beam::BeamBond(p).state_size() == beam::kViscousStateSize);
+  p = table_one_params();
+  p.effects.named = {"viscosity"};  // named at its neutral value: the effects variant without an arm
+  CHECK(beam::BeamBond(p).state_size() == beam::kEffectsStateSize);
+  p.effects.compression_stiffness_ratio = 2;
+  CHECK(beam::BeamBond(p).state_size() == beam::kEffectsStateSize);
 }
 
 }  // namespace shard::effects_test

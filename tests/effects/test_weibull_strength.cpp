@@ -7,14 +7,14 @@
 #include <cmath>
 #include <vector>
 
-#include "beam_plus_setup.hpp"
-#include "weibull_strength.hpp"
+#include "beam_effects_setup.hpp"
+#include "effects/weibull_strength.hpp"
 
 namespace shard::effects_test {
 namespace {
 
 // A chain of n + 1 spheres, n bonds; returns the strengths the model stored.
-std::vector<double> chain_strengths(const beam_plus::BeamBondPlus& model, std::size_t n, bool reversed = false) {
+std::vector<double> chain_strengths(const beam::BeamBond& model, std::size_t n, bool reversed = false) {
   BondScene s;
   for (std::size_t k = 0; k <= n; ++k) s.add_sphere(Vec3(0.7e-3 * static_cast<double>(k), 0, 0), 0.35e-3);
   for (std::size_t k = 0; k < n; ++k) {
@@ -24,7 +24,7 @@ std::vector<double> chain_strengths(const beam_plus::BeamBondPlus& model, std::s
   }
   s.initialize(model);
   std::vector<double> out(n);
-  for (std::size_t k = 0; k < n; ++k) out[k] = s.state[k * beam_plus::kStateSize + beam_plus::kStrengthSlot];
+  for (std::size_t k = 0; k < n; ++k) out[k] = s.state[k * model.state_size() + beam::kStrengthSlot];
   return out;
 }
 
@@ -48,18 +48,18 @@ TEST_CASE("1e4 bond strengths follow the Weibull law with the set mean and modul
   // Critical value of D at significance 0.001: 1.95 / sqrt(n) = 0.0195.
   const double d_critical = 1.95 / std::sqrt(static_cast<double>(n));
   for (const double m : {2.0, 5.0, 12.0}) {
-    auto p = table_one_plus();
-    p.strength_weibull_modulus = m;
-    p.strength_seed = 42;
-    const beam_plus::BeamBondPlus model(p);
+    auto p = table_one_params();
+    p.effects.strength_weibull_modulus = m;
+    p.effects.strength_seed = 42;
+    const beam::BeamBond model(p);
     const std::vector<double> strengths = chain_strengths(model, n);
-    const double scale = beam_plus::weibull_scale(p.base.critical_stress, m);
-    const double d = ks_statistic(strengths, [&](double s) { return beam_plus::weibull_cdf(s, scale, m); });
+    const double scale = beam::weibull_scale(p.critical_stress, m);
+    const double d = ks_statistic(strengths, [&](double s) { return beam::weibull_cdf(s, scale, m); });
     MESSAGE("m = ", m, ": KS D = ", d, " (critical ", d_critical, ")");
     CHECK(d < d_critical);
     // Power of the test: the law with the scale mistaken for the mean is rejected.
     const double d_wrong = ks_statistic(strengths, [&](double s) {
-      return beam_plus::weibull_cdf(s, p.base.critical_stress, m);
+      return beam::weibull_cdf(s, p.critical_stress, m);
     });
     CHECK(d_wrong > d_critical);
 
@@ -68,24 +68,24 @@ TEST_CASE("1e4 bond strengths follow the Weibull law with the set mean and modul
     for (double s : strengths) sum += s;
     const double mean = sum / static_cast<double>(n);
     const double g1 = std::tgamma(1 + 1 / m), g2 = std::tgamma(1 + 2 / m);
-    const double stddev = p.base.critical_stress * std::sqrt(g2 / (g1 * g1) - 1);
-    CHECK(std::abs(mean - p.base.critical_stress) < 4 * stddev / std::sqrt(static_cast<double>(n)));
+    const double stddev = p.critical_stress * std::sqrt(g2 / (g1 * g1) - 1);
+    CHECK(std::abs(mean - p.critical_stress) < 4 * stddev / std::sqrt(static_cast<double>(n)));
   }
 }
 
 TEST_CASE("strengths are common random numbers: same per bond whatever the listing order, new with a new seed") {
-  auto p = table_one_plus();
-  p.strength_weibull_modulus = 5;
-  p.strength_seed = 3;
-  const beam_plus::BeamBondPlus model(p);
+  auto p = table_one_params();
+  p.effects.strength_weibull_modulus = 5;
+  p.effects.strength_seed = 3;
+  const beam::BeamBond model(p);
   const auto forward = chain_strengths(model, 1000);
   const auto again = chain_strengths(model, 1000);
   const auto reversed = chain_strengths(model, 1000, true);
   CHECK(forward == again);
   CHECK(forward == reversed);
 
-  p.strength_seed = 4;
-  const auto other = chain_strengths(beam_plus::BeamBondPlus(p), 1000);
+  p.effects.strength_seed = 4;
+  const auto other = chain_strengths(beam::BeamBond(p), 1000);
   // Independent draws: the sample correlation of the two seeds is O(1/sqrt(n)) = 0.03.
   double ma = 0, mb = 0;
   for (std::size_t k = 0; k < 1000; ++k) ma += forward[k] / 1000, mb += other[k] / 1000;
@@ -99,19 +99,22 @@ TEST_CASE("strengths are common random numbers: same per bond whatever the listi
 }
 
 TEST_CASE("modulus 0 gives every bond exactly critical_stress") {
-  const beam_plus::BeamBondPlus model(table_one_plus());
+  auto p = table_one_params();
+  p.effects.named = {"weibull_strength"};  // the policy in the law, at its neutral value
+  const beam::BeamBond model(p);
+  REQUIRE(model.with_effects());
   for (double s : chain_strengths(model, 100)) CHECK(s == 0.24e6);
 }
 
 TEST_CASE("a pulled bond breaks at its own drawn strength") {
-  auto p = table_one_plus();
-  p.strength_weibull_modulus = 3;
-  p.strength_seed = 11;
-  const beam_plus::BeamBondPlus model(p);
+  auto p = table_one_params();
+  p.effects.strength_weibull_modulus = 3;
+  p.effects.strength_seed = 11;
+  const beam::BeamBond model(p);
   Pair pair(model);
-  const double strength = pair.scene.state[beam_plus::kStrengthSlot];
-  CHECK(strength != doctest::Approx(p.base.critical_stress).epsilon(1e-3));
-  const double E = p.base.youngs_modulus;
+  const double strength = pair.scene.state[beam::kStrengthSlot];
+  CHECK(strength != doctest::Approx(p.critical_stress).epsilon(1e-3));
+  const double E = p.youngs_modulus;
   pair.set(strength / E * (1 - 1e-9));
   pair.axial_force(model);
   CHECK_FALSE(pair.broken());

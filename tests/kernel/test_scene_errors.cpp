@@ -1,5 +1,6 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "kernel_fixtures.hpp"
@@ -99,6 +100,23 @@ TEST_CASE("scene errors name the file, line, column and key, with a hint") {
   CHECK(error_of(kGood + "\n[stop]\nload_walls = [\"flor\"]\n").find("did you mean 'floor'") != std::string::npos);
   // A malformed --set.
   CHECK(error_of(kGood, {"contact.normal_stiffness"}).find("expected section.key=value") != std::string::npos);
+}
+
+TEST_CASE("a bond plugin's own refusal (an unknown effect policy) names the [bond] section and the valid names") {
+  const std::string text = kGood + "\n[bond]\nplugin = \"beam_bond\"\neffects = \"softening, sofening\"\n";
+  const Scene scene = load_scene_text(text, "scene.toml", {}, test::plugins());
+  const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(text.find("[bond]")), '\n');
+  std::string message;
+  try {
+    instantiate(scene, test::plugins(), [](const std::string&) {});
+  } catch (const SceneError& e) {
+    message = e.what();
+  }
+  CHECK(message.find("scene.toml:" + std::to_string(line) + ":") != std::string::npos);
+  CHECK(message.find("[bond]") != std::string::npos);
+  CHECK(message.find("'sofening'") != std::string::npos);
+  for (const char* name : {"weibull_strength", "softening", "viscosity", "compression_asymmetry"})
+    CHECK(message.find(name) != std::string::npos);
 }
 
 // toml++ 3.3 reaches undefined behaviour on some non-ASCII code points wherever it tests them for

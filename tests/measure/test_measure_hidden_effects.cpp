@@ -185,7 +185,7 @@ TEST_CASE("hidden bond softening (ratio 3): named, sized, calibrated") {
   // (quasi-brittle cohesive laws of mortars and sinter necks: softening strain / peak strain
   // 2-5); 3 is the middle of that range.
   check_found_and_calibrated(
-      {"softening", " --set bond.plugin=beam_bond_plus --set bond.softening_ratio=3", "bond_softening", 3, 0});
+      {"softening", " --set bond.softening_ratio=3", "bond_softening", 3, 0});
 }
 
 TEST_CASE("hidden compression asymmetry (bond stiffness ratio 4): named, sized, calibrated") {
@@ -193,7 +193,7 @@ TEST_CASE("hidden compression asymmetry (bond stiffness ratio 4): named, sized, 
   // compression and open in tension; compressive/tensile modulus ratios 1.5-4 are reported for
   // sandstones and cemented sands. 4 is the upper end; at 2 the base refit of E_b and
   // sigma_crit absorbs it (docs/measurements.md).
-  check_found_and_calibrated({"asymmetry", " --set bond.plugin=beam_bond_plus --set bond.compression_stiffness_ratio=4",
+  check_found_and_calibrated({"asymmetry", " --set bond.compression_stiffness_ratio=4",
                               "compression_asymmetry", 4, 1});
 }
 
@@ -206,7 +206,7 @@ TEST_CASE("hidden bond viscosity (tau_v 5 ms, data at 0.02 and 0.1 m/s): named, 
   // 5x: the linearised size is biased low (measured 0.56 of the truth) and only its order is
   // asserted (1/2..3/2); the calibrated size must meet 2/3..3/2. BOBYQA needs more than three steps
   // on three free parameters here (20: NRMSE 15.4 % -> 7.2 %).
-  Hidden h{"viscosity", " --set bond.plugin=beam_bond_plus --set bond.viscosity_time=5e-3", "bond_viscosity", 5e-3, 0};
+  Hidden h{"viscosity", " --set bond.viscosity_time=5e-3", "bond_viscosity", 5e-3, 0};
   h.size_low = 0.5;
   h.evaluations = 20;
   h.rates = "0.02,0.1";

@@ -31,7 +31,7 @@ TEST_CASE("machine compliance and bond softening hidden at once: both named, one
   const fs::path meas = kWork / "meas", out = kWork / "diag";
   shard("synth --scene " + kScene + " --work " + kWork.string() + " --out " + meas.string() +
         " --scatter 0.02 --force-noise 0.01 --force-offset 0.005 --displacement-step 1e-6 --machine-compliance 1e-4"
-        " --set bond.plugin=beam_bond_plus --set bond.softening_ratio=3");
+        " --set bond.softening_ratio=3");
   shard("diagnose " + meas.string() + " --scene " + kScene + " --work " + kWork.string() +
         " --param bond.youngs_modulus --param bond.critical_stress --only "
         "machine_compliance,bond_softening,compression_asymmetry,weibull_strength --refit 2 --max-effects 2 --out " +

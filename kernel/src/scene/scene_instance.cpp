@@ -1,5 +1,7 @@
 #include <fmt/format.h>
 
+#include <stdexcept>
+
 #include "shard/scene.hpp"
 
 namespace shard {
@@ -30,8 +32,17 @@ SceneInstance instantiate(const Scene& scene, const PluginHost& host,
         "{}: the generator made {} bonds but the scene has no [bond] section; add one (plugin = \"beam_bond\") "
         "or switch bonding off in the generator",
         scene.generator.where, out.body.bonds.size()));
-  if (scene.contact) out.contact = host.make_contact(scene.contact->name, scene.contact->params);
-  if (scene.bond) out.bond = host.make_bond(scene.bond->name, scene.bond->params);
+  // The plugins' own parameter checks (an unknown effect policy, a modulus <= 0) name the section.
+  try {
+    if (scene.contact) out.contact = host.make_contact(scene.contact->name, scene.contact->params);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(fmt::format("{}: [contact] {}", scene.contact->where, e.what()));
+  }
+  try {
+    if (scene.bond) out.bond = host.make_bond(scene.bond->name, scene.bond->params);
+  } catch (const std::invalid_argument& e) {
+    throw SceneError(fmt::format("{}: [bond] {}", scene.bond->where, e.what()));
+  }
 
   SimulationSetup setup;
   const std::size_t n = out.body.position.size();

@@ -5,6 +5,8 @@
 #include <numbers>
 
 #include "beam_geometry.hpp"
+#include "effects/bond_effects.hpp"
+#include "effects/compression_asymmetry.hpp"
 
 namespace shard::beam {
 namespace {
@@ -20,11 +22,15 @@ struct Q {
           (a.w * b.y + a.y * b.w) + (a.z * b.x - a.x * b.z), (a.w * b.z - a.y * b.x) + (a.z * b.w + a.x * b.y)};
 }
 
-// One loop body without branches (the rare cases only set `fallback`; breakage and the viscous
-// force are template arguments because GCC does not unswitch a loop this large), so it vectorises.
+// One loop body without branches (the rare cases only set `fallback`; breakage, the viscous
+// force and the effects are template arguments because GCC does not unswitch a loop this large),
+// so it vectorises. With `effects` the four policies of effects/bond_effects.hpp are composed in,
+// in the per-bond path's order (BeamBond::compute_bond<true>): the bond's own strength, the
+// Maxwell arm advanced over the step (in the breakage bound, the force, the torque and the
+// energy), the compressive axial modulus; a damaged bond (softening) falls back.
 // The particle fields are read straight through the lane's indices (gathers where the ISA has
 // them): copying them into lane arrays first cost more than the arithmetic.
-template <bool breakage, bool viscous>
+template <bool breakage, bool viscous, bool effects, bool arm>
 [[gnu::always_inline]] inline void evaluate_lanes(const BlockInput& in, BlockOutput& out, std::size_t n,
                                                   const BlockConstants& c) {
   const Index* __restrict first = in.first;
@@ -34,10 +40,11 @@ template <bool breakage, bool viscous>
   double* __restrict torque_i = out.torque_i;
   double* __restrict torque_j = out.torque_j;
   double* __restrict energy = out.energy;
-  // The state's stride of 9 defeats GCC's interleaved loads: transposed into lanes first.
-  alignas(64) double st[kStateSize][kBlockLanes];
+  // The state's stride of 9 (11, 23) defeats GCC's interleaved loads: transposed into lanes first.
+  constexpr std::size_t stride = !effects ? kStateSize : arm ? kViscousStateSize : kEffectsStateSize;
+  alignas(64) double st[stride][kBlockLanes];
   for (std::size_t l = 0; l < n; ++l)
-    for (std::size_t k = 0; k < kStateSize; ++k) st[k][l] = in.state[l * kStateSize + k];
+    for (std::size_t k = 0; k < stride; ++k) st[k][l] = in.state[l * stride + k];
   const double* __restrict x = in.position;
   const double* __restrict v = in.velocity;
   const double* __restrict q = in.orientation;
@@ -98,19 +105,61 @@ template <bool breakage, bool viscous>
     const double area = std::numbers::pi * radius * radius;
     const double second_moment = std::numbers::pi * radius * radius * radius * radius / 4;
 
+    // Effects: the bond's strength and damage from its state; with the arm, its strains h advanced
+    // over the step (MaxwellArm::advance).
+    double bound = strength_bound;
+    bool damaged = false;
+    double hsx = 0, hsy = 0, hsz = 0, hcx = 0, hcy = 0, hcz = 0;
+    double tsx = sx, tsy = sy, tsz = sz, tcx = cx, tcy = cy, tcz = cz;  // Gamma + h_Gamma, kappa + h_kappa
+    if constexpr (effects) {
+      const double strength = st[kStrengthSlot][l];
+      bound = (1 - 1e-12) * strength * strength;
+      damaged = st[kDamageSlot][l] != 0;
+    }
+    if constexpr (arm) {
+      constexpr std::size_t P = kPreviousStrainSlot, H = kArmStrainSlot;
+      hsx = c.arm_decay * st[H][l] + c.arm_gain * (sx - st[P][l]);
+      hsy = c.arm_decay * st[H + 1][l] + c.arm_gain * (sy - st[P + 1][l]);
+      hsz = c.arm_decay * st[H + 2][l] + c.arm_gain * (sz - st[P + 2][l]);
+      hcx = c.arm_decay * st[H + 3][l] + c.arm_gain * (cx - st[P + 3][l]);
+      hcy = c.arm_decay * st[H + 4][l] + c.arm_gain * (cy - st[P + 4][l]);
+      hcz = c.arm_decay * st[H + 5][l] + c.arm_gain * (cz - st[P + 5][l]);
+      tsx = sx + hsx, tsy = sy + hsy, tsz = sz + hsz, tcx = cx + hcx, tcy = cy + hcy, tcz = cz + hcz;
+    }
+
     // may_reach()
     bool reach = false;
     if constexpr (breakage) {
-      const double axial = std::max(E * sx, 0.0) + E * radius * (std::abs(cy) + std::abs(cz));
-      const double tau = G * (std::abs(sy) + std::abs(sz)) + G * radius * std::abs(cx);
-      reach = axial * axial + 3 * tau * tau >= strength_bound;
+      const double axial = std::max(E * tsx, 0.0) + E * radius * (std::abs(tcy) + std::abs(tcz));
+      const double tau = G * (std::abs(tsy) + std::abs(tsz)) + G * radius * std::abs(tcx);
+      reach = axial * axial + 3 * tau * tau >= bound;
     }
-    out.fallback[l] = static_cast<std::int64_t>(!unit | !series | reach);
+    const bool fallback = !unit | !series | reach | damaged;
+    out.fallback[l] = static_cast<std::int64_t>(fallback);
+    if constexpr (arm) {  // a selection, so the store needs no branch; a fallback lane keeps its state
+      const double next[12] = {sx, sy, sz, cx, cy, cz, hsx, hsy, hsz, hcx, hcy, hcz};
+      double* __restrict slots = out.state + l * kViscousStateSize + kPreviousStrainSlot;
+      for (std::size_t k = 0; k < 12; ++k) slots[k] = fallback ? st[kPreviousStrainSlot + k][l] : next[k];
+    }
 
-    // Eq. 3 and 5, energy.
-    double Fx = axial_stiffness_factor * area * sx, Fy = shear_factor * area * sy, Fz = shear_factor * area * sz;
-    const double Tx = twist_factor * second_moment * cx, Ty = E * second_moment * cy, Tz = E * second_moment * cz;
-    energy[l] = 0.5 * l0 * (((sx * Fx + sy * Fy) + sz * Fz) + ((cx * Tx + cy * Ty) + cz * Tz));
+    // Eq. 3 and 5 (with effects: the compressive axial modulus), energy.
+    double axial_factor = axial_stiffness_factor;
+    if constexpr (effects) axial_factor = axial_modulus(sx, E, c.compression_modulus);
+    double Fx = axial_factor * area * sx, Fy = shear_factor * area * sy, Fz = shear_factor * area * sz;
+    double Tx = twist_factor * second_moment * cx, Ty = E * second_moment * cy, Tz = E * second_moment * cz;
+    double lane_energy = 0.5 * l0 * (((sx * Fx + sy * Fy) + sz * Fz) + ((cx * Tx + cy * Ty) + cz * Tz));
+    if constexpr (arm) {
+      // The arm's stress: each component's elastic modulus (E_b axial and bending, G_b shear and
+      // twist, as in tension); its spring holds the energy E_b h^2 / (2 beta).
+      const double aFx = E * area * hsx, aFy = shear_factor * area * hsy, aFz = shear_factor * area * hsz;
+      const double aTx = twist_factor * second_moment * hcx, aTy = E * second_moment * hcy,
+                   aTz = E * second_moment * hcz;
+      Fx = Fx + aFx, Fy = Fy + aFy, Fz = Fz + aFz;
+      Tx = Tx + aTx, Ty = Ty + aTy, Tz = Tz + aTz;
+      lane_energy = lane_energy + 0.5 * l0 * (((hsx * aFx + hsy * aFy) + hsz * aFz) + ((hcx * aTx + hcy * aTy) + hcz * aTz)) /
+                                      c.arm_modulus_ratio;
+    }
+    energy[l] = lane_energy;
 
     // rates_of()
     const double o1x = omega[3 * a], o1y = omega[3 * a + 1], o1z = omega[3 * a + 2];
@@ -179,15 +228,23 @@ template <bool breakage, bool viscous>
   }
 }
 
-[[gnu::always_inline]] inline void evaluate_any(const BlockInput& in, BlockOutput& out, std::size_t n,
+template <bool effects, bool arm>
+[[gnu::always_inline]] inline void evaluate_law(const BlockInput& in, BlockOutput& out, std::size_t n,
                                                 const BlockConstants& c) {
   if (c.breakage) {
-    if (c.viscous_force) evaluate_lanes<true, true>(in, out, n, c);
-    else evaluate_lanes<true, false>(in, out, n, c);
+    if (c.viscous_force) evaluate_lanes<true, true, effects, arm>(in, out, n, c);
+    else evaluate_lanes<true, false, effects, arm>(in, out, n, c);
   } else {
-    if (c.viscous_force) evaluate_lanes<false, true>(in, out, n, c);
-    else evaluate_lanes<false, false>(in, out, n, c);
+    if (c.viscous_force) evaluate_lanes<false, true, effects, arm>(in, out, n, c);
+    else evaluate_lanes<false, false, effects, arm>(in, out, n, c);
   }
+}
+
+[[gnu::always_inline]] inline void evaluate_any(const BlockInput& in, BlockOutput& out, std::size_t n,
+                                                const BlockConstants& c) {
+  if (!c.effects) evaluate_law<false, false>(in, out, n, c);
+  else if (c.arm) evaluate_law<true, true>(in, out, n, c);
+  else evaluate_law<true, false>(in, out, n, c);
 }
 
 void evaluate_baseline(const BlockInput& in, BlockOutput& out, std::size_t n, const BlockConstants& c) {

@@ -4,11 +4,12 @@
 // beam_stress.hpp written out per scalar in exactly the order Eigen evaluates it there (including
 // Eigen's SSE quaternion product and its halved sum for the last row of a 3x3 product), so every
 // lane it accepts is bit-identical to the per-bond
-// path; beam_bond_plus, which keeps the per-bond path, must stay bit-identical to beam_bond at its
-// neutral values (tests/effects/test_beam_plus_neutral.cpp).
+// path. The effects variant (effects/bond_effects.hpp) composes the four effect policies into the
+// same loop, bit-identical to the per-bond path with effects (tests/bond/test_beam_block.cpp).
 //
 // Only the common case is evaluated here: q_rel within 1e-9 of unit length, a relative rotation
-// inside the arcsin series range, and (with breakage) a bond the von Mises bound says cannot break.
+// inside the arcsin series range, (with breakage) a bond the von Mises bound says cannot break and
+// (with effects) an undamaged bond.
 // Every other lane is flagged `fallback` and the caller runs the per-bond path on it.
 #include <cstddef>
 #include <cstdint>
@@ -25,6 +26,13 @@ struct BlockConstants {
   double bend_scale = 0, twist_over_bend = 0;  // RotationalDamping's factors
   bool breakage = true;
   bool viscous_force = false;  // damping != 0: v12 is needed
+  // The effects variant (per-bond strength and damage in the state, the Maxwell arm, the
+  // compressive axial modulus); the arm's factors depend on the step and are set per batch.
+  bool effects = false;
+  bool arm = false;                // effects with the Maxwell arm (viscosity_time > 0)
+  double compression_modulus = 0;  // r E_b
+  double arm_decay = 1, arm_gain = 0;  // MaxwellArm over this batch's step
+  double arm_modulus_ratio = 1;        // beta: the arm spring's energy is E_b h^2 / (2 beta)
 };
 
 // A block's inputs: its bonds' ends in the bond's own order (first = smaller stable id), their
@@ -34,7 +42,7 @@ struct BlockInput {
   const Index* first = nullptr;
   const Index* second = nullptr;
   const std::int64_t* swapped = nullptr;  // 1: the batch lists the bond from its second end
-  const double* state = nullptr;
+  const double* state = nullptr;  // kStateSize doubles per bond; kEffectsStateSize, kViscousStateSize with effects
   const double* position = nullptr;
   const double* velocity = nullptr;  // read only with a viscous force
   const double* orientation = nullptr;
@@ -52,6 +60,9 @@ struct BlockOutput {
   double* torque_j = nullptr;
   double* energy = nullptr;
   std::int64_t fallback[kBlockLanes];  // 1: lane not evaluated, run the per-bond path
+  // With the arm: the block's state (the input's), where each evaluated lane stores its new
+  // (Gamma, kappa) and arm strains (h_Gamma, h_kappa); a fallback lane's are left for its own step.
+  double* state = nullptr;
 };
 
 // The block step evaluates lanes [0, n), n <= kBlockLanes. It is compiled for each instruction

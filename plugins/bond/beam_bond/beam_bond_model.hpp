@@ -1,9 +1,12 @@
 #pragma once
-// The seed paper's beam bond (model.md sec. 3, seed eq. 3-13) as a BondModel.
+// The seed paper's beam bond (model.md sec. 3, seed eq. 3-13) as a BondModel, with the effect
+// policies of effects/bond_effects.hpp composed in when any is on.
 #include <cstddef>
+#include <cstdint>
 
 #include "beam_batch.hpp"
 #include "beam_geometry.hpp"
+#include "effects/bond_effects.hpp"
 #include "shard/bond_model.hpp"
 #include "shard/params.hpp"
 
@@ -19,6 +22,7 @@ struct BeamBondParams {
   double rotational_damping = 1;    // factor on the eq. 6 coefficients, 1 = as printed, 0 = off
   double critical_stress = 0.24e6;  // sigma_v,crit, Pa (Table I)
   bool breakage = true;
+  BondEffects effects;              // Weibull strength, softening, viscosity, compression asymmetry
 
   double effective_shear_modulus() const {
     return shear_modulus > 0 ? shear_modulus : youngs_modulus / (2 * (1 + poisson_ratio));
@@ -39,16 +43,23 @@ class BeamBond final : public BondModel {
   bool writes_every_output() const override { return true; }
   // The same results bond by bond, without the blocked lanes (the reference the tests compare to).
   void compute_reference(BondBatch& batch) const;
+  // True when the law runs its effects variant (BondEffects::any()).
+  bool with_effects() const { return block_.effects; }
+  // The strength the model gives the bond between particles of stable ids a and b.
+  double strength_of(std::int64_t id_a, std::int64_t id_b) const;
 
   const BeamBondParams& params() const { return p_; }
   const BlockConstants& block_constants() const { return block_; }
 
  private:
+  template <bool effects>
   void compute_bond(BondBatch& batch, std::size_t k) const;
+  void compute_one(BondBatch& batch, std::size_t k) const;
 
   BeamBondParams p_;
   double shear_modulus_;  // G_b actually used
   RotationalDamping rotational_;  // eq. 6-7 coefficients
+  double weibull_scale_ = 0;      // s0 of the strength law (0 when m = 0)
   BlockConstants block_;          // the same parameters as the blocked lanes read them
   BlockFunction block_step_;
 };

@@ -1,5 +1,7 @@
 #include "beam_bond_schema.hpp"
 
+#include "effects/bond_effects.hpp"
+
 namespace shard::beam {
 
 ParamSpec number_param(const char* name, const char* unit, const char* doc, double value, double min,
@@ -31,9 +33,9 @@ std::vector<ParamSpec> beam_bond_params() {
   ps.push_back(number_param("rotational_damping", "1",
                             "factor on the eq. 6 torque damping sqrt(k I_r); 1 = as printed (damping ratio 0.5), 0 = off",
                             1, 0, false, kInf, 0.0));
+  // No neutral value: "no breakage" is breakage = false (an infinite strength is no valid value).
   ps.push_back(number_param("critical_stress", "Pa",
-                            "von Mises stress at which a bond breaks, sigma_v,crit (eq. 10)", 0.24e6, 0, true, kInf,
-                            kInf));
+                            "von Mises stress at which a bond breaks, sigma_v,crit (eq. 10)", 0.24e6, 0, true));
   ParamSpec breakage;
   breakage.name = "breakage";
   breakage.type = ParamType::Boolean;
@@ -41,6 +43,7 @@ std::vector<ParamSpec> beam_bond_params() {
   breakage.default_value = true;
   breakage.neutral = 0;
   ps.push_back(breakage);
+  for (auto& spec : bond_effect_params()) ps.push_back(std::move(spec));
   return ps;
 }
 

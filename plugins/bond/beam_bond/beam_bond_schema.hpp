@@ -12,7 +12,8 @@ ParamSpec number_param(const char* name, const char* unit, const char* doc, doub
                        bool min_exclusive, double max = std::numeric_limits<double>::infinity(),
                        std::optional<double> neutral = std::nullopt);
 
-// youngs_modulus ... critical_stress, breakage: the schema of bond/beam_bond.
+// youngs_modulus ... critical_stress, breakage, then `effects` and the effect policies' parameters
+// (effects/bond_effects.hpp): the schema of bond/beam_bond.
 std::vector<ParamSpec> beam_bond_params();
 
 }  // namespace shard::beam

@@ -3,11 +3,11 @@
 // in another form, so a diagnosis is tested on an effect it must recognise by its signature, not
 // by its code.
 //   strength scatter: every critical force and torque of a bond times one Weibull draw with
-//     median 1 (beam_bond_plus keeps the mean of one von Mises strength), from a hash of the two
-//     stable particle ids (a murmur-style finaliser; beam_bond_plus uses SplitMix64 and a seed).
+//     median 1 (beam_bond's weibull_strength policy keeps the mean of one von Mises strength), from a hash of the two
+//     stable particle ids (a murmur-style finaliser; beam_bond uses SplitMix64 and a seed).
 //   softening: once the undamaged load ratio c (sqrt of the criterion) passes 1 the elastic loads
 //     scale by 1 - (c_max - 1) / s until c_max = 1 + s, where the bond breaks: the force falls
-//     parabolically in the deformation (beam_bond_plus: linear in the von Mises strain).
+//     parabolically in the deformation (beam_bond's softening policy: linear in the von Mises strain).
 //   compression stiffening: the normal spring is ratio x k_n while shortened.
 #include <algorithm>
 #include <cmath>

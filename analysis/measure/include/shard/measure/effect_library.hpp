@@ -11,7 +11,7 @@
 //   unit = "N s/m"
 //   neutral = 0.0
 //   plausible = 0.02
-//   set = []                          # e.g. ["bond.plugin=beam_bond_plus"]
+//   set = []                          # e.g. ["contact.plugin=hertz_mindlin_plus"]
 //   separated_by = "a second loading rate"
 //   doc = "viscous bond force on the strain rate: a rate-dependent stiffness and strength"
 //

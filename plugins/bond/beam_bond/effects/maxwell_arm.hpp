@@ -17,7 +17,7 @@
 // any tau_r against dt.
 #include <cmath>
 
-namespace shard::beam_plus {
+namespace shard::beam {
 
 struct MaxwellArm {
   double decay = 1;  // a = exp(-dt / tau_r)
@@ -34,4 +34,4 @@ struct MaxwellArm {
   double advance(double arm_strain, double strain_increment) const { return decay * arm_strain + gain * strain_increment; }
 };
 
-}  // namespace shard::beam_plus
+}  // namespace shard::beam

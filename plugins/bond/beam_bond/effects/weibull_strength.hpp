@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <utility>
 
-namespace shard::beam_plus {
+namespace shard::beam {
 
 // SplitMix64 finaliser: a bijection of 64-bit words with full avalanche.
 inline std::uint64_t mix64(std::uint64_t x) {
@@ -39,4 +39,4 @@ inline double weibull_quantile(double u, double scale, double modulus) {
   return scale * std::pow(-std::log1p(-u), 1 / modulus);
 }
 
-}  // namespace shard::beam_plus
+}  // namespace shard::beam

@@ -1,18 +1,18 @@
 #pragma once
-// beam_bond_plus driven directly (the model library), on one bonded pair along x.
+// beam_bond with its effect policies driven directly (the model library), on one bonded pair along x.
 #include <cmath>
 #include <numbers>
 
-#include "beam_bond_plus_model.hpp"
+#include "beam_bond_model.hpp"
 #include "bond_batch.hpp"
 
 namespace shard::effects_test {
 
 // Seed Table I bond: E_b = 12.8 MPa, sigma_crit = 0.24 MPa, r = 0.35 mm, no damping.
-inline beam_plus::BeamBondPlusParams table_one_plus() {
-  beam_plus::BeamBondPlusParams p;
-  p.base.damping = 0;
-  p.base.rotational_damping = 0;
+inline beam::BeamBondParams table_one_params() {
+  beam::BeamBondParams p;
+  p.damping = 0;
+  p.rotational_damping = 0;
   return p;
 }
 
@@ -39,7 +39,7 @@ struct Pair {
     return scene.force[0].x();
   }
   bool broken() const { return scene.broken[0] != 0; }
-  double damage() const { return scene.state[beam_plus::kDamageSlot]; }
+  double damage() const { return scene.state[beam::kDamageSlot]; }
 };
 
 }  // namespace shard::effects_test

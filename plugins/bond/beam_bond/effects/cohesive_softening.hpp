@@ -13,7 +13,7 @@
 // elastic energy. s = 0 is brittle: the bond breaks the moment sigma_vm reaches sigma_c.
 #include <algorithm>
 
-namespace shard::beam_plus {
+namespace shard::beam {
 
 // Damage implied by a trial (undamaged) von Mises stress sigma_vm >= sigma_c; >= 1 means broken.
 inline double softening_damage(double sigma_vm, double sigma_c, double softening_ratio) {
@@ -23,4 +23,4 @@ inline double softening_damage(double sigma_vm, double sigma_c, double softening
   return std::max(0.0, 1 - remaining / (softening_ratio * sigma_vm));
 }
 
-}  // namespace shard::beam_plus
+}  // namespace shard::beam
