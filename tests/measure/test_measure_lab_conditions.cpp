@@ -11,7 +11,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <sstream>
 #include <string>
 
@@ -61,15 +60,16 @@ std::size_t lines(const fs::path& p) {
   return n;
 }
 
-// A copy of the measurement folder `from` with metadata.toml's lines matching `drop` removed.
-fs::path without(const fs::path& from, const std::string& name, const std::regex& drop) {
+// A copy of the measurement folder `from` with metadata.toml's lines that start with `key` removed.
+// (String search, not <regex>: GCC 12 warns falsely inside <regex> at -O1 with the sanitizers.)
+fs::path without(const fs::path& from, const std::string& name, const std::string& key) {
   const fs::path to = kWork / name;
   fs::remove_all(to);
   fs::copy(from, to, fs::copy_options::recursive);
   std::istringstream in(read(from / "metadata.toml"));
   std::ofstream out(to / "metadata.toml");
   for (std::string line; std::getline(in, line);)
-    if (!std::regex_search(line, drop)) out << line << "\n";
+    if (line.rfind(key, 0) != 0) out << line << "\n";
   return to;
 }
 
@@ -120,11 +120,11 @@ TEST_CASE("compare runs the model as the lab ran it, every rate in one go, and w
   CHECK(read(kWork / "cmp_lab" / "compare.md").find("**Warning.** the model is dynamic") != std::string::npos);
 
   // Without the ramp the model's pins start at full speed: a different curve (4.3 % measured).
-  const fs::path no_ramp = without(kLab, "no_ramp", std::regex("^ramp"));
+  const fs::path no_ramp = without(kLab, "no_ramp", "ramp");
   shard_ok("compare " + no_ramp.string() + kModel + " --out " + (kWork / "cmp_no_ramp").string());
   CHECK(number_after(read(kWork / "cmp_no_ramp" / "compare.json"), "\"nrmse\": ") > 0.01);
   // Without the preload the model's curves keep their toe below 0.2 N and another zero.
-  const fs::path no_preload = without(kLab, "no_preload", std::regex("^seating_preload"));
+  const fs::path no_preload = without(kLab, "no_preload", "seating_preload");
   shard_ok("compare " + no_preload.string() + kModel + " --out " + (kWork / "cmp_no_preload").string());
   CHECK(number_after(read(kWork / "cmp_no_preload" / "compare.json"), "\"nrmse\": ") > 0.01);
 }
@@ -136,7 +136,10 @@ TEST_CASE("a specimen of another width is refused, and a scene without effects.t
   fs::remove_all(wide);
   fs::copy(kLab, wide, fs::copy_options::recursive);
   std::string specimens = read(kLab / "specimens.csv");
-  specimens = std::regex_replace(specimens, std::regex(",0\\.0079[0-9]*,"), ",0.012,", std::regex_constants::format_first_only);
+  // The first width (7.9x mm) becomes 12 mm.
+  const auto width = specimens.find(",0.0079");
+  REQUIRE(width != std::string::npos);
+  specimens.replace(width, specimens.find(',', width + 1) - width, ",0.012");
   std::ofstream(wide / "specimens.csv") << specimens;
   std::string output;
   CHECK(shard("compare " + wide.string() + kModel + " --out " + (kWork / "cmp_wide").string(), output) != 0);
