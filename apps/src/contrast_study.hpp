@@ -48,10 +48,7 @@ class ContrastStudy {
  public:
   ContrastStudy(const ContrastSets& sets, Simulator& simulator, ModelPlan base);
 
-  const std::vector<ContrastGroup>& groups() const { return groups_; }
-  const measure::ContrastScale& measured_scale() const { return measured_scale_; }
   double dof() const { return dof_; }
-  const std::vector<std::vector<double>>& covariance() const { return covariance_; }
 
   BaseCalibration calibrate_base(const std::vector<std::string>& keys, int iterations, std::ostream& log);
   const ModelPlan& base() const { return base_; }
