@@ -1,5 +1,5 @@
 #pragma once
-// Bond models (model.md sec. 3): massless beams between two particles. One batch call per step
+// Bond models (plugins/bond/*/README.md): massless beams between two particles. One batch call per step
 // over all intact bonds; per-bond state (the bonded reference configuration and anything else a
 // model needs) lives in a kernel array the model sizes, so checkpoints carry it.
 #include <cstddef>

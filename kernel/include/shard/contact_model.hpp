@@ -1,5 +1,5 @@
 #pragma once
-// Pair contact models (model.md sec. 2). The kernel finds the touching pairs and their geometry;
+// Pair contact models (plugins/contact/*/README.md). The kernel finds the touching pairs and their geometry;
 // the model turns geometry into force in batch calls (blocks of touching pairs, each thread its
 // own; a contact's result must not depend on the others in its batch). A model never sees the
 // neighbour list, so the same model serves particle-particle and particle-wall contacts.

@@ -1,5 +1,5 @@
 #pragma once
-// Generators fill a parent body with spheres and the bonds between them (model.md sec. 5).
+// Generators fill a parent body with spheres and the bonds between them (docs/generators.md).
 #include <cstdint>
 #include <functional>
 #include <map>

@@ -1,5 +1,5 @@
 #pragma once
-// The seed paper's beam bond (model.md sec. 3, seed eq. 3-13) as a BondModel, with the effect
+// The seed paper's beam bond (README.md, seed eq. 3-13) as a BondModel, with the effect
 // policies of effects/bond_effects.hpp composed in when any is on.
 #include <cstddef>
 #include <cstdint>

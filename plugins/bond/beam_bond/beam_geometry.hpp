@@ -1,5 +1,5 @@
 #pragma once
-// Kinematics of one beam bond in the total formulation (model.md sec. 3): everything is measured
+// Kinematics of one beam bond in the total formulation (README.md, "Formulation"): everything is measured
 // from the bonded reference configuration, so rigid motions of the pair produce no strain.
 //
 // Frames. At bonding the bond frame B0 (x along the centre line from the first to the second

@@ -1,6 +1,6 @@
 #pragma once
 // The incremental tangential spring with Coulomb friction shared by the contact models
-// (model.md sec. 2). The spring's extension xi lives in the kernel's per-contact history
+// (hertz_mindlin/README.md). The spring's extension xi lives in the kernel's per-contact history
 // (3 doubles); these functions are the three equations applied to it each step.
 #include <cstddef>
 

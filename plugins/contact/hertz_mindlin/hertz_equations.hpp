@@ -1,5 +1,5 @@
 #pragma once
-// Hertz-Mindlin contact of two spheres of one material (model.md sec. 2), one equation each.
+// Hertz-Mindlin contact of two spheres of one material (README.md), one equation each.
 // Symbols: E Young's modulus, G shear modulus, nu Poisson's ratio, R* effective radius,
 // delta overlap, m* effective mass. A wall is taken to be of the particles' material with
 // infinite radius, so the same E* and G* serve particle-wall contacts (the kernel passes
@@ -40,7 +40,7 @@ inline double normal_elastic_energy(double E_star, double R, double delta) {
   return 8.0 / 15.0 * E_star * std::sqrt(R) * delta * delta * std::sqrt(delta);
 }
 
-// Rayleigh wave time across the smallest sphere (model.md eq. 11):
+// Rayleigh wave time across the smallest sphere (seed eq. 11, docs/physics.md "Time step"):
 // t_R = pi R sqrt(rho / G) / (0.1631 nu + 0.8766)
 inline double rayleigh_time(double R, double rho, double G, double nu) {
   return std::numbers::pi * R * std::sqrt(rho / G) / (0.1631 * nu + 0.8766);

@@ -1,5 +1,5 @@
 #pragma once
-// Hertz-Mindlin with Coulomb friction, the master contact model of model.md sec. 2.
+// Hertz-Mindlin with Coulomb friction, the master contact model of the seed (README.md).
 #include <cstddef>
 
 #include "shard/contact_model.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// Linear spring-dashpot contact (model.md sec. 2, the cheap baseline), one equation each.
+// Linear spring-dashpot contact (README.md, the cheap baseline), one equation each.
 // Symbols: k_n, k_t normal and tangential stiffness, zeta damping ratio, m* effective mass.
 #include <cmath>
 #include <numbers>

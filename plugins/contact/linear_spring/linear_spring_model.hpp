@@ -1,5 +1,5 @@
 #pragma once
-// Linear spring-dashpot with Coulomb friction: the cheap baseline contact model (model.md sec. 2).
+// Linear spring-dashpot with Coulomb friction: the cheap baseline contact model (README.md).
 #include <cstddef>
 
 #include "shard/contact_model.hpp"
