@@ -1,15 +1,15 @@
-# The installed CMake package: `cmake --install` puts headers, libshard_kernel, the plugins, the
-# `shard` command, the plugin templates and lib/cmake/Shard/ in the prefix, so that an out-of-tree
-# plugin project needs only
+# The installed CMake package: `cmake --install` puts the plugin API headers (kernel/CMakeLists.txt),
+# libshard_kernel, the plugins, the `shard` command, the plugin templates and lib/cmake/Shard/ in the
+# prefix, so that an out-of-tree plugin project needs only
 #     find_package(Shard REQUIRED)
 #     shard_add_plugin(my_effect SOURCES my_effect.cpp)
 # (docs/plugins.md). Included from the top-level CMakeLists.txt after the kernel and apps.
 include(CMakePackageConfigHelpers)
 set(SHARD_INSTALL_CMAKE_DIR lib/cmake/Shard)
 
-# Exported as shard::plugin_api and shard::kernel, the names the build tree uses too.
+# Exported as shard::plugin_api, the name the build tree uses too; the kernel library is installed
+# for the `shard` command only (its headers are the host's, not the API).
 set_target_properties(shard_plugin_api PROPERTIES EXPORT_NAME plugin_api)
-set_target_properties(shard_kernel PROPERTIES EXPORT_NAME kernel)
 install(EXPORT ShardTargets NAMESPACE shard:: DESTINATION ${SHARD_INSTALL_CMAKE_DIR})
 configure_package_config_file(${CMAKE_CURRENT_LIST_DIR}/ShardConfig.cmake.in
   ${CMAKE_BINARY_DIR}/cmake/ShardConfig.cmake INSTALL_DESTINATION ${SHARD_INSTALL_CMAKE_DIR})

@@ -6,7 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <iterator>
 #include <sstream>
+
+#include "composed_bond.hpp"
 
 namespace shard {
 
@@ -15,6 +18,7 @@ const char* to_string(PluginKind kind) {
     case PluginKind::Contact: return "contact";
     case PluginKind::Bond: return "bond";
     case PluginKind::Generator: return "generator";
+    case PluginKind::BondEffect: return "bond_effect";
   }
   return "?";
 }
@@ -36,24 +40,86 @@ class HostRegistrar final : public Registrar {
   HostRegistrar(std::string file, std::vector<LoadedPlugin>& out) : file_(std::move(file)), out_(out) {}
   void add_contact(PluginInfo info, ContactFactory make) override {
     info.kind = PluginKind::Contact;
-    LoadedPlugin p{std::move(info), file_, std::move(make), {}, {}};
-    out_.push_back(std::move(p));
+    added(std::move(info)).make_contact = std::move(make);
   }
   void add_bond(PluginInfo info, BondFactory make) override {
     info.kind = PluginKind::Bond;
-    LoadedPlugin p{std::move(info), file_, {}, std::move(make), {}};
-    out_.push_back(std::move(p));
+    LoadedPlugin& p = added(std::move(info));
+    p.own_params = p.info.params;
+    p.make_bond = std::move(make);
   }
   void add_generator(PluginInfo info, GeneratorFactory make) override {
     info.kind = PluginKind::Generator;
-    LoadedPlugin p{std::move(info), file_, {}, {}, std::move(make)};
-    out_.push_back(std::move(p));
+    added(std::move(info)).make_generator = std::move(make);
+  }
+  void add_bond_effect(PluginInfo info, std::string law, BondEffectFactory make) override {
+    info.kind = PluginKind::BondEffect;
+    LoadedPlugin& p = added(std::move(info));
+    p.law = std::move(law);
+    p.make_bond_effect = std::move(make);
   }
 
  private:
+  LoadedPlugin& added(PluginInfo info) {
+    LoadedPlugin& p = out_.emplace_back();
+    p.info = std::move(info);
+    p.file = file_;
+    return p;
+  }
   std::string file_;
   std::vector<LoadedPlugin>& out_;
 };
+
+// Plugins that were retired, each with the scene line that replaces it: the one table of such
+// hints (a scene naming a retired plugin gets its row instead of a bare "unknown plugin").
+struct RetiredPlugin {
+  PluginKind kind;
+  const char* name;
+  const char* replacement;
+};
+constexpr RetiredPlugin kRetiredPlugins[] = {
+    {PluginKind::Bond, "beam_bond_plus",
+     "plugin = \"beam_bond\" with effects = \"weibull_strength, softening, viscosity, compression_asymmetry\" "
+     "(name the ones you use; their parameters keep their names, docs/effects.md)"},
+};
+
+// Names separated by commas and/or blanks, as the `effects` key lists them.
+std::vector<std::string> split_names(const std::string& text) {
+  std::vector<std::string> out;
+  std::string word;
+  for (const char c : text + ",") {
+    if (c == ',' || c == ' ' || c == '\t') {
+      if (!word.empty()) out.push_back(word);
+      word.clear();
+    } else {
+      word += c;
+    }
+  }
+  return out;
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+// True when the scene moved a parameter of `spec` away from its neutral value.
+bool away_from_neutral(const ParamSpec& spec, const ParamSet& p) {
+  if (!spec.neutral || !p.has(spec.name)) return false;
+  const ParamValue& v = p.all().at(spec.name);
+  if (const auto* d = std::get_if<double>(&v)) return *d != *spec.neutral;
+  if (const auto* b = std::get_if<bool>(&v)) return (*b ? 1.0 : 0.0) != *spec.neutral;
+  return false;
+}
+
+// The first parameter name `effect` shares with `params`, or "".
+std::string shared_name(const std::vector<ParamSpec>& params, const PluginInfo& effect) {
+  for (const auto& e : effect.params)
+    for (const auto& q : params)
+      if (q.name == e.name) return e.name;
+  return "";
+}
 
 std::string type_name(ParamType t) {
   switch (t) {
@@ -135,6 +201,32 @@ void PluginHost::load_file(const std::filesystem::path& file) {
   } catch (const std::exception& e) {
     throw PluginError(fmt::format("{}: plugin failed while registering: {}", file.string(), e.what()));
   }
+  // An effect's parameters join its law's [bond] table, so no name may be taken twice. Pairs of
+  // plugins loaded before were checked then; a plugin shadowed by an earlier one takes no part.
+  std::vector<const LoadedPlugin*> loaded, fresh;
+  for (const auto& [key, q] : plugins_) loaded.push_back(&q);
+  for (const auto& q : found)
+    if (!plugins_.count({static_cast<int>(q.info.kind), q.info.name})) fresh.push_back(&q);
+  for (const auto* p : fresh) {
+    std::vector<const LoadedPlugin*> others = loaded;
+    for (const auto* q : fresh)
+      if (q != p) others.push_back(q);
+    for (const auto* q : others) {
+      const bool p_effect = p->info.kind == PluginKind::BondEffect, q_effect = q->info.kind == PluginKind::BondEffect;
+      std::string name;
+      if (p_effect && q->info.kind == PluginKind::Bond && q->info.name == p->law)
+        name = shared_name(q->own_params, p->info);
+      else if (q_effect && p->info.kind == PluginKind::Bond && p->info.name == q->law)
+        name = shared_name(p->own_params, q->info);
+      else if (p_effect && q_effect && p->law == q->law)
+        name = shared_name(q->info.params, p->info);
+      if (!name.empty())
+        throw PluginError(fmt::format("{}: parameter '{}' is declared by both {} '{}' and {} '{}' ({}), which share "
+                                      "the [bond] table of '{}'; prefix a bond effect's parameters with its name",
+                                      file.string(), name, to_string(p->info.kind), p->info.name,
+                                      to_string(q->info.kind), q->info.name, q->file, p_effect ? p->law : q->law));
+    }
+  }
   for (auto& p : found) {
     const auto key = std::make_pair(static_cast<int>(p.info.kind), p.info.name);
     // The first directory on the search path wins, so a user's plugin shadows a built-in one.
@@ -142,6 +234,39 @@ void PluginHost::load_file(const std::filesystem::path& file) {
     plugins_.emplace(key, std::move(p));
   }
   libraries_.push_back(std::move(library));
+  compose_effect_schemas();
+}
+
+void PluginHost::compose_effect_schemas() {
+  for (auto& [key, law] : plugins_) {
+    if (law.info.kind != PluginKind::Bond) continue;
+    law.info.params = law.own_params;
+    const auto effects = bond_effects_for(law.info.name);
+    if (effects.empty()) continue;
+    std::vector<std::string> names;
+    for (const auto* e : effects) names.push_back(e->info.name);
+    auto listed = std::find_if(law.info.params.begin(), law.info.params.end(),
+                               [](const ParamSpec& s) { return s.name == "effects"; });
+    if (listed == law.info.params.end()) {
+      ParamSpec spec;
+      spec.name = "effects";
+      spec.type = ParamType::String;
+      spec.default_value = std::string();
+      law.info.params.push_back(spec);
+      listed = std::prev(law.info.params.end());
+      listed->doc = "effect policies composed onto the law, e.g. \"" + names.front() + "\"";
+    }
+    listed->doc += "; out-of-tree effects loaded: " + joined(names);
+    for (const auto* e : effects)
+      for (const auto& spec : e->info.params) law.info.params.push_back(spec);
+  }
+}
+
+std::vector<const LoadedPlugin*> PluginHost::bond_effects_for(const std::string& law) const {
+  std::vector<const LoadedPlugin*> out;
+  for (const auto& [key, p] : plugins_)
+    if (p.info.kind == PluginKind::BondEffect && p.law == law) out.push_back(&p);
+  return out;
 }
 
 std::vector<const LoadedPlugin*> PluginHost::plugins() const {
@@ -153,6 +278,10 @@ std::vector<const LoadedPlugin*> PluginHost::plugins() const {
 const LoadedPlugin& PluginHost::find(PluginKind kind, const std::string& name) const {
   auto it = plugins_.find({static_cast<int>(kind), name});
   if (it != plugins_.end()) return it->second;
+  for (const auto& retired : kRetiredPlugins)
+    if (retired.kind == kind && name == retired.name)
+      throw PluginError(fmt::format("{} plugin '{}' was retired: write {}", to_string(kind), name,
+                                    retired.replacement));
   std::vector<std::string> names;
   for (const auto& [key, p] : plugins_)
     if (key.first == static_cast<int>(kind)) names.push_back(p.info.name);
@@ -232,7 +361,43 @@ std::unique_ptr<ContactModel> PluginHost::make_contact(const std::string& name, 
   return find(PluginKind::Contact, name).make_contact(p);
 }
 std::unique_ptr<BondModel> PluginHost::make_bond(const std::string& name, const ParamSet& p) const {
-  return find(PluginKind::Bond, name).make_bond(p);
+  const LoadedPlugin& law = find(PluginKind::Bond, name);
+  const auto effects = bond_effects_for(name);
+  if (effects.empty()) return law.make_bond(p);
+
+  // The law gets its own parameters, with `effects` stripped of the names it does not know.
+  const bool law_lists_effects = std::any_of(law.own_params.begin(), law.own_params.end(),
+                                             [](const ParamSpec& s) { return s.name == "effects"; });
+  std::vector<std::string> named = p.has("effects") ? split_names(p.text("effects")) : std::vector<std::string>{};
+  std::vector<std::string> law_named;
+  for (const auto& n : named)
+    if (std::none_of(effects.begin(), effects.end(), [&](const LoadedPlugin* e) { return e->info.name == n; }))
+      law_named.push_back(n);
+  if (!law_lists_effects && !law_named.empty()) {
+    std::vector<std::string> valid;
+    for (const auto* e : effects) valid.push_back(e->info.name);
+    throw PluginError(fmt::format("bond plugin '{}': effects names '{}', which is no effect loaded for it; valid: {}",
+                                  name, law_named.front(), joined(valid)));
+  }
+  ParamSet law_params;
+  for (const auto& spec : law.own_params)
+    if (p.has(spec.name)) law_params.set(spec.name, p.all().at(spec.name));
+  if (law_lists_effects) law_params.set("effects", joined(law_named));
+
+  std::vector<std::unique_ptr<BondEffect>> on;
+  for (const auto* e : effects) {
+    const bool is_named = std::find(named.begin(), named.end(), e->info.name) != named.end();
+    const bool moved = std::any_of(e->info.params.begin(), e->info.params.end(),
+                                   [&](const ParamSpec& s) { return away_from_neutral(s, p); });
+    if (!is_named && !moved) continue;
+    ParamSet own;
+    for (const auto& spec : e->info.params)
+      if (p.has(spec.name)) own.set(spec.name, p.all().at(spec.name));
+    on.push_back(e->make_bond_effect(own));
+  }
+  // With every effect off the law runs alone, exactly as without the effect plugins.
+  if (on.empty()) return law.make_bond(law_params);
+  return std::make_unique<ComposedBond>(law.make_bond(law_params), std::move(on));
 }
 std::unique_ptr<Generator> PluginHost::make_generator(const std::string& name, const ParamSet& p) const {
   return find(PluginKind::Generator, name).make_generator(p);

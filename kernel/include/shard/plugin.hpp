@@ -1,7 +1,7 @@
 #pragma once
 // The plugin ABI. Every plugin shared object defines two C symbols with SHARD_PLUGIN:
 //   int  shard_plugin_abi(void)            -> the kAbiVersion it was compiled with
-//   void shard_plugin_register(Registrar*) -> registers its models
+//   void shard_plugin_register(Registrar*) -> registers its models (and bond effects)
 // The host reads the first before calling the second, so a plugin built against other headers
 // is refused with a message instead of crashing on a changed class layout.
 #include <functional>
@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "shard/bond_effect.hpp"
 #include "shard/bond_model.hpp"
 #include "shard/contact_model.hpp"
 #include "shard/generator.hpp"
@@ -16,10 +17,12 @@
 
 namespace shard {
 
-// Bump on any change to a header in include/shard that plugins compile against.
-inline constexpr int kAbiVersion = 2;  // 2: BondModel::writes_every_output
+// Bump on any change to a header plugins compile against (the installed API, docs/plugins.md).
+// 2: BondModel::writes_every_output; 3: bond effects (bond_effect.hpp, Registrar::add_bond_effect)
+// and the installed API reduced to the plugin headers.
+inline constexpr int kAbiVersion = 3;
 
-enum class PluginKind { Contact, Bond, Generator };
+enum class PluginKind { Contact, Bond, Generator, BondEffect };
 const char* to_string(PluginKind kind);
 
 struct PluginInfo {
@@ -40,6 +43,9 @@ class Registrar {
   virtual void add_contact(PluginInfo info, ContactFactory make) = 0;
   virtual void add_bond(PluginInfo info, BondFactory make) = 0;
   virtual void add_generator(PluginInfo info, GeneratorFactory make) = 0;
+  // An effect composed onto the bond law named `law` (bond_effect.hpp). Its parameters join the
+  // law's [bond] table, so their names must differ from the law's (prefix them with the effect's).
+  virtual void add_bond_effect(PluginInfo info, std::string law, BondEffectFactory make) = 0;
 };
 
 }  // namespace shard

@@ -11,11 +11,16 @@
 namespace shard {
 
 struct LoadedPlugin {
+  // A bond law's params are its own followed by those of the bond effects loaded for it
+  // (own_params holds its own); an effect's are its own.
   PluginInfo info;
   std::string file;  // the shared object it came from
   ContactFactory make_contact;
   BondFactory make_bond;
   GeneratorFactory make_generator;
+  BondEffectFactory make_bond_effect;
+  std::string law;                    // a bond effect: the bond law it composes onto
+  std::vector<ParamSpec> own_params;  // a bond law: its schema without the effects'
 };
 
 // A parameter value as written in a scene, before validation (line/column for messages).
@@ -52,7 +57,11 @@ class PluginHost {
                            const std::string& section_where);
 
   std::unique_ptr<ContactModel> make_contact(const std::string& name, const ParamSet& p) const;
+  // The law, with the bond effects loaded for it composed on (bond_effect.hpp) when the scene
+  // names one in `effects` or sets a parameter of one away from its neutral value.
   std::unique_ptr<BondModel> make_bond(const std::string& name, const ParamSet& p) const;
+  // The loaded bond effects that compose onto `law`, in name order.
+  std::vector<const LoadedPlugin*> bond_effects_for(const std::string& law) const;
   std::unique_ptr<Generator> make_generator(const std::string& name, const ParamSet& p) const;
   // Convenience for tests and tools: validate plain values, then make.
   ParamSet params(PluginKind kind, const std::string& name,
@@ -60,6 +69,8 @@ class PluginHost {
 
  private:
   struct Library;
+  // Rebuilds each bond law's schema from its own and its effects' (after every load).
+  void compose_effect_schemas();
   std::vector<std::unique_ptr<Library>> libraries_;  // declared first: destroyed last
   std::map<std::pair<int, std::string>, LoadedPlugin> plugins_;
 };
