@@ -3,7 +3,8 @@
 //   bench_kernel bonded  [particles=20000] [pull_speed=0.2] [max_steps=20000]
 //   bench_kernel bonded_effects [same] [policies=all]  (the bond's effect policies on at the
 //       effect library's plausible sizes, docs/effects.md; policies: a comma list of
-//       weibull_strength, softening, viscosity, compression_asymmetry)
+//       weibull_strength, softening, viscosity, compression_asymmetry; any other name is named in
+//       `effects` at its neutral values, e.g. an out-of-tree bond effect found on SHARD_PLUGIN_PATH)
 //   bench_kernel settle  [particles=100000] [steps=1000]
 //   bench_kernel scaling [steps=200]   (dense pack at 1e4, 1e5, 3e5 spheres)
 // Threads come from OMP_NUM_THREADS; pin with taskset for stable figures.
@@ -11,6 +12,7 @@
 
 #include <time.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdint>
@@ -87,6 +89,14 @@ std::map<std::string, ParamValue> bond_effects(const std::string& policies) {
   for (const auto& [name, param] : size)
     if (policies == "all" || ("," + policies + ",").find("," + name + ",") != std::string::npos)
       out[param.first] = param.second;
+  std::string named;  // names of no size above: named in `effects`, e.g. an out-of-tree bond effect
+  for (std::size_t at = 0; policies != "all" && at <= policies.size();) {
+    const std::size_t end = std::min(policies.find(',', at), policies.size());
+    const std::string name = policies.substr(at, end - at);
+    if (!name.empty() && !size.count(name)) named += (named.empty() ? "" : ",") + name;
+    at = end + 1;
+  }
+  if (!named.empty()) out["effects"] = named;
   if (out.empty()) throw std::invalid_argument("bonded_effects: no policy in '" + policies + "'");
   return out;
 }

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cstring>
 #include <stdexcept>
 
 namespace shard {
@@ -94,6 +93,15 @@ void ComposedBond::compute(BondBatch& batch) const {
   }
 }
 
+// Copies a bond's few doubles in place; the ranges of one bond may overlap, so forward when the
+// destination lies before the source and backward when after.
+inline void copy_forward(const double* from, std::size_t n, double* to) {
+  for (std::size_t s = 0; s < n; ++s) to[s] = from[s];
+}
+inline void copy_backward(const double* from, std::size_t n, double* to) {
+  for (std::size_t s = n; s-- > 0;) to[s] = from[s];
+}
+
 void ComposedBond::compute_block(BondBatch& batch) const {
   const std::size_t n = batch.count, stride = state_size();
   double effect_state[kBlock * kMaxBondEffectState];
@@ -102,14 +110,12 @@ void ComposedBond::compute_block(BondBatch& batch) const {
     // Effects' parts aside, then the law's packed at its own stride; forward, as each bond's
     // packed place starts at or before its interleaved one.
     for (std::size_t k = 0; k < n; ++k)
-      std::copy_n(state + k * stride + law_size_, effect_size_, effect_state + k * effect_size_);
-    for (std::size_t k = 1; k < n; ++k)
-      std::memmove(state + k * law_size_, state + k * stride, law_size_ * sizeof(double));
+      copy_forward(state + k * stride + law_size_, effect_size_, effect_state + k * effect_size_);
+    for (std::size_t k = 1; k < n; ++k) copy_forward(state + k * stride, law_size_, state + k * law_size_);
   }
   law_->compute(batch);
   if (effect_size_ > 0)  // back to the interleaved layout, last bond first for the same reason
-    for (std::size_t k = n; k-- > 1;)
-      std::memmove(state + k * stride, state + k * law_size_, law_size_ * sizeof(double));
+    for (std::size_t k = n; k-- > 1;) copy_backward(state + k * law_size_, law_size_, state + k * stride);
   BondBatch view = without_state(batch);
   for (std::size_t e = 0; e < effects_.size(); ++e) {
     BondEffectBatch effect_batch{view, effect_state + offsets_[e], effect_size_};
@@ -117,7 +123,7 @@ void ComposedBond::compute_block(BondBatch& batch) const {
   }
   if (effect_size_ > 0)
     for (std::size_t k = 0; k < n; ++k)
-      std::copy_n(effect_state + k * effect_size_, effect_size_, state + k * stride + law_size_);
+      copy_forward(effect_state + k * effect_size_, effect_size_, state + k * stride + law_size_);
 }
 
 }  // namespace shard
