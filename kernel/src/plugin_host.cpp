@@ -203,10 +203,15 @@ void PluginHost::load_file(const std::filesystem::path& file) {
   }
   // An effect's parameters join its law's [bond] table, so no name may be taken twice. Pairs of
   // plugins loaded before were checked then; a plugin shadowed by an earlier one takes no part.
+  // A clash refuses the effect: this file when the effect is in it, else the effect loaded
+  // before (a user's effect folder comes first on the search path), which is dropped while this
+  // file's law loads, and the error names it.
   std::vector<const LoadedPlugin*> loaded, fresh;
   for (const auto& [key, q] : plugins_) loaded.push_back(&q);
   for (const auto& q : found)
     if (!plugins_.count({static_cast<int>(q.info.kind), q.info.name})) fresh.push_back(&q);
+  std::vector<std::string> dropped;  // names of loaded effects refused, with the message
+  std::string dropped_messages;
   for (const auto* p : fresh) {
     std::vector<const LoadedPlugin*> others = loaded;
     for (const auto* q : fresh)
@@ -220,13 +225,22 @@ void PluginHost::load_file(const std::filesystem::path& file) {
         name = shared_name(p->own_params, q->info);
       else if (p_effect && q_effect && p->law == q->law)
         name = shared_name(q->info.params, p->info);
-      if (!name.empty())
-        throw PluginError(fmt::format("{}: parameter '{}' is declared by both {} '{}' and {} '{}' ({}), which share "
-                                      "the [bond] table of '{}'; prefix a bond effect's parameters with its name",
-                                      file.string(), name, to_string(p->info.kind), p->info.name,
-                                      to_string(q->info.kind), q->info.name, q->file, p_effect ? p->law : q->law));
+      if (name.empty()) continue;
+      const LoadedPlugin* effect = p_effect ? p : q;
+      const std::string message = fmt::format(
+          "{}: bond effect '{}' refused: its parameter '{}' is also declared by {} '{}' ({}), which shares the [bond] "
+          "table of '{}'; prefix a bond effect's parameters with its name",
+          effect->file, effect->info.name, name, to_string((p_effect ? q : p)->info.kind),
+          (p_effect ? q : p)->info.name, (p_effect ? q : p)->file, effect->law);
+      const bool effect_loaded_before = std::find(loaded.begin(), loaded.end(), effect) != loaded.end();
+      if (!effect_loaded_before) throw PluginError(message);
+      if (std::find(dropped.begin(), dropped.end(), effect->info.name) == dropped.end()) {
+        dropped.push_back(effect->info.name);
+        dropped_messages += (dropped_messages.empty() ? "" : "\n") + message;
+      }
     }
   }
+  for (const auto& name : dropped) plugins_.erase({static_cast<int>(PluginKind::BondEffect), name});
   for (auto& p : found) {
     const auto key = std::make_pair(static_cast<int>(p.info.kind), p.info.name);
     // The first directory on the search path wins, so a user's plugin shadows a built-in one.
@@ -235,6 +249,7 @@ void PluginHost::load_file(const std::filesystem::path& file) {
   }
   libraries_.push_back(std::move(library));
   compose_effect_schemas();
+  if (!dropped_messages.empty()) throw PluginError(dropped_messages);  // this file itself is loaded
 }
 
 void PluginHost::compose_effect_schemas() {

@@ -71,6 +71,34 @@ TEST_CASE("a bond effect's parameter joins its law's schema with its neutral val
   CHECK(h.bond({{"test_damage_damage_per_strain", 3.0}})->state_size() == 11);
 }
 
+TEST_CASE("a bond effect whose parameter name is taken is refused, whichever loads first") {
+  auto message_of = [](PluginHost& host, const char* file) {
+    try {
+      host.load_file(file);
+    } catch (const PluginError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  {  // The law first: the effect's file is refused.
+    PluginHost host;
+    host.load_file(SHARD_BUILD_DIR "/plugins/shard_beam_bond.so");
+    const std::string message = message_of(host, CLASH_PLUGIN);
+    CHECK(message.find("bond effect 'clash' refused: its parameter 'critical_stress'") != std::string::npos);
+    CHECK(host.bond_effects_for("beam_bond").empty());
+  }
+  {  // The effect first (a user's folder leads the search path): it is dropped, the law loads.
+    PluginHost host;
+    host.load_file(CLASH_PLUGIN);
+    const std::string message = message_of(host, SHARD_BUILD_DIR "/plugins/shard_beam_bond.so");
+    CHECK(message.find("bond effect 'clash' refused") != std::string::npos);
+    CHECK(host.bond_effects_for("beam_bond").empty());
+    const auto& params = host.find(PluginKind::Bond, "beam_bond").info.params;
+    CHECK(std::count_if(params.begin(), params.end(), [](const ParamSpec& s) { return s.name == "critical_stress"; }) ==
+          1);
+  }
+}
+
 TEST_CASE("beam_bond's own policies and an out-of-tree effect are named in one effects key") {
   const Host h;
   auto values = viscous_beam();

@@ -46,7 +46,7 @@ class PluginHost {
       const std::vector<std::filesystem::path>& explicit_dirs = {});
   // Loads every shard_*.so in the folders; returns messages for files that were refused.
   std::vector<std::string> load_directories(const std::vector<std::filesystem::path>& dirs);
-  // Loads one file; throws PluginError naming the file and both ABI versions on a mismatch.
+  // Loads one file; throws PluginError on an ABI mismatch or a refused bond effect (plugin_host.cpp).
   void load_file(const std::filesystem::path& file);
 
   const LoadedPlugin& find(PluginKind kind, const std::string& name) const;  // throws, listing names
