@@ -228,6 +228,10 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
   record("generator", scene.generator);
   if (scene.contact) record("contact", *scene.contact);
   if (scene.bond) record("bond", *scene.bond);
+  if (scene.bond)  // the out-of-tree bond effects composed onto the law (docs/plugins.md)
+    for (const auto* e : host.bond_effects_on(scene.bond->name, scene.bond->params))
+      meta.plugins.emplace_back("bond_effect/" + e->info.name,
+                                fmt::format("version={}; file={}; on bond/{}", e->info.version, e->file, e->law));
 
   std::vector<std::string> wall_names;
   for (const auto& w : sim.walls()) wall_names.push_back(w.name);

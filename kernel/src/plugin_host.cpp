@@ -400,11 +400,7 @@ std::unique_ptr<BondModel> PluginHost::make_bond(const std::string& name, const 
   if (law_lists_effects) law_params.set("effects", joined(law_named));
 
   std::vector<std::unique_ptr<BondEffect>> on;
-  for (const auto* e : effects) {
-    const bool is_named = std::find(named.begin(), named.end(), e->info.name) != named.end();
-    const bool moved = std::any_of(e->info.params.begin(), e->info.params.end(),
-                                   [&](const ParamSpec& s) { return away_from_neutral(s, p); });
-    if (!is_named && !moved) continue;
+  for (const auto* e : bond_effects_on(name, p)) {
     ParamSet own;
     for (const auto& spec : e->info.params)
       if (p.has(spec.name)) own.set(spec.name, p.all().at(spec.name));
@@ -414,6 +410,19 @@ std::unique_ptr<BondModel> PluginHost::make_bond(const std::string& name, const 
   if (on.empty()) return law.make_bond(law_params);
   return std::make_unique<ComposedBond>(law.make_bond(law_params), std::move(on));
 }
+std::vector<const LoadedPlugin*> PluginHost::bond_effects_on(const std::string& law, const ParamSet& p) const {
+  const std::vector<std::string> named =
+      p.has("effects") ? split_names(p.text("effects")) : std::vector<std::string>{};
+  std::vector<const LoadedPlugin*> on;
+  for (const auto* e : bond_effects_for(law)) {
+    const bool is_named = std::find(named.begin(), named.end(), e->info.name) != named.end();
+    const bool moved = std::any_of(e->info.params.begin(), e->info.params.end(),
+                                   [&](const ParamSpec& s) { return away_from_neutral(s, p); });
+    if (is_named || moved) on.push_back(e);
+  }
+  return on;
+}
+
 std::unique_ptr<Generator> PluginHost::make_generator(const std::string& name, const ParamSet& p) const {
   return find(PluginKind::Generator, name).make_generator(p);
 }

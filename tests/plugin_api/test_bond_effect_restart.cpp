@@ -5,6 +5,7 @@
 
 #include "../reliability/reliability_fixtures.hpp"
 #include "shard/app/run_command.hpp"
+#include "shard/run_file.hpp"
 
 using namespace shard;
 using namespace shard::test;
@@ -35,6 +36,11 @@ TEST_CASE("a run with a bond effect, interrupted and restarted, ends bit for bit
   CHECK(reference.peak_load != plain.peak_load);
   MESSAGE("plain: peak ", plain.peak_load, " N, ", plain.bonds_broken, " broken; test_damage 30: peak ",
           reference.peak_load, " N, ", reference.bonds_broken, " broken");
+  // The run records the effect's version and file beside the law's.
+  bool recorded = false;
+  for (const auto& [plugin, about] : RunFile(reference_dir / "run.h5").metadata().plugins)
+    recorded = recorded || (plugin == "bond_effect/test_damage" && about.find("version=0.1.0;") == 0);
+  CHECK(recorded);
   const Checkpoint final_reference = read_checkpoint(reference_dir / "run.checkpoint.h5");
   REQUIRE(final_reference.simulation.bonds.stride == 9 + 2);  // beam_bond's 9 doubles, then l0 and e_peak
 

@@ -62,6 +62,8 @@ class PluginHost {
   std::unique_ptr<BondModel> make_bond(const std::string& name, const ParamSet& p) const;
   // The loaded bond effects that compose onto `law`, in name order.
   std::vector<const LoadedPlugin*> bond_effects_for(const std::string& law) const;
+  // Those of them make_bond composes for these parameters (a run records their versions).
+  std::vector<const LoadedPlugin*> bond_effects_on(const std::string& law, const ParamSet& p) const;
   std::unique_ptr<Generator> make_generator(const std::string& name, const ParamSet& p) const;
   // Convenience for tests and tools: validate plain values, then make.
   ParamSet params(PluginKind kind, const std::string& name,
