@@ -1,0 +1,10 @@
+// The block step in AVX2 lanes (4 bonds), compiled with -mavx2 (CMakeLists.txt).
+#include "beam_block.hpp"
+
+namespace shard::beam {
+
+void evaluate_block_avx2(const BlockInput& in, BlockOutput& out, std::size_t n, const BlockConstants& c) {
+  evaluate_block<xsimd::avx2>(in, out, n, c);
+}
+
+}  // namespace shard::beam
