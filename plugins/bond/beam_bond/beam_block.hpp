@@ -38,6 +38,11 @@ template <class A, bool breakage, bool viscous, bool effects, bool arm>
     slot[2][l] = static_cast<std::int64_t>(stride * k);
   }
   for (std::size_t base = 0; base < padded; base += W) {
+    // The state streams from memory (9 to 23 doubles a bond, megabytes a batch) and the lanes'
+    // gathers wait on each miss: the lines of the group after next (in this block or the next,
+    // which follows it in the batch) are requested now. A prefetch past the array is harmless.
+    const char* ahead = reinterpret_cast<const char*>(in.state + (base + 2 * W) * stride);
+    for (std::size_t byte = 0; byte < W * stride * sizeof(double); byte += 64) __builtin_prefetch(ahead + byte);
     const Idx a = L::load_index(first[0] + base), b = L::load_index(second[0] + base);
     const Idx a3 = L::load_index(first[1] + base), b3 = L::load_index(second[1] + base);
     const Idx a4 = L::load_index(first[2] + base), b4 = L::load_index(second[2] + base);
