@@ -1,4 +1,6 @@
 // The block step in AVX2 lanes (4 bonds), compiled with -mavx2 (CMakeLists.txt).
+// Only x86-64 has it; elsewhere the file is empty and the baseline lanes run.
+#if defined(__x86_64__)
 #include "beam_block.hpp"
 
 namespace shard::beam {
@@ -8,3 +10,4 @@ void evaluate_block_avx2(const BlockInput& in, BlockOutput& out, std::size_t n, 
 }
 
 }  // namespace shard::beam
+#endif
