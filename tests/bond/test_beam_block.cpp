@@ -1,5 +1,8 @@
-// The blocked, vectorised beam_bond step (beam_batch.hpp) against the per-bond path it replaces:
-// every force, torque, energy, break flag and break stress must be bit-identical, for small and
+// The law at the SIMD width of each instruction set (beam_batch.hpp) against the same law at width 1
+// (compute_reference). Tolerance: none. Every width runs the same IEEE operations in the same
+// order without fused multiply-adds (-ffp-contract=off), and a lane's operations do not depend
+// on its neighbours, so every force, torque, energy, break flag and break stress must be
+// bit-identical (a build that fused or reordered would need a few ulp here), for small and
 // large deformations, moving ends, bonds listed either way round, with and without damping and
 // breakage, with the effect policies composed in (their state too), and block sizes that leave a
 // partial last block.
@@ -135,8 +138,9 @@ TEST_CASE("the blocked lanes take the common case: small rotations, below streng
   const BlockConstants& c = model.block_constants();
   BondBatch batch = s.batch(model);
   BlockInput in;
-  in.first = s.i.data();
-  in.second = s.j.data();
+  const std::vector<std::int64_t> first(s.i.begin(), s.i.end()), second(s.j.begin(), s.j.end());
+  in.first = first.data();
+  in.second = second.data();
   in.state = s.state.data();
   in.position = s.position[0].data();
   in.velocity = s.velocity[0].data();

@@ -1,4 +1,4 @@
-// crushing_bond: the seed's beam bond (eq. 3-10, through Shard's installed beam helpers) plus one
+// crushing_bond: the seed's beam bond (eq. 3-10: Shard's installed beam law, not a copy) plus one
 // effect the shipped library lacks: a bond also fails when it is crushed. Written in the tutorial
 // (docs/tutorial.md part 6) from `shard new-plugin bond crushing_bond`.
 //
@@ -18,24 +18,36 @@
 #include <stdexcept>
 
 #include "shard/beam/beam_geometry.hpp"
-#include "shard/beam/beam_stress.hpp"
+#include "shard/beam/beam_step.hpp"
 #include "shard/beam/bond_step.hpp"
 #include "shard/plugin.hpp"
 
 namespace {
 
-using shard::Vec3;
+// The effect, as an extra break criterion of the installed beam law (shard/beam/beam_law.hpp):
+// a bound false only when the compressed fibre certainly stays below sigma_crush (|(a, b)| <=
+// |a| + |b| on the bending), and the decision on the stresses the law computed.
+struct Crushing {
+  double ratio;  // sigma_crit / sigma_crush
 
-struct Params {
-  double youngs, shear, shear_coefficient, radius_ratio, damping, rotational_damping, strength;
-  bool breakage;
-  double crushing_ratio;  // sigma_crit / sigma_crush, 1 (the effect; neutral 0)
+  template <class T>
+  auto may_break(const T (&strain)[3], const T (&curvature)[3], const T& radius, const shard::beam::LawConstants& c) const {
+    using shard::lanes::abs, shard::lanes::max;  // for double; a SIMD lane type brings its own (ADL)
+    const double E = c.youngs;
+    const T fibre = max(-E * strain[0], T(0.0)) + E * radius * (abs(curvature[1]) + abs(curvature[2]));
+    return ratio * fibre >= (1 - 1e-12) * c.strength;
+  }
+  bool breaks(const double (&strain)[3], const double (&)[3], const shard::BondStress& s,
+              const shard::beam::LawConstants& c) const {
+    const double crushing = std::max(0.0, -c.youngs * strain[0]) + s.bending;
+    return ratio * crushing >= c.strength;
+  }
 };
 
 class CrushingBond final : public shard::BondModel {
  public:
-  explicit CrushingBond(const Params& p) : p_(p) {
-    if (!(p_.youngs > 0) || !(p_.shear > 0)) throw std::invalid_argument("crushing_bond: E_b and G_b must be > 0");
+  CrushingBond(const shard::beam::LawConstants& law, double crushing_ratio) : law_(law), crushing_{crushing_ratio} {
+    if (!(law_.youngs > 0) || !(law_.shear > 0)) throw std::invalid_argument("crushing_bond: E_b and G_b must be > 0");
   }
 
   std::size_t state_size() const override { return shard::beam::kStateSize; }
@@ -51,50 +63,21 @@ class CrushingBond final : public shard::BondModel {
 
   // Eq. 12 with eq. 4's dashpot (the shipped beam's limit); crushing adds no stiffness.
   shard::TimeStepLimit time_step_limit(const shard::BondBatch& b) const override {
-    const double t = shard::beam::eq12_step(b, shard::beam::kStateSize, p_.radius_ratio, {p_.youngs, p_.youngs}, p_.damping);
+    const double t = shard::beam::eq12_step(b, shard::beam::kStateSize, law_.radius_ratio, {law_.youngs, law_.youngs},
+                                            law_.damping);
     return {"crushing_bond t_bond (eq. 12)", t, t};
   }
 
   bool writes_every_output() const override { return true; }  // intact bonds in full, broken ones zeroed
 
+  // The seed's beam law bond by bond (width 1), with the crushing criterion beside its von Mises one.
   void compute(shard::BondBatch& b) const override {
-    namespace beam = shard::beam;
-    const auto& p = b.particles;
-    const double E = p_.youngs, G = p_.shear;
-    const beam::RotationalDamping rotational(p_.rotational_damping, E, G);
-    for (std::size_t k = 0; k < b.count; ++k) {
-      const auto [n1, n2, swapped] = beam::ends_of(p, b.i[k], b.j[k]);
-      const beam::Reference ref = beam::load(b.state + k * beam::kStateSize);
-      const double inv_l0 = 1 / ref.l0;
-      const auto [r, area, second_moment] = beam::section_of(p_.radius_ratio, p.radius[n1], p.radius[n2]);
-      const beam::Deformation g = beam::deform(ref, p.position[n1], p.position[n2], p.orientation[n1], p.orientation[n2]);
-      const auto [strain, curvature] = beam::strain_curvature(g, inv_l0);  // Gamma, kappa
-      if (p_.breakage) {
-        const shard::BondStress s = beam::stress_of(strain, curvature, E, G, r);
-        // The effect: the compressed fibre of the bond against sigma_crush = sigma_crit / ratio.
-        const double crushing = std::max(0.0, -E * strain.x()) + s.bending;
-        if (s.sigma_vm >= p_.strength || p_.crushing_ratio * crushing >= p_.strength) {
-          beam::write_broken(b, k, s);
-          continue;
-        }
-      }
-      const beam::Rates rates =
-          beam::rates_of(g, p.velocity[n1], p.velocity[n2], p.omega[n1], p.omega[n2], p_.damping != 0);
-      const Vec3 force(E * area * strain.x(), p_.shear_coefficient * G * area * strain.y(),
-                       p_.shear_coefficient * G * area * strain.z());  // eq. 3, 5
-      const Vec3 torque(2 * G * second_moment * curvature.x(), E * second_moment * curvature.y(),
-                        E * second_moment * curvature.z());
-      b.energy[k] = 0.5 * ref.l0 * (strain.dot(force) + curvature.dot(torque));
-      const Vec3 damping_torque = rotational.torque(second_moment, inv_l0, p.inertia[n1], p.inertia[n2], rates.omega_rel);
-      const beam::PairLoads loads = beam::pair_loads(g, force + p_.damping * rates.v12, torque + damping_torque, swapped);
-      b.force[k] = loads.force_on_i;
-      b.torque_i[k] = loads.torque_on_i;
-      b.torque_j[k] = loads.torque_on_j;
-    }
+    for (std::size_t k = 0; k < b.count; ++k) shard::beam::step_bond(b, k, shard::beam::kStateSize, law_, crushing_);
   }
 
  private:
-  Params p_;
+  shard::beam::LawConstants law_;
+  Crushing crushing_;
 };
 
 shard::ParamSpec number(const char* name, const char* unit, const char* doc, double value, double min,
@@ -130,11 +113,19 @@ shard::PluginInfo info() {
 
 SHARD_PLUGIN(registrar) {
   registrar->add_bond(info(), [](const shard::ParamSet& p) -> std::unique_ptr<shard::BondModel> {
-    const double E = p.number("youngs_modulus");
-    const double G = p.number("shear_modulus") > 0 ? p.number("shear_modulus") : E / (2 * (1 + p.number("poisson_ratio")));
-    return std::make_unique<CrushingBond>(Params{E, G, p.number("shear_coefficient"), p.number("radius_ratio"),
-                                                 p.number("damping"), p.number("rotational_damping"),
-                                                 p.number("critical_stress"), p.flag("breakage"),
-                                                 p.number("crushing_ratio")});
+    shard::beam::LawConstants law;
+    law.youngs = p.number("youngs_modulus");
+    law.shear = p.number("shear_modulus") > 0 ? p.number("shear_modulus")
+                                              : law.youngs / (2 * (1 + p.number("poisson_ratio")));
+    law.shear_coefficient = p.number("shear_coefficient");
+    law.radius_ratio = p.number("radius_ratio");
+    law.damping = p.number("damping");
+    law.viscous_force = law.damping != 0;
+    law.strength = p.number("critical_stress");
+    law.breakage = p.flag("breakage");
+    const shard::beam::RotationalDamping rotational(p.number("rotational_damping"), law.youngs, law.shear);
+    law.bend_scale = rotational.bend_scale();
+    law.twist_over_bend = rotational.twist_over_bend();
+    return std::make_unique<CrushingBond>(law, p.number("crushing_ratio"));
   });
 }

@@ -1,46 +1,27 @@
 #pragma once
-// beam_bond's step for a block of bonds at once, one bond per SIMD lane in a loop the compiler
-// vectorises (docs/performance.md, session 3). It is the arithmetic of beam_geometry.hpp and
-// beam_stress.hpp written out per scalar in exactly the order Eigen evaluates it there (including
-// Eigen's SSE quaternion product and its halved sum for the last row of a 3x3 product), so every
-// lane it accepts is bit-identical to the per-bond
-// path. The effects variant (effects/bond_effects.hpp) composes the four effect policies into the
-// same loop, bit-identical to the per-bond path with effects (tests/bond/test_beam_block.cpp).
-//
-// Only the common case is evaluated here: q_rel within 1e-9 of unit length, a relative rotation
-// inside the arcsin series range, (with breakage) a bond the von Mises bound says cannot break and
-// (with effects) an undamaged bond.
-// Every other lane is flagged `fallback` and the caller runs the per-bond path on it.
+// beam_bond's step for a block of bonds at once: the law of beam_law.hpp at the SIMD width
+// (xsimd::batch<double, A>, beam_block.hpp), compiled once per instruction set (AVX-512: 8 lanes,
+// AVX2: 4, the x86-64-v2 baseline: 2) and chosen at run time. A lane the law leaves (the rare
+// cases of beam_law.hpp) is flagged `fallback` and the caller evaluates its bond with the same law
+// at width 1, which gives the same bits as the lanes would have.
 #include <cstddef>
 #include <cstdint>
 
+#include "beam_law.hpp"
 #include "shard/types.hpp"
 
 namespace shard::beam {
 
 inline constexpr std::size_t kBlockLanes = 64;
 
-// Per-batch constants (the same values the per-bond path uses).
-struct BlockConstants {
-  double youngs = 0, shear = 0, shear_coefficient = 0, radius_ratio = 0, damping = 0, strength = 0;
-  double bend_scale = 0, twist_over_bend = 0;  // RotationalDamping's factors
-  bool breakage = true;
-  bool viscous_force = false;  // damping != 0: v12 is needed
-  // The effects variant (per-bond strength and damage in the state, the Maxwell arm, the
-  // compressive axial modulus); the arm's factors depend on the step and are set per batch.
-  bool effects = false;
-  bool arm = false;                // effects with the Maxwell arm (viscosity_time > 0)
-  double compression_modulus = 0;  // r E_b
-  double arm_decay = 1, arm_gain = 0;  // MaxwellArm over this batch's step
-  double arm_modulus_ratio = 1;        // beta: the arm spring's energy is E_b h^2 / (2 beta)
-};
+using BlockConstants = LawConstants;
 
 // A block's inputs: its bonds' ends in the bond's own order (first = smaller stable id), their
 // state (kStateSize doubles each) and the particle fields as flat arrays (Vec3: x, y, z;
 // Quat: x, y, z, w, Eigen's storage order).
 struct BlockInput {
-  const Index* first = nullptr;
-  const Index* second = nullptr;
+  const std::int64_t* first = nullptr;
+  const std::int64_t* second = nullptr;
   const std::int64_t* swapped = nullptr;  // 1: the batch lists the bond from its second end
   const double* state = nullptr;  // kStateSize doubles per bond; kEffectsStateSize, kViscousStateSize with effects
   const double* position = nullptr;

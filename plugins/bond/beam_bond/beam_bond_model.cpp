@@ -8,10 +8,8 @@
 
 #include "beam_batch.hpp"
 #include "beam_geometry.hpp"
+#include "beam_step.hpp"
 #include "bond_step.hpp"
-#include "beam_stress.hpp"
-#include "effects/cohesive_softening.hpp"
-#include "effects/compression_asymmetry.hpp"
 #include "effects/maxwell_arm.hpp"
 #include "effects/weibull_strength.hpp"
 
@@ -35,7 +33,6 @@ BeamBondParams BeamBondParams::from(const ParamSet& p) {
 BeamBond::BeamBond(const BeamBondParams& params, BlockIsa isa)
     : p_(params),
       shear_modulus_(params.effective_shear_modulus()),
-      rotational_(params.rotational_damping, params.youngs_modulus, shear_modulus_),
       block_step_(block_function(isa)) {
   if (!runs_here(isa))
     throw std::invalid_argument(std::string("beam_bond: this CPU cannot run the ") + name_of(isa) + " block step");
@@ -45,8 +42,9 @@ BeamBond::BeamBond(const BeamBondParams& params, BlockIsa isa)
   block_.radius_ratio = p_.radius_ratio;
   block_.damping = p_.damping;
   block_.strength = p_.critical_stress;
-  block_.bend_scale = rotational_.bend_scale();
-  block_.twist_over_bend = rotational_.twist_over_bend();
+  const RotationalDamping rotational(p_.rotational_damping, p_.youngs_modulus, shear_modulus_);
+  block_.bend_scale = rotational.bend_scale();
+  block_.twist_over_bend = rotational.twist_over_bend();
   block_.breakage = p_.breakage;
   block_.viscous_force = p_.damping != 0;
   if (!(p_.youngs_modulus > 0) || !(shear_modulus_ > 0) || !(p_.shear_coefficient > 0) || !(p_.radius_ratio > 0))
@@ -60,6 +58,7 @@ BeamBond::BeamBond(const BeamBondParams& params, BlockIsa isa)
   block_.arm = block_.effects && fx.viscous();
   block_.compression_modulus = fx.compression_stiffness_ratio * p_.youngs_modulus;
   block_.arm_modulus_ratio = fx.viscous_modulus_ratio;
+  block_.softening_ratio = fx.softening_ratio;
   if (fx.strength_weibull_modulus > 0)
     weibull_scale_ = weibull_scale(p_.critical_stress, fx.strength_weibull_modulus);
 }
@@ -109,140 +108,31 @@ TimeStepLimit BeamBond::time_step_limit(const BondBatch& batch) const {
   return limit;
 }
 
-// The per-bond path: the reference the blocked path is checked against bit for bit, and what
-// runs the lanes the blocked path leaves (near failure, large rotations, off-unit quaternions,
-// damaged bonds). With `effects` the policies act in this order: the Maxwell arm advanced over the
-// step (its strains join Gamma and kappa in the breakage check), the bond's own strength,
-// softening instead of a break, the compressive axial modulus, the arm's force, torque and
-// energy, the damage scaling all of them. Each is exact at its neutral value.
-template <bool effects>
-void BeamBond::compute_bond(BondBatch& batch, std::size_t k) const {
-  const ParticleView& p = batch.particles;
-  const double E = p_.youngs_modulus;
-  const double G = shear_modulus_;
-  const double a_s = p_.shear_coefficient;
-  const bool viscous_force = block_.viscous_force;
-  const BondEffects& fx = p_.effects;
-
-  const Ends e = ends_of(p, batch.i[k], batch.j[k]);
-  const Index n1 = e.first, n2 = e.second;
-  double* state = batch.state + k * state_size();
-  const Reference ref = load(state);
-  const double l0 = ref.l0;
-  const double inv_l0 = 1 / l0;
-  const Section sec = section_of(p_.radius_ratio, p.radius[n1], p.radius[n2]);
-  const Deformation g = deform(ref, p.position[n1], p.position[n2], p.orientation[n1], p.orientation[n2]);
-
-  // Strain and curvature vectors, bond frame.
-  const auto [strain, curvature] = strain_curvature(g, inv_l0);  // Gamma, kappa
-
-  // The Maxwell arm (maxwell_arm.hpp) advanced over this step: the material stress follows
-  // Gamma + h_Gamma (and likewise kappa), and so does the strength check.
-  Vec3 arm_strain = Vec3::Zero(), arm_curvature = Vec3::Zero();
-  Vec3 strain_total = strain, curvature_total = curvature;
-  double strength = p_.critical_stress, damage = 0;
-  if constexpr (effects) {
-    strength = state[kStrengthSlot];
-    damage = state[kDamageSlot];
-    if (fx.viscous()) {
-      const MaxwellArm arm(fx.viscosity_time, fx.viscous_modulus_ratio, batch.dt);
-      double* previous = state + kPreviousStrainSlot;
-      double* h = state + kArmStrainSlot;
-      for (int c = 0; c < 3; ++c) {
-        arm_strain[c] = arm.advance(h[c], strain[c] - previous[c]);
-        arm_curvature[c] = arm.advance(h[3 + c], curvature[c] - previous[3 + c]);
-        previous[c] = strain[c];
-        previous[3 + c] = curvature[c];
-        h[c] = arm_strain[c];
-        h[3 + c] = arm_curvature[c];
-      }
-      strain_total += arm_strain;
-      curvature_total += arm_curvature;
-    }
+BlockConstants BeamBond::constants_for(double dt) const {
+  BlockConstants c = block_;
+  if (c.arm) {  // the arm's factors depend on this batch's step
+    const MaxwellArm arm(p_.effects.viscosity_time, p_.effects.viscous_modulus_ratio, dt);
+    c.arm_decay = arm.decay;
+    c.arm_gain = arm.gain;
   }
-
-  if (p_.breakage && may_reach(strain_total, curvature_total, E, G, sec.radius, strength)) {
-    const BondStress s = stress_of(strain_total, curvature_total, E, G, sec.radius);
-    if (s.sigma_vm >= strength) {
-      if (!effects || !(fx.softening_ratio > 0)) {
-        write_broken(batch, k, s);
-        return;
-      }
-      damage = std::max(damage, softening_damage(s.sigma_vm, strength, fx.softening_ratio));
-      if (damage >= 1) {
-        write_broken(batch, k, s);
-        return;
-      }
-      state[kDamageSlot] = damage;
-    }
-  }
-
-  // Eq. 3 and 5: elastic force and torque, bond frame (with effects: the compressive axial modulus).
-  const double axial = effects ? axial_modulus(strain.x(), E, block_.compression_modulus) : E;
-  Vec3 elastic_force(axial * sec.area * strain.x(), a_s * G * sec.area * strain.y(), a_s * G * sec.area * strain.z());
-  Vec3 elastic_torque(2 * G * sec.second_moment * curvature.x(), E * sec.second_moment * curvature.y(),
-                      E * sec.second_moment * curvature.z());
-  double energy = 0.5 * l0 * (strain.dot(elastic_force) + curvature.dot(elastic_torque));
-  if constexpr (effects) {
-    if (fx.viscous()) {
-      // The arm's stress on each component has that component's elastic modulus (E_b on the axial
-      // and bending strains, G_b on shear and twist, as tensile bonds); its spring holds h / beta.
-      const Vec3 arm_force(E * sec.area * arm_strain.x(), a_s * G * sec.area * arm_strain.y(),
-                           a_s * G * sec.area * arm_strain.z());
-      const Vec3 arm_torque(2 * G * sec.second_moment * arm_curvature.x(), E * sec.second_moment * arm_curvature.y(),
-                            E * sec.second_moment * arm_curvature.z());
-      elastic_force += arm_force;
-      elastic_torque += arm_torque;
-      energy += 0.5 * l0 * (arm_strain.dot(arm_force) + arm_curvature.dot(arm_torque)) / fx.viscous_modulus_ratio;
-    }
-    if (damage > 0) {
-      const double intact = 1 - damage;
-      elastic_force *= intact;
-      elastic_torque *= intact;
-      energy *= intact;
-    }
-  }
-  batch.energy[k] = energy;
-
-  // Eq. 4: viscous force on the objective strain rate v12 = l0 dGamma/dt; eq. 6-7: viscous torque
-  // on Omega_rel = d theta / dt. Both zero for rigid motion; numerical damping, not an effect.
-  const Rates r = rates_of(g, p.velocity[n1], p.velocity[n2], p.omega[n1], p.omega[n2], viscous_force);
-  Vec3 force = elastic_force;
-  if (viscous_force) force += p_.damping * r.v12;
-  const Vec3 damping_torque = rotational_.torque(sec.second_moment, inv_l0, p.inertia[n1], p.inertia[n2], r.omega_rel);
-
-  const PairLoads loads = pair_loads(g, force, elastic_torque + damping_torque, e.swapped);
-  batch.force[k] = loads.force_on_i;
-  batch.torque_i[k] = loads.torque_on_i;
-  batch.torque_j[k] = loads.torque_on_j;
-}
-
-void BeamBond::compute_one(BondBatch& batch, std::size_t k) const {
-  if (block_.effects) compute_bond<true>(batch, k);
-  else compute_bond<false>(batch, k);
+  return c;
 }
 
 void BeamBond::compute_reference(BondBatch& batch) const {
-  for (std::size_t k = 0; k < batch.count; ++k) compute_one(batch, k);
+  const BlockConstants c = constants_for(batch.dt);
+  for (std::size_t k = 0; k < batch.count; ++k) step_bond(batch, k, state_size(), c, NoExtraCriterion{});
 }
 
-// Gather a block into lanes, evaluate it in one vectorised loop, scatter; the lanes the loop
-// leaves go through the per-bond path.
+// A block of bonds through the law at the SIMD width; the lanes it leaves (near failure, large
+// rotations, off-unit quaternions, damaged bonds) through the same law at width 1.
 void BeamBond::compute(BondBatch& batch) const {
   const ParticleView& p = batch.particles;
   const std::size_t stride = state_size();
-  const bool arm = block_.arm;
-  BlockConstants constants = block_;
-  if (arm) {  // the arm's factors depend on this batch's step
-    const MaxwellArm step_arm(p_.effects.viscosity_time, p_.effects.viscous_modulus_ratio, batch.dt);
-    constants.arm_decay = step_arm.decay;
-    constants.arm_gain = step_arm.gain;
-  }
+  const BlockConstants constants = constants_for(batch.dt);
 
   static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(Quat) == 4 * sizeof(double));
   BlockOutput out;
-  Index first[kBlockLanes], second[kBlockLanes];
-  std::int64_t swapped[kBlockLanes];
+  std::int64_t first[kBlockLanes], second[kBlockLanes], swapped[kBlockLanes];
   BlockInput in;
   in.first = first;
   in.second = second;
@@ -269,7 +159,7 @@ void BeamBond::compute(BondBatch& batch) const {
     out.energy = batch.energy + base;
     block_step_(in, out, n, constants);
     for (std::size_t l = 0; l < n; ++l)
-      if (out.fallback[l]) compute_one(batch, base + l);
+      if (out.fallback[l]) step_bond(batch, base + l, stride, constants, NoExtraCriterion{});
   }
 }
 

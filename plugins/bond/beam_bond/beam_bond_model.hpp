@@ -1,6 +1,7 @@
 #pragma once
 // The seed paper's beam bond (README.md, seed eq. 3-13) as a BondModel, with the effect
-// policies of effects/bond_effects.hpp composed in when any is on.
+// policies of effects/bond_effects.hpp composed in when any is on. The law is beam_law.hpp, at the
+// SIMD width in blocks (beam_batch.hpp) and at width 1 for the lanes a block leaves.
 #include <cstddef>
 #include <cstdint>
 
@@ -41,7 +42,8 @@ class BeamBond final : public BondModel {
   void compute(BondBatch& batch) const override;
   // Every lane of a block writes its outputs; a fallback lane is rewritten by the per-bond path.
   bool writes_every_output() const override { return true; }
-  // The same results bond by bond, without the blocked lanes (the reference the tests compare to).
+  // The same results bond by bond, the law at width 1 for every bond (the reference the tests
+  // compare the SIMD widths to).
   void compute_reference(BondBatch& batch) const;
   // True when the law runs its effects variant (BondEffects::any()).
   bool with_effects() const { return block_.effects; }
@@ -52,15 +54,13 @@ class BeamBond final : public BondModel {
   const BlockConstants& block_constants() const { return block_; }
 
  private:
-  template <bool effects>
-  void compute_bond(BondBatch& batch, std::size_t k) const;
-  void compute_one(BondBatch& batch, std::size_t k) const;
+  BlockConstants constants_for(double dt) const;  // with the Maxwell arm's factors over dt
+
 
   BeamBondParams p_;
   double shear_modulus_;  // G_b actually used
-  RotationalDamping rotational_;  // eq. 6-7 coefficients
   double weibull_scale_ = 0;      // s0 of the strength law (0 when m = 0)
-  BlockConstants block_;          // the same parameters as the blocked lanes read them
+  BlockConstants block_;          // the parameters as the law reads them
   BlockFunction block_step_;
 };
 

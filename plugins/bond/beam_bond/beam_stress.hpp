@@ -15,6 +15,7 @@
 #include <cstddef>
 
 #include "shard/bond_model.hpp"
+#include "shard/lanes/lanes.hpp"
 #include "shard/types.hpp"
 
 namespace shard::beam {
@@ -22,22 +23,23 @@ namespace shard::beam {
 // False only when sigma_vm < strength for certain: bounds |(a, b)| <= |a| + |b| for the bending and
 // shear magnitudes, with a margin of 1e-12 against round-off, so the three square roots of
 // stress_of are taken only near failure and the break decision is exactly that of stress_of.
-inline bool may_reach(const Vec3& strain, const Vec3& curvature, double youngs, double shear_modulus, double radius,
-                      double strength) {
-  const double axial = std::max(youngs * strain.x(), 0.0) +
-                       youngs * radius * (std::abs(curvature.y()) + std::abs(curvature.z()));
-  const double tau = shear_modulus * (std::abs(strain.y()) + std::abs(strain.z())) +
-                     shear_modulus * radius * std::abs(curvature.x());
+// For any lane type T (shard/lanes/lanes.hpp).
+template <class T>
+inline auto may_reach(const T (&strain)[3], const T (&curvature)[3], double youngs, double shear_modulus,
+                      const T& radius, const T& strength) {
+  using namespace lanes;
+  const T axial = max(youngs * strain[0], T(0.0)) + youngs * radius * (abs(curvature[1]) + abs(curvature[2]));
+  const T tau = shear_modulus * (abs(strain[1]) + abs(strain[2])) + shear_modulus * radius * abs(curvature[0]);
   return axial * axial + 3 * tau * tau >= (1 - 1e-12) * strength * strength;
 }
 
-inline BondStress stress_of(const Vec3& strain, const Vec3& curvature, double youngs, double shear_modulus,
-                            double radius) {
+inline BondStress stress_of(const double (&strain)[3], const double (&curvature)[3], double youngs,
+                            double shear_modulus, double radius) {
   BondStress s;
-  s.tension = std::max(youngs * strain.x(), 0.0);
-  s.bending = youngs * radius * std::sqrt(curvature.y() * curvature.y() + curvature.z() * curvature.z());
-  s.shear = shear_modulus * std::sqrt(strain.y() * strain.y() + strain.z() * strain.z());
-  s.torsion = shear_modulus * radius * std::abs(curvature.x());
+  s.tension = std::max(youngs * strain[0], 0.0);
+  s.bending = youngs * radius * std::sqrt(curvature[1] * curvature[1] + curvature[2] * curvature[2]);
+  s.shear = shear_modulus * std::sqrt(strain[1] * strain[1] + strain[2] * strain[2]);
+  s.torsion = shear_modulus * radius * std::abs(curvature[0]);
   s.sigma_axial = s.tension + s.bending;
   s.tau = s.shear + s.torsion;
   s.sigma_vm = std::sqrt(s.sigma_axial * s.sigma_axial + 3 * s.tau * s.tau);
