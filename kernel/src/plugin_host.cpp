@@ -150,9 +150,27 @@ std::vector<const LoadedPlugin*> PluginHost::plugins() const {
   return out;
 }
 
+namespace {
+
+// Plugins that became effect policies of another law: a scene naming one learns how to write it now.
+std::string retired_plugin_hint(PluginKind kind, const std::string& name) {
+  if (kind == PluginKind::Contact && name == "hertz_mindlin_plus")
+    return "hertz_mindlin_plus was removed; its effects are policies of hertz_mindlin now: write plugin = "
+           "\"hertz_mindlin\" with effects = \"cohesion, support_friction\" (or just their parameters), "
+           "cohesion_stress unchanged, and wall_friction = mu_w as support_friction_ratio = mu_w / friction "
+           "(docs/effects.md)";
+  if (kind == PluginKind::Bond && name == "beam_bond_plus")
+    return "beam_bond_plus was removed; its effects are policies of beam_bond now: write plugin = \"beam_bond\" "
+           "with the same parameters, or name them in effects = \"...\" (docs/effects.md)";
+  return "";
+}
+
+}  // namespace
+
 const LoadedPlugin& PluginHost::find(PluginKind kind, const std::string& name) const {
   auto it = plugins_.find({static_cast<int>(kind), name});
   if (it != plugins_.end()) return it->second;
+  if (const std::string hint = retired_plugin_hint(kind, name); !hint.empty()) throw PluginError(hint);
   std::vector<std::string> names;
   for (const auto& [key, p] : plugins_)
     if (key.first == static_cast<int>(kind)) names.push_back(p.info.name);
