@@ -93,6 +93,24 @@ TEST_CASE("an unknown effect name lists the law's policies") {
                     doctest::Contains("valid: support_friction"));
 }
 
+// A neutral value is one the parameter can take: `shard diagnose` writes it into a scene (an
+// infinite strength, say, would be refused by the parameter check, which wants finite values).
+TEST_CASE("every shipped plugin's neutral values pass its own parameter check") {
+  PluginHost host;
+  host.load_directories({SHARD_BUILD_DIR "/plugins"});
+  int checked = 0;
+  for (const LoadedPlugin* plugin : host.plugins())
+    for (const auto& spec : plugin->info.params) {
+      if (!spec.neutral) continue;
+      CAPTURE(plugin->info.name);
+      CAPTURE(spec.name);
+      const ParamValue value = spec.type == ParamType::Boolean ? ParamValue(*spec.neutral != 0) : ParamValue(*spec.neutral);
+      CHECK_NOTHROW(host.params(plugin->info.kind, plugin->info.name, {{spec.name, value}}));
+      ++checked;
+    }
+  CHECK(checked >= 12);  // beam_bond's, hertz_mindlin's and linear_spring's
+}
+
 // The effect library reads a plugin parameter's neutral value from the schema (it is declared
 // once, there) and refuses an entry that contradicts it, naming the file, line and key.
 TEST_CASE("the effect library's contact effects take the neutral values of hertz_mindlin's schema") {
