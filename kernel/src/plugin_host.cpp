@@ -155,13 +155,13 @@ namespace {
 // Plugins that became effect policies of another law: a scene naming one learns how to write it now.
 std::string retired_plugin_hint(PluginKind kind, const std::string& name) {
   if (kind == PluginKind::Contact && name == "hertz_mindlin_plus")
-    return "hertz_mindlin_plus was removed; its effects are policies of hertz_mindlin now: write plugin = "
-           "\"hertz_mindlin\" with effects = \"cohesion, support_friction\" (or just their parameters), "
-           "cohesion_stress unchanged, and wall_friction = mu_w as support_friction_ratio = mu_w / friction "
-           "(docs/effects.md)";
+    return "plugin = \"hertz_mindlin_plus\" names a removed plugin: its effects are policies of hertz_mindlin "
+           "now. Write plugin = \"hertz_mindlin\" with effects = \"cohesion, support_friction\" (or just their "
+           "parameters), cohesion_stress unchanged, and wall_friction = mu_w as support_friction_ratio = "
+           "mu_w / friction (docs/effects.md)";
   if (kind == PluginKind::Bond && name == "beam_bond_plus")
-    return "beam_bond_plus was removed; its effects are policies of beam_bond now: write plugin = \"beam_bond\" "
-           "with the same parameters, or name them in effects = \"...\" (docs/effects.md)";
+    return "plugin = \"beam_bond_plus\" names a removed plugin: its effects are policies of beam_bond now. Write "
+           "plugin = \"beam_bond\" with the same parameters, or name them in effects = \"...\" (docs/effects.md)";
   return "";
 }
 

@@ -156,12 +156,14 @@ std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& fi
     if (e.name.empty() || e.parameter.empty())
       throw std::runtime_error(fmt::format("{}: an [[effect]] needs a name and a parameter", where(file, node)));
     // The neutral value is declared once, in the schema of the plugin that carries the parameter.
+    // Plugins that disagree leave the choice to the entry's own `neutral`.
     std::optional<double> declared;
     try {
       declared = schema ? schema(e.parameter) : std::nullopt;
     } catch (const std::exception& x) {
-      throw std::runtime_error(fmt::format("{}: effect '{}': {}; give its neutral = ... here", where(file, node),
-                                           e.name, x.what()));
+      if (!has_neutral)
+        throw std::runtime_error(fmt::format("{}: effect '{}': {}; give its neutral = ... here", where(file, node),
+                                             e.name, x.what()));
     }
     if (declared && has_neutral && *declared != e.neutral)
       throw std::runtime_error(fmt::format(

@@ -35,6 +35,7 @@ std::vector<ContactEffectPolicy> contact_effect_policies(bool with_cohesion);
 std::vector<ParamSpec> contact_effect_params(bool with_cohesion);
 
 struct ContactEffects {
+  // Off (the schema's neutral values), for a model built in code; a scene's come from `from`.
   double cohesion_stress = 0;         // sigma_c, Pa
   double support_friction_ratio = 1;  // r_w, 1
   std::vector<std::string> named;     // the policies `effects` lists

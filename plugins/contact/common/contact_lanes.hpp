@@ -49,7 +49,6 @@ struct NormalPart {
 struct EffectSwitches {
   bool cohesion = false;
   bool support_friction = false;
-  bool operator==(const EffectSwitches&) const = default;
 };
 struct EffectSizes {
   double cohesion_stress = 0;        // sigma_c, Pa

@@ -11,7 +11,7 @@ enum class LaneSet { scalar, baseline, avx2, avx512 };
 // The widest set this machine runs; SHARD_CONTACT_LANES=scalar|baseline|avx2|avx512 asks for a
 // narrower one (a wider one than the machine has is ignored).
 LaneSet best_lane_set();
-// The sets this build holds that this machine can run, narrowest first (tests compare them all).
+// Whether this build holds `set` and this machine can run it (tests compare every available set).
 bool lane_set_available(LaneSet set);
 std::string_view lane_set_name(LaneSet set);
 

@@ -19,9 +19,10 @@ namespace shard::contact {
 template <class T>
 struct Lane;
 
+// Its members are templates too, though they need not be: a full specialisation's functions are
+// ordinary inline functions, which an object compiled for AVX-512 could emit for all to use.
 template <>
 struct Lane<double> {
-  using Mask = bool;
   static constexpr std::size_t width = 1;
   template <class D = double>
   static D load(const D* p) { return *p; }
@@ -32,7 +33,6 @@ struct Lane<double> {
 template <class A>
 struct Lane<xsimd::batch<double, A>> {
   using T = xsimd::batch<double, A>;
-  using Mask = xsimd::batch_bool<double, A>;
   static constexpr std::size_t width = T::size;
   static T load(const double* p) { return T::load_unaligned(p); }
   static void store(double* p, const T& v) { v.store_unaligned(p); }
