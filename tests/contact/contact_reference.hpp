@@ -1,20 +1,17 @@
 #pragma once
-// Stored reference results of the contact laws (in the spirit of LAMMPS' unittest/force-styles):
-// one small text file per law and effect policy, plugins/contact/<law>/reference/<case>.txt, holds
-// a fixed random configuration (its inputs, written out, so no random generator need agree across
-// platforms) and the forces, couples, energies and tangential springs the law gave over a few
-// steps. test_contact_reference recomputes them through the plugin interface and compares;
-// write_contact_reference regenerates them after a deliberate physics change (README.md beside
-// the files says how).
+// Stored reference results of the contact laws (in the spirit of LAMMPS' unittest/force-styles,
+// in the TOML layout of beam_bond's, plugins/bond/beam_bond/reference/): one small file per law
+// and effect policy, plugins/contact/<law>/reference/<case>.toml, holds a fixed random
+// configuration (its inputs, written out, so no random generator need agree across platforms)
+// and the forces, couples, energies and tangential springs the law gave over a few steps.
+// test_contact_reference recomputes them through the plugin interface and compares; the target
+// contact_reference regenerates them after a deliberate physics change (plugins/contact/README.md).
 //
-// File format (text, one record per line, numbers with 17 significant digits, which round-trip):
-//   # comments
-//   plugin NAME
-//   param KEY VALUE        (a number, or text for `effects`)
-//   dt SECONDS
-//   steps N
-//   contact K j nx ny nz vx vy vz delta r_eff m_eff          (inputs, N contacts)
-//   result STEP K fx fy fz cx cy cz energy xi_x xi_y xi_z     (after each step; the springs carry over)
+//   model = "hertz_mindlin"        dt = 1e-06
+//   [params]                       the plugin's parameters (numbers; `effects` as text)
+//   [contacts]                     j, normal, velocity, overlap, r_eff, m_eff (one entry per contact)
+//   [[steps]]                      force, couple, energy, spring after each step (springs carry over)
+// Numbers are written with 17 significant digits, which round-trip.
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -23,11 +20,12 @@
 #include <fstream>
 #include <map>
 #include <memory>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <tuple>
 #include <variant>
+
+#include <toml++/toml.h>
 #include <vector>
 
 #include "contact_arrays.hpp"
@@ -55,7 +53,7 @@ inline std::vector<ReferenceCase> reference_cases() {
 }
 
 inline std::filesystem::path reference_file(const std::filesystem::path& source_dir, const ReferenceCase& c) {
-  return source_dir / "plugins/contact" / c.plugin / "reference" / (c.file + ".txt");
+  return source_dir / "plugins/contact" / c.plugin / "reference" / (c.file + ".toml");
 }
 
 struct ReferenceRun {
@@ -126,37 +124,59 @@ inline ReferenceRun run_case(const PluginHost& host, const ReferenceCase& c, Con
   return run;
 }
 
+// A TOML float that reads back to the same bits (-0.0, 1.0e-06 stay floats).
 inline std::string number(double v) {
   char text[40];
   std::snprintf(text, sizeof text, "%.17g", v);
-  return text;
+  std::string s = text;
+  if (s.find_first_of(".ein") == std::string::npos) s += ".0";
+  return s;
+}
+
+inline std::string vectors(const std::vector<Vec3>& v) {
+  std::string s = "[";
+  for (std::size_t k = 0; k < v.size(); ++k)
+    s += (k ? ", [" : "[") + number(v[k].x()) + ", " + number(v[k].y()) + ", " + number(v[k].z()) + "]";
+  return s + "]";
+}
+
+inline std::string numbers(const std::vector<double>& v) {
+  std::string s = "[";
+  for (std::size_t k = 0; k < v.size(); ++k) s += (k ? ", " : "") + number(v[k]);
+  return s + "]";
 }
 
 inline void write_reference(const std::filesystem::path& file, const ReferenceCase& c, const ReferenceRun& run) {
   std::filesystem::create_directories(file.parent_path());
   std::ofstream out(file);
-  out << "# Reference results of contact law " << c.plugin << " (tests/contact/contact_reference.hpp: format).\n"
-      << "# Regenerate after a deliberate physics change: see plugins/contact/README.md.\n"
-      << "plugin " << c.plugin << "\n";
+  out << "# " << c.plugin << " reference data (tests/contact/contact_reference.hpp). Do not edit: after a\n"
+      << "# deliberate physics change regenerate every file with\n"
+      << "#   cmake --build build/release --target contact_reference\n"
+      << "# and state the change in the commit (plugins/contact/README.md).\n"
+      << "model = \"" << c.plugin << "\"\n"
+      << "dt = " << number(run.dt) << "\n\n[params]\n";
   for (const auto& [key, value] : c.params) {
-    if (const auto* d = std::get_if<double>(&value)) out << "param " << key << " " << number(*d) << "\n";
-    if (const auto* t = std::get_if<std::string>(&value)) out << "param " << key << " " << *t << "\n";
+    if (const auto* d = std::get_if<double>(&value)) out << key << " = " << number(*d) << "\n";
+    if (const auto* t = std::get_if<std::string>(&value)) out << key << " = \"" << *t << "\"\n";
   }
-  out << "dt " << number(run.dt) << "\nsteps " << run.steps << "\n";
   const ContactArrays& in = run.inputs;
-  for (std::size_t k = 0; k < run.count; ++k) {
-    out << "contact " << k << " " << in.j[k];
-    for (const double v : {in.normal[k].x(), in.normal[k].y(), in.normal[k].z(), in.velocity[k].x(), in.velocity[k].y(),
-                           in.velocity[k].z(), in.overlap[k], in.r_eff[k], in.m_eff[k]})
-      out << " " << number(v);
-    out << "\n";
-  }
-  for (int s = 0; s < run.steps; ++s)
-    for (std::size_t k = 0; k < run.count; ++k) {
-      out << "result " << s << " " << k;
-      for (const double v : run.results[static_cast<std::size_t>(s)][k]) out << " " << number(v);
-      out << "\n";
+  out << "\n[contacts]  # the configuration, one entry per contact\nj = [";
+  for (std::size_t k = 0; k < run.count; ++k) out << (k ? ", " : "") << in.j[k];
+  out << "]\nnormal = " << vectors(in.normal) << "\nvelocity = " << vectors(in.velocity)
+      << "\noverlap = " << numbers(in.overlap) << "\nr_eff = " << numbers(in.r_eff) << "\nm_eff = " << numbers(in.m_eff)
+      << "\n";
+  for (const auto& step : run.results) {
+    std::vector<Vec3> force, couple, spring;
+    std::vector<double> energy;
+    for (const auto& r : step) {
+      force.emplace_back(r[0], r[1], r[2]);
+      couple.emplace_back(r[3], r[4], r[5]);
+      energy.push_back(r[6]);
+      spring.emplace_back(r[7], r[8], r[9]);
     }
+    out << "\n[[steps]]\nforce = " << vectors(force) << "\ncouple = " << vectors(couple)
+        << "\nenergy = " << numbers(energy) << "\nspring = " << vectors(spring) << "\n";
+  }
   if (!out) throw std::runtime_error("cannot write " + file.string());
 }
 
@@ -166,70 +186,67 @@ struct StoredReference {
 };
 
 inline StoredReference read_reference(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw std::runtime_error(file.string() + ": no reference file; write_contact_reference makes it");
-  StoredReference r;
-  std::vector<std::vector<double>> contacts;
-  std::vector<std::tuple<int, std::size_t, std::array<double, 10>>> results;
-  std::string line;
-  int number_of_line = 0;
-  while (std::getline(in, line)) {
-    ++number_of_line;
-    if (line.empty() || line[0] == '#') continue;
-    std::istringstream words(line);
-    std::string kind;
-    words >> kind;
-    const auto fail = [&] {
-      throw std::runtime_error(file.string() + ":" + std::to_string(number_of_line) + ": cannot read '" + line + "'");
-    };
-    if (kind == "plugin") {
-      words >> r.c.plugin;
-    } else if (kind == "param") {
-      std::string key, value;
-      words >> key >> value;
-      if (key == "effects") {
-        std::string rest;
-        if (std::getline(words, rest)) value += rest;  // names separated by blanks
-        words.clear();
-        r.c.params[key] = value;
-      } else {
-        r.c.params[key] = std::stod(value);
-      }
-    } else if (kind == "dt") {
-      words >> r.run.dt;
-    } else if (kind == "steps") {
-      words >> r.run.steps;
-    } else if (kind == "contact") {
-      std::vector<double> v(11);
-      for (auto& x : v) words >> x;
-      contacts.push_back(v);
-    } else if (kind == "result") {
-      int s = 0;
-      std::size_t k = 0;
-      std::array<double, 10> v{};
-      words >> s >> k;
-      for (auto& x : v) words >> x;
-      results.emplace_back(s, k, v);
-    } else {
-      fail();
+  if (!std::filesystem::exists(file))
+    throw std::runtime_error(file.string() + ": no reference file; the target contact_reference writes it");
+  const toml::table root = toml::parse_file(file.string());
+  const auto fail = [&](const std::string& what) { throw std::runtime_error(file.string() + ": " + what); };
+  const auto doubles = [&](const toml::node_view<const toml::node>& n, const char* name) {
+    std::vector<double> out;
+    const auto* a = n.as_array();
+    if (!a) fail(std::string("no array ") + name);
+    for (const auto& x : *a) out.push_back(x.value<double>().value());
+    return out;
+  };
+  const auto vecs = [&](const toml::node_view<const toml::node>& n, const char* name) {
+    std::vector<Vec3> out;
+    const auto* a = n.as_array();
+    if (!a) fail(std::string("no array ") + name);
+    for (const auto& x : *a) {
+      const auto* v = x.as_array();
+      if (!v || v->size() != 3) fail(std::string(name) + ": each entry is [x, y, z]");
+      out.emplace_back((*v)[0].value<double>().value(), (*v)[1].value<double>().value(), (*v)[2].value<double>().value());
     }
-    if (words.fail()) fail();
-  }
-  r.run.count = contacts.size();
+    return out;
+  };
+  StoredReference r;
+  r.c.plugin = root["model"].value_or(std::string());
+  r.run.dt = root["dt"].value_or(0.0);
+  if (const auto* params = root["params"].as_table())
+    for (const auto& [key, value] : *params) {
+      if (const auto* t = value.as_string()) r.c.params[std::string(key.str())] = t->get();
+      else r.c.params[std::string(key.str())] = value.value<double>().value();
+    }
+  const auto contacts = root["contacts"];
+  const auto j = doubles(contacts["j"], "j");
+  r.run.count = j.size();
   r.run.inputs = ContactArrays(r.run.count, 3);
-  for (std::size_t k = 0; k < r.run.count; ++k) {
-    const auto& v = contacts[k];
-    ContactArrays& c = r.run.inputs;
-    c.i[k] = static_cast<Index>(k);
-    c.j[k] = static_cast<Index>(v[1]);
-    c.normal[k] = Vec3(v[2], v[3], v[4]);
-    c.velocity[k] = Vec3(v[5], v[6], v[7]);
-    c.overlap[k] = v[8];
-    c.r_eff[k] = v[9];
-    c.m_eff[k] = v[10];
+  ContactArrays& c = r.run.inputs;
+  c.normal = vecs(contacts["normal"], "normal");
+  c.velocity = vecs(contacts["velocity"], "velocity");
+  c.overlap = doubles(contacts["overlap"], "overlap");
+  c.r_eff = doubles(contacts["r_eff"], "r_eff");
+  c.m_eff = doubles(contacts["m_eff"], "m_eff");
+  for (std::size_t k = 0; k < r.run.count; ++k) c.i[k] = static_cast<Index>(k), c.j[k] = static_cast<Index>(j[k]);
+  if (c.normal.size() != r.run.count || c.velocity.size() != r.run.count || c.overlap.size() != r.run.count ||
+      c.r_eff.size() != r.run.count || c.m_eff.size() != r.run.count)
+    fail("[contacts]: every array needs one entry per contact");
+  const auto* steps = root["steps"].as_array();
+  if (!steps) fail("no [[steps]]");
+  for (const auto& node : *steps) {
+    const toml::node_view<const toml::node> step(node);
+    const auto force = vecs(step["force"], "force"), couple = vecs(step["couple"], "couple"),
+               spring = vecs(step["spring"], "spring");
+    const auto energy = doubles(step["energy"], "energy");
+    if (force.size() != r.run.count || couple.size() != r.run.count || spring.size() != r.run.count ||
+        energy.size() != r.run.count)
+      fail("[[steps]]: every array needs one entry per contact");
+    std::vector<std::array<double, 10>> out(r.run.count);
+    for (std::size_t k = 0; k < r.run.count; ++k)
+      out[k] = {force[k].x(),  force[k].y(),  force[k].z(),  couple[k].x(), couple[k].y(),
+                couple[k].z(), energy[k],     spring[k].x(), spring[k].y(), spring[k].z()};
+    r.run.results.push_back(std::move(out));
   }
-  r.run.results.assign(static_cast<std::size_t>(r.run.steps), std::vector<std::array<double, 10>>(r.run.count));
-  for (const auto& [s, k, v] : results) r.run.results.at(static_cast<std::size_t>(s)).at(k) = v;
+  r.run.steps = static_cast<int>(r.run.results.size());
   return r;
 }
 
