@@ -21,8 +21,14 @@ endfunction()
 # wraps it. EXACT_LANES: sources whose SIMD lanes must round exactly as the scalar reference, so
 # no a * b + c may be fused into one rounding (GCC would in an AVX-512 version, whose target
 # enables FMA).
+#
+# LANE_KERNELS: sources written once for a lane type (plugins/contact/common/lanes.hpp, lane_type.hpp),
+# each compiled once per instruction set with SHARD_LANES_<SET> defined: SCALAR (the reference,
+# T = double), BASELINE (xsimd's batch for the target's default set) and, on x86-64, AVX2 and
+# AVX512 (chosen at run time, lane_sets.hpp). All with -ffp-contract=off, so every set rounds as
+# the scalar reference.
 function(shard_add_plugin_model NAME)
-  cmake_parse_arguments(ARG "" "" "SOURCES;EXACT_LANES" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "SOURCES;EXACT_LANES;LANE_KERNELS" ${ARGN})
   add_library(${NAME} STATIC ${ARG_SOURCES} ${ARG_EXACT_LANES})
   if(ARG_EXACT_LANES)
     set_source_files_properties(${ARG_EXACT_LANES} PROPERTIES COMPILE_OPTIONS -ffp-contract=off)
@@ -30,4 +36,27 @@ function(shard_add_plugin_model NAME)
   target_include_directories(${NAME} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
   target_link_libraries(${NAME} PUBLIC shard::plugin_api)
   set_target_properties(${NAME} PROPERTIES CXX_VISIBILITY_PRESET hidden VISIBILITY_INLINES_HIDDEN ON)
+  if(ARG_LANE_KERNELS)
+    target_link_libraries(${NAME} PUBLIC shard_xsimd)
+    set(sets SCALAR BASELINE)
+    if(CMAKE_SYSTEM_PROCESSOR MATCHES "x86_64|AMD64")
+      list(APPEND sets AVX2 AVX512)
+    endif()
+    foreach(source IN LISTS ARG_LANE_KERNELS)
+      get_filename_component(stem "${source}" NAME_WE)
+      foreach(set IN LISTS sets)
+        set(object ${NAME}_${stem}_${set})
+        add_library(${object} OBJECT ${source})
+        target_link_libraries(${object} PRIVATE shard::plugin_api shard_xsimd)
+        target_compile_definitions(${object} PRIVATE SHARD_LANES_${set})
+        # GCC 12 warns that _mm512_sqrt_pd's own _mm512_undefined_pd() is "(maybe) used uninitialized"
+        # (inside avx512fintrin.h, whatever the caller does): silenced for that object alone.
+        target_compile_options(${object} PRIVATE -ffp-contract=off
+                               $<$<STREQUAL:${set},AVX2>:-mavx2>
+                               $<$<STREQUAL:${set},AVX512>:-mavx512f -Wno-maybe-uninitialized -Wno-uninitialized>)
+        set_target_properties(${object} PROPERTIES CXX_VISIBILITY_PRESET hidden VISIBILITY_INLINES_HIDDEN ON)
+        target_sources(${NAME} PRIVATE $<TARGET_OBJECTS:${object}>)
+      endforeach()
+    endforeach()
+  endif()
 endfunction()

@@ -34,15 +34,22 @@ TEST_CASE("hertz_mindlin declares its parameters with SI units, defaults and ran
   const ContactPlugins plugins;
   const PluginInfo& info = plugins.info("hertz_mindlin");
   CHECK(info.kind == PluginKind::Contact);
-  REQUIRE(info.params.size() == 4);
-  const std::array<const char*, 4> names{"shear_modulus", "poisson_ratio", "friction", "restitution"};
-  const std::array<const char*, 4> units{"Pa", "1", "1", "1"};
-  const std::array<double, 4> defaults{10e6, 0.25, 0.67, 0.5};
-  for (std::size_t k = 0; k < 4; ++k) {
-    CHECK(info.params[k].name == names[k]);
-    CHECK(info.params[k].unit == units[k]);
-    CHECK(std::get<double>(info.params[k].default_value) == defaults[k]);
+  // The law's four, then `effects` and its policies' parameters (docs/effects.md).
+  REQUIRE(info.params.size() == 7);
+  const std::array<const char*, 6> names{"shear_modulus", "poisson_ratio",   "friction",
+                                         "restitution",   "cohesion_stress", "support_friction_ratio"};
+  const std::array<const char*, 6> units{"Pa", "1", "1", "1", "Pa", "1"};
+  const std::array<double, 6> defaults{10e6, 0.25, 0.67, 0.5, 0.0, 1.0};
+  for (std::size_t k = 0; k < 6; ++k) {
+    const ParamSpec& spec = info.params[k < 4 ? k : k + 1];
+    CHECK(spec.name == names[k]);
+    CHECK(spec.unit == units[k]);
+    CHECK(std::get<double>(spec.default_value) == defaults[k]);
   }
+  CHECK(info.params[4].name == "effects");
+  CHECK(info.params[5].neutral == 0.0);
+  CHECK(info.params[6].neutral == 1.0);
+  CHECK_THROWS_AS(plugins.make("hertz_mindlin", {{"cohesion_stress", -1.0}}), PluginError);
   CHECK_THROWS_AS(plugins.make("hertz_mindlin", {{"restitution", 0.0}}), PluginError);
   CHECK_THROWS_AS(plugins.make("hertz_mindlin", {{"shear_modulus", 0.0}}), PluginError);
   CHECK_THROWS_AS(plugins.make("hertz_mindlin", {{"poisson_ratio", 0.6}}), PluginError);

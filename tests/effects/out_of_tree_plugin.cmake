@@ -29,7 +29,7 @@ run(${CMAKE_COMMAND} --install "${SHARD_BUILD_DIR}" --prefix "${prefix}")
 set(shard "${prefix}/bin/shard")
 foreach(path bin/shard lib/libshard_kernel.so include/shard/plugin.hpp lib/cmake/Shard/ShardConfig.cmake
              lib/cmake/Shard/ShardTargets.cmake lib/cmake/Shard/ShardPlugin.cmake
-             lib/shard/plugins/shard_beam_bond.so lib/shard/plugins/shard_hertz_mindlin_plus.so
+             lib/shard/plugins/shard_beam_bond.so lib/shard/plugins/shard_hertz_mindlin.so
              share/shard/templates/contact.cpp.in)
   if(NOT EXISTS "${prefix}/${path}")
     message(FATAL_ERROR "install is missing ${path}")

@@ -1,5 +1,6 @@
-// Contact effects of hertz_mindlin_plus: friction of its own at walls, and cohesion between
-// touching particles (pull per contact area; pull-off force of the Hertz + cohesion law).
+// Contact effect policies of hertz_mindlin (plugins/contact/common/contact_effects.hpp): friction of
+// its own at walls (support_friction), and cohesion between touching particles (pull per contact
+// area; pull-off force of the Hertz + cohesion law); support_friction of linear_spring.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -7,8 +8,8 @@
 #include <numbers>
 
 #include "contact_batch.hpp"
-#include "contact_cohesion.hpp"
-#include "hertz_mindlin_plus_model.hpp"
+#include "hertz_mindlin_model.hpp"
+#include "linear_spring_model.hpp"
 #include "shard/simulation.hpp"
 
 namespace shard::effects_test {
@@ -47,15 +48,24 @@ struct SlidingSphere {
   }
 };
 
+HertzMindlin hertz(double friction, double support_ratio, double cohesion_stress) {
+  HertzMindlinMaterial m;
+  m.friction = friction;
+  contact::ContactEffects e;
+  e.support_friction_ratio = support_ratio;
+  e.cohesion_stress = cohesion_stress;
+  return HertzMindlin(m, e);
+}
+
 }  // namespace
 
 TEST_CASE("a sphere sliding on a wall decelerates at mu_wall g, independent of the particle friction") {
-  hertz_plus::HertzMindlinPlusParams p;
-  p.friction = 0.67;
-  for (const double mu_wall : {0.2, -1.0}) {
-    p.wall_friction = mu_wall;
-    const hertz_plus::HertzMindlinPlus model(p);
-    const double mu = mu_wall < 0 ? p.friction : mu_wall;
+  const double friction = 0.67;
+  for (const double ratio : {0.2 / 0.67, 1.0}) {
+    const HertzMindlin model = hertz(friction, ratio, 0);
+    CHECK(model.effects_on().support_friction == (ratio != 1.0));
+    const double mu = ratio * friction;
+    const double mu_wall = mu;
     SlidingSphere s(model, model.effective_young_modulus());
     // Sliding lasts until v = 5/7 v0 at t = 2 v0 / (7 mu g): 7.3 ms for mu = 0.2, 2.2 ms for 0.67.
     const double t_roll = 2 * SlidingSphere::v0 / (7 * mu * SlidingSphere::g);
@@ -71,11 +81,15 @@ TEST_CASE("a sphere sliding on a wall decelerates at mu_wall g, independent of t
 }
 
 TEST_CASE("wall friction at the batch level: |F_t| = mu_wall F_n at walls, mu F_n between particles") {
-  hertz_plus::HertzMindlinPlusParams p;
-  p.friction = 0.5;
-  p.wall_friction = 0.1;
-  const hertz_plus::HertzMindlinPlus model(p);
-  ContactScene c(2, model.history_size());
+  const HertzMindlin hertz_model = hertz(0.5, 0.2, 0);
+  LinearSpringParameters lp;
+  lp.friction = 0.5;
+  contact::ContactEffects support;
+  support.support_friction_ratio = 0.2;
+  const LinearSpring linear_model(lp, support);
+  for (const ContactModel* model : {static_cast<const ContactModel*>(&hertz_model),
+                                    static_cast<const ContactModel*>(&linear_model)}) {
+  ContactScene c(2, model->history_size());
   c.j = {-1, 1};
   for (std::size_t k = 0; k < 2; ++k) {
     c.overlap[k] = 1e-6;
@@ -83,22 +97,20 @@ TEST_CASE("wall friction at the batch level: |F_t| = mu_wall F_n at walls, mu F_
     c.m_eff[k] = 1e-6;
     c.velocity[k] = Vec3(0.01, 0, 0);  // steady sliding along x
   }
-  for (int step = 0; step < 200; ++step) c.compute(model, 1e-6);
+  for (int step = 0; step < 200; ++step) c.compute(*model, 1e-6);
   for (std::size_t k = 0; k < 2; ++k) {
     const double f_n = c.force[k].z();
     const Vec3 f_t(c.force[k].x(), c.force[k].y(), 0);
-    CHECK(f_t.norm() / f_n == doctest::Approx(k == 0 ? 0.1 : 0.5).epsilon(1e-12));
+    // At the cap |F_t| = mu F_n up to the rounding of the scaling (a few ulp).
+    CHECK(f_t.norm() / f_n == doctest::Approx(k == 0 ? 0.2 * 0.5 : 0.5).epsilon(1e-12));
     CHECK(f_t.x() < 0);  // opposes the sliding
+  }
   }
 }
 
 TEST_CASE("cohesion: pull sigma_c pi R delta between particles, none at walls, energy its potential") {
-  hertz_plus::HertzMindlinPlusParams p;
-  p.cohesion_stress = 20e3;  // Pa
-  const hertz_plus::HertzMindlinPlus model(p);
-  hertz_plus::HertzMindlinPlusParams q = p;
-  q.cohesion_stress = 0;
-  const hertz_plus::HertzMindlinPlus dry(q);
+  const HertzMindlin model = hertz(0.67, 1, 20e3);  // Pa
+  const HertzMindlin dry = hertz(0.67, 1, 0);
   const double R = 0.175e-3, delta = 2e-7;
   ContactScene c(2, model.history_size()), d(2, dry.history_size());
   c.j = d.j = {1, -1};
@@ -127,12 +139,11 @@ TEST_CASE("cohesion: pull sigma_c pi R delta between particles, none at walls, e
 }
 
 TEST_CASE("cohesion: the most attractive force over the overlap is the pull-off force (pi sigma_c)^3 R^2 / (12 E*^2)") {
-  hertz_plus::HertzMindlinPlusParams p;
-  p.cohesion_stress = 50e3;
-  const hertz_plus::HertzMindlinPlus model(p);
+  const double cohesion_stress = 50e3;
+  const HertzMindlin model = hertz(0.67, 1, cohesion_stress);
   const double R = 0.175e-3;
   const double e_star = model.effective_young_modulus();
-  const double delta_star = std::pow(std::numbers::pi * p.cohesion_stress, 2) * R / (4 * e_star * e_star);
+  const double delta_star = std::pow(std::numbers::pi * cohesion_stress, 2) * R / (4 * e_star * e_star);
   ContactScene c(1, model.history_size());
   c.r_eff[0] = R;
   c.m_eff[0] = 1e-6;
@@ -142,7 +153,7 @@ TEST_CASE("cohesion: the most attractive force over the overlap is the pull-off 
     c.compute(model, 1e-6);
     if (c.force[0].z() < most_attractive) most_attractive = c.force[0].z(), at = c.overlap[0];
   }
-  const double pull_off = cohesion::pull_off_force(p.cohesion_stress, R, e_star);
+  const double pull_off = contact::pull_off_force(cohesion_stress, R, e_star);
   MESSAGE("pull-off ", -most_attractive, " N at delta ", at, " m; theory ", pull_off, " N at ", delta_star, " m");
   CHECK(-most_attractive == doctest::Approx(pull_off).epsilon(1e-6));  // flat minimum: grid error O(h^2)
   CHECK(at == doctest::Approx(delta_star).epsilon(2e-3));

@@ -38,13 +38,14 @@ TEST_CASE("the shipped library parses and every effect switches something on") {
 }
 
 TEST_CASE("an effect's value stays inside its physical range, also where a linear step overshoots") {
-  // Hidden support friction 0.1 (the library's trial size, from the particles' 0.67): the joint
-  // linear refit asked for 1.29 trial steps, wall_friction = -0.067, which hertz_mindlin_plus
-  // refuses, so the refit failed and diagnose named weibull_strength instead.
+  // Hidden support friction 0.1 (the library's trial size, support_friction_ratio 0.1 / 0.67 from
+  // the particles' 0.67): the joint linear refit asked for 1.29 trial steps, a support friction of
+  // -0.067, which the plugin refuses, so the refit failed and diagnose named weibull_strength instead.
   const auto lib = read_effect_library(fs::path(SHARD_SOURCE_DIR) / "scenes/measurements/effects.toml");
   const auto friction = select_effects(lib, {"support_friction"}).front();
+  CHECK(friction.neutral == 1.0);  // from hertz_mindlin's schema
   CHECK(friction.scale_max() == doctest::Approx(0.67 / 0.57));
-  CHECK(friction.value_at(1.0) == doctest::Approx(0.1));
+  CHECK(friction.value_at(1.0) == doctest::Approx(0.1 / 0.67));
   CHECK(friction.value_at(1.29) == 0.0);
   CHECK(friction.value_at(friction.scale_max()) >= 0.0);  // no rounding past the bound
   const auto weibull = select_effects(lib, {"weibull_strength"}).front();

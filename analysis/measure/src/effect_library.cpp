@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <toml++/toml.h>
 
 #include "shard/measure/features.hpp"
 #include "shard/measure/statistics.hpp"
+#include "shard/plugin_host.hpp"
 
 namespace shard::measure {
 namespace {
@@ -18,6 +20,36 @@ std::string where(const std::filesystem::path& file, const toml::node& n) {
 }
 
 }  // namespace
+
+SchemaNeutral plugin_schema_neutrals() {
+  // Loaded on the first plugin parameter asked for, once per library read.
+  auto host = std::make_shared<std::unique_ptr<PluginHost>>();
+  return [host](const std::string& parameter) -> std::optional<double> {
+    const auto dot = parameter.find('.');
+    const std::string section = parameter.substr(0, dot);
+    if (dot == std::string::npos || (section != "bond" && section != "contact")) return std::nullopt;
+    if (!*host) {
+      *host = std::make_unique<PluginHost>();
+      (*host)->load_directories(PluginHost::default_search_path());
+    }
+    const PluginKind kind = section == "bond" ? PluginKind::Bond : PluginKind::Contact;
+    const std::string key = parameter.substr(dot + 1);
+    std::optional<double> neutral;
+    std::string declared_by;
+    for (const LoadedPlugin* plugin : (*host)->plugins()) {
+      if (plugin->info.kind != kind) continue;
+      for (const auto& spec : plugin->info.params) {
+        if (spec.name != key || !spec.neutral) continue;
+        if (neutral && *neutral != *spec.neutral)
+          throw std::runtime_error(fmt::format("{} plugins declare different neutral values for {} ({:g} in {}, {:g} in {})",
+                                               section, key, *neutral, declared_by, *spec.neutral, plugin->info.name));
+        neutral = spec.neutral;
+        declared_by = plugin->info.name;
+      }
+    }
+    return neutral;
+  };
+}
 
 std::string CandidateEffect::scene_value(double value) const {
   const std::string number = fmt::format("{:.12g}", value);
@@ -47,7 +79,7 @@ std::vector<std::string> CandidateEffect::overrides(double value) const {
   return out;
 }
 
-std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& file) {
+std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& file, const SchemaNeutral& schema) {
   if (!std::filesystem::exists(file))
     throw std::runtime_error(fmt::format(
         "{}: the candidate-effect library (the effects `shard diagnose` and `shard calibrate-effect` try) does not "
@@ -69,6 +101,7 @@ std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& fi
     const auto* t = node.as_table();
     if (!t) throw std::runtime_error(fmt::format("{}: [[effect]] must be a table", where(file, node)));
     CandidateEffect e;
+    bool has_neutral = false;
     for (const auto& [key, value] : *t) {
       const std::string k(key.str());
       if (k == "name" || k == "parameter" || k == "unit" || k == "separated_by" || k == "doc" || k == "plausible_from") {
@@ -98,6 +131,7 @@ std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& fi
       } else if (k == "neutral" || k == "plausible" || k == "min" || k == "max" || k == "plausible_factor") {
         const auto v = value.value<double>();
         if (!v) throw std::runtime_error(fmt::format("{}: '{}' must be a number", where(file, value), k));
+        has_neutral = has_neutral || k == "neutral";
         (k == "neutral"     ? e.neutral
          : k == "plausible" ? e.plausible
          : k == "min"       ? e.min
@@ -121,6 +155,27 @@ std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& fi
     }
     if (e.name.empty() || e.parameter.empty())
       throw std::runtime_error(fmt::format("{}: an [[effect]] needs a name and a parameter", where(file, node)));
+    // The neutral value is declared once, in the schema of the plugin that carries the parameter.
+    // Plugins that disagree leave the choice to the entry's own `neutral`.
+    std::optional<double> declared;
+    try {
+      declared = schema ? schema(e.parameter) : std::nullopt;
+    } catch (const std::exception& x) {
+      if (!has_neutral)
+        throw std::runtime_error(fmt::format("{}: effect '{}': {}; give its neutral = ... here", where(file, node),
+                                             e.name, x.what()));
+    }
+    if (declared && has_neutral && *declared != e.neutral)
+      throw std::runtime_error(fmt::format(
+          "{}: effect '{}': neutral {:g} contradicts the neutral value {:g} that the plugin's schema declares for {}; "
+          "remove the key (the schema's value is used)",
+          where(file, *t->get("neutral")), e.name, e.neutral, *declared, e.parameter));
+    if (declared) e.neutral = *declared;
+    if (!declared && !has_neutral)
+      throw std::runtime_error(fmt::format(
+          "{}: effect '{}' needs a neutral value (the effect is off): {} is no plugin parameter with a neutral value "
+          "in its schema, so give neutral = ... here",
+          where(file, node), e.name, e.parameter));
     if (e.plausible_from.empty() != (e.plausible_factor == 0))
       throw std::runtime_error(fmt::format("{}: effect '{}': plausible_from and plausible_factor go together (plausible = "
                                            "factor x the scale), e.g. plausible_from = \"time_to_peak\" and "

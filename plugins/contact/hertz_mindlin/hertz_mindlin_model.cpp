@@ -1,13 +1,12 @@
 #include "hertz_mindlin_model.hpp"
 
-#include <algorithm>
 #include <stdexcept>
 #include <string>
 
-#include "../common/tangential_spring.hpp"
+#include "../common/contact_batch_arrays.hpp"
 #include "hertz_damping.hpp"
 #include "hertz_equations.hpp"
-#include "hertz_lanes.hpp"
+#include "hertz_kernels.hpp"
 
 namespace shard {
 
@@ -31,12 +30,21 @@ const HertzMindlinMaterial& checked(const HertzMindlinMaterial& m) {
 
 }  // namespace
 
-HertzMindlin::HertzMindlin(const HertzMindlinMaterial& material)
+HertzMindlin::HertzMindlin(const HertzMindlinMaterial& material, const contact::ContactEffects& effects)
     : material_(checked(material)),
       e_star_(hertz::effective_young_modulus(
           hertz::young_modulus(material.shear_modulus, material.poisson_ratio), material.poisson_ratio)),
       g_star_(hertz::effective_shear_modulus(material.shear_modulus, material.poisson_ratio)),
-      damping_(hertz::damping_for_restitution(material.restitution)) {}
+      damping_(hertz::damping_for_restitution(material.restitution)),
+      law_(hertz::HertzLaw::of(e_star_, g_star_, damping_, material.friction)),
+      on_(effects.switches()),
+      sizes_(effects.sizes(material.friction)),
+      kernel_(hertz::hertz_kernel(contact::best_lane_set(), on_)) {}
+
+HertzMindlin HertzMindlin::from(const ParamSet& params) {
+  return HertzMindlin(HertzMindlinMaterial::from(params),
+                      contact::ContactEffects::from(params, "hertz_mindlin", /*with_cohesion=*/true));
+}
 
 std::size_t HertzMindlin::history_size() const { return contact::kTangentialHistorySize; }
 
@@ -46,36 +54,13 @@ TimeStepLimit HertzMindlin::time_step_limit(double min_radius, double density) c
   return {"hertz_mindlin Rayleigh time", t_rayleigh, 0.2 * t_rayleigh};
 }
 
-void HertzMindlin::compute(ContactBatch& batch) const {
-  hertz::compute_lanes(batch, {e_star_, g_star_, damping_, material_.friction});
-}
+void HertzMindlin::compute(ContactBatch& batch) const { kernel_(contact::arrays_of(batch), law_, sizes_); }
 
-void HertzMindlin::compute_reference(ContactBatch& batch) const {
-  for (std::size_t k = 0; k < batch.count; ++k) {
-    const Vec3& n = batch.normal[k];
-    const Vec3& v = batch.velocity[k];
-    const double delta = batch.overlap[k];
-    const double R = batch.r_eff[k];
-    const double m = batch.m_eff[k];
-
-    // Normal: Hertz spring and dashpot; v.n < 0 while approaching, so the dashpot then pushes.
-    const double s_n = hertz::normal_stiffness(e_star_, R, delta);
-    const double f_n = std::max(0.0, hertz::normal_elastic_force(e_star_, R, delta) -
-                                         hertz::dashpot(damping_, s_n, m) * v.dot(n));
-
-    // Tangential: the spring turns with the contact plane, stretches with the sliding velocity.
-    double* history = batch.history + contact::kTangentialHistorySize * k;
-    const Vec3 v_t = contact::tangential_part(v, n);
-    const Vec3 xi = contact::rotate_onto_tangent_plane(contact::load_spring(history), n) + v_t * batch.dt;
-    const double s_t = hertz::tangential_stiffness(g_star_, R, delta);
-    const auto tangential = contact::coulomb_capped_force(xi, v_t, s_t, hertz::dashpot(damping_, s_t, m),
-                                                          material_.friction * f_n);
-    contact::store_spring(history, tangential.spring);
-
-    batch.force[k] = f_n * n + tangential.force;
-    batch.energy[k] = hertz::normal_elastic_energy(e_star_, R, delta) +
-                      contact::spring_energy(s_t, tangential.spring);
-  }
+void HertzMindlin::compute_with(contact::LaneSet set, ContactBatch& batch) const {
+  if (!contact::lane_set_available(set))
+    throw std::invalid_argument(std::string("hertz_mindlin: this machine cannot run the ") +
+                                std::string(contact::lane_set_name(set)) + " lanes");
+  hertz::hertz_kernel(set, on_)(contact::arrays_of(batch), law_, sizes_);
 }
 
 }  // namespace shard

@@ -1,7 +1,10 @@
 // Registration of the hertz_mindlin contact model: its name, version and parameter schema.
 #include <memory>
 #include <optional>
+#include <utility>
+#include <vector>
 
+#include "../common/contact_effects.hpp"
 #include "../common/contact_params.hpp"
 #include "hertz_mindlin_model.hpp"
 #include "shard/plugin.hpp"
@@ -16,15 +19,19 @@ shard::PluginInfo hertz_mindlin_info() {
   const ParamSpec poisson = cp::poisson_ratio(defaults.poisson_ratio);
   const ParamSpec friction = cp::friction(defaults.friction);
   const ParamSpec restitution = cp::restitution(defaults.restitution);
-  return {shard::PluginKind::Contact, "hertz_mindlin", "1.0.0",
-          "Hertz normal and Mindlin tangential spring with restitution damping and Coulomb friction",
-          {shear, poisson, friction, restitution}};
+  std::vector<ParamSpec> params{shear, poisson, friction, restitution};
+  for (auto& spec : shard::contact::contact_effect_params(/*with_cohesion=*/true)) params.push_back(std::move(spec));
+  // 1.1: the effect policies cohesion and support_friction (docs/effects.md), which replace hertz_mindlin_plus.
+  return {shard::PluginKind::Contact, "hertz_mindlin", "1.1.0",
+          "Hertz normal and Mindlin tangential spring with restitution damping and Coulomb friction; effect "
+          "policies cohesion, support_friction (docs/effects.md)",
+          std::move(params)};
 }
 
 }  // namespace
 
 SHARD_PLUGIN(registrar) {
   registrar->add_contact(hertz_mindlin_info(), [](const shard::ParamSet& params) {
-    return std::make_unique<shard::HertzMindlin>(shard::HertzMindlinMaterial::from(params));
+    return std::make_unique<shard::HertzMindlin>(shard::HertzMindlin::from(params));
   });
 }

@@ -1,13 +1,13 @@
 #include "linear_spring_model.hpp"
 
-#include <algorithm>
 #include <numbers>
 #include <stdexcept>
 #include <string>
 
-#include "../common/tangential_spring.hpp"
+#include "../common/contact_batch_arrays.hpp"
 #include "linear_damping.hpp"
 #include "linear_equations.hpp"
+#include "linear_kernels.hpp"
 
 namespace shard {
 
@@ -31,11 +31,20 @@ const LinearSpringParameters& checked(const LinearSpringParameters& p) {
 
 }  // namespace
 
-LinearSpring::LinearSpring(const LinearSpringParameters& parameters)
+LinearSpring::LinearSpring(const LinearSpringParameters& parameters, const contact::ContactEffects& effects)
     : k_n_(checked(parameters).normal_stiffness),
       k_t_(parameters.tangential_stiffness_ratio * parameters.normal_stiffness),
       friction_(parameters.friction),
-      zeta_(linear::damping_ratio_for_restitution(parameters.restitution)) {}
+      zeta_(linear::damping_ratio_for_restitution(parameters.restitution)),
+      law_{k_n_, k_t_, 2.0 * zeta_, friction_},
+      on_(effects.switches()),
+      sizes_(effects.sizes(parameters.friction)),
+      kernel_(linear::linear_kernel(contact::best_lane_set(), on_)) {}
+
+LinearSpring LinearSpring::from(const ParamSet& params) {
+  return LinearSpring(LinearSpringParameters::from(params),
+                      contact::ContactEffects::from(params, "linear_spring", /*with_cohesion=*/false));
+}
 
 std::size_t LinearSpring::history_size() const { return contact::kTangentialHistorySize; }
 
@@ -50,28 +59,13 @@ TimeStepLimit LinearSpring::time_step_limit(double min_radius, double density) c
   return {"linear_spring contact duration", t_contact, t_contact / 20.0};
 }
 
-void LinearSpring::compute(ContactBatch& batch) const {
-  for (std::size_t k = 0; k < batch.count; ++k) {
-    const Vec3& n = batch.normal[k];
-    const Vec3& v = batch.velocity[k];
-    const double delta = batch.overlap[k];
-    const double m = batch.m_eff[k];
+void LinearSpring::compute(ContactBatch& batch) const { kernel_(contact::arrays_of(batch), law_, sizes_); }
 
-    // Normal: spring and dashpot; v.n < 0 while approaching, so the dashpot then pushes.
-    const double f_n =
-        std::max(0.0, linear::normal_elastic_force(k_n_, delta) - linear::dashpot(zeta_, k_n_, m) * v.dot(n));
-
-    // Tangential: the spring turns with the contact plane, stretches with the sliding velocity.
-    double* history = batch.history + contact::kTangentialHistorySize * k;
-    const Vec3 v_t = contact::tangential_part(v, n);
-    const Vec3 xi = contact::rotate_onto_tangent_plane(contact::load_spring(history), n) + v_t * batch.dt;
-    const auto tangential =
-        contact::coulomb_capped_force(xi, v_t, k_t_, linear::dashpot(zeta_, k_t_, m), friction_ * f_n);
-    contact::store_spring(history, tangential.spring);
-
-    batch.force[k] = f_n * n + tangential.force;
-    batch.energy[k] = linear::normal_elastic_energy(k_n_, delta) + contact::spring_energy(k_t_, tangential.spring);
-  }
+void LinearSpring::compute_with(contact::LaneSet set, ContactBatch& batch) const {
+  if (!contact::lane_set_available(set))
+    throw std::invalid_argument(std::string("linear_spring: this machine cannot run the ") +
+                                std::string(contact::lane_set_name(set)) + " lanes");
+  linear::linear_kernel(set, on_)(contact::arrays_of(batch), law_, sizes_);
 }
 
 }  // namespace shard

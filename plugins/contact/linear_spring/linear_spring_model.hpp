@@ -1,7 +1,11 @@
 #pragma once
-// Linear spring-dashpot with Coulomb friction: the cheap baseline contact model (README.md).
+// Linear spring-dashpot with Coulomb friction: the cheap baseline contact model (README.md),
+// with the contact effect policy support_friction (../common/contact_effects.hpp).
 #include <cstddef>
 
+#include "../common/contact_effects.hpp"
+#include "../common/lane_sets.hpp"
+#include "linear_law.hpp"
 #include "shard/contact_model.hpp"
 #include "shard/params.hpp"
 
@@ -18,22 +22,31 @@ struct LinearSpringParameters {
 
 class LinearSpring final : public ContactModel {
  public:
-  explicit LinearSpring(const LinearSpringParameters& parameters);
+  explicit LinearSpring(const LinearSpringParameters& parameters, const contact::ContactEffects& effects = {});
+  static LinearSpring from(const ParamSet& params);
 
   std::size_t history_size() const override;
   TimeStepLimit time_step_limit(double min_radius, double density) const override;
+  // The batch in the widest lanes this machine runs (linear_kernels.hpp); every width gives the same bits.
   void compute(ContactBatch& batch) const override;
+  // The same law in the lanes of `set` (tests compare them; scalar is the reference).
+  void compute_with(contact::LaneSet set, ContactBatch& batch) const;
 
   double normal_stiffness() const { return k_n_; }
   double tangential_stiffness() const { return k_t_; }
   // Damping ratio zeta of both dashpots, solved from the restitution.
   double damping_ratio() const { return zeta_; }
+  contact::EffectSwitches effects_on() const { return on_; }
 
  private:
   double k_n_;
   double k_t_;
   double friction_;
   double zeta_;
+  linear::LinearLaw law_;
+  contact::EffectSwitches on_;
+  contact::EffectSizes sizes_;
+  contact::LawKernel<linear::LinearLaw> kernel_;
 };
 
 }  // namespace shard

@@ -1,7 +1,10 @@
 // Registration of the linear_spring contact model: its name, version and parameter schema.
 #include <memory>
 #include <optional>
+#include <utility>
+#include <vector>
 
+#include "../common/contact_effects.hpp"
 #include "../common/contact_params.hpp"
 #include "linear_spring_model.hpp"
 #include "shard/plugin.hpp"
@@ -27,15 +30,19 @@ shard::PluginInfo linear_spring_info() {
                   .neutral = std::nullopt};
   const ParamSpec friction = shard::contact_params::friction(defaults.friction);
   const ParamSpec restitution = shard::contact_params::restitution(defaults.restitution);
-  return {shard::PluginKind::Contact, "linear_spring", "1.0.0",
-          "linear normal and tangential spring-dashpot with exact restitution and Coulomb friction",
-          {normal, ratio, friction, restitution}};
+  std::vector<ParamSpec> params{normal, ratio, friction, restitution};
+  for (auto& spec : shard::contact::contact_effect_params(/*with_cohesion=*/false)) params.push_back(std::move(spec));
+  // 1.1: the effect policy support_friction (docs/effects.md).
+  return {shard::PluginKind::Contact, "linear_spring", "1.1.0",
+          "linear normal and tangential spring-dashpot with exact restitution and Coulomb friction; effect policy "
+          "support_friction (docs/effects.md)",
+          std::move(params)};
 }
 
 }  // namespace
 
 SHARD_PLUGIN(registrar) {
   registrar->add_contact(linear_spring_info(), [](const shard::ParamSet& params) {
-    return std::make_unique<shard::LinearSpring>(shard::LinearSpringParameters::from(params));
+    return std::make_unique<shard::LinearSpring>(shard::LinearSpring::from(params));
   });
 }

@@ -9,9 +9,9 @@
 //   name = "bond_viscosity"
 //   parameter = "bond.damping"        # section.key, wall.NAME.key, or machine_compliance
 //   unit = "N s/m"
-//   neutral = 0.0
+//   neutral = 0.0                     # left out for a plugin parameter: its schema's neutral
 //   plausible = 0.02
-//   set = []                          # e.g. ["contact.plugin=hertz_mindlin_plus"]
+//   set = []                          # e.g. ["contact.plugin=linear_spring"]
 //   separated_by = "a second loading rate"
 //   doc = "viscous bond force on the strain rate: a rate-dependent stiffness and strength"
 //
@@ -28,7 +28,9 @@
 // A parameter that is not a plain number in the scene (a vector such as simulation.gravity) takes
 // `value_format = "[0.0, 0.0, {}]"`: the effect's scalar value goes where {} stands.
 #include <filesystem>
+#include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -68,8 +70,21 @@ struct CandidateEffect {
   double value_at(double scale) const;
 };
 
-// Reads the library; errors name the file, line and column.
-std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& file);
+// The neutral value a plugin's schema declares for a scene parameter "section.key", if any.
+using SchemaNeutral = std::function<std::optional<double>(const std::string& parameter)>;
+
+// The neutrals of the plugins on the default search path (SHARD_PLUGIN_PATH, the build tree's
+// and the installed plugin folders): for bond.KEY and contact.KEY the neutral value every bond
+// (contact) plugin declaring KEY declares; none when no plugin declares one; throws when two
+// plugins declare different ones (the library entry must then give `neutral` itself).
+SchemaNeutral plugin_schema_neutrals();
+
+// Reads the library; errors name the file, line and column. An entry for a plugin parameter
+// leaves out `neutral`: it is the one the plugin's schema declares (`schema`), so that a neutral
+// value is declared once, in the policy's schema. An entry that gives a `neutral` the schema
+// contradicts is refused.
+std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& file,
+                                                 const SchemaNeutral& schema = plugin_schema_neutrals());
 
 // The scales of a measurement set a plausible_from rule refers to.
 struct TestScales {

@@ -1,0 +1,185 @@
+#pragma once
+// The batch loop every contact law shares, written once for any lane type (lanes.hpp): the law
+// gives the normal force and the tangential spring's stiffness and dashpot; this loop adds the
+// incremental tangential spring with Coulomb friction (docs/physics.md, "Forces") and the contact effect
+// policies (contact_effects.hpp), switched on at compile time so that a law without effects
+// carries no trace of them.
+//
+// Tangential spring: its extension xi (3 history doubles) is turned onto the current tangent
+// plane keeping its length (removing the normal part alone would shrink the spring and leak
+// elastic energy on every rotation), stretched by v_t dt, and F_t = -S_t xi - c_t v_t is capped
+// at mu F_n; a sliding contact's spring is reset to hold the capped force, -F_t / S_t, so sticking
+// resumes from the cap without a jump and the stored energy matches the force it transmits.
+#include <cstddef>
+#include <cstdint>
+#include <numbers>
+
+#include "lanes.hpp"
+
+namespace shard::contact {
+
+inline constexpr std::size_t kTangentialHistorySize = 3;
+
+// The kernel's ContactBatch as plain arrays (x, y, z interleaved per contact), so that a source
+// compiled for one instruction set sees no Eigen type.
+struct ContactArrays {
+  std::size_t count = 0;
+  double dt = 0;
+  const std::int32_t* j = nullptr;  // < 0: a wall
+  const double* normal = nullptr;
+  const double* velocity = nullptr;
+  const double* overlap = nullptr;
+  const double* r_eff = nullptr;
+  const double* m_eff = nullptr;
+  double* history = nullptr;
+  double* force = nullptr;
+  double* energy = nullptr;
+};
+
+// What a law computes from the normal geometry of its lanes.
+template <class T>
+struct NormalPart {
+  T force;                 // F_n >= 0, N
+  T energy;                // elastic energy of the normal spring, J
+  T tangential_stiffness;  // S_t, N/m
+  T tangential_damping;    // c_t, N s/m
+};
+
+// The effect policies composed into the loop (contact_effects.hpp) and their sizes.
+struct EffectSwitches {
+  bool cohesion = false;
+  bool support_friction = false;
+};
+struct EffectSizes {
+  double cohesion_stress = 0;        // sigma_c, Pa
+  double support_friction = 0;       // mu_w = support_friction_ratio * mu, 1
+};
+
+// Law: a data member `friction` (mu) and `template <class T> NormalPart<T> normal(delta, R, m, v_n) const`.
+// (No non-template member functions and no std:: calls: see lanes.hpp on per-instruction-set symbols.)
+template <class T, bool Cohesion, bool SupportFriction, class Law>
+void contact_lanes(const ContactArrays& a, const Law& law, const EffectSizes& effects) {
+  using L = Lane<T>;
+  constexpr std::size_t N = L::width;
+  const T zero(0.0);
+  const T dt(a.dt);
+  const T mu(law.friction);
+  [[maybe_unused]] const T mu_wall(effects.support_friction);
+  constexpr bool uses_walls = Cohesion || SupportFriction;
+
+  // One block of N contacts from arrays laid out as the kernel's (vectors x, y, z interleaved),
+  // either the batch's own or the padded copy of its last, partial block.
+  const auto block = [&](const double* normal, const double* velocity, double* history, const double* overlap,
+                         const double* r_eff, const double* m_eff, const double* wall_flag, double* force,
+                         double* energy_out) {
+    T nx, ny, nz, vx, vy, vz, hx, hy, hz;
+    load3(normal, nx, ny, nz);
+    load3(velocity, vx, vy, vz);
+    load3(history, hx, hy, hz);
+    const T delta = L::load(overlap), R = L::load(r_eff), m = L::load(m_eff);
+    [[maybe_unused]] const auto wall = L::load(wall_flag) != zero;
+
+    // Normal: the law's spring and dashpot; v.n < 0 while approaching.
+    const T v_n = dot3(vx, vy, vz, nx, ny, nz);
+    const NormalPart<T> normal_part = law.normal(delta, R, m, v_n);
+
+    // Tangential spring turned onto the contact plane, keeping its length, then stretched.
+    const T tx = vx - v_n * nx, ty = vy - v_n * ny, tz = vz - v_n * nz;
+    const T h_n = dot3(hx, hy, hz, nx, ny, nz);
+    const T px = hx - h_n * nx, py = hy - h_n * ny, pz = hz - h_n * nz;
+    const T old_length = root(dot3(hx, hy, hz, hx, hy, hz));
+    const T new_length = root(dot3(px, py, pz, px, py, pz));
+    const auto flat = new_length == zero;
+    const T scale = old_length / new_length;
+    const T xi_x = pick(flat, zero, px * scale) + tx * dt;
+    const T xi_y = pick(flat, zero, py * scale) + ty * dt;
+    const T xi_z = pick(flat, zero, pz * scale) + tz * dt;
+
+    // Spring and dashpot, capped by Coulomb (support_friction: supports and pins have their own mu).
+    const T s_t = normal_part.tangential_stiffness, c_t = normal_part.tangential_damping;
+    T limit;
+    if constexpr (SupportFriction)
+      limit = pick(wall, mu_wall, mu) * normal_part.force;
+    else
+      limit = mu * normal_part.force;
+    const T minus_s_t = negate(s_t);
+    const T fx = minus_s_t * xi_x - c_t * tx, fy = minus_s_t * xi_y - c_t * ty, fz = minus_s_t * xi_z - c_t * tz;
+    const T magnitude = root(dot3(fx, fy, fz, fx, fy, fz));
+    const auto sticks = magnitude <= limit;
+    const T cap = limit / magnitude;
+    const T cx = fx * cap, cy = fy * cap, cz = fz * cap;
+    const T sx = pick(sticks, xi_x, negate(cx) / s_t), sy = pick(sticks, xi_y, negate(cy) / s_t),
+            sz = pick(sticks, xi_z, negate(cz) / s_t);
+
+    T force_x = normal_part.force * nx + pick(sticks, fx, cx);
+    T force_y = normal_part.force * ny + pick(sticks, fy, cy);
+    T force_z = normal_part.force * nz + pick(sticks, fz, cz);
+    T energy = normal_part.energy + T(0.5) * s_t * dot3(sx, sy, sz, sx, sy, sz);
+    if constexpr (Cohesion) {
+      // Between particles only (not at walls): a pull sigma_c pi R* delta along -n on i while they
+      // touch, with the potential -sigma_c pi R* delta^2 / 2 (contact_effects.hpp).
+      // A zero pull (sigma_c = 0, the neutral value) leaves every bit: x - 0 n would turn a -0
+      // force component into +0.
+      const T sigma(effects.cohesion_stress);
+      const T pull = sigma * (T(std::numbers::pi) * R * delta);
+      const auto none = pull == zero;
+      force_x = pick(wall, force_x, pick(none, force_x, force_x - pull * nx));
+      force_y = pick(wall, force_y, pick(none, force_y, force_y - pull * ny));
+      force_z = pick(wall, force_z, pick(none, force_z, force_z - pull * nz));
+      energy = pick(wall, energy, pick(none, energy, energy + T(-0.5) * sigma * T(std::numbers::pi) * R * delta * delta));
+    }
+    store3(force, force_x, force_y, force_z);
+    store3(history, sx, sy, sz);
+    L::store(energy_out, energy);
+  };
+
+  alignas(64) double wall_flag[N];
+  for (std::size_t l = 0; l < N; ++l) wall_flag[l] = 0.0;
+  std::size_t k0 = 0;
+  for (; k0 + N <= a.count; k0 += N) {
+    if constexpr (uses_walls)
+      for (std::size_t l = 0; l < N; ++l) wall_flag[l] = a.j[k0 + l] < 0 ? 1.0 : 0.0;
+    block(a.normal + 3 * k0, a.velocity + 3 * k0, a.history + 3 * k0, a.overlap + k0, a.r_eff + k0, a.m_eff + k0,
+          wall_flag, a.force + 3 * k0, a.energy + k0);
+  }
+  if (k0 == a.count) return;
+  // The last, partial block, padded with a harmless contact whose results are not kept.
+  const std::size_t lanes = a.count - k0;
+  alignas(64) double normal[3 * N], velocity[3 * N], history[3 * N], force[3 * N];
+  alignas(64) double overlap[N], r_eff[N], m_eff[N], energy[N];
+  for (std::size_t l = 0; l < N; ++l) {
+    const bool real = l < lanes;
+    const std::size_t k = k0 + (real ? l : 0);
+    for (std::size_t c = 0; c < 3; ++c) {
+      normal[3 * l + c] = real ? a.normal[3 * k + c] : (c == 0 ? 1.0 : 0.0);
+      velocity[3 * l + c] = real ? a.velocity[3 * k + c] : 0.0;
+      history[3 * l + c] = real ? a.history[3 * k + c] : 0.0;
+    }
+    overlap[l] = real ? a.overlap[k] : 1.0;
+    r_eff[l] = real ? a.r_eff[k] : 1.0;
+    m_eff[l] = real ? a.m_eff[k] : 1.0;
+    wall_flag[l] = real && a.j[k] < 0 ? 1.0 : 0.0;
+  }
+  block(normal, velocity, history, overlap, r_eff, m_eff, wall_flag, force, energy);
+  for (std::size_t l = 0; l < lanes; ++l) {
+    for (std::size_t c = 0; c < 3; ++c) {
+      a.force[3 * (k0 + l) + c] = force[3 * l + c];
+      a.history[3 * (k0 + l) + c] = history[3 * l + c];
+    }
+    a.energy[k0 + l] = energy[l];
+  }
+}
+
+// A law's batch loop for one lane type and effect selection.
+template <class Law>
+using LawKernel = void (*)(const ContactArrays&, const Law&, const EffectSizes&);
+
+template <class T, class Law>
+LawKernel<Law> kernel_for(EffectSwitches on) {
+  if (on.cohesion && on.support_friction) return &contact_lanes<T, true, true, Law>;
+  if (on.cohesion) return &contact_lanes<T, true, false, Law>;
+  if (on.support_friction) return &contact_lanes<T, false, true, Law>;
+  return &contact_lanes<T, false, false, Law>;
+}
+
+}  // namespace shard::contact

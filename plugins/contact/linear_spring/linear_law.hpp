@@ -1,0 +1,25 @@
+#pragma once
+// The linear spring-dashpot law for any lane type (../common/lanes.hpp): F_n = max(0, k_n delta -
+// gamma v_n), gamma = 2 zeta sqrt(k_n m*); tangential spring k_t with dashpot 2 zeta sqrt(k_t m*)
+// (model.md sec. 2). The tangential spring, friction and the effect policies are the shared
+// loop's (../common/contact_lanes.hpp). Each lane performs the operations of
+// linear_equations.hpp in their order, so the result does not depend on the lane width.
+#include "../common/contact_lanes.hpp"
+
+namespace shard::linear {
+
+struct LinearLaw {
+  double normal_stiffness;      // k_n, N/m
+  double tangential_stiffness;  // k_t, N/m
+  double twice_zeta;            // 2 zeta, the dashpot's factor on sqrt(k m*)
+  double friction;              // mu
+
+  template <class T>
+  contact::NormalPart<T> normal(const T& delta, const T& /*R*/, const T& m, const T& v_n) const {
+    const T k_n(normal_stiffness), k_t(tangential_stiffness), two_zeta(twice_zeta);
+    const T f_n = contact::clamp_at_zero(k_n * delta - two_zeta * contact::root(k_n * m) * v_n);
+    return {f_n, T(0.5) * k_n * delta * delta, k_t, two_zeta * contact::root(k_t * m)};
+  }
+};
+
+}  // namespace shard::linear
