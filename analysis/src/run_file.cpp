@@ -239,4 +239,52 @@ void RunFile::write_fragment_table(std::int64_t k, const std::vector<Fragment>& 
   H5Fflush(file_, H5F_SCOPE_GLOBAL);
 }
 
+void RunFile::write_body_table(std::int64_t k, const BodyReport& report) {
+  const QuietHdf5Errors quiet;
+  if (!h5::has_link(file_, "bodies")) h5::create_group(file_, "bodies", "/bodies");
+  const std::string where = "/bodies/" + frame_name(k);
+  if (h5::has_link(file_, where) && H5Ldelete(file_, where.c_str(), H5P_DEFAULT) < 0) {
+    throw RunFileError("cannot replace " + where);
+  }
+  const h5::Handle group = h5::create_group(file_, where, where);
+  const std::size_t count = report.bodies.size();
+  std::vector<std::int32_t> body(count), broken(count);
+  std::vector<std::int64_t> particles(count), fragments(count);
+  std::vector<double> mass(count), largest(count), x10(count), x50(count), x90(count), fines(count);
+  for (std::size_t r = 0; r < count; ++r) {
+    const BodyStatistics& b = report.bodies[r];
+    body[r] = b.body;
+    broken[r] = b.broken ? 1 : 0;
+    particles[r] = static_cast<std::int64_t>(b.particles);
+    fragments[r] = static_cast<std::int64_t>(b.fragments);
+    mass[r] = b.mass;
+    largest[r] = b.largest_fraction;
+    x10[r] = b.fsd.x10;
+    x50[r] = b.fsd.x50;
+    x90[r] = b.fsd.x90;
+    fines[r] = b.fsd.fines_mass;
+  }
+  const hid_t g = group.get();
+  h5::write_dataset(g, "body", H5T_NATIVE_INT32, {count}, body.data(), where + "/body");
+  h5::write_dataset(g, "broken", H5T_NATIVE_INT32, {count}, broken.data(), where + "/broken");
+  h5::write_dataset(g, "particles", H5T_NATIVE_INT64, {count}, particles.data(), where + "/particles");
+  h5::write_dataset(g, "fragments", H5T_NATIVE_INT64, {count}, fragments.data(), where + "/fragments");
+  h5::write_dataset(g, "mass", H5T_NATIVE_DOUBLE, {count}, mass.data(), where + "/mass");
+  h5::write_dataset(g, "largest_fraction", H5T_NATIVE_DOUBLE, {count}, largest.data(), where + "/largest_fraction");
+  h5::write_dataset(g, "x10", H5T_NATIVE_DOUBLE, {count}, x10.data(), where + "/x10");
+  h5::write_dataset(g, "x50", H5T_NATIVE_DOUBLE, {count}, x50.data(), where + "/x50");
+  h5::write_dataset(g, "x90", H5T_NATIVE_DOUBLE, {count}, x90.data(), where + "/x90");
+  h5::write_dataset(g, "fines_mass", H5T_NATIVE_DOUBLE, {count}, fines.data(), where + "/fines_mass");
+  h5::write_int_attribute(g, "count", static_cast<std::int64_t>(count), where);
+  h5::write_int_attribute(g, "broken_count", static_cast<std::int64_t>(report.broken), where);
+  h5::write_double_attribute(g, "breakage_probability", report.breakage_probability, where);
+  h5::write_double_attribute(g, "intact_fraction", report.intact_fraction, where);
+  h5::write_double_attribute(g, "x10", report.pooled.x10, where);
+  h5::write_double_attribute(g, "x50", report.pooled.x50, where);
+  h5::write_double_attribute(g, "x90", report.pooled.x90, where);
+  h5::write_double_attribute(g, "fines_size", report.pooled.fines_size, where);
+  h5::write_double_attribute(g, "fines_mass", report.pooled.fines_mass, where);
+  H5Fflush(file_, H5F_SCOPE_GLOBAL);
+}
+
 }  // namespace shard::analysis

@@ -218,14 +218,15 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
   meta.shard_version = SHARD_VERSION;
   meta.git_revision = SHARD_GIT_REVISION;
   meta.generator_quality = inst.body.quality;
-  auto record = [&](const char* kind, const PluginChoice& c) {
+  auto record = [&](const char* kind, const PluginChoice& c, const std::string& body = {}) {
     const auto& p = host.find(kind[0] == 'g' ? PluginKind::Generator : kind[0] == 'c' ? PluginKind::Contact
                                                                                       : PluginKind::Bond,
                               c.name);
-    meta.plugins.emplace_back(fmt::format("{}/{}", kind, c.name),
+    meta.plugins.emplace_back(fmt::format("{}/{}{}", kind, c.name, body.empty() ? "" : "/" + body),
                               fmt::format("version={}; file={}; {}", p.info.version, p.file, describe(c.params)));
   };
-  record("generator", scene.generator);
+  // One record per body entry: generator/<plugin>, or generator/<plugin>/<body name> for [[body]].
+  for (const auto& b : scene.bodies) record("generator", b.generator, b.from_generator_section ? "" : b.name);
   if (scene.contact) record("contact", *scene.contact);
   if (scene.bond) record("bond", *scene.bond);
 

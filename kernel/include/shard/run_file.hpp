@@ -27,6 +27,7 @@ struct FrameData {
   std::vector<Vec3> omega;     // rad/s
   std::vector<double> radius;  // m
   std::vector<std::int32_t> material;
+  std::vector<std::int32_t> body;  // scene body of each particle (all 0 in files without the dataset)
   std::vector<std::array<Index, 2>> bonds;  // row indices into this frame's arrays
   std::optional<std::vector<Index>> fragment;  // present when fragments were analysed
 };

@@ -226,8 +226,11 @@ FrameData RunFile::read_frame(std::size_t k) const {
   frame.omega = read_vec3(g, "omega");
   frame.radius = h5::read_dataset<double>(g, "radius", 0);
   frame.material = h5::read_dataset<std::int32_t>(g, "material", 0);
+  // Run files written before bodies existed hold one body.
+  frame.body = h5::path_exists(g, "body") ? h5::read_dataset<std::int32_t>(g, "body", 0)
+                                          : std::vector<std::int32_t>(n, 0);
   for (std::size_t size : {frame.position.size(), frame.velocity.size(), frame.omega.size(),
-                           frame.radius.size(), frame.material.size()})
+                           frame.radius.size(), frame.material.size(), frame.body.size()})
     if (size != n)
       throw OutputError(fmt::format("frame {} of '{}' has arrays of different lengths", k,
                                     impl_->path.string()));
