@@ -40,4 +40,16 @@ BodyReport body_statistics(const ParticleSample& particles, const std::vector<Fr
   return report;
 }
 
+void attach_impacts(BodyReport& report, const std::vector<BodyImpactRow>& impacts) {
+  for (BodyStatistics& b : report.bodies) {
+    if (b.body < 0 || static_cast<std::size_t>(b.body) >= impacts.size()) continue;
+    const BodyImpactRow& row = impacts[static_cast<std::size_t>(b.body)];
+    b.impacted = row.hit;
+    b.impact_time = row.time;
+    b.impact_speed = row.speed;
+    b.impact_angle = row.angle;
+    b.impact_wall = row.wall;
+  }
+}
+
 }  // namespace shard::analysis

@@ -183,6 +183,7 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
   SceneInstance inst = instantiate(scene, host, log);
   Simulation& sim = *inst.simulation;
   NumericalHealth health(sim);
+  BodyImpactRecorder impacts(sim.particles());  // first wall contact per body (docs/bodies.md)
   if (restart_point) {
     try {
       sim.import_state(restart_point->simulation);
@@ -277,12 +278,14 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
   int frames_written = 0;
   if (restart_point) {
     restore_loop_state(*restart_point, summary, frames_written, health);
+    impacts.restore(restart_point->array("body_impacts"));
     summary.restarted_from = sim.step_count();
   }
   auto checkpoint = [&] {
     Checkpoint c;
     c.simulation = sim.export_state();
     save_loop_state(c, summary, frames_written, health);
+    c.arrays.emplace_back("body_impacts", impacts.state());
     write_checkpoint(checkpoint_file, c);
     summary.checkpoint = checkpoint_file;
     summary.checkpoint_step = sim.step_count();
@@ -356,6 +359,7 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
   while (sim.step_count() < total_steps) {
     sim.step();
     health.after_step(sim);
+    impacts.update(sim);
     const std::int64_t s = sim.step_count();
     if (s % health_every == 0 || s % frame_every == 0) health.check(sim, last_good());
     if (s % series_every == 0) {
@@ -404,6 +408,7 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
   if (sim.step_count() % series_every != 0) series_row();
   if (sim.step_count() % frame_every != 0) write_frame();
   if (!summary.interrupted && summary.checkpoint_step != sim.step_count()) checkpoint();
+  writer.write_body_impacts(impacts.impacts());
   writer.flush();
 
   summary.steps = sim.step_count();

@@ -63,6 +63,8 @@ class RunFile {
   std::vector<Vec3> read_wall_series(const std::string& wall, const std::string& quantity) const;
 
   std::vector<BondBreakEvent> read_break_events() const;
+  // /body_impacts; empty when the run wrote none (killed, or older than the record).
+  std::vector<BodyImpact> read_body_impacts() const;
 
  private:
   struct Impl;

@@ -19,6 +19,19 @@ struct BodyStatistics {
   double largest_fraction = 0;    // mass of its largest fragment / mass
   bool broken = false;            // largest_fraction < intact_fraction
   SizeDistribution fsd;           // of its fragments (d_eq, mass-weighted)
+  // The first wall contact, from the run's /body_impacts (absent: impacted false).
+  bool impacted = false;
+  double impact_time = 0;         // s
+  double impact_speed = 0;        // m/s, centre-of-mass speed
+  double impact_angle = 0;        // degrees between the velocity and the wall's inward normal
+  std::int32_t impact_wall = -1;  // index in the scene's [[wall]] order
+};
+
+// One row of /body_impacts (row = body id).
+struct BodyImpactRow {
+  bool hit = false;
+  double time = 0, speed = 0, angle = 0;
+  std::int32_t wall = -1;
 };
 
 struct BodyReport {
@@ -33,5 +46,8 @@ struct BodyReport {
 // holds less than `intact_fraction` (in (0, 1]) of its mass; 1 means any fragment broken off.
 BodyReport body_statistics(const ParticleSample& particles, const std::vector<Fragment>& fragments,
                            double intact_fraction, double fines_size);
+
+// Copies each body's row of `impacts` (indexed by body id) into the report.
+void attach_impacts(BodyReport& report, const std::vector<BodyImpactRow>& impacts);
 
 }  // namespace shard::analysis

@@ -69,6 +69,8 @@ class RunFile {
   // Replaces /bodies/<k:06d>: one dataset per column of the per-body table, the run totals and
   // the pooled distribution as attributes.
   void write_body_table(std::int64_t k, const BodyReport& report);
+  // /body_impacts written at the end of a run; empty when absent.
+  std::vector<BodyImpactRow> read_body_impacts() const;
 
   const std::filesystem::path& path() const { return path_; }
 
