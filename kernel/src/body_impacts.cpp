@@ -34,8 +34,9 @@ BodyImpactRecorder::BodyImpactRecorder(const Particles& particles) {
 }
 
 void BodyImpactRecorder::update(const Simulation& simulation) {
-  if (remaining_ == 0) return;
   const Particles& p = simulation.particles();
+  // Nothing left to record, or particles without body ids (all bodies are then unknown).
+  if (remaining_ == 0 || p.body.size() != p.size()) return;
   const std::vector<Wall>& walls = simulation.walls();
   std::fill(momentum_.begin(), momentum_.end(), Vec3::Zero());
   std::fill(centre_.begin(), centre_.end(), Vec3::Zero());

@@ -111,6 +111,36 @@ TEST_CASE("[[body]] entries load; the single [generator] form is one body placed
   }
 }
 
+TEST_CASE("--set reaches a body's placement, generator and stream by name") {
+  const Scene s = load_scene_text(kTwoBars, "bodies.toml",
+                                  {"body.right.velocity=[0, 0, -5]", "body.left.generator.diameter_max=0.005",
+                                   "body.left.generator.diameter_min=0.005"},
+                                  plugins());
+  CHECK(s.bodies[1].placement.velocity == Vec3(0, 0, -5));
+  CHECK(s.bodies[0].placement.velocity == Vec3(0, 0, -3));
+  CHECK(s.bodies[0].generator.params.number("diameter_max") == 0.005);
+  CHECK(s.bodies[1].generator.params.number("diameter_max") == 0.004);
+  auto error = [](const std::vector<std::string>& set) {
+    try {
+      load_scene_text(kTwoBars, "bodies.toml", set, plugins());
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  CHECK(error({"body.middle.velocity=[0, 0, -1]"}).find("no [[body]] named 'middle'") != std::string::npos);
+  CHECK(error({"body.left.gen.diameter_max=1"}).find("a body's tables are 'generator' and 'stream'") !=
+        std::string::npos);
+  // A stream's copies and seed: what a sweep over packings varies.
+  const std::string generator = bar("x", "[0,0,0]").substr(bar("x", "[0,0,0]").find("[body.generator]"));
+  const std::string stream = kHeader + "\n[[body]]\nname = \"bars\"\n" + generator +
+                             "[body.stream]\ncopies = 2\nstart = [0, 0, 0.04]\nspacing = [0.06, 0, 0]\n";
+  const Scene more = load_scene_text(stream, "bodies.toml", {"body.bars.stream.copies=4", "body.bars.stream.seed=9"},
+                                     plugins());
+  CHECK(more.bodies[0].stream->copies == 4);
+  CHECK(more.bodies[0].stream->seed == 9);
+}
+
 TEST_CASE("bad body input is refused with file:line:column, the key and the fix") {
   // Both forms at once.
   const std::string both = kTwoBars + "\n[generator]\nplugin = \"box_fill\"\n";

@@ -48,8 +48,34 @@ void apply_override(toml::table& root, const std::string& assignment) {
         }
     throw SceneError(fmt::format("--set '{}': no [[wall]] named '{}'", assignment, parts[1]));
   }
+  // body.NAME.key (placement) or body.NAME.generator.key / body.NAME.stream.key; NAME is the
+  // entry's name, or body<k> for the k-th entry without one.
+  if ((parts.size() == 3 || parts.size() == 4) && parts[0] == "body") {
+    if (parts.size() == 4 && parts[2] != "generator" && parts[2] != "stream")
+      throw SceneError(fmt::format("--set '{}': a body's tables are 'generator' and 'stream', e.g. "
+                                   "body.{}.generator.diameter_min=0.004",
+                                   assignment, parts[1]));
+    if (auto* bodies = root["body"].as_array()) {
+      std::size_t k = 0;
+      for (auto& b : *bodies) {
+        auto* t = b.as_table();
+        if (!t || (*t)["name"].value_or(fmt::format("body{}", k++)) != parts[1]) continue;
+        toml::table* target = t;
+        if (parts.size() == 4) {
+          if (!(*t)[parts[2]].as_table()) t->insert_or_assign(parts[2], toml::table{});
+          target = (*t)[parts[2]].as_table();
+        }
+        target->insert_or_assign(parts.back(), *holder.get("v"));
+        return;
+      }
+    }
+    throw SceneError(fmt::format("--set '{}': no [[body]] named '{}'", assignment, parts[1]));
+  }
   if (parts.size() != 2)
-    throw SceneError(fmt::format("--set '{}': expected section.key=value (or wall.NAME.key=value)", assignment));
+    throw SceneError(fmt::format(
+        "--set '{}': expected section.key=value (or wall.NAME.key=value, body.NAME.key=value, "
+        "body.NAME.generator.key=value, body.NAME.stream.key=value)",
+        assignment));
   auto* section = root[parts[0]].as_table();
   if (!section) {
     root.insert(parts[0], toml::table{});
