@@ -36,6 +36,7 @@ BodySpec read_body(const toml::table& t, const std::string& file, std::size_t in
   if (body.name.empty() || body.name.find('/') != std::string::npos)
     s.fail("name", fmt::format("= '{}' cannot name a body: use a non-empty name without '/', e.g. \"plate\"", body.name));
   if (t.contains("position")) body.placement.position = s.vec3("position", Vec3::Zero());
+  else s.allow("position");  // still a valid key for the closest-match hint
   body.placement.rotation_axis = s.vec3("rotation_axis", Vec3::UnitZ());
   if (body.placement.rotation_axis.norm() == 0) s.fail("rotation_axis", "must not be the zero vector");
   body.placement.rotation_angle = s.number("rotation_angle", 0, -360, 360, "degrees");
@@ -60,8 +61,9 @@ BodySpec read_body(const toml::table& t, const std::string& file, std::size_t in
     if (body.placement.position)
       s.fail("position", "is given with a [body.stream], which places the copies from stream.start; remove one");
     body.stream = read_stream(ss, *stream->as_table());
-    if (body.stream->random_orientation && (t.contains("rotation_angle") || t.contains("rotation_axis")))
-      s.fail("rotation_angle", "is given with stream.random_orientation = true; remove one of them");
+    for (const char* key : {"rotation_angle", "rotation_axis"})
+      if (body.stream->random_orientation && t.contains(key))
+        s.fail(key, "is given with stream.random_orientation = true; remove one of them");
   }
   return body;
 }
