@@ -379,3 +379,38 @@ TEST_CASE("body ids survive a checkpoint and restart: the continued run ends as 
     CHECK(ia[k].velocity == ib[k].velocity);
   }
 }
+
+TEST_CASE("a stream over a region places copies at random, apart by a bounding diameter, or says it cannot fit") {
+  const std::string generator = bar("x", "[0,0,0]").substr(bar("x", "[0,0,0]").find("[body.generator]"));
+  const std::string head = kHeader + "\n[[body]]\nname = \"bars\"\nvelocity = [0, 0, -3]\n" + generator;
+  const std::string roomy = head + "[body.stream]\ncopies = 4\nregion_min = [0, 0, 0.05]\nregion_max = [0.3, 0.3, 0.1]\n"
+                                   "random_orientation = true\nseed = 3\n";
+  const SceneInstance inst = instantiate(load(roomy), plugins(), {});
+  const Particles& p = inst.simulation->particles();
+  REQUIRE(p.size() == 4 * 40);
+  // The bar's bounding radius about its centre: half its 40 x 8 x 8 mm diagonal of sphere centres
+  // (36 x 4 x 4 mm) plus one radius.
+  const double bound = 0.5 * std::sqrt(0.036 * 0.036 + 2 * 0.004 * 0.004) + 0.002;
+  std::vector<Vec3> centres(4, Vec3::Zero());
+  for (std::size_t k = 0; k < p.size(); ++k) centres[static_cast<std::size_t>(p.body[k])] += p.position[k] / 40.0;
+  for (std::size_t a = 0; a < 4; ++a) {
+    CHECK(centres[a].x() >= -1e-12);
+    CHECK(centres[a].x() <= 0.3 + 1e-12);
+    CHECK(centres[a].z() >= 0.05 - 1e-12);
+    for (std::size_t b = 0; b < a; ++b) CHECK((centres[a] - centres[b]).norm() >= 2 * bound - 1e-12);
+  }
+  const std::string cramped = head + "[body.stream]\ncopies = 10\nregion_min = [0, 0, 0.05]\n"
+                                     "region_max = [0.05, 0.05, 0.06]\n";
+  try {
+    instantiate(load(cramped), plugins(), {});
+    FAIL("ten bars were fitted into a 5 x 5 x 1 cm box");
+  } catch (const SceneError& e) {
+    CHECK(std::string(e.what()).find("the region cannot fit 10 copies") != std::string::npos);
+    CHECK(std::string(e.what()).find("bodies.toml:") == 0);
+  }
+  CHECK(error_of(head + "[body.stream]\ncopies = 2\nregion_min = [0, 0, 0]\nregion_max = [1, 1, 1]\n"
+                        "spacing = [0.1, 0, 0]\n")
+            .find("[body.stream] spacing is given with a region") != std::string::npos);
+  CHECK(error_of(head + "[body.stream]\ncopies = 2\nregion_min = [0, 0, 0]\nregion_max = [1, -1, 1]\n")
+            .find("must not lie below it") != std::string::npos);
+}

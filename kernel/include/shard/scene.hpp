@@ -60,14 +60,17 @@ struct BodyPlacement {
 };
 
 // N rigid copies of one generated packing: copy k's centre of mass at start + k spacing plus a
-// uniform offset in [-jitter, +jitter] per axis, turned by a uniformly random rotation (or the
-// placement's), moving at the placement's velocity times a factor uniform in
-// [1 - speed_scatter, 1 + speed_scatter]. The packing is generated once.
+// uniform offset in [-jitter, +jitter] per axis -- or, with a region, uniformly random in the box
+// [region_min, region_max] at least one bounding diameter from the earlier copies -- turned by a
+// uniformly random rotation (or the placement's), moving at the placement's velocity times a
+// factor uniform in [1 - speed_scatter, 1 + speed_scatter]. The packing is generated once.
 struct BodyStream {
   std::size_t copies = 1;
   Vec3 start = Vec3::Zero();    // m
   Vec3 spacing = Vec3::Zero();  // m
   Vec3 jitter = Vec3::Zero();   // m
+  bool in_region = false;
+  Vec3 region_min = Vec3::Zero(), region_max = Vec3::Zero();  // m, box of the centres of mass
   bool random_orientation = false;
   double speed_scatter = 0;     // relative
   std::uint64_t seed = 1;

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <unordered_map>
@@ -78,14 +79,36 @@ void place_body(const BodySpec& spec, std::size_t spec_index, const GeneratedBod
   }
   const BodyStream& s = *spec.stream;
   geometry::Random rng(s.seed);
+  // Bounding radius about the centre of mass: copies whose centres are two of it apart cannot
+  // overlap in any orientation.
+  double bound = 0;
+  for (std::size_t k = 0; k < packing.position.size(); ++k)
+    bound = std::max(bound, (packing.position[k] - com).norm() + packing.radius[k]);
+  std::vector<Vec3> centres;
   for (std::size_t k = 0; k < s.copies; ++k) {
     Pose pose;
     pose.moved = true;
-    // Draw order fixed per copy (rotation, offset, speed) so a copy's pose depends only on the seed and k.
+    // Draw order fixed per copy (rotation, position, speed) so the poses depend only on the seed.
     pose.rotation = s.random_orientation ? random_rotation(rng) : turn;
-    Vec3 jitter;
-    for (int a = 0; a < 3; ++a) jitter[a] = rng.uniform(-s.jitter[a], s.jitter[a]);
-    pose.centre = s.start + static_cast<double>(k) * s.spacing + jitter;
+    if (s.in_region) {
+      constexpr int kTries = 1000;
+      bool placed = false;
+      for (int attempt = 0; attempt < kTries && !placed; ++attempt) {
+        for (int a = 0; a < 3; ++a) pose.centre[a] = rng.uniform(s.region_min[a], s.region_max[a]);
+        placed = std::all_of(centres.begin(), centres.end(),
+                             [&](const Vec3& c) { return (c - pose.centre).norm() >= 2 * bound; });
+      }
+      if (!placed)
+        throw SceneError(fmt::format(
+            "{}: [body.stream] of '{}': the region cannot fit {} copies: copy {} found no place at least one "
+            "bounding diameter ({:.4g} m) from the others in {} tries; enlarge region_min/region_max or lower copies",
+            spec.where, spec.name, s.copies, k, 2 * bound, kTries));
+    } else {
+      Vec3 jitter;
+      for (int a = 0; a < 3; ++a) jitter[a] = rng.uniform(-s.jitter[a], s.jitter[a]);
+      pose.centre = s.start + static_cast<double>(k) * s.spacing + jitter;
+    }
+    centres.push_back(pose.centre);
     pose.velocity = p.velocity * rng.uniform(1 - s.speed_scatter, 1 + s.speed_scatter);
     pose.omega = p.angular_velocity;
     out.body_names.push_back(fmt::format("{}#{}", spec.name, k));

@@ -14,8 +14,31 @@ BodyStream read_stream(Section& s, const toml::table& t) {
     s.fail("copies", "must be a whole number of bodies, e.g. 6");
   if (!t.contains("copies")) s.fail("copies", "is missing: the number of copies the stream places, e.g. 6");
   stream.copies = static_cast<std::size_t>(copies);
+  stream.region_min = s.vec3("region_min", Vec3::Zero());
+  stream.region_max = s.vec3("region_max", Vec3::Zero());
+  stream.in_region = t.contains("region_min") || t.contains("region_max");
+  if (stream.in_region) {
+    if (!(stream.region_min.array() <= stream.region_max.array()).all() || !t.contains("region_min") ||
+        !t.contains("region_max"))
+      s.fail("region_max", "needs region_min too and must not lie below it in x, y or z (the box of the copies' "
+                           "centres of mass, m)");
+    for (const char* key : {"start", "spacing", "jitter"})
+      if (t.contains(key))
+        s.fail(key, "is given with a region, which places the copies itself; use start/spacing/jitter or "
+                    "region_min/region_max");
+    stream.random_orientation = s.flag("random_orientation", false);
+    stream.speed_scatter = s.number("speed_scatter", 0, 0, 1);
+    stream.seed = static_cast<std::uint64_t>(s.number("seed", 1, 0, 9.0e15));
+    s.allow("start");
+    s.allow("spacing");
+    s.allow("jitter");
+    s.finish();
+    return stream;
+  }
   stream.start = s.vec3("start", Vec3::Zero());
-  if (!t.contains("start")) s.fail("start", "is missing: the centre of mass of the first copy in m, e.g. [0, 0, 0.1]");
+  if (!t.contains("start"))
+    s.fail("start", "is missing: the centre of mass of the first copy in m, e.g. [0, 0, 0.1] (or give "
+                    "region_min and region_max)");
   stream.spacing = s.vec3("spacing", Vec3::Zero());
   if (stream.copies > 1 && stream.spacing.norm() == 0)
     s.fail("spacing", "is missing or zero: copy k goes to start + k spacing (m), e.g. [0.05, 0, 0]");
