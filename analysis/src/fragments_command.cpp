@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "shard/analysis/body_statistics.hpp"
 #include "shard/analysis/fragment_table.hpp"
 #include "shard/analysis/fsd_plot.hpp"
 #include "shard/analysis/lineage.hpp"
@@ -59,6 +60,42 @@ void write_csv(const std::vector<Fragment>& fragments, const std::filesystem::pa
   if (!csv) throw RunFileError("cannot write " + path.string());
 }
 
+void print_bodies(const BodyReport& report, std::size_t rows, std::ostream& out) {
+  out << fmt::format("per body (broken: largest fragment < {:g} of the body's mass):\n", report.intact_fraction);
+  out << fmt::format("{:>6} {:>9} {:>12} {:>9} {:>8} {:>6} {:>9} {:>9} {:>9} {:>11} {:>10} {:>9}\n", "body",
+                     "particles", "mass[kg]", "fragments", "largest", "broken", "x10[mm]", "x50[mm]", "x90[mm]",
+                     "fines[kg]", "v_imp[m/s]", "angle[deg]");
+  const std::size_t shown = std::min(rows, report.bodies.size());
+  for (std::size_t k = 0; k < shown; ++k) {
+    const BodyStatistics& b = report.bodies[k];
+    const std::string speed = b.impacted ? fmt::format("{:.4g}", b.impact_speed) : "-";
+    const std::string angle = b.impacted ? fmt::format("{:.3g}", b.impact_angle) : "-";
+    out << fmt::format("{:>6} {:>9} {:>12.5g} {:>9} {:>8.4f} {:>6} {:>9.4g} {:>9.4g} {:>9.4g} {:>11.4g} {:>10} {:>9}\n",
+                       b.body, b.particles, b.mass, b.fragments, b.largest_fraction, b.broken ? "yes" : "no",
+                       b.fsd.x10 * 1e3, b.fsd.x50 * 1e3, b.fsd.x90 * 1e3, b.fsd.fines_mass, speed, angle);
+  }
+  if (shown < report.bodies.size())
+    out << fmt::format("{:>6} ... {} more bodies (all in --body-csv)\n", "", report.bodies.size() - shown);
+  out << fmt::format("bodies {}  broken {}  breakage probability {:.4g}\n", report.bodies.size(), report.broken,
+                     report.breakage_probability);
+  out << fmt::format("pooled: x10 {:.5g} mm  x50 {:.5g} mm  x90 {:.5g} mm  (mass-weighted d_eq of all fragments)\n",
+                     report.pooled.x10 * 1e3, report.pooled.x50 * 1e3, report.pooled.x90 * 1e3);
+}
+
+void write_body_csv(const BodyReport& report, const std::filesystem::path& path) {
+  std::ofstream csv(path);
+  if (!csv) throw RunFileError("cannot write " + path.string());
+  csv << "body,particles,mass_kg,fragments,largest_fraction,broken,x10_m,x50_m,x90_m,fines_size_m,fines_mass_kg,"
+         "impacted,impact_time_s,impact_speed_m_s,impact_angle_deg,impact_wall\n";
+  for (const BodyStatistics& b : report.bodies) {
+    csv << fmt::format("{},{},{:.17g},{},{:.17g},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{},{:.17g},{:.17g},{:.17g},{}\n",
+                       b.body, b.particles, b.mass, b.fragments, b.largest_fraction, b.broken ? 1 : 0, b.fsd.x10,
+                       b.fsd.x50, b.fsd.x90, b.fsd.fines_size, b.fsd.fines_mass, b.impacted ? 1 : 0, b.impact_time,
+                       b.impact_speed, b.impact_angle, b.impact_wall);
+  }
+  if (!csv) throw RunFileError("cannot write " + path.string());
+}
+
 // Bounded output: the first `rows` fragments of the earlier frame, at most 8 pieces each.
 void print_lineage(std::int64_t from, std::int64_t to, const Lineage& l, std::size_t rows,
                    std::ostream& out) {
@@ -94,7 +131,10 @@ void print_lineage(std::int64_t from, std::int64_t to, const Lineage& l, std::si
 
 int fragments_command(const FragmentsOptions& options, std::ostream& out, std::ostream& err) {
   try {
-    RunFile file(options.run_file, options.write_labels ? RunFile::Mode::read_write : RunFile::Mode::read);
+    if (options.body_csv && !options.by_body)
+      throw RunFileError("--body-csv writes the per-body table of --by-body: add --by-body");
+    const bool writes = options.write_labels || options.by_body;
+    RunFile file(options.run_file, writes ? RunFile::Mode::read_write : RunFile::Mode::read);
     const std::vector<std::int64_t> frames = file.frames();
     if (frames.empty()) throw RunFileError(options.run_file.string() + " holds no frame yet");
     const std::int64_t k = options.frame.value_or(frames.back());
@@ -124,6 +164,18 @@ int fragments_command(const FragmentsOptions& options, std::ostream& out, std::o
       file.write_fragment_labels(k, analysis.labels);
       file.write_fragment_table(k, analysis.fragments, fsd);
       out << fmt::format("wrote /frames/{0}/fragment and /fragments/{0}\n", frame_name(k));
+    }
+    if (options.by_body) {
+      BodyReport report =
+          body_statistics(frame.sample(), analysis.fragments, options.intact_fraction, options.fines_size);
+      attach_impacts(report, file.read_body_impacts());
+      print_bodies(report, options.rows, out);
+      file.write_body_table(k, report);
+      out << fmt::format("wrote /bodies/{}\n", frame_name(k));
+      if (options.body_csv) {
+        write_body_csv(report, *options.body_csv);
+        out << "wrote " << options.body_csv->string() << "\n";
+      }
     }
     if (options.plot) {
       plot_size_distribution(fsd, *options.plot,

@@ -239,4 +239,81 @@ void RunFile::write_fragment_table(std::int64_t k, const std::vector<Fragment>& 
   H5Fflush(file_, H5F_SCOPE_GLOBAL);
 }
 
+std::vector<BodyImpactRow> RunFile::read_body_impacts() const {
+  const QuietHdf5Errors quiet;
+  if (!h5::has_link(file_, "body_impacts")) return {};
+  const h5::Handle g = h5::open_group(file_, "body_impacts", "/body_impacts");
+  const std::vector<hsize_t> shape = h5::dataset_shape(g.get(), "hit", "/body_impacts/hit");
+  if (shape.size() != 1) throw RunFileError("/body_impacts/hit is not one-dimensional");
+  const auto n = static_cast<std::size_t>(shape[0]);
+  std::vector<std::int32_t> hit(n), wall(n);
+  std::vector<double> time(n), speed(n), angle(n);
+  h5::read_dataset(g.get(), "hit", H5T_NATIVE_INT32, hit.data(), n, "/body_impacts/hit");
+  h5::read_dataset(g.get(), "wall", H5T_NATIVE_INT32, wall.data(), n, "/body_impacts/wall");
+  h5::read_dataset(g.get(), "time", H5T_NATIVE_DOUBLE, time.data(), n, "/body_impacts/time");
+  h5::read_dataset(g.get(), "speed", H5T_NATIVE_DOUBLE, speed.data(), n, "/body_impacts/speed");
+  h5::read_dataset(g.get(), "angle", H5T_NATIVE_DOUBLE, angle.data(), n, "/body_impacts/angle");
+  std::vector<BodyImpactRow> out(n);
+  for (std::size_t b = 0; b < n; ++b) out[b] = {hit[b] != 0, time[b], speed[b], angle[b], wall[b]};
+  return out;
+}
+
+void RunFile::write_body_table(std::int64_t k, const BodyReport& report) {
+  const QuietHdf5Errors quiet;
+  if (!h5::has_link(file_, "bodies")) h5::create_group(file_, "bodies", "/bodies");
+  const std::string where = "/bodies/" + frame_name(k);
+  if (h5::has_link(file_, where) && H5Ldelete(file_, where.c_str(), H5P_DEFAULT) < 0) {
+    throw RunFileError("cannot replace " + where);
+  }
+  const h5::Handle group = h5::create_group(file_, where, where);
+  const std::size_t count = report.bodies.size();
+  std::vector<std::int32_t> body(count), broken(count);
+  std::vector<std::int64_t> particles(count), fragments(count);
+  std::vector<double> mass(count), largest(count), x10(count), x50(count), x90(count), fines(count);
+  std::vector<std::int32_t> impacted(count);
+  std::vector<double> impact_time(count), impact_speed(count), impact_angle(count);
+  for (std::size_t r = 0; r < count; ++r) {
+    const BodyStatistics& b = report.bodies[r];
+    body[r] = b.body;
+    broken[r] = b.broken ? 1 : 0;
+    particles[r] = static_cast<std::int64_t>(b.particles);
+    fragments[r] = static_cast<std::int64_t>(b.fragments);
+    mass[r] = b.mass;
+    largest[r] = b.largest_fraction;
+    x10[r] = b.fsd.x10;
+    x50[r] = b.fsd.x50;
+    x90[r] = b.fsd.x90;
+    fines[r] = b.fsd.fines_mass;
+    impacted[r] = b.impacted ? 1 : 0;
+    impact_time[r] = b.impact_time;
+    impact_speed[r] = b.impact_speed;
+    impact_angle[r] = b.impact_angle;
+  }
+  const hid_t g = group.get();
+  h5::write_dataset(g, "body", H5T_NATIVE_INT32, {count}, body.data(), where + "/body");
+  h5::write_dataset(g, "broken", H5T_NATIVE_INT32, {count}, broken.data(), where + "/broken");
+  h5::write_dataset(g, "particles", H5T_NATIVE_INT64, {count}, particles.data(), where + "/particles");
+  h5::write_dataset(g, "fragments", H5T_NATIVE_INT64, {count}, fragments.data(), where + "/fragments");
+  h5::write_dataset(g, "mass", H5T_NATIVE_DOUBLE, {count}, mass.data(), where + "/mass");
+  h5::write_dataset(g, "largest_fraction", H5T_NATIVE_DOUBLE, {count}, largest.data(), where + "/largest_fraction");
+  h5::write_dataset(g, "x10", H5T_NATIVE_DOUBLE, {count}, x10.data(), where + "/x10");
+  h5::write_dataset(g, "x50", H5T_NATIVE_DOUBLE, {count}, x50.data(), where + "/x50");
+  h5::write_dataset(g, "x90", H5T_NATIVE_DOUBLE, {count}, x90.data(), where + "/x90");
+  h5::write_dataset(g, "fines_mass", H5T_NATIVE_DOUBLE, {count}, fines.data(), where + "/fines_mass");
+  h5::write_dataset(g, "impacted", H5T_NATIVE_INT32, {count}, impacted.data(), where + "/impacted");
+  h5::write_dataset(g, "impact_time", H5T_NATIVE_DOUBLE, {count}, impact_time.data(), where + "/impact_time");
+  h5::write_dataset(g, "impact_speed", H5T_NATIVE_DOUBLE, {count}, impact_speed.data(), where + "/impact_speed");
+  h5::write_dataset(g, "impact_angle", H5T_NATIVE_DOUBLE, {count}, impact_angle.data(), where + "/impact_angle");
+  h5::write_int_attribute(g, "count", static_cast<std::int64_t>(count), where);
+  h5::write_int_attribute(g, "broken_count", static_cast<std::int64_t>(report.broken), where);
+  h5::write_double_attribute(g, "breakage_probability", report.breakage_probability, where);
+  h5::write_double_attribute(g, "intact_fraction", report.intact_fraction, where);
+  h5::write_double_attribute(g, "x10", report.pooled.x10, where);
+  h5::write_double_attribute(g, "x50", report.pooled.x50, where);
+  h5::write_double_attribute(g, "x90", report.pooled.x90, where);
+  h5::write_double_attribute(g, "fines_size", report.pooled.fines_size, where);
+  h5::write_double_attribute(g, "fines_mass", report.pooled.fines_mass, where);
+  H5Fflush(file_, H5F_SCOPE_GLOBAL);
+}
+
 }  // namespace shard::analysis

@@ -183,6 +183,7 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
   SceneInstance inst = instantiate(scene, host, log);
   Simulation& sim = *inst.simulation;
   NumericalHealth health(sim);
+  BodyImpactRecorder impacts(sim.particles());  // first wall contact per body (docs/bodies.md)
   if (restart_point) {
     try {
       sim.import_state(restart_point->simulation);
@@ -218,14 +219,15 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
   meta.shard_version = SHARD_VERSION;
   meta.git_revision = SHARD_GIT_REVISION;
   meta.generator_quality = inst.body.quality;
-  auto record = [&](const char* kind, const PluginChoice& c) {
+  auto record = [&](const char* kind, const PluginChoice& c, const std::string& body = {}) {
     const auto& p = host.find(kind[0] == 'g' ? PluginKind::Generator : kind[0] == 'c' ? PluginKind::Contact
                                                                                       : PluginKind::Bond,
                               c.name);
-    meta.plugins.emplace_back(fmt::format("{}/{}", kind, c.name),
+    meta.plugins.emplace_back(fmt::format("{}/{}{}", kind, c.name, body.empty() ? "" : "/" + body),
                               fmt::format("version={}; file={}; {}", p.info.version, p.file, describe(c.params)));
   };
-  record("generator", scene.generator);
+  // One record per body entry: generator/<plugin>, or generator/<plugin>/<body name> for [[body]].
+  for (const auto& b : scene.bodies) record("generator", b.generator, b.from_generator_section ? "" : b.name);
   if (scene.contact) record("contact", *scene.contact);
   if (scene.bond) record("bond", *scene.bond);
   if (scene.bond)  // the out-of-tree bond effects composed onto the law (docs/plugins.md)
@@ -280,12 +282,14 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
   int frames_written = 0;
   if (restart_point) {
     restore_loop_state(*restart_point, summary, frames_written, health);
+    impacts.restore(restart_point->array("body_impacts"));
     summary.restarted_from = sim.step_count();
   }
   auto checkpoint = [&] {
     Checkpoint c;
     c.simulation = sim.export_state();
     save_loop_state(c, summary, frames_written, health);
+    c.arrays.emplace_back("body_impacts", impacts.state());
     write_checkpoint(checkpoint_file, c);
     summary.checkpoint = checkpoint_file;
     summary.checkpoint_step = sim.step_count();
@@ -359,6 +363,7 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
   while (sim.step_count() < total_steps) {
     sim.step();
     health.after_step(sim);
+    impacts.update(sim);
     const std::int64_t s = sim.step_count();
     if (s % health_every == 0 || s % frame_every == 0) health.check(sim, last_good());
     if (s % series_every == 0) {
@@ -407,6 +412,7 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
   if (sim.step_count() % series_every != 0) series_row();
   if (sim.step_count() % frame_every != 0) write_frame();
   if (!summary.interrupted && summary.checkpoint_step != sim.step_count()) checkpoint();
+  writer.write_body_impacts(impacts.impacts());
   writer.flush();
 
   summary.steps = sim.step_count();

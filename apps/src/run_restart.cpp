@@ -76,6 +76,7 @@ std::int64_t copy_run_prefix(const std::filesystem::path& old_file, RunWriter& w
     p.omega = f.omega;
     p.radius = f.radius;
     p.material = f.material;
+    p.body = f.body;
     Bonds b;
     for (const auto& pair : f.bonds) {
       b.i.push_back(pair[0]);

@@ -88,6 +88,7 @@ void write_particles(hid_t file, const Particles& p) {
   put(g.get(), "material", p.material);
   put(g.get(), "flags", p.flags);
   put(g.get(), "id", p.id);
+  put(g.get(), "body", p.body);
 }
 
 Particles read_particles(hid_t file) {
@@ -105,6 +106,8 @@ Particles read_particles(hid_t file) {
   p.material = get<std::int32_t>(g.get(), "material");
   p.flags = get<std::uint8_t>(g.get(), "flags");
   p.id = get<Index>(g.get(), "id");
+  // Checkpoints written before bodies existed hold one body: every particle in body 0.
+  p.body = h5::path_exists(g.get(), "body") ? get<std::int32_t>(g.get(), "body") : std::vector<std::int32_t>(p.id.size(), 0);
   return p;
 }
 

@@ -4,7 +4,7 @@
 
 namespace shard {
 
-Index Particles::add(const Vec3& x, double r, double density, std::int32_t material_id) {
+Index Particles::add(const Vec3& x, double r, double density, std::int32_t material_id, std::int32_t body_id) {
   const double m = density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
   const auto index = static_cast<Index>(size());
   position.push_back(x);
@@ -19,6 +19,7 @@ Index Particles::add(const Vec3& x, double r, double density, std::int32_t mater
   material.push_back(material_id);
   flags.push_back(0);
   id.push_back(index);
+  body.push_back(body_id);
   return index;
 }
 
@@ -35,6 +36,7 @@ void Particles::reserve(std::size_t n) {
   material.reserve(n);
   flags.reserve(n);
   id.reserve(n);
+  body.reserve(n);
 }
 
 ParticleView view_of(const Particles& p) {

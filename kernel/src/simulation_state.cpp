@@ -15,7 +15,8 @@ void require_consistent(const Particles& p) {
   const std::size_t n = p.size();
   const bool ok = p.velocity.size() == n && p.orientation.size() == n && p.omega.size() == n &&
                   p.force.size() == n && p.torque.size() == n && p.radius.size() == n && p.mass.size() == n &&
-                  p.inertia.size() == n && p.material.size() == n && p.flags.size() == n && p.id.size() == n;
+                  p.inertia.size() == n && p.material.size() == n && p.flags.size() == n && p.id.size() == n &&
+                  p.body.size() == n;
   if (!ok) throw std::invalid_argument("the checkpoint's particle arrays have different lengths");
 }
 

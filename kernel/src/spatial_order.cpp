@@ -83,6 +83,7 @@ void SpatialOrder::apply(Particles& p, Bonds& bonds) {
   gather(p.material, scratch_.material, order, n);
   gather(p.flags, scratch_.flags, order, n);
   gather(p.id, scratch_.id, order, n);
+  gather(p.body, scratch_.body, order, n);
 
   // Bonds: rename the ends (each keeps its orientation: a bond model may store state relative to
   // its first end), then a stable counting sort by the smaller end.

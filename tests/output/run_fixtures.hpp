@@ -52,6 +52,7 @@ inline Particles make_particles(std::size_t n, int frame) {
     p.material.push_back(static_cast<std::int32_t>(k % 3));
     p.flags.push_back(0);
     p.id.push_back(static_cast<Index>(1000 + 3 * k + static_cast<std::size_t>(frame)));
+    p.body.push_back(static_cast<std::int32_t>(k % 2));
   }
   return p;
 }

@@ -73,7 +73,7 @@ def read_h5(run_h5):
         times = [float(f["frames"][k].attrs["time"]) for k in names]
         first, last = f["frames"][names[0]], f["frames"][names[-1]]
         frame = {key: last[key][()] for key in
-                 ("position", "velocity", "radius", "id", "material", "fragment", "bonds")}
+                 ("position", "velocity", "radius", "id", "material", "body", "fragment", "bonds")}
         frame["first_bonds"] = first["bonds"].shape[0]
     return times, frame
 
@@ -141,7 +141,7 @@ def main(shard, scene, work):
           f"particle positions arrive as VTK type {particles.GetPoints().GetDataType()}, not double")
     check_close("position", vtk_to_numpy(particles.GetPoints().GetData()), h5["position"])
     for name, exact in (("radius", False), ("velocity", False), ("id", True), ("material", True),
-                        ("fragment", True)):
+                        ("body", True), ("fragment", True)):
         values = point_array(particles, name)
         if values is not None:
             (check_equal if exact else check_close)(name, values, h5[name])

@@ -26,6 +26,7 @@ void check_frame(const FrameData& f, int frame, bool fragments) {
   CHECK(f.omega == p.omega);
   CHECK(f.radius == p.radius);
   CHECK(f.material == p.material);
+  CHECK(f.body == p.body);
   // The chain minus the bond flagged broken, as row pairs in the original order.
   std::vector<std::array<Index, 2>> expected;
   for (Index k = 0; k + 1 < static_cast<Index>(kParticles); ++k)

@@ -142,9 +142,10 @@ TEST_CASE("the XDMF index references only datasets that exist, with their dimens
   CHECK(count(xml, "Attribute Name=\"fragment\"") == 1);
 
   const auto items = data_items(xml);
-  // Per frame: position (particles), radius, velocity, omega, id, material; with bonds:
+  // Per frame: position (particles), radius, velocity, omega, id, material, body; with bonds:
   // bonds + position again; frame 1 has fragment.
-  CHECK(items.size() == 8 + 9 + 6);
+  CHECK(items.size() == 9 + 10 + 7);
+  CHECK(count(xml, "Attribute Name=\"body\"") == 3);
   const hid_t file = H5Fopen(h5_path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   REQUIRE(file >= 0);
   for (const DataItem& item : items) {

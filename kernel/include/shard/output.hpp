@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "shard/body_impacts.hpp"
 #include "shard/bonds.hpp"
 #include "shard/particles.hpp"
 #include "shard/wall.hpp"
@@ -57,6 +58,9 @@ class RunWriter {
   // Rewrites the .xmf index and flushes the file.
   void write_frame(std::int64_t step, double time, const Particles& particles, const Bonds& bonds,
                    const std::vector<Index>* fragment_labels = nullptr);
+  // /body_impacts (docs/output-format.md): the first wall contact of every body. Once per run,
+  // at its end (a frame's objects are never rewritten: see run_writer.cpp).
+  void write_body_impacts(const std::vector<BodyImpact>& impacts);
   void flush();
   const std::filesystem::path& path() const;
 

@@ -29,11 +29,14 @@ struct Particles {
   std::vector<std::int32_t> material;
   std::vector<std::uint8_t> flags;
   std::vector<Index> id;  // stable id: survives reordering, used in output and events
+  // The scene body the particle was generated in ([[body]] entries and stream copies in order,
+  // 0 for the single [generator] form): kept through reordering, checkpoints and the output.
+  std::vector<std::int32_t> body;
 
   std::size_t size() const { return position.size(); }
 
   // Appends a sphere at rest with identity orientation.
-  Index add(const Vec3& x, double r, double density, std::int32_t material_id = 0);
+  Index add(const Vec3& x, double r, double density, std::int32_t material_id = 0, std::int32_t body_id = 0);
   void reserve(std::size_t n);
 };
 

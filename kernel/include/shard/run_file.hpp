@@ -27,6 +27,7 @@ struct FrameData {
   std::vector<Vec3> omega;     // rad/s
   std::vector<double> radius;  // m
   std::vector<std::int32_t> material;
+  std::vector<std::int32_t> body;  // scene body of each particle (all 0 in files without the dataset)
   std::vector<std::array<Index, 2>> bonds;  // row indices into this frame's arrays
   std::optional<std::vector<Index>> fragment;  // present when fragments were analysed
 };
@@ -62,6 +63,8 @@ class RunFile {
   std::vector<Vec3> read_wall_series(const std::string& wall, const std::string& quantity) const;
 
   std::vector<BondBreakEvent> read_break_events() const;
+  // /body_impacts; empty when the run wrote none (killed, or older than the record).
+  std::vector<BodyImpact> read_body_impacts() const;
 
  private:
   struct Impl;

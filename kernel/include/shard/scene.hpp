@@ -46,6 +46,52 @@ struct Grip {
   Vec3 velocity = Vec3::Zero();  // m/s; zero = clamped in place
 };
 
+// Where one body goes (docs/bodies.md). The generated packing is turned by
+// `rotation_angle` degrees, right-handed about `rotation_axis` through its centre of mass, then
+// moved so that its centre of mass lies at `position`; it starts as a rigid body moving at
+// `velocity` and spinning at `angular_velocity` about that centre. Without a position and a
+// rotation the packing stays exactly where the generator put it.
+struct BodyPlacement {
+  std::optional<Vec3> position;          // m
+  Vec3 rotation_axis = Vec3::UnitZ();
+  double rotation_angle = 0;             // degrees
+  Vec3 velocity = Vec3::Zero();          // m/s
+  Vec3 angular_velocity = Vec3::Zero();  // rad/s, lab frame
+};
+
+// N rigid copies of one generated packing: copy k's centre of mass at start + k spacing plus a
+// uniform offset in [-jitter, +jitter] per axis -- or, with a region, uniformly random in the box
+// [region_min, region_max] at least one bounding diameter from the earlier copies -- turned by a
+// uniformly random rotation (or the placement's), moving at the placement's velocity times a
+// factor uniform in [1 - speed_scatter, 1 + speed_scatter]. The packing is generated once.
+struct BodyStream {
+  std::size_t copies = 1;
+  Vec3 start = Vec3::Zero();    // m
+  Vec3 spacing = Vec3::Zero();  // m
+  Vec3 jitter = Vec3::Zero();   // m
+  bool in_region = false;
+  Vec3 region_min = Vec3::Zero(), region_max = Vec3::Zero();  // m, box of the centres of mass
+  bool random_orientation = false;
+  double speed_scatter = 0;     // relative
+  std::uint64_t seed = 1;
+};
+
+// One [[body]] entry, or the single [generator] section (`from_generator_section`, placed as
+// generated). Bodies are numbered in scene order, a stream's copies one after another.
+struct BodySpec {
+  std::string name;
+  std::string where;  // file:line:column of the entry
+  PluginChoice generator;
+  BodyPlacement placement;
+  std::optional<BodyStream> stream;
+  bool from_generator_section = false;
+  std::size_t count() const { return stream ? stream->copies : 1; }
+};
+
+// Particles of different bodies closer than r_i + r_j - kBodyOverlapTolerance * min(r_i, r_j)
+// at placement are refused: bodies start apart (or touching within 0.1 % of a radius).
+inline constexpr double kBodyOverlapTolerance = 1e-3;
+
 struct Scene {
   std::filesystem::path file;
   std::filesystem::path dir;
@@ -62,7 +108,7 @@ struct Scene {
   double frame_interval = 0;   // s; 0 = duration / 50
   double series_interval = 0;  // s; 0 = duration / 2000
   int fragments_every = 1;     // label fragments at every k-th frame; 0 = never
-  PluginChoice generator;
+  std::vector<BodySpec> bodies;  // at least one
   std::optional<PluginChoice> contact;
   std::optional<PluginChoice> bond;
   std::vector<Wall> walls;
@@ -77,11 +123,14 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<std::strin
 Scene load_scene_text(const std::string& text, const std::filesystem::path& file_for_messages,
                       const std::vector<std::string>& overrides, const PluginHost& host);
 
-// The models and the generated body of a scene, ready to step.
+// The models and the generated bodies of a scene, ready to step.
 struct SceneInstance {
   std::unique_ptr<ContactModel> contact;
   std::unique_ptr<BondModel> bond;
+  // Every body as placed, one after another (bonds as row pairs into this list). The packing
+  // quality is the single generator's, or each [[body]] entry's prefixed "<name>.".
   GeneratedBody body;
+  std::vector<std::string> body_names;  // per body id: the entry's name, "name#k" for copy k of a stream
   std::unique_ptr<Simulation> simulation;
 };
 

@@ -28,6 +28,7 @@ void collect_frame_bonds(const Particles& particles, const Bonds& bonds,
   require_size(particles.omega.size(), n, "omega");
   require_size(particles.radius.size(), n, "radius");
   require_size(particles.material.size(), n, "material");
+  require_size(particles.body.size(), n, "body");
   if (fragment_labels != nullptr) require_size(fragment_labels->size(), n, "fragment labels");
 
   // Bonds flagged broken but not yet removed are not part of the snapshot.
@@ -56,6 +57,7 @@ void write_frame_datasets(hid_t group, const Particles& particles, const std::ve
   // Masses are stored so that fragment masses need no density from the user.
   h5::write_dataset(group, "mass", particles.mass.data(), n);
   h5::write_dataset(group, "material", particles.material.data(), n);
+  h5::write_dataset(group, "body", particles.body.data(), n);
   h5::write_dataset(group, "bonds", pairs.data(), pairs.size() / 2, 2);
   if (fragment_labels != nullptr) h5::write_dataset(group, "fragment", fragment_labels->data(), n);
 }

@@ -226,8 +226,11 @@ FrameData RunFile::read_frame(std::size_t k) const {
   frame.omega = read_vec3(g, "omega");
   frame.radius = h5::read_dataset<double>(g, "radius", 0);
   frame.material = h5::read_dataset<std::int32_t>(g, "material", 0);
+  // Run files written before bodies existed hold one body.
+  frame.body = h5::path_exists(g, "body") ? h5::read_dataset<std::int32_t>(g, "body", 0)
+                                          : std::vector<std::int32_t>(n, 0);
   for (std::size_t size : {frame.position.size(), frame.velocity.size(), frame.omega.size(),
-                           frame.radius.size(), frame.material.size()})
+                           frame.radius.size(), frame.material.size(), frame.body.size()})
     if (size != n)
       throw OutputError(fmt::format("frame {} of '{}' has arrays of different lengths", k,
                                     impl_->path.string()));
@@ -316,6 +319,32 @@ std::vector<BondBreakEvent> RunFile::read_break_events() const {
     e.stress.dominant = static_cast<BondFailureMode>(mode[k]);
   }
   return events;
+}
+
+std::vector<BodyImpact> RunFile::read_body_impacts() const {
+  const h5::QuietErrors quiet;
+  const hid_t f = impl_->id();
+  if (!h5::path_exists(f, "body_impacts")) return {};
+  const h5::Handle g = h5::open_group(f, "body_impacts");
+  const auto hit = h5::read_dataset<std::int32_t>(g.get(), "hit", 0);
+  const auto step = h5::read_dataset<std::int64_t>(g.get(), "step", 0);
+  const auto time = h5::read_dataset<double>(g.get(), "time", 0);
+  const auto velocity = h5::read_dataset<double>(g.get(), "velocity", 3);
+  const auto normal = h5::read_dataset<double>(g.get(), "normal", 3);
+  const auto wall = h5::read_dataset<std::int32_t>(g.get(), "wall", 0);
+  const std::size_t n = hit.size();
+  if (step.size() != n || time.size() != n || velocity.size() != 3 * n || normal.size() != 3 * n || wall.size() != n)
+    throw OutputError(fmt::format("/body_impacts of '{}' has columns of different lengths", impl_->path.string()));
+  std::vector<BodyImpact> out(n);
+  for (std::size_t b = 0; b < n; ++b) {
+    out[b].hit = hit[b] != 0;
+    out[b].step = step[b];
+    out[b].time = time[b];
+    out[b].velocity = Vec3(velocity[3 * b], velocity[3 * b + 1], velocity[3 * b + 2]);
+    out[b].normal = Vec3(normal[3 * b], normal[3 * b + 1], normal[3 * b + 2]);
+    out[b].wall = wall[b];
+  }
+  return out;
 }
 
 }  // namespace shard

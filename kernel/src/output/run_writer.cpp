@@ -208,6 +208,38 @@ void RunWriter::write_frame(std::int64_t step, double time, const Particles& par
                fragment_labels != nullptr});
 }
 
+void RunWriter::write_body_impacts(const std::vector<BodyImpact>& impacts) {
+  const h5::QuietErrors quiet;
+  impl_->write_blocks();
+  h5::Handle group = h5::create_group(impl_->file.get(), "body_impacts");
+  const std::size_t n = impacts.size();
+  std::vector<std::int32_t> hit(n), wall(n);
+  std::vector<std::int64_t> step(n);
+  std::vector<double> time(n), speed(n), angle(n);
+  std::vector<Vec3> velocity(n), normal(n);
+  for (std::size_t b = 0; b < n; ++b) {
+    const BodyImpact& i = impacts[b];
+    hit[b] = i.hit ? 1 : 0;
+    wall[b] = i.wall;
+    step[b] = i.step;
+    time[b] = i.time;
+    speed[b] = i.speed();
+    angle[b] = i.angle_degrees();
+    velocity[b] = i.velocity;
+    normal[b] = i.normal;
+  }
+  const hid_t g = group.get();
+  h5::write_dataset(g, "hit", hit.data(), n);
+  h5::write_dataset(g, "step", step.data(), n);
+  h5::write_dataset(g, "time", time.data(), n);
+  h5::write_dataset(g, "velocity", n == 0 ? nullptr : velocity.front().data(), n, 3);
+  h5::write_dataset(g, "normal", n == 0 ? nullptr : normal.front().data(), n, 3);
+  h5::write_dataset(g, "wall", wall.data(), n);
+  h5::write_dataset(g, "speed", speed.data(), n);
+  h5::write_dataset(g, "angle", angle.data(), n);
+  impl_->flush_file();
+}
+
 void RunWriter::flush() {
   const h5::QuietErrors quiet;
   impl_->write_blocks();

@@ -50,6 +50,7 @@ std::string render_frame(const XdmfFrame& frame, const std::string& h5_name) {
   xml += attribute("omega", true, "Float", 8, n, h5_name, g + "/omega");
   xml += attribute("id", false, "Int", 4, n, h5_name, g + "/id");
   xml += attribute("material", false, "Int", 4, n, h5_name, g + "/material");
+  xml += attribute("body", false, "Int", 4, n, h5_name, g + "/body");
   if (frame.fragments) xml += attribute("fragment", false, "Int", 4, n, h5_name, g + "/fragment");
   xml += "        </Grid>\n";
   // ParaView rejects a Polyline topology with no elements, so a frame without surviving bonds

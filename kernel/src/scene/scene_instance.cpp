@@ -2,36 +2,63 @@
 
 #include <stdexcept>
 
+#include "body_placement.hpp"
 #include "shard/scene.hpp"
 
 namespace shard {
 
-SceneInstance instantiate(const Scene& scene, const PluginHost& host,
-                          const std::function<void(const std::string&)>& log) {
-  SceneInstance out;
+namespace {
+
+// One packing per [[body]] entry (a stream's copies share it), checked as the generator made it.
+GeneratedBody generate(const BodySpec& spec, const Scene& scene, const PluginHost& host,
+                       const std::function<void(const std::string&)>& log) {
+  const std::string section = spec.from_generator_section ? "[generator]" : "[body.generator]";
   std::unique_ptr<Generator> generator;
   try {
-    generator = host.make_generator(scene.generator.name, scene.generator.params);
+    generator = host.make_generator(spec.generator.name, spec.generator.params);
   } catch (const std::exception& e) {  // the plugin's own parameter checks (d_min > d_max, ...)
-    throw SceneError(fmt::format("{}: [generator] {}", scene.generator.where, e.what()));
+    throw SceneError(fmt::format("{}: {} {}", spec.generator.where, section, e.what()));
   }
   GeneratorContext ctx;
   ctx.scene_dir = scene.dir.string();
   ctx.seed = scene.seed;
   ctx.log = log;
+  GeneratedBody body;
   try {
-    out.body = generator->generate(ctx);
+    body = generator->generate(ctx);
   } catch (const std::exception& e) {
-    throw SceneError(fmt::format("{}: generator '{}' failed: {}", scene.generator.where, scene.generator.name, e.what()));
+    throw SceneError(fmt::format("{}: generator '{}' failed: {}", spec.generator.where, spec.generator.name, e.what()));
   }
-  if (out.body.position.empty())
+  if (body.position.empty())
     throw SceneError(fmt::format("{}: generator '{}' produced no particles; check its size parameters",
-                                 scene.generator.where, scene.generator.name));
-  if (!out.body.bonds.empty() && !scene.bond)
+                                 spec.generator.where, spec.generator.name));
+  if (!body.bonds.empty() && !scene.bond)
     throw SceneError(fmt::format(
         "{}: the generator made {} bonds but the scene has no [bond] section; add one (plugin = \"beam_bond\") "
         "or switch bonding off in the generator",
-        scene.generator.where, out.body.bonds.size()));
+        spec.generator.where, body.bonds.size()));
+  return body;
+}
+
+}  // namespace
+
+SceneInstance instantiate(const Scene& scene, const PluginHost& host,
+                          const std::function<void(const std::string&)>& log) {
+  SceneInstance out;
+  scene_detail::PlacedBodies placed;
+  for (std::size_t s = 0; s < scene.bodies.size(); ++s) {
+    const BodySpec& spec = scene.bodies[s];
+    const GeneratedBody packing = generate(spec, scene, host, log);
+    for (const auto& [name, value] : packing.quality)
+      placed.all.quality.emplace_back(spec.from_generator_section ? name : spec.name + "." + name, value);
+    scene_detail::place_body(spec, s, packing, placed);
+    if (log && !spec.from_generator_section)
+      log(fmt::format("body {}: {} particles, {} bonds{}", spec.name, packing.position.size(), packing.bonds.size(),
+                      spec.stream ? fmt::format(", {} copies", spec.stream->copies) : std::string()));
+  }
+  scene_detail::check_body_overlaps(placed, scene.bodies);
+  out.body = std::move(placed.all);
+  out.body_names = std::move(placed.body_names);
   // The plugins' own parameter checks (an unknown effect policy, a modulus <= 0) name the section.
   try {
     if (scene.contact) out.contact = host.make_contact(scene.contact->name, scene.contact->params);
@@ -47,9 +74,12 @@ SceneInstance instantiate(const Scene& scene, const PluginHost& host,
   SimulationSetup setup;
   const std::size_t n = out.body.position.size();
   setup.particles.reserve(n);
-  for (std::size_t k = 0; k < n; ++k)
-    setup.particles.add(out.body.position[k], out.body.radius[k], scene.density,
-                        out.body.material.empty() ? 0 : out.body.material[k]);
+  for (std::size_t k = 0; k < n; ++k) {
+    setup.particles.add(out.body.position[k], out.body.radius[k], scene.density, out.body.material[k],
+                        placed.body[k]);
+    setup.particles.velocity[k] = placed.velocity[k];
+    setup.particles.omega[k] = placed.omega[k];
+  }
   for (const auto& grip : scene.grips) {
     std::size_t held = 0;
     for (std::size_t k = 0; k < n; ++k) {

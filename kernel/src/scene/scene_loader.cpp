@@ -9,128 +9,17 @@
 
 #include "shard/geometry/stl.hpp"
 #include "shard/scene.hpp"
+#include "body_section.hpp"
+#include "scene_section.hpp"
 #include "wall_table_reader.hpp"
 
 namespace shard {
 namespace {
 
-std::string where(const std::string& file, const toml::source_region& s) {
-  return fmt::format("{}:{}:{}", file, s.begin.line, s.begin.column);
-}
-
-// Reads one section against a fixed list of keys; every getter records the key as known.
-class Section {
- public:
-  Section(const toml::table* t, std::string file, std::string name)
-      : table_(t), file_(std::move(file)), name_(std::move(name)) {}
-  bool present() const { return table_ != nullptr; }
-  std::string at() const { return table_ ? where(file_, table_->source()) : file_; }
-  std::string at(const std::string& key) const {
-    const toml::node* n = table_ ? table_->get(key) : nullptr;
-    return n ? where(file_, n->source()) : at();
-  }
-
-  double number(const std::string& key, double fallback, double min = -1e300, double max = 1e300,
-                const char* unit = "") {
-    known_.push_back(key);
-    const toml::node* n = node(key);
-    if (!n) return fallback;
-    auto v = n->value<double>();
-    if (!v) fail(key, fmt::format("must be a number [{}]", unit));
-    if (!(*v >= min && *v <= max)) fail(key, fmt::format("= {} is out of range [{}, {}] {}", *v, min, max, unit));
-    return *v;
-  }
-  bool flag(const std::string& key, bool fallback) {
-    known_.push_back(key);
-    const toml::node* n = node(key);
-    if (!n) return fallback;
-    auto v = n->value<bool>();
-    if (!v) fail(key, "must be true or false");
-    return *v;
-  }
-  std::string text(const std::string& key, const std::string& fallback) {
-    known_.push_back(key);
-    const toml::node* n = node(key);
-    if (!n) return fallback;
-    auto v = n->value<std::string>();
-    if (!v) fail(key, "must be a string");
-    return *v;
-  }
-  Vec3 vec3(const std::string& key, const Vec3& fallback) {
-    known_.push_back(key);
-    const toml::node* n = node(key);
-    if (!n) return fallback;
-    return to_vec3(*n, key);
-  }
-  std::vector<std::string> strings(const std::string& key) {
-    known_.push_back(key);
-    std::vector<std::string> out;
-    const toml::node* n = node(key);
-    if (!n) return out;
-    const auto* arr = n->as_array();
-    if (!arr) fail(key, "must be an array of strings, e.g. [\"pin_left\", \"pin_right\"]");
-    for (const auto& e : *arr) {
-      auto s = e.value<std::string>();
-      if (!s) fail(key, "must be an array of strings");
-      out.push_back(*s);
-    }
-    return out;
-  }
-  // "auto" or a number.
-  double number_or_auto(const std::string& key) {
-    known_.push_back(key);
-    const toml::node* n = node(key);
-    if (!n) return 0;
-    if (auto s = n->value<std::string>(); s && *s == "auto") return 0;
-    auto v = n->value<double>();
-    if (!v || !(*v > 0)) fail(key, "must be \"auto\" or a positive number of seconds");
-    return *v;
-  }
-  Vec3 to_vec3(const toml::node& n, const std::string& key) const {
-    const auto* arr = n.as_array();
-    if (!arr || arr->size() != 3) fail(key, "must be an array of three numbers, e.g. [0, 0, -9.81]");
-    Vec3 v;
-    for (int c = 0; c < 3; ++c) {
-      auto d = (*arr)[static_cast<std::size_t>(c)].value<double>();
-      if (!d) fail(key, "must be an array of three numbers");
-      v[c] = *d;
-    }
-    return v;
-  }
-  // Everything not read by a getter is a plugin parameter (when `rest` is given) or an error.
-  void finish(std::map<std::string, RawParam>* rest = nullptr) const {
-    if (!table_) return;
-    for (auto&& [k, v] : *table_) {
-      const std::string key(k.str());
-      if (std::find(known_.begin(), known_.end(), key) != known_.end()) continue;
-      if (rest) {
-        (*rest)[key] = RawParam{plugin_value(v, key), where(file_, v.source())};
-        continue;
-      }
-      const std::string hint = closest_match(key, known_);
-      throw SceneError(fmt::format("{}: unknown key '{}' in [{}]{}; valid keys: {}", where(file_, v.source()), key,
-                                   name_, hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint),
-                                   fmt::join(known_, ", ")));
-    }
-  }
-  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
-    throw SceneError(fmt::format("{}: [{}] {} {}", at(key), name_, key, what));
-  }
-
- private:
-  const toml::node* node(const std::string& key) const { return table_ ? table_->get(key) : nullptr; }
-  ParamValue plugin_value(const toml::node& n, const std::string& key) const {
-    if (auto d = n.value<double>()) return *d;
-    if (auto b = n.value<bool>()) return *b;
-    if (auto s = n.value<std::string>()) return *s;
-    if (n.is_array()) return to_vec3(n, key);
-    fail(key, "has a type no plugin parameter takes (number, boolean, string or [x, y, z])");
-  }
-  const toml::table* table_;
-  std::string file_;
-  std::string name_;
-  std::vector<std::string> known_;
-};
+using scene_detail::plugin_choice;
+using scene_detail::read_bodies;
+using scene_detail::Section;
+using scene_detail::where;
 
 void apply_override(toml::table& root, const std::string& assignment) {
   const auto eq = assignment.find('=');
@@ -159,37 +48,40 @@ void apply_override(toml::table& root, const std::string& assignment) {
         }
     throw SceneError(fmt::format("--set '{}': no [[wall]] named '{}'", assignment, parts[1]));
   }
+  // body.NAME.key (placement) or body.NAME.generator.key / body.NAME.stream.key; NAME is the
+  // entry's name, or body<k> for the k-th entry without one.
+  if ((parts.size() == 3 || parts.size() == 4) && parts[0] == "body") {
+    if (parts.size() == 4 && parts[2] != "generator" && parts[2] != "stream")
+      throw SceneError(fmt::format("--set '{}': a body's tables are 'generator' and 'stream', e.g. "
+                                   "body.{}.generator.diameter_min=0.004",
+                                   assignment, parts[1]));
+    if (auto* bodies = root["body"].as_array()) {
+      std::size_t k = 0;
+      for (auto& b : *bodies) {
+        auto* t = b.as_table();
+        if (!t || (*t)["name"].value_or(fmt::format("body{}", k++)) != parts[1]) continue;
+        toml::table* target = t;
+        if (parts.size() == 4) {
+          if (!(*t)[parts[2]].as_table()) t->insert_or_assign(parts[2], toml::table{});
+          target = (*t)[parts[2]].as_table();
+        }
+        target->insert_or_assign(parts.back(), *holder.get("v"));
+        return;
+      }
+    }
+    throw SceneError(fmt::format("--set '{}': no [[body]] named '{}'", assignment, parts[1]));
+  }
   if (parts.size() != 2)
-    throw SceneError(fmt::format("--set '{}': expected section.key=value (or wall.NAME.key=value)", assignment));
+    throw SceneError(fmt::format(
+        "--set '{}': expected section.key=value (or wall.NAME.key=value, body.NAME.key=value, "
+        "body.NAME.generator.key=value, body.NAME.stream.key=value)",
+        assignment));
   auto* section = root[parts[0]].as_table();
   if (!section) {
     root.insert(parts[0], toml::table{});
     section = root[parts[0]].as_table();
   }
   section->insert_or_assign(parts[1], *holder.get("v"));
-}
-
-PluginChoice plugin_section(const toml::table& root, const std::string& file, const std::string& name, PluginKind kind,
-                            const PluginHost& host) {
-  Section s(root[name].as_table(), file, name);
-  PluginChoice choice;
-  choice.where = s.at();
-  choice.name = s.text("plugin", "");
-  if (choice.name.empty()) s.fail("plugin", "is missing: name the plugin, e.g. plugin = \"...\" (see `shard plugins`)");
-  std::map<std::string, RawParam> raw;
-  s.finish(&raw);
-  const LoadedPlugin* plugin = nullptr;
-  try {
-    plugin = &host.find(kind, choice.name);
-  } catch (const PluginError& e) {
-    throw SceneError(fmt::format("{}: {}", s.at("plugin"), e.what()));
-  }
-  try {
-    choice.params = PluginHost::validate(plugin->info, raw, choice.where);
-  } catch (const PluginError& e) {
-    throw SceneError(e.what());
-  }
-  return choice;
 }
 
 // The wall's motion profile (wall_motion.hpp): `velocity` with an optional `ramp` over
@@ -446,7 +338,8 @@ Scene load_scene_text(const std::string& text, const std::filesystem::path& file
   for (const auto& o : overrides) apply_override(root, o);
 
   static const std::vector<std::string> sections = {"simulation", "material", "output", "generator", "contact",
-                                                    "bond",       "wall",     "stop",   "analysis", "grip"};
+                                                    "bond",       "wall",     "stop",   "analysis", "grip",
+                                                    "body"};
   for (auto&& [k, v] : root) {
     const std::string key(k.str());
     if (std::find(sections.begin(), sections.end(), key) != sections.end()) continue;
@@ -498,10 +391,10 @@ Scene load_scene_text(const std::string& text, const std::filesystem::path& file
   scene.fragments_every = static_cast<int>(analysis.number("fragments_every", 1, 0, 1e9));
   analysis.finish();
 
-  if (!root["generator"].as_table()) throw SceneError(fmt::format("{}: missing [generator] section", file));
-  scene.generator = plugin_section(root, file, "generator", PluginKind::Generator, host);
-  if (root["contact"].as_table()) scene.contact = plugin_section(root, file, "contact", PluginKind::Contact, host);
-  if (root["bond"].as_table()) scene.bond = plugin_section(root, file, "bond", PluginKind::Bond, host);
+  scene.bodies = read_bodies(root, file, host);
+  if (root["contact"].as_table())
+    scene.contact = plugin_choice(root["contact"].as_table(), file, "contact", PluginKind::Contact, host);
+  if (root["bond"].as_table()) scene.bond = plugin_choice(root["bond"].as_table(), file, "bond", PluginKind::Bond, host);
 
   if (const auto* walls = root["wall"].as_array()) {
     std::size_t k = 0;

@@ -22,6 +22,14 @@ inline void add_fragments_options(CLI::App& app, FragmentsOptions& o) {
       ->check(CLI::PositiveNumber);
   app.add_option("--since", o.since, "earlier frame: print which of its fragments became which");
   app.add_option("--rows", o.rows, "fragments listed in the printed table (default 20)");
+  app.add_flag("--by-body", o.by_body,
+               "statistics per parent body (broken, fragments, x10/x50/x90, fines) and the breakage probability; "
+               "stored under /bodies/<k> of the run file");
+  app.add_option("--intact-fraction", o.intact_fraction,
+                 "with --by-body: a body is broken when its largest fragment holds less than this share of its mass "
+                 "(default 0.9)")
+      ->check(CLI::Range(0.0, 1.0));
+  app.add_option("--body-csv", o.body_csv, "with --by-body: write the per-body table as CSV");
 }
 
 }  // namespace shard::analysis

@@ -1,6 +1,7 @@
 #pragma once
 // `shard fragments run.h5 [--frame K] [--csv out.csv] [--plot fsd.png] [--write-labels]
-//                         [--fines D] [--density RHO] [--since K0] [--rows N]`
+//                         [--fines D] [--density RHO] [--since K0] [--rows N]
+//                         [--by-body [--intact-fraction F] [--body-csv bodies.csv]]`
 // Labels the fragments of one frame (default: the last), prints their table and the size
 // distribution, and optionally writes the CSV, the plot, and the labels back into the run file.
 #include <cstddef>
@@ -21,6 +22,11 @@ struct FragmentsOptions {
   std::optional<double> density;               // kg/m^3, when the file has no masses
   std::optional<std::int64_t> since;           // earlier frame: print the lineage since it
   std::size_t rows = 20;       // table rows printed (all are in the CSV)
+  // Per parent body: broken or not, fragments, x10/x50/x90, fines; the run's breakage
+  // probability and pooled distribution. Written to /bodies/<k:06d> of the run file.
+  bool by_body = false;
+  double intact_fraction = 0.9;  // a body is broken when its largest fragment holds less of its mass
+  std::optional<std::filesystem::path> body_csv;  // the per-body table as CSV
 };
 
 // Returns 0 on success, 1 on an error (reported on err as one line starting "error: ").

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "shard/analysis/body_statistics.hpp"
 #include "shard/analysis/components.hpp"
 #include "shard/analysis/fragment_table.hpp"
 #include "shard/analysis/size_distribution.hpp"
@@ -64,6 +65,12 @@ class RunFile {
   // characteristic sizes as attributes.
   void write_fragment_table(std::int64_t k, const std::vector<Fragment>& fragments,
                             const SizeDistribution& fsd);
+
+  // Replaces /bodies/<k:06d>: one dataset per column of the per-body table, the run totals and
+  // the pooled distribution as attributes.
+  void write_body_table(std::int64_t k, const BodyReport& report);
+  // /body_impacts written at the end of a run; empty when absent.
+  std::vector<BodyImpactRow> read_body_impacts() const;
 
   const std::filesystem::path& path() const { return path_; }
 
