@@ -44,7 +44,7 @@ bool NeighbourList::needs_rebuild(const Particles& particles, const std::vector<
   for (std::size_t w = 0; w < walls.size(); ++w) {
     double moved = (walls[w].displacement - wall_displacement_at_build_[w]).norm();
     // A turn by a moves a point at distance r from the axis by the chord 2 r |sin(a / 2)|.
-    if (walls[w].motion.spins)
+    if (walls[w].turn_moves_surface())
       moved += 2 * std::abs(std::sin(0.5 * (walls[w].angle - wall_angle_at_build_[w]))) * wall_reach_[w];
     max_wall = std::max(max_wall, moved);
   }
@@ -215,7 +215,7 @@ void NeighbourList::rebuild(const Particles& particles, const std::vector<Wall>&
   for (std::size_t w = 0; w < walls.size(); ++w) {
     wall_displacement_at_build_[w] = walls[w].displacement;
     wall_angle_at_build_[w] = walls[w].angle;
-    if (walls[w].motion.spins) wall_reach_[w] = spin_reach(particles, walls[w].centre());
+    if (walls[w].turn_moves_surface()) wall_reach_[w] = spin_reach(particles, walls[w].centre());
   }
 }
 

@@ -90,8 +90,8 @@ struct alignas(64) ThreadShare {
 // damping), and likewise for the spin. Summed over an impact it is the kinetic energy the particle
 // lost to the contact, to round-off.
 double wall_touch_work(const Particles& p, const WallTouch& c, double dt) {
-  const double h = 0.5 * dt;
   const auto a = static_cast<std::size_t>(c.particle);
+  const double h = p.flags[a] & (kFixed | kPrescribed) ? 0.0 : 0.5 * dt;  // held particles get no kick
   const Vec3 spin_kick = h * p.torque[a] / p.inertia[a];
   const Vec3 v = c.velocity + h * p.force[a] / p.mass[a] + spin_kick.cross(c.arm);
   return dt * (c.force.dot(v) + c.couple.dot(c.omega_rel + spin_kick));

@@ -94,6 +94,19 @@ Vec3 Wall::surface_velocity_at(const Vec3& x, const Vec3& n) const {
   return v;
 }
 
+bool Wall::turn_moves_surface() const {
+  if (!motion.spins) return false;
+  // Unit vectors: parallel to 1e-12 rad; the centre within 1e-12 of the radius off the axis.
+  const Vec3 along = axis.normalized();
+  const bool parallel = motion.spin_axis.cross(along).norm() < 1e-12;
+  if (shape == WallShape::Plane) return !parallel;
+  if (shape == WallShape::Cylinder) {
+    const Vec3 off = motion.spin_centre - point;
+    return !(parallel && (off - off.dot(along) * along).norm() <= 1e-12 * radius);
+  }
+  return true;  // a mesh: a faceted drum is not turn-invariant
+}
+
 namespace {
 
 void set_rotation(Wall& wall, double t) {

@@ -200,3 +200,26 @@ TEST_CASE("a turning paddle sweeps into a sphere at rest: the neighbour list fol
   CHECK(v.norm() > 0.1);
   CHECK(sim.walls()[0].impacts >= 1);
 }
+
+TEST_CASE("a plate turning in its own plane leaves its surface in place: a frictionless sphere on it stays put") {
+  // Without friction the turning plate cannot drag the sphere, and the plate's surface does not
+  // move, so the neighbour list is built once (at the start) in 0.5 s of turning at 10 rad/s;
+  // a turn-blind bound would have rebuilt it every ~skin / (omega r) = 1e-3 / 0.4 s, ~200 times.
+  auto model = test::linear_spring(1e4, 0.5, 0.0);
+  SimulationSetup setup;
+  setup.particles.add(Vec3(0.04, 0, 0.005 - 1.284e-6), 0.005, 2500.0);  // at its rest overlap m g / k
+  Wall plate;
+  plate.shape = WallShape::Plane;
+  plate.axis = Vec3::UnitZ();
+  test::spin(plate, Vec3::Zero(), Vec3::UnitZ(), 10.0);
+  setup.walls.push_back(plate);
+  setup.gravity = Vec3(0, 0, -9.81);
+  setup.contact = model.get();
+  setup.dt = 1e-5;
+  Simulation sim(std::move(setup));
+  sim.run(50000);
+  CHECK_FALSE(sim.walls()[0].turn_moves_surface());
+  CHECK(sim.neighbour_rebuilds() == 1);
+  CHECK(std::abs(sim.particles().velocity[0].x()) + std::abs(sim.particles().velocity[0].y()) < 1e-12);
+  CHECK(sim.contact_count() == 1);
+}

@@ -63,6 +63,9 @@ struct Wall {
   bool surface_moves() const { return motion.spins || !surface_velocity.isZero(); }
   // Velocity of the wall's surface at the lab point x where the outward unit normal is n.
   Vec3 surface_velocity_at(const Vec3& x, const Vec3& n) const;
+  // False when the turn leaves the surface where it is (a plane turning about its normal, a
+  // cylinder about its own axis): only its velocity changes, and the neighbour list need not follow.
+  bool turn_moves_surface() const;
   // Angular velocity now, rad/s (lab frame).
   Vec3 angular_velocity() const { return angular_speed * motion.spin_axis; }
 };
