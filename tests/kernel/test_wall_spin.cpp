@@ -223,3 +223,34 @@ TEST_CASE("a plate turning in its own plane leaves its surface in place: a frict
   CHECK(std::abs(sim.particles().velocity[0].x()) + std::abs(sim.particles().velocity[0].y()) < 1e-12);
   CHECK(sim.contact_count() == 1);
 }
+
+TEST_CASE("a wall that translates and turns: its surface velocity is the time derivative of its surface points") {
+  // A mesh moving on a linear ramp to (0.3, 0, -0.2) m/s while turning on a 1-cos ramp to 4 rad/s
+  // about a tilted axis. A point fixed on the mesh sits at c0 + d(t) + R(theta(t)) (y0 - c0); its
+  // velocity by central differences (step 1e-6 s: error ~ (1e-6)^2 x the third derivative ~ 1e-10
+  // m/s here) must be what the contact uses, v + omega x (x - c).
+  Wall w = test::drum_mesh(0.1, 0.06, 12);
+  const Vec3 c0(0.02, -0.01, 0.03), axis = Vec3(0.2, 1.0, -0.4).normalized();
+  test::spin(w, c0, axis, 4.0);
+  w.motion.velocity = Vec3(0.3, 0, -0.2);
+  w.motion.ramp = WallRamp::Linear;  // a ramp shapes both speeds
+  w.motion.ramp_time = 0.1;
+  const Vec3 y0 = w.triangles[5][1];  // a vertex of the mesh as read
+  auto point_at = [&](double t) {
+    place_wall(w, t);
+    return Vec3(w.centre() + w.rotation * (y0 - c0));
+  };
+  for (double t : {0.02, 0.07, 0.25}) {
+    CAPTURE(t);
+    const double h = 1e-6;
+    const Vec3 numeric = (point_at(t + h) - point_at(t - h)) / (2 * h);
+    const Vec3 x = point_at(t);
+    const Vec3 surface = w.surface_velocity_at(x, Vec3::UnitX());
+    CHECK((surface - numeric).norm() < 1e-8);
+    // The point is on the mesh: the contact finds it at distance zero from a point just off it.
+    Vec3 normal;
+    double distance = 0;
+    REQUIRE(wall_contact(w, x + 1e-4 * (x - w.centre()).normalized(), 0.01, normal, distance));
+    CHECK(distance <= 1e-4 + 1e-12);
+  }
+}
