@@ -327,11 +327,7 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
     row.bonds_intact = static_cast<std::int64_t>(sim.bonds().size());
     row.bonds_broken = sim.bonds_broken();
     row.contacts = static_cast<std::int64_t>(sim.contact_count());
-    for (const auto& w : sim.walls()) {
-      row.wall_force.push_back(w.force);
-      row.wall_torque.push_back(w.torque);
-      row.wall_displacement.push_back(w.displacement);
-    }
+    for (const auto& w : sim.walls()) row.add_wall(w);
     writer.append_series(row);
     writer.append_break_events(sim.take_new_break_events());
     if (!std::isfinite(e.kinetic)) health.check(sim, last_good());

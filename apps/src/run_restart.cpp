@@ -20,10 +20,14 @@ void copy_series(const RunFile& old, RunWriter& writer, std::int64_t last_step, 
   const auto contacts = old.read_integer_series("contacts");
   const auto walls = old.wall_names();
   std::vector<std::vector<Vec3>> force, torque, displacement;
+  std::vector<std::vector<double>> impact_energy;
+  std::vector<std::vector<std::int64_t>> impacts;
   for (const auto& w : walls) {
     force.push_back(old.read_wall_series(w, "force"));
     torque.push_back(old.read_wall_series(w, "torque"));
     displacement.push_back(old.read_wall_series(w, "displacement"));
+    impact_energy.push_back(old.read_wall_impact_energy(w));
+    impacts.push_back(old.read_wall_impacts(w));
   }
   std::int64_t expected = 0;  // the uninterrupted run's rows: step 0, then every `every` steps
   for (std::size_t r = 0; r < step.size() && step[r] <= last_step; ++r) {
@@ -45,6 +49,8 @@ void copy_series(const RunFile& old, RunWriter& writer, std::int64_t last_step, 
       row.wall_force.push_back(force[w].at(r));
       row.wall_torque.push_back(torque[w].at(r));
       row.wall_displacement.push_back(displacement[w].at(r));
+      row.wall_impact_energy.push_back(impact_energy[w].at(r));
+      row.wall_impacts.push_back(impacts[w].at(r));
     }
     writer.append_series(row);
     expected += every;

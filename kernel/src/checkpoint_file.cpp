@@ -190,16 +190,31 @@ std::vector<BondBreakEvent> read_events(hid_t file) {
 void write_walls(hid_t file, const std::vector<WallState>& walls) {
   h5::Handle g = h5::create_group(file, "walls");
   std::vector<Vec3> velocity, displacement, force, torque;
+  std::vector<double> contact_work, stored_energy;
+  std::vector<std::int64_t> impacts;
   for (const auto& w : walls) {
     velocity.push_back(w.velocity);
     displacement.push_back(w.displacement);
     force.push_back(w.force);
     torque.push_back(w.torque);
+    contact_work.push_back(w.contact_work);
+    stored_energy.push_back(w.stored_energy);
+    impacts.push_back(w.impacts);
   }
   put(g.get(), "velocity", velocity);
   put(g.get(), "displacement", displacement);
   put(g.get(), "force", force);
   put(g.get(), "torque", torque);
+  put(g.get(), "contact_work", contact_work);
+  put(g.get(), "stored_energy", stored_energy);
+  put(g.get(), "impacts", impacts);
+}
+
+// A column that checkpoints written before it existed lack: `fallback` for each of n rows.
+template <class T>
+std::vector<T> get_or(hid_t group, const std::string& name, std::size_t n, T fallback) {
+  if (!h5::path_exists(group, name)) return std::vector<T>(n, fallback);
+  return get<T>(group, name);
 }
 
 std::vector<WallState> read_walls(hid_t file) {
@@ -209,10 +224,16 @@ std::vector<WallState> read_walls(hid_t file) {
   const auto force = get_vec3(g.get(), "force");
   const auto torque = get_vec3(g.get(), "torque");
   const std::size_t n = velocity.size();
-  if (displacement.size() != n || force.size() != n || torque.size() != n)
+  // Checkpoints before the wear indicator was kept: nothing recorded yet.
+  const auto contact_work = get_or<double>(g.get(), "contact_work", n, 0.0);
+  const auto stored_energy = get_or<double>(g.get(), "stored_energy", n, 0.0);
+  const auto impacts = get_or<std::int64_t>(g.get(), "impacts", n, 0);
+  if (displacement.size() != n || force.size() != n || torque.size() != n || contact_work.size() != n ||
+      stored_energy.size() != n || impacts.size() != n)
     throw CheckpointError("the wall columns differ in length");
   std::vector<WallState> walls(n);
-  for (std::size_t k = 0; k < n; ++k) walls[k] = {velocity[k], displacement[k], force[k], torque[k]};
+  for (std::size_t k = 0; k < n; ++k)
+    walls[k] = {velocity[k], displacement[k], force[k], torque[k], contact_work[k], stored_energy[k], impacts[k]};
   return walls;
 }
 
@@ -226,6 +247,9 @@ void write_neighbours(hid_t file, const NeighbourState& s) {
   put(g.get(), "history", s.history);
   put(g.get(), "position_at_build", s.position_at_build);
   put(g.get(), "wall_displacement_at_build", s.wall_displacement_at_build);
+  put(g.get(), "wall_angle_at_build", s.wall_angle_at_build);
+  put(g.get(), "wall_reach", s.wall_reach);
+  put(g.get(), "touching", s.touching);
 }
 
 NeighbourState read_neighbours(hid_t file) {
@@ -239,6 +263,12 @@ NeighbourState read_neighbours(hid_t file) {
   s.history = get<double>(g.get(), "history");
   s.position_at_build = get_vec3(g.get(), "position_at_build");
   s.wall_displacement_at_build = get_vec3(g.get(), "wall_displacement_at_build");
+  // Absent from checkpoints written before walls could spin (NeighbourList::restore fills them).
+  if (h5::path_exists(g.get(), "wall_angle_at_build")) {
+    s.wall_angle_at_build = get<double>(g.get(), "wall_angle_at_build");
+    s.wall_reach = get<double>(g.get(), "wall_reach");
+  }
+  if (h5::path_exists(g.get(), "touching")) s.touching = get<std::uint8_t>(g.get(), "touching");
   return s;
 }
 

@@ -31,7 +31,9 @@ bool NeighbourList::update(const Particles& particles, const std::vector<Wall>& 
 
 bool NeighbourList::needs_rebuild(const Particles& particles, const std::vector<Wall>& walls) const {
   const std::size_t n = particles.size();
-  if (position_at_build_.size() != n || wall_displacement_at_build_.size() != walls.size()) return true;
+  if (position_at_build_.size() != n || wall_displacement_at_build_.size() != walls.size() ||
+      wall_angle_at_build_.size() != walls.size())
+    return true;
   double max_particle = 0;  // max is order-independent: the same answer on any thread count
   const Vec3* x = particles.position.data();
   const Vec3* x0 = position_at_build_.data();
@@ -39,8 +41,13 @@ bool NeighbourList::needs_rebuild(const Particles& particles, const std::vector<
   for (std::size_t k = 0; k < n; ++k) max_particle = std::max(max_particle, (x[k] - x0[k]).squaredNorm());
   max_particle = std::sqrt(max_particle);
   double max_wall = 0;
-  for (std::size_t w = 0; w < walls.size(); ++w)
-    max_wall = std::max(max_wall, (walls[w].displacement - wall_displacement_at_build_[w]).norm());
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    double moved = (walls[w].displacement - wall_displacement_at_build_[w]).norm();
+    // A turn by a moves a point at distance r from the axis by the chord 2 r |sin(a / 2)|.
+    if (walls[w].turn_moves_surface())
+      moved += 2 * std::abs(std::sin(0.5 * (walls[w].angle - wall_angle_at_build_[w]))) * wall_reach_[w];
+    max_wall = std::max(max_wall, moved);
+  }
   // Two particles approach each other by at most twice the largest displacement.
   return 2 * max_particle > skin_ || max_particle + max_wall > skin_;
 }
@@ -155,7 +162,7 @@ void NeighbourList::find_pairs(const Particles& particles, const std::vector<Wal
 void NeighbourList::carry_history(std::size_t particle_count) {
   new_history_.assign(new_i_.size() * stride_, 0.0);
   new_touching_.assign(new_i_.size(), 0);
-  if (stride_ == 0 || i_.empty()) return;
+  if (i_.empty()) return;  // without history the touching flags still follow (wall impacts count them)
   // Group the old pairs by their smaller index (counting sort), then look each new pair up in
   // its group of at most a dozen.
   // A restored list may name particles that no longer exist: those pairs carry nothing.
@@ -203,7 +210,25 @@ void NeighbourList::rebuild(const Particles& particles, const std::vector<Wall>&
   std::swap(touching_, new_touching_);
   position_at_build_ = particles.position;
   wall_displacement_at_build_.resize(walls.size());
-  for (std::size_t w = 0; w < walls.size(); ++w) wall_displacement_at_build_[w] = walls[w].displacement;
+  wall_angle_at_build_.resize(walls.size());
+  wall_reach_.assign(walls.size(), 0.0);
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    wall_displacement_at_build_[w] = walls[w].displacement;
+    wall_angle_at_build_[w] = walls[w].angle;
+    if (walls[w].turn_moves_surface()) wall_reach_[w] = spin_reach(particles, walls[w].centre());
+  }
+}
+
+// How far from a spinning wall's axis point the surface can touch a particle before the next
+// rebuild: the farthest particle now, its radius, and the skin twice (half of it for the particle's
+// own travel, the rest for the wall's translation, each bounded by the rebuild test).
+double NeighbourList::spin_reach(const Particles& particles, const Vec3& centre) const {
+  double far = 0, r_max = 0;
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    far = std::max(far, (particles.position[k] - centre).norm());
+    r_max = std::max(r_max, particles.radius[k]);
+  }
+  return far + r_max + 2 * skin_;
 }
 
 }  // namespace shard

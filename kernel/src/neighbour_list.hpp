@@ -48,6 +48,7 @@ class NeighbourList {
   void bin_particles(const Particles& particles);
   void find_pairs(const Particles& particles, const std::vector<Wall>& walls);
   void carry_history(std::size_t particle_count);
+  double spin_reach(const Particles& particles, const Vec3& centre) const;
 
   // Pairs found by one thread for its range of particles; reused from rebuild to rebuild.
   struct ThreadPairs {
@@ -65,6 +66,8 @@ class NeighbourList {
   std::vector<std::uint8_t> new_touching_;
   std::vector<Vec3> position_at_build_;
   std::vector<Vec3> wall_displacement_at_build_;
+  std::vector<double> wall_angle_at_build_;  // rad, of spinning walls
+  std::vector<double> wall_reach_;           // m: the largest distance from a spinning wall's axis point that matters
   // Cell list: particles sorted by cell (counting sort), grid geometry of the last build.
   std::vector<std::int64_t> cell_of_;
   std::vector<Index> sorted_;

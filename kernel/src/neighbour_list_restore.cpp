@@ -19,6 +19,9 @@ NeighbourState NeighbourList::state() const {
   s.history = history_;
   s.position_at_build = position_at_build_;
   s.wall_displacement_at_build = wall_displacement_at_build_;
+  s.wall_angle_at_build = wall_angle_at_build_;
+  s.wall_reach = wall_reach_;
+  s.touching = touching_;
   s.rebuilds = rebuilds_;
   return s;
 }
@@ -35,13 +38,21 @@ void NeighbourList::restore(const NeighbourState& s) {
   i_ = s.first;
   j_ = s.second;
   history_ = s.history;
-  // Not in the checkpoint: a pair with a non-zero history is taken to have touched.
-  touching_.assign(i_.size(), 0);
-  for (std::size_t k = 0; k < i_.size(); ++k)
-    for (std::size_t q = 0; q < stride_; ++q)
-      if (history_[k * stride_ + q] != 0.0) touching_[k] = 1;
+  if (s.touching.size() == i_.size()) {
+    touching_ = s.touching;
+  } else {  // checkpoints before the flags were kept: a pair with a non-zero history has touched
+    touching_.assign(i_.size(), 0);
+    for (std::size_t k = 0; k < i_.size(); ++k)
+      for (std::size_t q = 0; q < stride_; ++q)
+        if (history_[k * stride_ + q] != 0.0) touching_[k] = 1;
+  }
   position_at_build_ = s.position_at_build;
   wall_displacement_at_build_ = s.wall_displacement_at_build;
+  // Checkpoints before walls could spin hold no angles: every wall was at angle zero.
+  wall_angle_at_build_ = s.wall_angle_at_build;
+  wall_reach_ = s.wall_reach;
+  wall_angle_at_build_.resize(wall_displacement_at_build_.size(), 0.0);
+  wall_reach_.resize(wall_displacement_at_build_.size(), 0.0);
   rebuilds_ = s.rebuilds;
 }
 

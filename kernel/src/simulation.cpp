@@ -29,6 +29,7 @@ struct ContactArrays {
   std::vector<Index> i, j;
   std::vector<std::size_t> pair;
   std::vector<std::uint8_t> candidate;  // per pair of the tile being looked at
+  std::vector<std::uint8_t> touched;    // per contact: it touched at the last pass too (not a new impact)
   std::vector<Vec3> normal, velocity, omega_rel, force, couple;
   std::vector<double> overlap, r_eff, m_eff, energy, history;
   void reserve(std::size_t stride) {
@@ -38,6 +39,7 @@ struct ContactArrays {
     j.resize(n);
     pair.resize(n);
     candidate.resize(n);
+    touched.resize(n);
     normal.resize(n);
     velocity.resize(n);
     omega_rel.resize(n);
@@ -56,10 +58,23 @@ struct ContactArrays {
 // (and left zero again): no atomics, no locks, and a fixed order of every sum.
 constexpr std::size_t kBondBlock = 256;  // bonds per batch call: a block's loads fit in L1
 
+// A wall contact of this step, kept until the particles' whole forces are known (wall_touch_work).
+struct WallTouch {
+  Index particle;
+  std::size_t wall;
+  Vec3 force, couple, arm;  // on the particle; arm from its centre to the contact point
+  Vec3 velocity, omega_rel;  // relative to the surface, at the half step before the forces
+};
+
 struct alignas(64) ThreadShare {
   std::vector<Vec3> force, torque;
   ContactArrays block;
   std::vector<Vec3> wall_force, wall_torque;
+  std::vector<double> wall_stored;
+  std::vector<std::int64_t> wall_impacts;
+  // Grows to the most wall contacts a thread has had and keeps that capacity: no allocation once
+  // the run has warmed up.
+  std::vector<WallTouch> wall_touches;
   std::vector<Vec3> block_force, block_torque_i, block_torque_j;
   std::vector<double> block_energy;
   double bond_energy = 0;
@@ -67,6 +82,20 @@ struct alignas(64) ThreadShare {
   std::size_t contacts = 0;
   bool bond_broke = false;
 };
+
+// The work of one wall contact's force and couple on particle a's motion relative to the surface
+// over one step, J (negative when the particle loses energy). Velocity Verlet changes the kinetic
+// energy over the step from v(n-1/2) to v(n+1/2) by exactly F(n) . v(n) dt, v(n) the mean of the
+// two, v(n-1/2) + (dt/2) F(n) / m with the particle's whole force (contacts, bonds, gravity,
+// damping), and likewise for the spin. Summed over an impact it is the kinetic energy the particle
+// lost to the contact, to round-off.
+double wall_touch_work(const Particles& p, const WallTouch& c, double dt) {
+  const auto a = static_cast<std::size_t>(c.particle);
+  const double h = p.flags[a] & (kFixed | kPrescribed) ? 0.0 : 0.5 * dt;  // held particles get no kick
+  const Vec3 spin_kick = h * p.torque[a] / p.inertia[a];
+  const Vec3 v = c.velocity + h * p.force[a] / p.mass[a] + spin_kick.cross(c.arm);
+  return dt * (c.force.dot(v) + c.couple.dot(c.omega_rel + spin_kick));
+}
 
 double density_of(const Particles& p, std::size_t k) {
   const double r = p.radius[k];
@@ -114,6 +143,8 @@ struct ContactWorkspace {
       if (s.wall_force.size() != walls) {
         s.wall_force.resize(walls);
         s.wall_torque.resize(walls);
+        s.wall_stored.resize(walls);
+        s.wall_impacts.resize(walls);
       }
     }
   }
@@ -176,10 +207,8 @@ Simulation::Simulation(SimulationSetup setup)
   workspace_->order_cell = 2 * std::max(r_max, 1e-12) + skin;
   for (auto& w : walls_) {
     if (w.shape != WallShape::Mesh) w.axis.normalize();
-    if (w.motion.is_profile()) {  // a ramp starts at rest
-      w.displacement = w.motion.displacement_at(time_);
-      w.velocity = w.motion.velocity_at(time_);
-    }
+    if (w.motion.spins) w.motion.spin_axis.normalize();
+    place_wall(w, time_);
   }
   compute_forces();
 }
@@ -244,14 +273,7 @@ void Simulation::integrate_first_half() {
     turn(lanes, r.begin, r.end, angle, rotation);
   }
   const double t_next = time_ + dt_;  // the time step() reaches
-  for (auto& w : walls_) {
-    if (w.motion.is_profile()) {
-      w.displacement = w.motion.displacement_at(t_next);
-      w.velocity = w.motion.velocity_at(t_next);
-    } else {
-      w.displacement += dt_ * w.velocity;
-    }
-  }
+  for (auto& w : walls_) move_wall(w, t_next, dt_);
 }
 
 void Simulation::integrate_second_half() {
@@ -304,6 +326,9 @@ void Simulation::compute_forces() {
     std::fill(p.torque.begin() + static_cast<std::ptrdiff_t>(own.begin), p.torque.begin() + static_cast<std::ptrdiff_t>(own.end), Vec3::Zero());
     std::fill(share.wall_force.begin(), share.wall_force.end(), Vec3::Zero());
     std::fill(share.wall_torque.begin(), share.wall_torque.end(), Vec3::Zero());
+    std::fill(share.wall_stored.begin(), share.wall_stored.end(), 0.0);
+    std::fill(share.wall_impacts.begin(), share.wall_impacts.end(), 0);
+    share.wall_touches.clear();
     share.contact_energy = 0;
     share.contacts = 0;
     share.bond_broke = false;
@@ -345,6 +370,7 @@ void Simulation::compute_forces() {
   for (auto& w : walls_) {
     w.force.setZero();
     w.torque.setZero();
+    w.stored_energy = 0;
   }
   for (int t = 0; t < used; ++t) {
     const ThreadShare& share = ws.threads[static_cast<std::size_t>(t)];
@@ -352,9 +378,14 @@ void Simulation::compute_forces() {
     contacts += share.contacts;
     bond_energy += share.bond_energy;
     bond_broke = bond_broke || share.bond_broke;
+    // The particles' whole forces are known now (wall_touch_work). In thread order, without a
+    // barrier in the force pass: a wall's contacts are few next to the particles' pairs.
+    for (const WallTouch& c : share.wall_touches) walls_[c.wall].contact_work -= wall_touch_work(p, c, dt_);
     for (std::size_t w = 0; w < walls_.size(); ++w) {
       walls_[w].force += share.wall_force[w];
       walls_[w].torque += share.wall_torque[w];
+      walls_[w].stored_energy += share.wall_stored[w];
+      walls_[w].impacts += share.wall_impacts[w];
     }
   }
   if (contact_) {
@@ -407,6 +438,7 @@ std::size_t compact_candidates(NeighbourList& list, std::size_t k, std::size_t s
   for (std::size_t q = k; q < stop; ++q) {
     const std::uint8_t now = block.candidate[q - k];
     if (touching[q] & ~now) std::fill_n(history + q * stride, stride, 0.0);
+    block.touched[c] = touching[q];
     touching[q] = now;
     block.pair[c] = q;
     c += now;
@@ -429,6 +461,7 @@ std::size_t collect_contacts(const Particles& p, const std::vector<Wall>& walls,
   std::size_t c = 0;
   for (std::size_t q = 0; q < candidates; ++q) {
     const std::size_t pair = block.pair[q];
+    const std::uint8_t touched = block.touched[q];
     const Index a = first[pair], b = second[pair];
     const double ra = p.radius[a];
     Vec3 n;
@@ -457,14 +490,16 @@ std::size_t collect_contacts(const Particles& p, const std::vector<Wall>& walls,
       }
       overlap = ra - distance;
       arm_a = -distance * n;
-      vel_b = w.velocity;
-      omega_b = Vec3::Zero();
+      // A spinning or belt wall's surface moves differently from point to point.
+      vel_b = w.surface_moves() ? w.surface_velocity_at(p.position[a] + arm_a, n) : w.velocity;
+      omega_b = w.angular_velocity();
       r_eff = ra;
       m_eff = p.mass[a];
     }
     block.i[c] = a;
     block.j[c] = b;
     block.pair[c] = pair;
+    block.touched[c] = touched;
     block.normal[c] = n;
     block.overlap[c] = overlap;
     block.velocity[c] = p.velocity[a] + p.omega[a].cross(arm_a) - vel_b;
@@ -523,8 +558,12 @@ double scatter_contacts(const Particles& p, const std::vector<Wall>& walls, Neig
       const auto w = static_cast<std::size_t>(-1 - b);
       const Wall& wall = walls[w];
       const Vec3 contact_point = p.position[a] + arm_a;
+      const Vec3 pivot = wall.motion.spins ? wall.centre() : Vec3(wall.point + wall.displacement);
       share.wall_force[w] -= f;
-      share.wall_torque[w] += (contact_point - (wall.point + wall.displacement)).cross(-f) - block.couple[k];
+      share.wall_torque[w] += (contact_point - pivot).cross(-f) - block.couple[k];
+      share.wall_touches.push_back({a, w, f, block.couple[k], arm_a, block.velocity[k], block.omega_rel[k]});
+      share.wall_stored[w] += block.energy[k];
+      share.wall_impacts[w] += block.touched[k] ^ 1;
     }
     copy_history(block.history.data() + k * stride, history + block.pair[k] * stride, stride);
   }

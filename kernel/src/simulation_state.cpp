@@ -51,7 +51,8 @@ SimulationState Simulation::export_state() const {
   s.events = events_;
   s.events_taken = events_taken_;
   s.walls.reserve(walls_.size());
-  for (const Wall& w : walls_) s.walls.push_back({w.velocity, w.displacement, w.force, w.torque});
+  for (const Wall& w : walls_)
+    s.walls.push_back({w.velocity, w.displacement, w.force, w.torque, w.contact_work, w.stored_energy, w.impacts});
   s.neighbours = neighbours_->state();
   s.contacts = contacts_;
   s.contact_energy = contact_energy_;
@@ -88,6 +89,10 @@ void Simulation::import_state(const SimulationState& s) {
     walls_[w].displacement = s.walls[w].displacement;
     walls_[w].force = s.walls[w].force;
     walls_[w].torque = s.walls[w].torque;
+    walls_[w].contact_work = s.walls[w].contact_work;
+    walls_[w].stored_energy = s.walls[w].stored_energy;
+    walls_[w].impacts = s.walls[w].impacts;
+    place_wall(walls_[w], time_);  // the rotation is a function of time, not kept
   }
   contacts_ = s.contacts;
   contact_energy_ = s.contact_energy;

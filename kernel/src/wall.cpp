@@ -29,10 +29,11 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
   return a + ab * (vb * denom) + ac * (vc * denom);
 }
 
-}  // namespace
-
-bool wall_contact(const Wall& wall, const Vec3& x, double max_gap, Vec3& normal, double& distance) {
-  const Vec3 origin = wall.point + wall.displacement;
+// The contact geometry with the wall's shape offset by `shift` (its displacement; zero in the frame
+// of a spinning wall).
+bool contact_shifted(const Wall& wall, const Vec3& x, const Vec3& shift, double max_gap, Vec3& normal,
+                     double& distance) {
+  const Vec3 origin = wall.point + shift;
   switch (wall.shape) {
     case WallShape::Plane: {
       distance = (x - origin).dot(wall.axis);
@@ -53,7 +54,6 @@ bool wall_contact(const Wall& wall, const Vec3& x, double max_gap, Vec3& normal,
     case WallShape::Mesh: {
       double best = std::numeric_limits<double>::infinity();
       Vec3 best_point = Vec3::Zero();
-      const Vec3 shift = wall.displacement;
       for (const auto& t : wall.triangles) {
         const Vec3 q = closest_point_on_triangle(x, t[0] + shift, t[1] + shift, t[2] + shift);
         const double d2 = (x - q).squaredNorm();
@@ -69,6 +69,71 @@ bool wall_contact(const Wall& wall, const Vec3& x, double max_gap, Vec3& normal,
     }
   }
   return false;
+}
+
+}  // namespace
+
+// A spinning wall is not turned: the particle is carried into the wall's frame (one 3x3 product),
+// touched against the geometry as read, and the normal carried back.
+bool wall_contact(const Wall& wall, const Vec3& x, double max_gap, Vec3& normal, double& distance) {
+  if (!wall.motion.spins) return contact_shifted(wall, x, wall.displacement, max_gap, normal, distance);
+  const Vec3 local = wall.motion.spin_centre + wall.rotation.transpose() * (x - wall.centre());
+  Vec3 local_normal;
+  if (!contact_shifted(wall, local, Vec3::Zero(), max_gap, local_normal, distance)) return false;
+  normal = wall.rotation * local_normal;
+  return true;
+}
+
+Vec3 Wall::surface_velocity_at(const Vec3& x, const Vec3& n) const {
+  Vec3 v = velocity;
+  if (motion.spins) v += angular_speed * motion.spin_axis.cross(x - centre());
+  if (!surface_velocity.isZero()) {
+    const Vec3 belt = rotation * surface_velocity;
+    v += belt - belt.dot(n) * n;  // a belt slides along the surface, never into it
+  }
+  return v;
+}
+
+bool Wall::turn_moves_surface() const {
+  if (!motion.spins) return false;
+  // Unit vectors: parallel to 1e-12 rad; the centre within 1e-12 of the radius off the axis.
+  const Vec3 along = axis.normalized();
+  const bool parallel = motion.spin_axis.cross(along).norm() < 1e-12;
+  if (shape == WallShape::Plane) return !parallel;
+  if (shape == WallShape::Cylinder) {
+    const Vec3 off = motion.spin_centre - point;
+    return !(parallel && (off - off.dot(along) * along).norm() <= 1e-12 * radius);
+  }
+  return true;  // a mesh: a faceted drum is not turn-invariant
+}
+
+namespace {
+
+void set_rotation(Wall& wall, double t) {
+  if (!wall.motion.spins) return;
+  wall.angle = wall.motion.angle_at(t);
+  wall.angular_speed = wall.motion.angular_speed_at(t);
+  wall.rotation = Eigen::AngleAxisd(wall.angle, wall.motion.spin_axis).toRotationMatrix();
+}
+
+}  // namespace
+
+void move_wall(Wall& wall, double t, double dt) {
+  if (wall.motion.is_profile()) {
+    wall.displacement = wall.motion.displacement_at(t);
+    wall.velocity = wall.motion.velocity_at(t);
+  } else {
+    wall.displacement += dt * wall.velocity;
+  }
+  set_rotation(wall, t);
+}
+
+void place_wall(Wall& wall, double t) {
+  if (wall.motion.is_profile()) {  // a ramp starts at rest
+    wall.displacement = wall.motion.displacement_at(t);
+    wall.velocity = wall.motion.velocity_at(t);
+  }
+  set_rotation(wall, t);
 }
 
 }  // namespace shard

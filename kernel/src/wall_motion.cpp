@@ -124,4 +124,20 @@ Vec3 WallMotion::velocity_at(double t) const {
   return fraction * velocity;
 }
 
+double WallMotion::angle_at(double t) const {
+  if (!spins) return 0.0;
+  if (!spin_table.time.empty()) return table_travel(spin_table, t);
+  double fraction = 0, travel_time = 0;
+  ramp_profile(ramp, ramp_time, t, fraction, travel_time);
+  return travel_time * angular_speed;
+}
+
+double WallMotion::angular_speed_at(double t) const {
+  if (!spins) return 0.0;
+  if (!spin_table.time.empty()) return table_speed(spin_table, t);
+  double fraction = 0, travel_time = 0;
+  ramp_profile(ramp, ramp_time, t, fraction, travel_time);
+  return fraction * angular_speed;
+}
+
 }  // namespace shard

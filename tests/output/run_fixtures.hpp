@@ -84,6 +84,8 @@ inline SeriesRow make_row(std::int64_t r, std::size_t walls) {
     row.wall_force.emplace_back(s * x, -s * x / 3.0, 1.0 / (x + s));
     row.wall_torque.emplace_back(x / 17.0, s, -x);
     row.wall_displacement.emplace_back(0.0, 0.0, -1e-6 * x * s);
+    row.wall_impact_energy.push_back(x * s / 13.0);
+    row.wall_impacts.push_back(r * static_cast<std::int64_t>(w + 1));
   }
   return row;
 }

@@ -113,7 +113,11 @@ TEST_CASE("a run written by RunWriter reads back exactly with RunFile") {
     const auto top_force = run.read_wall_series("top", "force");
     const auto bottom_torque = run.read_wall_series("bottom", "torque");
     const auto bottom_displacement = run.read_wall_series("bottom", "displacement");
+    const auto top_energy = run.read_wall_impact_energy("top");
+    const auto bottom_impacts = run.read_wall_impacts("bottom");
     REQUIRE(top_force.size() == rows);
+    REQUIRE(top_energy.size() == rows);
+    REQUIRE(bottom_impacts.size() == rows);
     for (std::size_t r = 0; r < rows; ++r) {
       const SeriesRow e = make_row(static_cast<std::int64_t>(r), 2);
       CHECK(step[r] == e.step);
@@ -127,7 +131,10 @@ TEST_CASE("a run written by RunWriter reads back exactly with RunFile") {
       CHECK(top_force[r] == e.wall_force[0]);
       CHECK(bottom_torque[r] == e.wall_torque[1]);
       CHECK(bottom_displacement[r] == e.wall_displacement[1]);
+      CHECK(top_energy[r] == e.wall_impact_energy[0]);
+      CHECK(bottom_impacts[r] == e.wall_impacts[1]);
     }
+    CHECK_THROWS_AS(run.read_wall_impacts("left"), OutputError);
     CHECK_THROWS_AS(run.read_series("kinetic"), OutputError);
     CHECK_THROWS_AS(run.read_wall_series("left", "force"), OutputError);
     CHECK_THROWS_AS(run.read_wall_series("top", "velocity"), OutputError);

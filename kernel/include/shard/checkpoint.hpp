@@ -22,6 +22,9 @@ struct WallState {
   Vec3 displacement = Vec3::Zero();  // m
   Vec3 force = Vec3::Zero();         // N, of the last step
   Vec3 torque = Vec3::Zero();        // N m
+  double contact_work = 0;           // J, since the start (Wall::contact_work)
+  double stored_energy = 0;          // J, in the wall's contacts at the last step
+  std::int64_t impacts = 0;
 };
 
 struct NeighbourState {
@@ -31,6 +34,9 @@ struct NeighbourState {
   std::vector<double> history;       // history_stride per pair
   std::vector<Vec3> position_at_build;
   std::vector<Vec3> wall_displacement_at_build;
+  std::vector<double> wall_angle_at_build;  // rad, per wall (zero unless it spins)
+  std::vector<double> wall_reach;           // m, per wall (see NeighbourList)
+  std::vector<std::uint8_t> touching;       // per pair: it touched at the last force pass
   std::int64_t rebuilds = 0;
 };
 

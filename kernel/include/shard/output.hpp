@@ -34,8 +34,20 @@ struct SeriesRow {
   double time = 0;
   double kinetic_energy = 0, bond_energy = 0, contact_energy = 0;
   std::int64_t bonds_intact = 0, bonds_broken = 0, contacts = 0;
-  // Per wall, in the order of the walls vector: force, torque, displacement.
+  // Per wall, in the order of the walls vector: force, torque, displacement, the energy its
+  // contacts dissipated and the impacts it received since the start (Wall).
   std::vector<Vec3> wall_force, wall_torque, wall_displacement;
+  std::vector<double> wall_impact_energy;
+  std::vector<std::int64_t> wall_impacts;
+
+  // Appends the wall's columns (call once per wall, in order).
+  void add_wall(const Wall& wall) {
+    wall_force.push_back(wall.force);
+    wall_torque.push_back(wall.torque);
+    wall_displacement.push_back(wall.displacement);
+    wall_impact_energy.push_back(wall.impact_energy());
+    wall_impacts.push_back(wall.impacts);
+  }
 };
 
 class OutputError : public std::runtime_error {

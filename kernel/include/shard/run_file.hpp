@@ -61,6 +61,10 @@ class RunFile {
   std::vector<std::string> wall_names() const;
   // quantity: "force" (N), "torque" (N m) or "displacement" (m).
   std::vector<Vec3> read_wall_series(const std::string& wall, const std::string& quantity) const;
+  // The energy the wall's contacts dissipated since the start (J) and the impacts it received;
+  // throws OutputError for run files written before they were recorded.
+  std::vector<double> read_wall_impact_energy(const std::string& wall) const;
+  std::vector<std::int64_t> read_wall_impacts(const std::string& wall) const;
 
   std::vector<BondBreakEvent> read_break_events() const;
   // /body_impacts; empty when the run wrote none (killed, or older than the record).

@@ -24,10 +24,11 @@ const char* ramp_name(WallRamp ramp);
 // A table of the wall's motion along `direction`: strictly increasing times from 0, with either
 // the displacement (m, taken relative to the first row) or the velocity (m/s), piecewise linear
 // between rows. After the last row the wall keeps the last segment's velocity (a displacement
-// table) or the last velocity (a velocity table).
+// table) or the last velocity (a velocity table). A rotation table is the same with the angle
+// (rad) or the angular velocity (rad/s) about the wall's rotation axis; `direction` is unused.
 struct WallTable {
   std::string file;                // where it was read from (messages)
-  bool gives_velocity = false;     // false: the value column is a displacement
+  bool gives_velocity = false;     // false: the value column is a displacement (an angle)
   Vec3 direction = Vec3::UnitZ();  // unit vector
   std::vector<double> time;
   std::vector<double> value;
@@ -40,12 +41,25 @@ struct WallMotion {
   double ramp_time = 0;  // s, > 0 with a ramp
   WallTable table;       // used when it has rows
 
+  // Rotation about the line through `spin_centre` along the unit `spin_axis` (right-hand rule);
+  // the line moves with the translation. The angle is a function of time for every profile
+  // (constant: omega t), so it never accumulates step error and a restart needs no angle.
+  bool spins = false;
+  Vec3 spin_centre = Vec3::Zero();  // m, at displacement zero
+  Vec3 spin_axis = Vec3::UnitZ();
+  double angular_speed = 0;  // rad/s after the ramp (no spin table); `ramp` shapes it like velocity
+  WallTable spin_table;      // angle or angular velocity over time, used when it has rows
+
   // True when the displacement is a function of time (a ramp or a table), false for the
   // constant velocity that is integrated step by step.
   bool is_profile() const { return ramp != WallRamp::None || !table.time.empty(); }
   // Displacement since the start and velocity at time t >= 0.
   Vec3 displacement_at(double t) const;
   Vec3 velocity_at(double t) const;
+  // Angle (rad) turned since the start and angular speed (rad/s) about spin_axis at time t >= 0;
+  // zero without a spin.
+  double angle_at(double t) const;
+  double angular_speed_at(double t) const;
 };
 
 // Checks the rows and fills `travel`; throws std::invalid_argument naming the table's file and

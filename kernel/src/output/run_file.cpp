@@ -28,6 +28,8 @@ const std::vector<std::string>& event_column_names() {
 }
 
 constexpr std::array<const char*, 3> kWallQuantities{"force", "torque", "displacement"};
+// Scalar wall columns; run files written before them lack them.
+constexpr std::array<const char*, 2> kWallCounters{"impact_energy", "impacts"};
 
 std::vector<Vec3> read_vec3(hid_t file, const std::string& path, std::size_t rows = kAll) {
   const h5::Shape shape = h5::dataset_shape(file, path);
@@ -143,9 +145,13 @@ struct RunFile::Impl {
       series_rows = kAll;
       for (const std::string& name : scalar_series_names())
         series_rows = std::min(series_rows, rows_of("series/" + name));
-      for (const std::string& wall : walls)
+      for (const std::string& wall : walls) {
         for (const char* quantity : kWallQuantities)
           series_rows = std::min(series_rows, rows_of("series/walls/" + wall + "/" + quantity));
+        for (const char* quantity : kWallCounters)
+          if (h5::path_exists(id(), "series/walls/" + wall + "/" + quantity))
+            series_rows = std::min(series_rows, rows_of("series/walls/" + wall + "/" + quantity));
+      }
     } catch (const OutputError& error) {
       series_rows = 0;
       series_error = error.what();
@@ -278,6 +284,35 @@ std::vector<Vec3> RunFile::read_wall_series(const std::string& wall,
   impl_->require_series();
   const h5::QuietErrors quiet;
   return read_vec3(impl_->id(), "series/walls/" + wall + "/" + quantity, impl_->series_rows);
+}
+
+namespace {
+
+template <class T>
+std::vector<T> read_wall_counter(const RunFile& run, hid_t file, const std::vector<std::string>& walls,
+                                 const std::string& wall, const std::string& quantity, std::size_t rows) {
+  if (std::find(walls.begin(), walls.end(), wall) == walls.end())
+    throw OutputError(fmt::format("no wall '{}' in '{}'; its walls are: {}", wall, run.path().string(),
+                                  fmt::join(walls, ", ")));
+  const std::string path = "series/walls/" + wall + "/" + quantity;
+  if (!h5::path_exists(file, path))
+    throw OutputError(fmt::format("'{}' has no {} for wall '{}': it was written before walls recorded it; run "
+                                  "the scene again",
+                                  run.path().string(), quantity, wall));
+  const h5::QuietErrors quiet;
+  return h5::read_dataset<T>(file, path, 0, rows);
+}
+
+}  // namespace
+
+std::vector<double> RunFile::read_wall_impact_energy(const std::string& wall) const {
+  impl_->require_series();
+  return read_wall_counter<double>(*this, impl_->id(), impl_->walls, wall, "impact_energy", impl_->series_rows);
+}
+
+std::vector<std::int64_t> RunFile::read_wall_impacts(const std::string& wall) const {
+  impl_->require_series();
+  return read_wall_counter<std::int64_t>(*this, impl_->id(), impl_->walls, wall, "impacts", impl_->series_rows);
 }
 
 std::vector<BondBreakEvent> RunFile::read_break_events() const {

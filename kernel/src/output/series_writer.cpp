@@ -38,21 +38,28 @@ SeriesWriter::SeriesWriter(hid_t file, const std::vector<std::string>& wall_name
     wall.force = h5::make_column<double>(group.get(), "force", 3, chunk);
     wall.torque = h5::make_column<double>(group.get(), "torque", 3, chunk);
     wall.displacement = h5::make_column<double>(group.get(), "displacement", 3, chunk);
+    wall.impact_energy = h5::make_column<double>(group.get(), "impact_energy", 0, chunk);
+    wall.impacts = h5::make_column<std::int64_t>(group.get(), "impacts", 0, chunk);
     for (auto* v : {&wall.force_rows, &wall.torque_rows, &wall.displacement_rows})
       v->reserve(block_rows);
+    wall.impact_energy_rows.reserve(block_rows);
+    wall.impacts_rows.reserve(block_rows);
   }
 }
 
 void SeriesWriter::append(const SeriesRow& row) {
   const std::size_t n = walls_.size();
   if (row.wall_force.size() != n || row.wall_torque.size() != n ||
-      row.wall_displacement.size() != n)
+      row.wall_displacement.size() != n || row.wall_impact_energy.size() != n ||
+      row.wall_impacts.size() != n)
     throw OutputError("series row at step " + std::to_string(row.step) + " has " +
                       std::to_string(row.wall_force.size()) + " wall forces, " +
-                      std::to_string(row.wall_torque.size()) + " torques and " +
-                      std::to_string(row.wall_displacement.size()) +
-                      " displacements; the run file was opened with " + std::to_string(n) +
-                      " walls");
+                      std::to_string(row.wall_torque.size()) + " torques, " +
+                      std::to_string(row.wall_displacement.size()) + " displacements, " +
+                      std::to_string(row.wall_impact_energy.size()) + " impact energies and " +
+                      std::to_string(row.wall_impacts.size()) +
+                      " impact counts; the run file was opened with " + std::to_string(n) +
+                      " walls (SeriesRow::add_wall fills all five)");
   step_.push_back(row.step);
   time_.push_back(row.time);
   kinetic_.push_back(row.kinetic_energy);
@@ -65,6 +72,8 @@ void SeriesWriter::append(const SeriesRow& row) {
     walls_[w].force_rows.push_back(row.wall_force[w]);
     walls_[w].torque_rows.push_back(row.wall_torque[w]);
     walls_[w].displacement_rows.push_back(row.wall_displacement[w]);
+    walls_[w].impact_energy_rows.push_back(row.wall_impact_energy[w]);
+    walls_[w].impacts_rows.push_back(row.wall_impacts[w]);
   }
 }
 
@@ -83,9 +92,13 @@ void SeriesWriter::write() {
     wall.force.append(flat(wall.force_rows), rows);
     wall.torque.append(flat(wall.torque_rows), rows);
     wall.displacement.append(flat(wall.displacement_rows), rows);
+    wall.impact_energy.append(wall.impact_energy_rows.data(), rows);
+    wall.impacts.append(wall.impacts_rows.data(), rows);
     wall.force_rows.clear();
     wall.torque_rows.clear();
     wall.displacement_rows.clear();
+    wall.impact_energy_rows.clear();
+    wall.impacts_rows.clear();
   }
   for (auto* v : {&step_, &intact_, &broken_, &contacts_}) v->clear();
   for (auto* v : {&time_, &kinetic_, &bond_, &contact_}) v->clear();

@@ -1,5 +1,5 @@
 #pragma once
-// /series: one extensible column per quantity and three [n,3] columns per wall. Rows are
+// /series: one extensible column per quantity; per wall three [n,3] columns and two [n] ones. Rows are
 // buffered in memory and written a block at a time, so append() is a few stores into vectors
 // reserved up front (no allocation per row).
 #include <hdf5.h>
@@ -25,8 +25,10 @@ class SeriesWriter {
 
  private:
   struct WallColumns {
-    h5::Column force, torque, displacement;
+    h5::Column force, torque, displacement, impact_energy, impacts;
     std::vector<Vec3> force_rows, torque_rows, displacement_rows;
+    std::vector<double> impact_energy_rows;
+    std::vector<std::int64_t> impacts_rows;
   };
 
   std::size_t block_rows_;

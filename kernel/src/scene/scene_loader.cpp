@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cstring>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <toml++/toml.h>
 
@@ -84,6 +85,88 @@ void apply_override(toml::table& root, const std::string& assignment) {
   section->insert_or_assign(parts[1], *holder.get("v"));
 }
 
+// A wall's motion or rotation table, its errors also naming the scene key that gave it.
+WallTable read_table(const Section& s, const std::string& key, const std::string& file,
+                     const std::filesystem::path& dir, WallTableKind kind) {
+  const auto path = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : dir / file;
+  try {
+    return read_wall_table(path, kind);
+  } catch (const SceneError& e) {
+    throw SceneError(fmt::format("{} (read for [wall] {} at {})", e.what(), key, s.at(key)));
+  }
+}
+
+// Rotation about an axis (wall_motion.hpp): `rotation_axis` through `rotation_point` with a constant
+// `angular_velocity` [rad/s] or `rpm` (shaped by the wall's `ramp` like `velocity`), or a
+// `rotation_table` of the angle or angular velocity over time.
+void read_wall_spin(Section& s, const toml::table& t, const std::filesystem::path& dir, Wall& w) {
+  const Vec3 axis = s.vec3("rotation_axis", Vec3::Zero());
+  const Vec3 point = s.vec3("rotation_point", w.point);
+  const double omega = s.number("angular_velocity", 0, -1e300, 1e300, "rad/s");
+  const double rpm = s.number("rpm", 0, -1e300, 1e300, "revolutions per minute");
+  const std::string table = s.text("rotation_table", "");
+  if (!t.contains("rotation_axis")) {
+    for (const char* key : {"angular_velocity", "rpm", "rotation_table", "rotation_point"})
+      if (t.contains(key))
+        s.fail(key, "needs rotation_axis, the direction of the line the wall turns about (right-hand rule), e.g. "
+                    "rotation_axis = [0, 1, 0]");
+    return;
+  }
+  if (axis.norm() == 0)
+    s.fail("rotation_axis", "must not be the zero vector: give the direction the wall turns about, e.g. [0, 1, 0]");
+  const int speeds = t.contains("angular_velocity") + t.contains("rpm") + t.contains("rotation_table");
+  if (speeds == 0)
+    s.fail("rotation_axis", "is given without a speed: add angular_velocity [rad/s], rpm, or a rotation_table");
+  if (speeds > 1)
+    s.fail(t.contains("rotation_table") ? "rotation_table" : "rpm",
+           "is one of angular_velocity, rpm and rotation_table, which all set the rotation; give one of them");
+  if (w.shape == WallShape::Mesh && !t.contains("rotation_point"))
+    s.fail("rotation_axis", "of a mesh wall needs rotation_point, a point on the axis in the mesh's coordinates "
+                            "(after scale and offset), e.g. the drum's centre");
+  w.motion.spins = true;
+  w.motion.spin_axis = axis.normalized();
+  w.motion.spin_centre = point;
+  w.motion.angular_speed = t.contains("rpm") ? rpm * 2.0 * std::numbers::pi / 60.0 : omega;
+  if (table.empty()) return;
+  if (w.motion.ramp != WallRamp::None && !t.contains("velocity"))
+    s.fail("ramp", "is given with a rotation_table and no velocity; a table holds its own ramp");
+  w.motion.spin_table = read_table(s, "rotation_table", table, dir, WallTableKind::Rotation);
+}
+
+// A conveyor belt: the surface slides over the fixed geometry at `surface_velocity`, or at
+// `belt_speed` along `belt_direction`.
+void read_wall_belt(Section& s, const toml::table& t, Wall& w) {
+  const Vec3 surface = s.vec3("surface_velocity", Vec3::Zero());
+  const double speed = s.number("belt_speed", 0, -1e300, 1e300, "m/s");
+  const Vec3 direction = s.vec3("belt_direction", Vec3::Zero());
+  const bool by_vector = t.contains("surface_velocity"), by_speed = t.contains("belt_speed");
+  if (!by_vector && !by_speed) {
+    if (t.contains("belt_direction")) s.fail("belt_direction", "is given without belt_speed [m/s]");
+    return;
+  }
+  const std::string key = by_vector ? "surface_velocity" : "belt_speed";
+  if (by_vector && (by_speed || t.contains("belt_direction")))
+    s.fail("surface_velocity", "is given with belt_speed or belt_direction, which say the same; give one form");
+  if (w.shape == WallShape::Cylinder)
+    s.fail(key, "has no meaning on a cylinder, whose surface cannot slide along itself as a flat belt does: make it "
+                "a turning roller instead, rotation_axis = its axis and angular_velocity = belt speed / radius");
+  if (by_speed) {
+    if (direction.norm() == 0)
+      s.fail("belt_direction", "is missing or zero: the belt runs along it, e.g. belt_direction = [1, 0, 0]");
+    w.surface_velocity = speed * direction.normalized();
+  } else {
+    w.surface_velocity = surface;
+  }
+  if (w.shape == WallShape::Plane) {
+    const double across = w.surface_velocity.dot(w.axis.normalized());
+    if (std::abs(across) > 1e-9 * w.surface_velocity.norm())
+      s.fail(t.contains("belt_direction") ? "belt_direction" : key,
+             fmt::format("has {} m/s along the plane's normal; a belt's surface moves within the plane: give a "
+                         "direction perpendicular to the normal",
+                         across));
+  }
+}
+
 // The wall's motion profile (wall_motion.hpp): `velocity` with an optional `ramp` over
 // `ramp_time`, or a `motion_table` along `direction`.
 void read_wall_motion(Section& s, const toml::table& t, const std::filesystem::path& dir, Wall& w) {
@@ -108,8 +191,7 @@ void read_wall_motion(Section& s, const toml::table& t, const std::filesystem::p
     s.fail("velocity", "is given with a motion_table, which sets the velocity itself; remove one of them");
   if (w.motion.ramp != WallRamp::None) s.fail("ramp", "is given with a motion_table; a table holds its own ramp");
   if (direction.norm() == 0) s.fail("direction", "is missing or zero: a motion_table moves the wall along it, e.g. [0, 0, -1]");
-  const auto path = std::filesystem::path(table).is_absolute() ? std::filesystem::path(table) : dir / table;
-  w.motion.table = read_wall_table(path);
+  w.motion.table = read_table(s, "motion_table", table, dir, WallTableKind::Translation);
   w.motion.table.direction = direction.normalized();
   // The scene-level velocity is the table's mean over its rows (what the loading rate reads).
   w.velocity = w.motion.table.travel.back() / w.motion.table.time.back() * w.motion.table.direction;
@@ -160,6 +242,8 @@ Wall read_wall(const toml::table& t, const std::string& file, const std::filesys
     s.fail("shape", fmt::format("= '{}' is not a wall shape; use \"plane\", \"cylinder\" or \"mesh\"", shape));
   }
   read_wall_motion(s, t, dir, w);
+  read_wall_spin(s, t, dir, w);
+  read_wall_belt(s, t, w);
   s.finish();
   return w;
 }

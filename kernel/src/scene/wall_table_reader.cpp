@@ -35,13 +35,17 @@ std::vector<Cell> split_row(const std::string& line) {
 
 }  // namespace
 
-WallTable read_wall_table(const std::filesystem::path& file) {
+WallTable read_wall_table(const std::filesystem::path& file, WallTableKind kind) {
   const std::string name = file.string();
+  const bool turns = kind == WallTableKind::Rotation;
+  // The value column's two names: a position (displacement, angle) or a rate.
+  const std::string position = turns ? "angle" : "displacement", rate = turns ? "angular_velocity" : "velocity";
+  const std::string key = turns ? "rotation_table" : "motion_table";
   std::ifstream in(file);
   if (!in)
-    throw SceneError(fmt::format("{}: cannot open the wall's motion_table (a CSV of time and displacement or velocity); "
-                                 "check the path, which is relative to the scene file",
-                                 name));
+    throw SceneError(fmt::format("{}: cannot open the wall's {} (a CSV of time and {} or {}); check the path, which "
+                                 "is relative to the scene file",
+                                 name, key, position, rate));
   WallTable table;
   table.file = name;
   int time_col = -1, value_col = -1;
@@ -57,23 +61,22 @@ WallTable read_wall_table(const std::filesystem::path& file) {
       for (std::size_t c = 0; c < cells.size(); ++c) {
         const std::string& h = cells[c].text;
         if (h == "time") time_col = static_cast<int>(c);
-        else if (h == "displacement" || h == "velocity") {
+        else if (h == position || h == rate) {
           if (value_col >= 0)
-            throw SceneError(fmt::format("{}:{}:{}: the motion table names both displacement and velocity; give one of "
-                                         "them",
-                                         name, line_no, cells[c].column));
+            throw SceneError(fmt::format("{}:{}:{}: the {} names both {} and {}; give one of them", name, line_no,
+                                         cells[c].column, key, position, rate));
           value_col = static_cast<int>(c);
-          table.gives_velocity = h == "velocity";
+          table.gives_velocity = h == rate;
         } else {
-          throw SceneError(fmt::format("{}:{}:{}: unknown column '{}' in the motion table; the columns are time [s] and "
-                                       "either displacement [m] or velocity [m/s]",
-                                       name, line_no, cells[c].column, h));
+          throw SceneError(fmt::format("{}:{}:{}: unknown column '{}' in the {}; the columns are time [s] and either "
+                                       "{} [{}] or {} [{}]",
+                                       name, line_no, cells[c].column, h, key, position, turns ? "rad" : "m", rate,
+                                       turns ? "rad/s" : "m/s"));
         }
       }
       if (time_col < 0 || value_col < 0)
-        throw SceneError(fmt::format("{}:{}:1: the motion table's header must name time and either displacement or "
-                                     "velocity, e.g. 'time,displacement'",
-                                     name, line_no));
+        throw SceneError(fmt::format("{}:{}:1: the {}'s header must name time and either {} or {}, e.g. 'time,{}'",
+                                     name, line_no, key, position, rate, position));
       continue;
     }
     if (cells.size() != columns)
@@ -99,7 +102,8 @@ WallTable read_wall_table(const std::filesystem::path& file) {
     table.value.push_back(v[1]);
     last_line = line_no;
   }
-  if (columns == 0) throw SceneError(fmt::format("{}: the motion table is empty; write a header 'time,displacement' and rows", name));
+  if (columns == 0)
+    throw SceneError(fmt::format("{}: the {} is empty; write a header 'time,{}' and rows", name, key, position));
   try {
     prepare_wall_table(table);
   } catch (const std::invalid_argument& e) {
