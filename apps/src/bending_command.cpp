@@ -20,6 +20,7 @@
 #include "shard/bending/calibration.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
+#include "significant_digits.hpp"
 
 namespace shard {
 namespace {
@@ -165,10 +166,10 @@ int calibrate_command(CalibrateCliOptions& o, const CommandContext& ctx) {
     RunOptions run;
     run.scene = o.scene;
     run.overrides = parse_overrides(o.overrides);
-    run.overrides.push_back({"bond.youngs_modulus", eb});
-    run.overrides.push_back({"bond.critical_stress", sc});
+    run.overrides.push_back({"bond.youngs_modulus", significant(eb, 9)});
+    run.overrides.push_back({"bond.critical_stress", significant(sc, 9)});
     run.overrides.push_back({"simulation.breakage", breakage});
-    if (!breakage && stiffness_stop > 0) run.overrides.push_back({"stop.max_displacement", stiffness_stop});
+    if (!breakage && stiffness_stop > 0) run.overrides.push_back({"stop.max_displacement", significant(stiffness_stop, 9)});
     run.out_dir = o.out_dir / fmt::format("run_{:02d}_{}", index, stage);
     run.plugin_dirs = ctx.plugin_dirs;
     run.threads = o.threads;

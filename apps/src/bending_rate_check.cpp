@@ -19,6 +19,7 @@
 #include "shard/bending/rate_check.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
+#include "significant_digits.hpp"
 
 namespace shard {
 namespace {
@@ -46,11 +47,11 @@ SceneOverrides slowed_overrides(const RateCheckCliOptions& o, const Scene& scene
       throw std::runtime_error(fmt::format("{}: [stop] load_walls names '{}', which is no [[wall]]", o.scene.string(), name));
     if (it->velocity.norm() == 0)
       throw std::runtime_error(fmt::format("{}: loading wall '{}' does not move (velocity zero)", o.scene.string(), name));
-    out.push_back({fmt::format("wall.{}.velocity", name), Vec3(o.factor * it->velocity)});
+    out.push_back({fmt::format("wall.{}.velocity", name), significant(Vec3(o.factor * it->velocity), 9)});
     if (it->motion.ramp != WallRamp::None)  // the same ramp travel at the slower speed
-      out.push_back({fmt::format("wall.{}.ramp_time", name), it->motion.ramp_time / o.factor});
+      out.push_back({fmt::format("wall.{}.ramp_time", name), significant(it->motion.ramp_time / o.factor, 9)});
   }
-  out.push_back({"simulation.duration", scene.duration / o.factor});
+  out.push_back({"simulation.duration", significant(scene.duration / o.factor, 9)});
   return out;
 }
 

@@ -12,6 +12,7 @@
 
 #include "shard/measure/report.hpp"
 #include "shard/measure/synthetic.hpp"
+#include "significant_digits.hpp"
 
 namespace shard {
 
@@ -360,7 +361,7 @@ ModelPlan with_effect(ModelPlan model, const CandidateEffect& effect, double val
 }
 
 ModelPlan with_parameters(ModelPlan model, const std::vector<std::string>& keys, const std::vector<double>& values) {
-  for (std::size_t i = 0; i < keys.size(); ++i) model.overrides.push_back({keys[i], values[i]});
+  for (std::size_t i = 0; i < keys.size(); ++i) model.overrides.push_back({keys[i], significant(values[i], 12)});
   return model;
 }
 
