@@ -12,7 +12,7 @@
 
 #include "bending_commands.hpp"
 #include "option_checks.hpp"
-#include "output_folder.hpp"
+#include "shard/driver/output_folder.hpp"
 #include "shard/app/commands.hpp"
 #include "shard/app/run_command.hpp"
 #include "shard/bending/bending_plot.hpp"
@@ -20,6 +20,7 @@
 #include "shard/bending/calibration.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
+#include "significant_digits.hpp"
 
 namespace shard {
 namespace {
@@ -164,11 +165,11 @@ int calibrate_command(CalibrateCliOptions& o, const CommandContext& ctx) {
   auto evaluate = [&](double eb, double sc, bool breakage, const std::string& stage, int index) {
     RunOptions run;
     run.scene = o.scene;
-    run.overrides = o.overrides;
-    run.overrides.push_back(fmt::format("bond.youngs_modulus={:.9g}", eb));
-    run.overrides.push_back(fmt::format("bond.critical_stress={:.9g}", sc));
-    run.overrides.push_back(fmt::format("simulation.breakage={}", breakage ? "true" : "false"));
-    if (!breakage && stiffness_stop > 0) run.overrides.push_back(fmt::format("stop.max_displacement={:.9g}", stiffness_stop));
+    run.overrides = parse_overrides(o.overrides);
+    run.overrides.push_back({"bond.youngs_modulus", significant(eb, 9)});
+    run.overrides.push_back({"bond.critical_stress", significant(sc, 9)});
+    run.overrides.push_back({"simulation.breakage", breakage});
+    if (!breakage && stiffness_stop > 0) run.overrides.push_back({"stop.max_displacement", significant(stiffness_stop, 9)});
     run.out_dir = o.out_dir / fmt::format("run_{:02d}_{}", index, stage);
     run.plugin_dirs = ctx.plugin_dirs;
     run.threads = o.threads;

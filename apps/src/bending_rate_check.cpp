@@ -12,13 +12,14 @@
 
 #include "bending_commands.hpp"
 #include "option_checks.hpp"
-#include "output_folder.hpp"
+#include "shard/driver/output_folder.hpp"
 #include "shard/app/commands.hpp"
 #include "shard/app/run_command.hpp"
 #include "shard/bending/bending_run.hpp"
 #include "shard/bending/rate_check.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
+#include "significant_digits.hpp"
 
 namespace shard {
 namespace {
@@ -32,12 +33,10 @@ struct RateCheckCliOptions {
   bending::RateCheckCriteria criteria;
 };
 
-std::string vec_text(const Vec3& v) { return fmt::format("[{:.9g}, {:.9g}, {:.9g}]", v.x(), v.y(), v.z()); }
-
 // The overrides that slow the loading walls by `factor` and stretch the duration to match (the
 // stop rule still ends the run at failure).
-std::vector<std::string> slowed_overrides(const RateCheckCliOptions& o, const Scene& scene) {
-  std::vector<std::string> out = o.overrides;
+SceneOverrides slowed_overrides(const RateCheckCliOptions& o, const Scene& scene) {
+  SceneOverrides out = parse_overrides(o.overrides);
   if (scene.stop.load_walls.empty())
     throw std::runtime_error(fmt::format("{}: [stop] load_walls is empty: the rate check needs the loading walls named "
                                          "there (e.g. load_walls = [\"pin_left\", \"pin_right\"])",
@@ -48,11 +47,11 @@ std::vector<std::string> slowed_overrides(const RateCheckCliOptions& o, const Sc
       throw std::runtime_error(fmt::format("{}: [stop] load_walls names '{}', which is no [[wall]]", o.scene.string(), name));
     if (it->velocity.norm() == 0)
       throw std::runtime_error(fmt::format("{}: loading wall '{}' does not move (velocity zero)", o.scene.string(), name));
-    out.push_back(fmt::format("wall.{}.velocity={}", name, vec_text(o.factor * it->velocity)));
+    out.push_back({fmt::format("wall.{}.velocity", name), significant(Vec3(o.factor * it->velocity), 9)});
     if (it->motion.ramp != WallRamp::None)  // the same ramp travel at the slower speed
-      out.push_back(fmt::format("wall.{}.ramp_time={:.9g}", name, it->motion.ramp_time / o.factor));
+      out.push_back({fmt::format("wall.{}.ramp_time", name), significant(it->motion.ramp_time / o.factor, 9)});
   }
-  out.push_back(fmt::format("simulation.duration={:.9g}", scene.duration / o.factor));
+  out.push_back({"simulation.duration", significant(scene.duration / o.factor, 9)});
   return out;
 }
 
@@ -65,7 +64,7 @@ int rate_check_command(const RateCheckCliOptions& o, const CommandContext& ctx) 
   prepare_output_folder(o.out_dir, "--out");
   std::ofstream log(o.out_dir / "rate_check.log");
 
-  auto run = [&](const std::vector<std::string>& overrides, const std::string& name) {
+  auto run = [&](const SceneOverrides& overrides, const std::string& name) {
     RunOptions r;
     r.scene = o.scene;
     r.overrides = overrides;
@@ -81,7 +80,7 @@ int rate_check_command(const RateCheckCliOptions& o, const CommandContext& ctx) 
     return report;
   };
   fmt::print("rate check of {} (factor {:g}); runs in {}\n", o.scene.string(), o.factor, o.out_dir.string());
-  const auto fast = run(o.overrides, "rate");
+  const auto fast = run(parse_overrides(o.overrides), "rate");
   const auto slow = run(slowed_overrides(o, scene), "slow");
   const auto check = bending::compare_rates(fast.analysis, slow.analysis, o.criteria);
   fmt::print("{}", bending::format_rate_check(fast.analysis, slow.analysis, fast.quasi_static.loading_speed,

@@ -22,7 +22,7 @@
 #include "measure_commands.hpp"
 #include "measure_plan.hpp"
 #include "option_checks.hpp"
-#include "output_folder.hpp"
+#include "shard/driver/output_folder.hpp"
 #include "shard/app/commands.hpp"
 #include "shard/measure/confirmation.hpp"
 #include "shard/measure/report.hpp"

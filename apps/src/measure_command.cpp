@@ -15,7 +15,7 @@
 
 #include "measure_commands.hpp"
 #include "measure_plan.hpp"
-#include "output_folder.hpp"
+#include "shard/driver/output_folder.hpp"
 #include "shard/app/commands.hpp"
 #include "shard/measure/comparison.hpp"
 #include "shard/measure/measurements.hpp"
@@ -119,11 +119,10 @@ void add_compare(CLI::App& app, CommandContext& ctx) {
       fmt::print("largest kinetic/elastic energy ratio before breakage: {:.2g} (quasi-static at or below {:g})\n", ke,
                  kDynamicKineticToElastic);
       HistoryEntry h = history_entry("compare", o->label, rc);
-      for (const auto& s : o->model.overrides)
-        if (const auto eq = s.find('='); eq != std::string::npos) try {
-            h.parameters[s.substr(0, eq)] = std::stod(s.substr(eq + 1));
-          } catch (const std::exception&) {
-          }
+      for (const auto& s : o->model.overrides) {
+        if (const auto* d = std::get_if<double>(&s.value)) h.parameters[s.key] = *d;
+        if (const auto* i = std::get_if<std::int64_t>(&s.value)) h.parameters[s.key] = static_cast<double>(*i);
+      }
       if (o->model.machine_compliance > 0) h.parameters["machine_compliance"] = o->model.machine_compliance;
       append_history(o->sim.work_dir, h);
     }

@@ -15,7 +15,7 @@
 #include <memory>
 
 #include "contrast_report.hpp"
-#include "output_folder.hpp"
+#include "shard/driver/output_folder.hpp"
 #include "measure_commands.hpp"
 #include "shard/app/commands.hpp"
 #include "shard/measure/report.hpp"

@@ -12,6 +12,7 @@
 
 #include "shard/measure/report.hpp"
 #include "shard/measure/synthetic.hpp"
+#include "significant_digits.hpp"
 
 namespace shard {
 
@@ -20,11 +21,16 @@ using namespace measure;
 
 void add_simulation_options(CLI::App* cmd, ModelPlan& model, SimulationOptions& options) {
   cmd->add_option("--scene", model.scene, "model scene (.toml)");
-  cmd->add_option("--set", model.overrides, "override a scene key, e.g. --set bond.youngs_modulus=13e6");
+  cmd->add_option_function<std::vector<std::string>>(
+      "--set",
+      [&model](const std::vector<std::string>& assignments) {
+        for (const auto& a : assignments) model.overrides.push_back(SceneOverride::parse(a));
+      },
+      "override a scene key, e.g. --set bond.youngs_modulus=13e6");
   cmd->add_option("--seeds", options.seeds, "packing-seed replicates")->check(CLI::PositiveNumber);
   cmd->add_option("--first-seed", options.first_seed, "first packing seed");
   cmd->add_option("--work", options.work_dir, "folder for the run cache and history.jsonl");
-  cmd->add_option("--workers", options.workers, "simulations run at once (child processes)")->check(CLI::PositiveNumber);
+  cmd->add_option("--workers", options.workers, "simulations run at once (worker threads, one run each)")->check(CLI::PositiveNumber);
   cmd->add_flag("!--no-seat", options.seat, "do not bring pins and supports into contact before loading");
   cmd->add_option("--machine-compliance", model.machine_compliance,
                   "load-frame compliance C in m/N added to the simulated displacement (w + C F)");
@@ -44,7 +50,7 @@ Simulator::Simulator(const SimulationOptions& options, const std::vector<fs::pat
 std::vector<std::vector<Specimen>> Simulator::simulate(const std::vector<ModelPlan>& models, std::ostream& log) {
   std::vector<RunRequest> requests;
   for (const auto& m : models) {
-    std::vector<std::string> overrides = m.overrides;
+    SceneOverrides overrides = m.overrides;
     const double rate = m.loading_rate * options_.time_compression;
     if (rate > 0 && !rate_hint_given_) {
       rate_hint_given_ = true;
@@ -151,7 +157,11 @@ double scene_number(const ModelPlan& model, const std::string& key, const std::v
   (void)plugin_dirs;
   // The last override of the key wins, as in the scene loader; otherwise the scene file's value.
   for (auto it = model.overrides.rbegin(); it != model.overrides.rend(); ++it)
-    if (it->rfind(key + "=", 0) == 0) return std::stod(it->substr(key.size() + 1));
+    if (it->key == key) {
+      if (const auto* d = std::get_if<double>(&it->value)) return *d;
+      if (const auto* i = std::get_if<std::int64_t>(&it->value)) return static_cast<double>(*i);
+      throw std::runtime_error(fmt::format("--set {}: a number is needed here", it->text()));
+    }
   const toml::table root = toml::parse_file(model.scene.string());
   const auto dot = key.find('.');
   const auto v = root[key.substr(0, dot)][key.substr(dot + 1)].value<double>();
@@ -344,13 +354,14 @@ ModelPlan with_effect(ModelPlan model, const CandidateEffect& effect, double val
   if (effect.post_processing()) {
     model.machine_compliance += value;
   } else {
-    for (auto& s : effect.overrides(value)) model.overrides.push_back(std::move(s));
+    // The effect library states its values as scene text (value_format): parsed as --set is.
+    for (const auto& s : effect.overrides(value)) model.overrides.push_back(SceneOverride::parse(s));
   }
   return model;
 }
 
 ModelPlan with_parameters(ModelPlan model, const std::vector<std::string>& keys, const std::vector<double>& values) {
-  for (std::size_t i = 0; i < keys.size(); ++i) model.overrides.push_back(fmt::format("{}={:.12g}", keys[i], values[i]));
+  for (std::size_t i = 0; i < keys.size(); ++i) model.overrides.push_back({keys[i], significant(values[i], 12)});
   return model;
 }
 

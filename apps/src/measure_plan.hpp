@@ -14,12 +14,13 @@
 #include "measure_runner.hpp"
 #include "shard/measure/comparison.hpp"
 #include "shard/measure/measurements.hpp"
+#include "shard/scene_override.hpp"
 
 namespace shard {
 
 struct ModelPlan {
   std::filesystem::path scene;
-  std::vector<std::string> overrides;
+  SceneOverrides overrides;  // typed; --set strings are parsed at the command line
   double machine_compliance = 0;  // m/N, series spring applied to the simulated curves
   double loading_rate = 0;        // m/s of the loading pins; 0 = the scene's own
 };

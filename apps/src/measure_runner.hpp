@@ -1,9 +1,9 @@
 #pragma once
 // Simulations for the measurement workflow (compare, synth, diagnose, calibrate-effect): each
 // request (scene, overrides, packing seed) is resolved to its full scene text, looked up in a run
-// cache keyed by that text, and otherwise run as a child `shard run` process, several at a time.
-// Runs are independent, so worker processes are the simplest parallelism that is safe whatever
-// the kernel and HDF5 do inside a run (each child uses one OpenMP thread).
+// cache keyed by that text, and otherwise run in-process through the run driver
+// (shard/driver/run_driver.hpp), several at a time on worker threads (one OpenMP thread each).
+// A run that fails (bad input, a numerical blow-up) is reported as failed and the others go on.
 //
 // Seating: a testing machine brings the pins into contact before it records. With `seat`, the
 // loading walls ([stop] load_walls) and the resting cylinders (supports) are moved along the
@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "shard/measure/curve.hpp"
+#include "shard/scene_override.hpp"
 
 namespace shard {
 
@@ -25,7 +26,7 @@ class PluginHost;
 
 struct RunRequest {
   std::filesystem::path scene;
-  std::vector<std::string> overrides;  // section.key=value, as --set
+  SceneOverrides overrides;
   long seed = 1;
   bool seat = true;
 };
@@ -49,6 +50,8 @@ struct RunResult {
   // diameter. Unset / empty when the run is not a four-point bending test or no bond broke.
   std::optional<double> crack_position;
   std::vector<double> fragment_sizes;
+  std::string failure;  // why the run failed (empty: it ran)
+  bool failed() const { return !failure.empty(); }
 };
 
 class RunPool {
@@ -59,33 +62,34 @@ class RunPool {
   RunPool& operator=(const RunPool&) = delete;
 
   // The overrides that seat the walls of `request` on its packing (empty without load walls).
-  std::vector<std::string> seating_overrides(const RunRequest& request) const;
+  SceneOverrides seating_overrides(const RunRequest& request) const;
   // The overrides that load `scene` (with `overrides`) at `rate` m/s instead of its own pin
   // speed: the load walls' velocities scaled, and the duration and the series interval scaled
   // inversely so that the same pin travel is simulated and recorded. Empty at the scene's rate.
-  std::vector<std::string> rate_overrides(const std::filesystem::path& scene, const std::vector<std::string>& overrides,
-                                          double rate) const;
+  SceneOverrides rate_overrides(const std::filesystem::path& scene, const SceneOverrides& overrides, double rate) const;
   // The overrides that accelerate the [stop] load walls along `ramp` ("1-cos", "linear", "none")
   // over `ramp_time` s (the kernel's [[wall]] ramp).
-  std::vector<std::string> ramp_overrides(const std::filesystem::path& scene, const std::vector<std::string>& overrides,
-                                          const std::string& ramp, double ramp_time) const;
+  SceneOverrides ramp_overrides(const std::filesystem::path& scene, const SceneOverrides& overrides,
+                                const std::string& ramp, double ramp_time) const;
   // The specimen of a scene (generated with `seed`); throws unless the scene has two loading
   // cylinders ([stop] load_walls) and two resting cylinders (supports).
-  SpecimenSetup specimen_setup(const std::filesystem::path& scene, const std::vector<std::string>& overrides,
-                               long seed) const;
+  SpecimenSetup specimen_setup(const std::filesystem::path& scene, const SceneOverrides& overrides, long seed) const;
   // The pin speed of a scene, m/s: the largest speed of its [stop] load walls.
-  double scene_rate(const std::filesystem::path& scene, const std::vector<std::string>& overrides) const;
+  double scene_rate(const std::filesystem::path& scene, const SceneOverrides& overrides) const;
   // The full scene text a request runs (overrides, seed and seating applied).
   std::string resolved_text(const RunRequest& request) const;
-  // Runs every request that is not cached, `workers` child processes at a time; results in the
-  // order of the requests. Throws with the child's log when a run fails.
+  // Runs every request that is not cached, `workers` at a time on threads; results in the order
+  // of the requests. A failed run leaves the others running (and cached); failed() is then set on
+  // its result and `failure` says why.
+  std::vector<RunResult> try_run(const std::vector<RunRequest>& requests, std::ostream& log);
+  // The same, but throws (after every run ended) with the first failed run's message.
   std::vector<RunResult> run(const std::vector<RunRequest>& requests, std::ostream& log);
 
   std::size_t runs_started() const { return runs_started_; }
   const std::filesystem::path& work_dir() const { return work_dir_; }
 
  private:
-  std::vector<std::string> full_overrides(const RunRequest& request) const;
+  SceneOverrides full_overrides(const RunRequest& request) const;
 
   std::filesystem::path work_dir_;
   std::vector<std::filesystem::path> plugin_dirs_;

@@ -41,22 +41,24 @@ std::string default_text(const ParamSpec& s) {
 
 void add_run_command(CLI::App& app, CommandContext& ctx) {
   auto options = std::make_shared<RunOptions>();
+  auto assignments = std::make_shared<std::vector<std::string>>();
   auto* cmd = app.add_subcommand("run", "run a scene file");
   cmd->add_option("scene", options->scene, "scene .toml (not with --restart)");
   cmd->add_option("--restart", options->restart, "continue run.h5 from its checkpoint run.checkpoint.h5");
   cmd->add_option("--checkpoint-every", options->checkpoint_every, "frames between checkpoints (0: only when stopping)")
       ->check(number_from(0, false, "0 (checkpoint only when stopping) or a number of frames"));
-  cmd->add_option("--set", options->overrides, "override a scene key, e.g. --set bond.youngs_modulus=13e6");
+  cmd->add_option("--set", *assignments, "override a scene key, e.g. --set bond.youngs_modulus=13e6");
   cmd->add_option("--out", options->out_dir, "output folder");
   cmd->add_option("--threads", options->threads, "OpenMP threads (default: all cores)")->check(thread_count());
   cmd->add_flag("--quiet", options->quiet, "no progress line");
-  cmd->callback([options, &ctx] {
+  cmd->callback([options, assignments, &ctx] {
     options->plugin_dirs = ctx.plugin_dirs;
+    options->overrides = parse_overrides(*assignments);
     if (options->scene.empty() == options->restart.empty())
       throw std::invalid_argument("shard run needs a scene file, or --restart run.h5 (not both)");
     const RunSummary summary = run_scene(*options, std::cerr);
     // 130 = 128 + SIGINT, what a shell reports for a job stopped by Ctrl-C.
-    ctx.exit_code = summary.interrupted ? 130 : 0;
+    ctx.exit_code = summary.interrupted() ? 130 : 0;
   });
 }
 

@@ -33,7 +33,7 @@ TEST_CASE("calibration of a coarse beam reaches E and F_max of a run with known 
   // The "measurement": E_b = 20 MPa, sigma_crit = 0.32 MPa (Table I: 12.8 and 0.24 MPa).
   shard::RunOptions truth;
   truth.scene = scene;
-  truth.overrides = {"bond.youngs_modulus=20e6", "bond.critical_stress=0.32e6"};
+  truth.overrides = {{"bond.youngs_modulus", 20e6}, {"bond.critical_stress", 0.32e6}};
   truth.out_dir = "bending_calibration_truth";
   truth.plugin_dirs = {plugins};
   truth.threads = 1;

@@ -20,7 +20,7 @@ RunOptions options_for(const std::filesystem::path& out, bool effect_on) {
   o.out_dir = out;
   o.quiet = true;
   o.plugin_dirs = {EFFECT_PLUGIN_DIR};
-  if (effect_on) o.overrides = {"bond.test_damage_damage_per_strain=30"};
+  if (effect_on) o.overrides = parse_overrides({"bond.test_damage_damage_per_strain=30"});
   return o;
 }
 
@@ -50,7 +50,7 @@ TEST_CASE("a run with a bond effect, interrupted and restarted, ends bit for bit
     const auto dir = scratch("effect_interrupted_" + std::to_string(k));
     RunOptions first = options_for(dir, true);
     first.interrupt_at_step = k;
-    REQUIRE(run_scene(first, log).interrupted);
+    REQUIRE(run_scene(first, log).interrupted());
     RunOptions second = options_for(dir, true);
     second.scene.clear();
     second.overrides.clear();  // the run file holds the resolved scene

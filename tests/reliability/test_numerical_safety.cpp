@@ -2,7 +2,7 @@
 // with the last good state kept as the checkpoint.
 #include <sstream>
 
-#include "../../apps/src/numerical_health.hpp"
+#include "shard/driver/numerical_health.hpp"
 #include "reliability_fixtures.hpp"
 #include "shard/app/run_command.hpp"
 
@@ -30,7 +30,7 @@ TEST_CASE("a time step far above the bonds' critical step is stopped within a fe
   o.out_dir = dir;
   o.quiet = true;
   // The auto step of this scene is about 2.6e-6 s; 20 times that is far past every critical step.
-  o.overrides = {"simulation.dt=5.2e-5"};
+  o.overrides = {{"simulation.dt", 5.2e-5}};
   std::string message;
   try {
     run_scene(o, log);

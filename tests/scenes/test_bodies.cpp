@@ -349,7 +349,7 @@ TEST_CASE("body ids survive a checkpoint and restart: the continued run ends as 
   RunOptions first = reference;
   first.out_dir = dir / "interrupted";
   first.interrupt_at_step = whole.steps / 2;
-  REQUIRE(run_scene(first, log).interrupted);
+  REQUIRE(run_scene(first, log).interrupted());
   // The checkpoint holds the body of every particle.
   const Checkpoint c = read_checkpoint(dir / "interrupted" / "run.checkpoint.h5");
   REQUIRE(c.simulation.particles.body.size() == 80);

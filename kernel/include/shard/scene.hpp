@@ -12,6 +12,7 @@
 
 #include "shard/params.hpp"
 #include "shard/plugin_host.hpp"
+#include "shard/scene_override.hpp"
 #include "shard/simulation.hpp"
 #include "shard/wall.hpp"
 
@@ -122,6 +123,10 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<std::strin
                  const PluginHost& host);
 Scene load_scene_text(const std::string& text, const std::filesystem::path& file_for_messages,
                       const std::vector<std::string>& overrides, const PluginHost& host);
+// The same with typed overrides (scene_override.hpp), as code that varies a scene passes them.
+Scene load_scene(const std::filesystem::path& file, const PluginHost& host, const SceneOverrides& overrides = {});
+Scene load_scene_text(const std::string& text, const std::filesystem::path& file_for_messages, const PluginHost& host,
+                      const SceneOverrides& overrides = {});
 
 // The models and the generated bodies of a scene, ready to step.
 struct SceneInstance {

@@ -11,6 +11,7 @@
 #include "shard/geometry/stl.hpp"
 #include "shard/scene.hpp"
 #include "body_section.hpp"
+#include "scene_override_toml.hpp"
 #include "scene_section.hpp"
 #include "wall_table_reader.hpp"
 
@@ -21,69 +22,6 @@ using scene_detail::plugin_choice;
 using scene_detail::read_bodies;
 using scene_detail::Section;
 using scene_detail::where;
-
-void apply_override(toml::table& root, const std::string& assignment) {
-  const auto eq = assignment.find('=');
-  if (eq == std::string::npos || eq == 0)
-    throw SceneError(fmt::format("--set '{}': expected section.key=value, e.g. bond.youngs_modulus=13e6", assignment));
-  const std::string path = assignment.substr(0, eq);
-  const std::string text = assignment.substr(eq + 1);
-  toml::node_view<toml::node> parsed_value;
-  toml::table holder;
-  try {
-    holder = toml::parse("v = " + text);
-  } catch (const toml::parse_error&) {
-    holder = toml::table{};
-    holder.insert("v", text);  // bare words are strings: --set generator.file=beam.stl
-  }
-  std::vector<std::string> parts;
-  std::stringstream ss(path);
-  for (std::string part; std::getline(ss, part, '.');) parts.push_back(part);
-  if (parts.size() == 3 && parts[0] == "wall") {
-    auto* walls = root["wall"].as_array();
-    if (walls)
-      for (auto& w : *walls)
-        if (auto* t = w.as_table(); t && (*t)["name"].value<std::string>() == parts[1]) {
-          t->insert_or_assign(parts[2], *holder.get("v"));
-          return;
-        }
-    throw SceneError(fmt::format("--set '{}': no [[wall]] named '{}'", assignment, parts[1]));
-  }
-  // body.NAME.key (placement) or body.NAME.generator.key / body.NAME.stream.key; NAME is the
-  // entry's name, or body<k> for the k-th entry without one.
-  if ((parts.size() == 3 || parts.size() == 4) && parts[0] == "body") {
-    if (parts.size() == 4 && parts[2] != "generator" && parts[2] != "stream")
-      throw SceneError(fmt::format("--set '{}': a body's tables are 'generator' and 'stream', e.g. "
-                                   "body.{}.generator.diameter_min=0.004",
-                                   assignment, parts[1]));
-    if (auto* bodies = root["body"].as_array()) {
-      std::size_t k = 0;
-      for (auto& b : *bodies) {
-        auto* t = b.as_table();
-        if (!t || (*t)["name"].value_or(fmt::format("body{}", k++)) != parts[1]) continue;
-        toml::table* target = t;
-        if (parts.size() == 4) {
-          if (!(*t)[parts[2]].as_table()) t->insert_or_assign(parts[2], toml::table{});
-          target = (*t)[parts[2]].as_table();
-        }
-        target->insert_or_assign(parts.back(), *holder.get("v"));
-        return;
-      }
-    }
-    throw SceneError(fmt::format("--set '{}': no [[body]] named '{}'", assignment, parts[1]));
-  }
-  if (parts.size() != 2)
-    throw SceneError(fmt::format(
-        "--set '{}': expected section.key=value (or wall.NAME.key=value, body.NAME.key=value, "
-        "body.NAME.generator.key=value, body.NAME.stream.key=value)",
-        assignment));
-  auto* section = root[parts[0]].as_table();
-  if (!section) {
-    root.insert(parts[0], toml::table{});
-    section = root[parts[0]].as_table();
-  }
-  section->insert_or_assign(parts[1], *holder.get("v"));
-}
 
 // A wall's motion or rotation table, its errors also naming the scene key that gave it.
 WallTable read_table(const Section& s, const std::string& key, const std::string& file,
@@ -269,13 +207,22 @@ std::string describe(const ParamSet& params) {
 
 Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides,
                  const PluginHost& host) {
+  return load_scene(file, host, parse_overrides(overrides));
+}
+
+Scene load_scene_text(const std::string& text, const std::filesystem::path& file_path,
+                      const std::vector<std::string>& overrides, const PluginHost& host) {
+  return load_scene_text(text, file_path, host, parse_overrides(overrides));
+}
+
+Scene load_scene(const std::filesystem::path& file, const PluginHost& host, const SceneOverrides& overrides) {
   std::ifstream in(file);
   if (!in)
     throw SceneError(fmt::format("{}: cannot open the scene file; check the path (scenes/ has examples)",
                                  file.string()));
   std::stringstream ss;
   ss << in.rdbuf();
-  return load_scene_text(ss.str(), file, overrides, host);
+  return load_scene_text(ss.str(), file, host, overrides);
 }
 
 namespace {
@@ -408,8 +355,8 @@ void refuse_unreadable_characters(const std::string& text, const std::string& fi
 
 }  // namespace
 
-Scene load_scene_text(const std::string& text, const std::filesystem::path& file_path,
-                      const std::vector<std::string>& overrides, const PluginHost& host) {
+Scene load_scene_text(const std::string& text, const std::filesystem::path& file_path, const PluginHost& host,
+                      const SceneOverrides& overrides) {
   const std::string file = file_path.string();
   refuse_malformed_headers(text, file);
   refuse_unreadable_characters(text, file);
@@ -478,7 +425,15 @@ Scene load_scene_text(const std::string& text, const std::filesystem::path& file
   scene.bodies = read_bodies(root, file, host);
   if (root["contact"].as_table())
     scene.contact = plugin_choice(root["contact"].as_table(), file, "contact", PluginKind::Contact, host);
-  if (root["bond"].as_table()) scene.bond = plugin_choice(root["bond"].as_table(), file, "bond", PluginKind::Bond, host);
+  if (const auto* bond = root["bond"].as_table()) {
+    // One switch turns breakage off for the whole scene: [simulation] breakage. The bond
+    // plugin's own flag of the same name is no scene key (two switches could disagree).
+    if (const toml::node* flag = bond->get("breakage"))
+      throw SceneError(fmt::format("{}: [bond] breakage is not a scene key; breakage has one switch, [simulation] "
+                                   "breakage = false (or --set simulation.breakage=false)",
+                                   where(file, flag->source())));
+    scene.bond = plugin_choice(bond, file, "bond", PluginKind::Bond, host);
+  }
 
   if (const auto* walls = root["wall"].as_array()) {
     std::size_t k = 0;

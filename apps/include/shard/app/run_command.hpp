@@ -1,19 +1,20 @@
 #pragma once
-// `shard run`: a scene from file to run.h5, with a progress line and a stop rule.
+// `shard run`: a scene from file to run.h5, with a progress line and a stop rule. The run itself
+// is the driver's (shard/driver/run_driver.hpp); this composes the observers a user's run has.
 #include <cstdint>
 #include <filesystem>
-#include <functional>
 #include <iosfwd>
 #include <string>
 #include <vector>
 
-namespace shard {
+#include "shard/driver/run_result.hpp"
+#include "shard/scene_override.hpp"
 
-class Simulation;
+namespace shard {
 
 struct RunOptions {
   std::filesystem::path scene;
-  std::vector<std::string> overrides;  // --set section.key=value
+  SceneOverrides overrides;  // --set section.key=value, parsed (SceneOverride::parse)
   std::filesystem::path out_dir = ".";
   std::vector<std::filesystem::path> plugin_dirs;
   int threads = 0;  // 0: OpenMP default
@@ -26,33 +27,11 @@ struct RunOptions {
   std::int64_t interrupt_at_step = -1;  // >= 0: behave as if SIGINT arrived at that step (tests)
 };
 
-struct RunSummary {
-  std::filesystem::path output;
-  std::int64_t steps = 0;
-  double time = 0;
-  double dt = 0;
-  std::size_t particles = 0;
-  std::size_t bonds_initial = 0;
-  std::int64_t bonds_broken = 0;
-  double peak_load = 0;                 // N, on the load walls along the loading direction
-  double displacement_at_peak = 0;      // m
-  double final_displacement = 0;        // m
-  double wall_seconds = 0;
-  std::string stop_reason;
-  std::vector<double> load, displacement, time_series;  // the load curve, one row per series row
-  // Kinetic and elastic (bond + contact) energy of the rows before the first bond broke.
-  std::vector<double> kinetic_before_break, elastic_before_break;
-  // Quasi-static check: the largest kinetic / elastic energy ratio over the rows before the first
-  // break whose load is at least 20 % of the run's final peak load (the seating rows, where the
-  // elastic energy is still near zero, say nothing about inertia in the test).
-  double max_kinetic_to_elastic = 0;
-  std::filesystem::path checkpoint;     // the last checkpoint written (empty: none)
-  std::int64_t checkpoint_step = -1;
-  bool interrupted = false;             // SIGINT: stopped after writing a checkpoint
-  std::int64_t restarted_from = -1;     // the checkpoint step a --restart continued from
-};
+using RunSummary = driver::RunResult;
 
-// Runs the scene; progress and log lines go to `log` (nothing when quiet).
+// Runs the scene with the stock observers: the scene's stop rules, Ctrl-C, checkpoints, fragment
+// labels, the progress line (not when quiet), the closing lines and the curve CSV. Progress and
+// log lines go to `log` (warnings even when quiet).
 RunSummary run_scene(const RunOptions& options, std::ostream& log);
 
 // Loads plugins from --plugin-dir, $SHARD_PLUGIN_PATH, the build and the install tree.

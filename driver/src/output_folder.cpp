@@ -1,4 +1,4 @@
-#include "output_folder.hpp"
+#include "shard/driver/output_folder.hpp"
 
 #include <fmt/format.h>
 #include <unistd.h>

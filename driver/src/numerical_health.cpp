@@ -1,4 +1,4 @@
-#include "numerical_health.hpp"
+#include "shard/driver/numerical_health.hpp"
 
 #include <fmt/format.h>
 

@@ -1,0 +1,25 @@
+#pragma once
+// Fragment labels in the frames ([output] fragments_every: every k-th frame; 0: none): each
+// particle's connected set of bonded particles, numbered canonically (by mass, then particle id)
+// so that ParaView's colours and the fragment analysis agree run to run. The result's
+// fragment_particles are the sizes of the last labelled frame's fragments.
+#include <vector>
+
+#include "shard/analysis/components.hpp"
+#include "shard/driver/run_observer.hpp"
+
+namespace shard::driver {
+
+class FragmentLabeller : public RunObserver {
+ public:
+  void before_frame(RunState& run) override;
+  void on_finish(RunState& run) override;
+
+ private:
+  analysis::UnionFindLabeller labeller_;
+  std::vector<Index> labels_;
+  Index count_ = 0;
+  bool labelled_ = false;
+};
+
+}  // namespace shard::driver

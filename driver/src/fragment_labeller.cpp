@@ -1,0 +1,26 @@
+#include "shard/driver/fragment_labeller.hpp"
+
+#include <algorithm>
+#include <functional>
+
+namespace shard::driver {
+
+void FragmentLabeller::before_frame(RunState& run) {
+  const int every = run.scene.fragments_every;
+  if (every <= 0 || run.frames_written % every != 0) return;
+  const auto& b = run.sim.bonds();
+  count_ = labeller_.label(run.sim.particles().size(), {b.i, b.j}, labels_);
+  analysis::canonicalise_labels(labels_, count_, run.sim.particles().mass, run.sim.particles().id);
+  run.frame_labels = &labels_;
+  labelled_ = true;
+}
+
+void FragmentLabeller::on_finish(RunState& run) {
+  if (!labelled_) return;
+  std::vector<std::size_t> sizes(static_cast<std::size_t>(count_), 0);
+  for (Index l : labels_) ++sizes[static_cast<std::size_t>(l)];
+  std::sort(sizes.begin(), sizes.end(), std::greater<>());
+  run.result.fragment_particles = std::move(sizes);
+}
+
+}  // namespace shard::driver

@@ -1,0 +1,324 @@
+#include "shard/driver/run_driver.hpp"
+
+#include <fmt/format.h>
+#include <hdf5.h>
+#include <omp.h>
+
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <sstream>
+
+#include "run_restart.hpp"
+#include "shard/bending/quasi_static.hpp"
+#include "shard/body_impacts.hpp"
+#include "shard/checkpoint.hpp"
+#include "shard/driver/numerical_health.hpp"
+#include "shard/driver/output_folder.hpp"
+#include "shard/output.hpp"
+#include "shard/plugin_host.hpp"
+#include "shard/run_file.hpp"
+#include "shard/scene.hpp"
+
+namespace shard::driver {
+namespace {
+
+// The run loop's own state that a checkpoint must carry besides the simulation's.
+void save_loop_state(Checkpoint& c, const RunResult& r, int frames_written, const NumericalHealth& health) {
+  c.numbers = {{"frames_written", frames_written},
+               {"peak_load", r.peak_load},
+               {"displacement_at_peak", r.displacement_at_peak},
+               {"max_kinetic_to_elastic", r.max_kinetic_to_elastic}};
+  c.arrays = {{"load", r.curve.load},
+              {"displacement", r.curve.displacement},
+              {"time_series", r.curve.time},
+              {"kinetic_before_break", r.kinetic_before_break},
+              {"elastic_before_break", r.elastic_before_break},
+              {"health", health.state()}};
+}
+
+void restore_loop_state(const Checkpoint& c, RunResult& r, int& frames_written, NumericalHealth& health) {
+  frames_written = static_cast<int>(c.number("frames_written"));
+  r.peak_load = c.number("peak_load");
+  r.displacement_at_peak = c.number("displacement_at_peak");
+  r.max_kinetic_to_elastic = c.number("max_kinetic_to_elastic");
+  r.curve.load = c.array("load");
+  r.curve.displacement = c.array("displacement");
+  r.curve.time = c.array("time_series");
+  r.kinetic_before_break = c.array("kinetic_before_break");
+  r.elastic_before_break = c.array("elastic_before_break");
+  health.restore(c.array("health"));
+}
+
+// True when a line of the scene reads `breakage = true` (blanks allowed around the words).
+// Plain scanning: GCC 12 warns falsely inside std::regex in the sanitizer build.
+bool explicitly_sets_breakage(const std::string& scene_text) {
+  std::istringstream lines(scene_text);
+  for (std::string line; std::getline(lines, line);) {
+    std::string compact;
+    for (char ch : line)
+      if (ch != ' ' && ch != '\t') compact += ch;
+    if (compact.rfind("breakage=true", 0) == 0) return true;
+  }
+  return false;
+}
+
+RunMetadata run_metadata(const Scene& scene, const SceneInstance& inst, const PluginHost& host,
+                         const RunLog& log) {
+  const Simulation& sim = *inst.simulation;
+  auto info = [&](const std::string& line) {
+    if (log.info) log.info(line);
+  };
+  RunMetadata meta;
+  for (const auto& l : sim.time_step_limits()) {
+    const std::string line = fmt::format("time step limit {}: critical {:.4g} s, recommended {:.4g} s", l.name,
+                                         l.critical, l.recommended);
+    info(line);
+    meta.notes.emplace_back("dt_" + l.name, line);
+  }
+  info(fmt::format("time step dt = {:.4g} s ({}), {} steps for {:.4g} s", sim.dt(), scene.dt > 0 ? "set" : "auto",
+                   static_cast<std::int64_t>(std::ceil(scene.duration / sim.dt())), scene.duration));
+  meta.notes.emplace_back("dt", fmt::format("{:.17g}", sim.dt()));
+  for (const auto& [k, v] : inst.body.quality) info(fmt::format("packing {} = {:.6g}", k, v));
+  meta.scene_text = scene.resolved_text;
+  meta.scene_file = scene.file.string();
+  meta.seed = scene.seed;
+  meta.shard_version = SHARD_VERSION;
+  meta.git_revision = SHARD_GIT_REVISION;
+  meta.generator_quality = inst.body.quality;
+  auto record = [&](PluginKind kind, const char* label, const PluginChoice& c, const std::string& body = {}) {
+    const auto& p = host.find(kind, c.name);
+    meta.plugins.emplace_back(fmt::format("{}/{}{}", label, c.name, body.empty() ? "" : "/" + body),
+                              fmt::format("version={}; file={}; {}", p.info.version, p.file, describe(c.params)));
+  };
+  // One record per body entry: generator/<plugin>, or generator/<plugin>/<body name> for [[body]].
+  for (const auto& b : scene.bodies)
+    record(PluginKind::Generator, "generator", b.generator,
+           b.from_generator_section ? "" : b.name);
+  if (scene.contact) record(PluginKind::Contact, "contact", *scene.contact);
+  if (scene.bond) record(PluginKind::Bond, "bond", *scene.bond);
+  if (scene.bond)  // the out-of-tree bond effects composed onto the law (docs/plugins.md)
+    for (const auto* e : host.bond_effects_on(scene.bond->name, scene.bond->params))
+      meta.plugins.emplace_back("bond_effect/" + e->info.name,
+                                fmt::format("version={}; file={}; on bond/{}", e->info.version, e->file, e->law));
+  return meta;
+}
+
+}  // namespace
+
+RunResult run(const RunSpec& spec, const PluginHost& host, const std::vector<RunObserver*>& observers,
+              const RunLog& log) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  if (spec.threads > 0) omp_set_num_threads(spec.threads);  // this thread's setting only
+  // HDF5 1.10 closes its open files again at exit; a file whose flush failed (disk full) then
+  // crashes that second close (measured: SIGSEGV in H5F__close_cb after the error was printed).
+  // Shard closes every file through RAII, so the library's exit handler is not needed. It can only
+  // be switched off before the library's first use and simply refuses afterwards.
+  H5dont_atexit();
+  auto info = [&](const std::string& line) {
+    if (log.info) log.info(line);
+  };
+  const bool restarting = !spec.restart.empty();
+  std::optional<Checkpoint> restart_point;
+  RunMetadata old_meta;
+  if (restarting) {
+    // Both are read before anything is built, so a missing checkpoint fails at once.
+    if (!std::filesystem::is_regular_file(spec.restart))
+      throw OutputError(fmt::format("--restart {}: no such run file; give the run.h5 of the run to continue",
+                                    spec.restart.string()));
+    restart_point = read_checkpoint(checkpoint_path_for(spec.restart));
+    old_meta = RunFile(spec.restart).metadata();
+  }
+  if (!restarting && std::filesystem::is_directory(spec.scene))
+    throw SceneError(fmt::format("{}: is a folder, not a scene file; give the .toml file (scenes/ has examples)",
+                                 spec.scene.string()));
+  const Scene scene = restarting ? load_scene_text(old_meta.scene_text, old_meta.scene_file, host)
+                                 : load_scene(spec.scene, host, spec.overrides);
+  // Breakage without a bond model is not an error (the default is on, and a contact-only scene
+  // is legitimate), but asking for it explicitly means a [bond] section was forgotten.
+  if (scene.breakage && !scene.bond && explicitly_sets_breakage(scene.resolved_text) && log.warning)
+    log.warning("breakage = true but the scene has no [bond] section: nothing can break. Add [bond] "
+                "(plugin = \"beam_bond\") or remove breakage");
+  // The output folder before the generator: an unusable --out must not cost the packing's time.
+  if (!restarting) {
+    prepare_output_folder(spec.out_dir, "--out");
+    const auto run_file = spec.out_dir / scene.output_file;
+    if (std::filesystem::is_directory(run_file))
+      throw OutputError(fmt::format("the run file '{}' is a folder; remove it or choose another folder with --out",
+                                    run_file.string()));
+  }
+  SceneInstance inst = instantiate(scene, host, info);
+  Simulation& sim = *inst.simulation;
+  NumericalHealth health(sim);
+  BodyImpactRecorder impacts(sim.particles());  // first wall contact per body (docs/bodies.md)
+  if (restart_point) {
+    try {
+      sim.import_state(restart_point->simulation);
+    } catch (const std::invalid_argument& e) {
+      throw CheckpointError(fmt::format("cannot continue from {}: {}", checkpoint_path_for(spec.restart).string(),
+                                        e.what()));
+    }
+  }
+
+  RunResult result;
+  result.particles = sim.particles().size();
+  // The network as the run began: a restart counts the bonds broken before it too, so the progress
+  // line's intact / initial and broken add up.
+  result.bonds_initial = sim.bonds().size() + static_cast<std::size_t>(sim.bonds_broken());
+  result.dt = sim.dt();
+  info(fmt::format("scene {}: {} particles, {} bonds, {} walls", scene.file.string(), result.particles,
+                   result.bonds_initial, sim.walls().size()));
+  RunMetadata meta = run_metadata(scene, inst, host, log);
+
+  std::vector<std::string> wall_names;
+  for (const auto& w : sim.walls()) wall_names.push_back(w.name);
+  const auto series_every = std::max<std::int64_t>(1, std::llround(scene.series_interval / sim.dt()));
+  const auto frame_every = std::max<std::int64_t>(1, std::llround(scene.frame_interval / sim.dt()));
+  std::filesystem::path moved_aside;  // the interrupted run file, while its content is copied
+  if (restarting) {
+    result.output = spec.restart;
+    meta = old_meta;
+    moved_aside = spec.restart;
+    moved_aside.replace_extension(".interrupted.h5");
+    std::filesystem::rename(spec.restart, moved_aside);
+  } else {
+    result.output = spec.out_dir / scene.output_file;
+  }
+  const std::filesystem::path checkpoint_file = checkpoint_path_for(result.output);
+  std::optional<RunWriter> writer_slot;
+  try {
+    writer_slot.emplace(result.output, meta, wall_names);
+    if (restarting) {
+      const auto copied = copy_run_prefix(moved_aside, *writer_slot, *restart_point, {series_every, frame_every});
+      writer_slot->flush();
+      info(fmt::format("restart: continuing {} from step {} (t = {:.6g} s); {} frames and the series up to it kept",
+                       result.output.string(), sim.step_count(), sim.time(), copied));
+    }
+  } catch (...) {
+    // Put the interrupted run back as it was: a failed restart must not cost the user the run.
+    if (restarting) {
+      writer_slot.reset();
+      std::error_code ignored;
+      std::filesystem::rename(moved_aside, spec.restart, ignored);
+    }
+    throw;
+  }
+  if (restarting) std::filesystem::remove(moved_aside);
+  RunWriter& writer = *writer_slot;
+
+  const LoadSensor sensor(scene, sim);
+  RunState state(scene, sim, result, sensor, [&] {
+    Checkpoint c;
+    c.simulation = sim.export_state();
+    save_loop_state(c, result, state.frames_written, health);
+    c.arrays.emplace_back("body_impacts", impacts.state());
+    write_checkpoint(checkpoint_file, c);
+    result.checkpoint = checkpoint_file;
+    result.checkpoint_step = sim.step_count();
+  });
+  state.wall_start = wall_start;
+  state.restarted = restarting;
+  if (restart_point) {
+    restore_loop_state(*restart_point, result, state.frames_written, health);
+    impacts.restore(restart_point->array("body_impacts"));
+    result.restarted_from = sim.step_count();
+  }
+  auto last_good = [&] {
+    return result.checkpoint_step < 0
+               ? std::string("No checkpoint was written before it.")
+               : fmt::format("The last good state is the checkpoint {} (step {}); after fixing the cause, start "
+                             "again from the scene (a restart continues with the same settings)",
+                             result.checkpoint.string(), result.checkpoint_step);
+  };
+  auto write_frame = [&] {
+    state.frame_labels = nullptr;
+    for (auto* o : observers) o->before_frame(state);
+    writer.write_frame(sim.step_count(), sim.time(), sim.particles(), sim.bonds(), state.frame_labels);
+    ++state.frames_written;
+  };
+  auto series_row = [&] {
+    SeriesRow row;
+    row.step = sim.step_count();
+    row.time = sim.time();
+    const Energies e = sim.energies();
+    row.kinetic_energy = e.kinetic;
+    row.bond_energy = e.bond;
+    row.contact_energy = e.contact;
+    row.bonds_intact = static_cast<std::int64_t>(sim.bonds().size());
+    row.bonds_broken = sim.bonds_broken();
+    row.contacts = static_cast<std::int64_t>(sim.contact_count());
+    for (const auto& w : sim.walls()) row.add_wall(w);
+    writer.append_series(row);
+    writer.append_break_events(sim.take_new_break_events());
+    if (!std::isfinite(e.kinetic)) health.check(sim, last_good());
+    const double load = sensor.load(sim);
+    const double disp = sensor.displacement(sim);
+    result.curve.load.push_back(load);
+    result.curve.displacement.push_back(disp);
+    result.curve.time.push_back(sim.time());
+    if (load > result.peak_load) {
+      result.peak_load = load;
+      result.displacement_at_peak = disp;
+    }
+    if (sim.bonds_broken() == 0) {
+      result.kinetic_before_break.push_back(e.kinetic);
+      result.elastic_before_break.push_back(e.bond + e.contact);
+    }
+    return e;
+  };
+
+  state.total_steps = static_cast<std::int64_t>(std::ceil(scene.duration / sim.dt() - 1e-9));
+  if (!restarting) {
+    health.check(sim, last_good());
+    write_frame();
+    series_row();
+  }
+  state.start_step = sim.step_count();
+  for (auto* o : observers) o->on_start(state);
+  const std::int64_t health_every = std::max(1, spec.health_every);
+  // Calls `hook` on every observer in order until one asks the run to stop.
+  auto notify = [&](auto&& hook) {
+    for (auto* o : observers) {
+      hook(*o);
+      if (state.stop_requested()) return;
+    }
+  };
+  while (sim.step_count() < state.total_steps && !state.stop_requested()) {
+    sim.step();
+    health.after_step(sim);
+    impacts.update(sim);
+    const std::int64_t s = sim.step_count();
+    if (s % health_every == 0 || s % frame_every == 0) health.check(sim, last_good());
+    if (s % series_every == 0) {
+      const Energies e = series_row();
+      notify([&](RunObserver& o) { o.on_series(state, e); });
+      if (state.stop_requested()) break;
+    }
+    if (s % frame_every == 0) {
+      write_frame();
+      notify([&](RunObserver& o) { o.on_frame(state); });
+      if (state.stop_requested()) break;
+    }
+    notify([&](RunObserver& o) { o.on_step(state); });
+  }
+  if (!state.stop_requested()) state.request_stop(StopReason::Duration, "reached the scene's duration");
+  for (auto* o : observers) o->on_stop(state);
+  if (sim.step_count() % series_every != 0) series_row();
+  if (sim.step_count() % frame_every != 0) write_frame();
+  for (auto* o : observers) o->on_closed(state);
+  writer.write_body_impacts(impacts.impacts());
+  writer.flush();
+
+  result.steps = sim.step_count();
+  result.time = sim.time();
+  result.bonds_broken = sim.bonds_broken();
+  result.final_displacement = sensor.displacement(sim);
+  if (!sensor.empty())
+    result.max_kinetic_to_elastic = bending::max_kinetic_to_elastic(
+        result.curve.load, result.kinetic_before_break, result.elastic_before_break, result.peak_load);
+  result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  for (auto* o : observers) o->on_finish(state);
+  return result;
+}
+
+}  // namespace shard::driver
