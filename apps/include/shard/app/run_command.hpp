@@ -40,7 +40,8 @@ struct RunSummary {
   double wall_seconds = 0;
   std::string stop_reason;
   std::vector<double> load, displacement, time_series;  // the load curve, one row per series row
-  // Kinetic and elastic (bond + contact) energy of the rows before the first bond broke.
+  // Kinetic energy less the rigid-body motion's (shard/bending/deformation_kinetic.hpp) and
+  // elastic (bond + contact) energy of the rows before the first bond broke.
   std::vector<double> kinetic_before_break, elastic_before_break;
   // Quasi-static check: the largest kinetic / elastic energy ratio over the rows before the first
   // break whose load is at least 20 % of the run's final peak load (the seating rows, where the
