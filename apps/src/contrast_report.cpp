@@ -84,6 +84,9 @@ std::string contrast_markdown(const ContrastReport& r) {
   md += fmt::format("Components per curve: {}. Specimen scatter pooled over all sets: {:g} degrees of freedom. "
                     "Effects tried: {}.\n\n",
                     fmt::join(names, ", "), r.study.dof(), r.effects.size());
+  if (!r.scaled_sizes.empty())
+    md += "Trial sizes from the fitted base run (plausible_from rules, docs/measurements.md):\n\n```\n" + r.scaled_sizes +
+          "```\n\n";
   md += "## The base model and its form error\n\n";
   if (r.calibration.keys.empty())
     md += "Base parameters as in the scene (no --param given).\n\n";

@@ -45,7 +45,7 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
   cmd->add_option("--out", o->out, "folder for diagnose.md, diagnose.json and contrasts.png")->default_val("diagnose");
   cmd->callback([o, &ctx] {
     const ContrastSets sets = read_contrast_sets(o->sets, o->reference);
-    const auto effects = contrast_effects(*o);
+    const auto library = contrast_effects(*o);
     prepare_output_folder(o->out, "--out");  // after the cheap reads, before the simulations
     Simulator simulator(o->sim, ctx.plugin_dirs);
     ContrastStudy study(sets, simulator, o->model);
@@ -61,6 +61,8 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
       finer = fine_study.calibrate_base(o->params, o->params.empty() ? 0 : o->base_iterations, std::cerr);
     }
 
+    std::string scaled;
+    const auto effects = scaled_to_base_run(library, study, scaled, std::cerr);
     std::vector<ModelPlan> models{study.base()};
     for (const auto& e : effects) models.push_back(with_effect(study.base(), e, e.plausible));
     fmt::print(stderr, "diagnose: base and {} effects at {} rate(s) on {} packing seeds\n", effects.size(),
@@ -85,7 +87,7 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
     confirm_contrasts(study, effects, sims[0], out, o->confirm, o->confirm_iterations, o->decide, std::cerr);
 
     const ContrastReport report{sets,     effects, cal, study, out, simulator.max_kinetic_to_elastic(),
-                                finer ? &*finer : nullptr, o->finer, simulator.dynamic_warning()};
+                                finer ? &*finer : nullptr, o->finer, simulator.dynamic_warning(), scaled};
     const std::string md = contrast_markdown(report);
     std::ofstream(o->out / "diagnose.md") << md;
     std::ofstream(o->out / "diagnose.json") << contrast_json(report);
