@@ -161,7 +161,10 @@ std::string contrast_markdown(const ContrastReport& r) {
                         f.chi_square_form, f.p_after, f.at_bound ? "yes" : "");
     }
   }
-  md += fmt::format("\nLargest kinetic/elastic energy ratio of the runs before breakage: {:.2g}.\n", r.max_kinetic_to_elastic);
+  md += fmt::format("\nLargest kinetic/elastic energy ratio before breakage (deformation, less the rigid-body motion): "
+                    "{:.2g} over the base and the effects at their fitted sizes; {:.2g} over the effects' trials at their "
+                    "library sizes (not judged: a probe, not a model of the data).\n",
+                    r.max_kinetic_to_elastic, r.max_probe_kinetic_to_elastic);
   if (!r.dynamic_warning.empty()) md += "\n" + r.dynamic_warning + "\n";
   return md;
 }

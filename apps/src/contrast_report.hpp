@@ -63,7 +63,8 @@ struct ContrastReport {
   const BaseCalibration& calibration;
   const ContrastStudy& study;
   const std::vector<SetDiagnosis>& diagnoses;
-  double max_kinetic_to_elastic = 0;
+  double max_kinetic_to_elastic = 0;        // the base and the confirmed effects' runs
+  double max_probe_kinetic_to_elastic = 0;  // the effects' trials at their library sizes
   const BaseCalibration* finer = nullptr;  // the base fitted at a finer packing, when asked for
   double finer_factor = 0;
   std::string dynamic_warning;  // Simulator::dynamic_warning(): empty while the runs are quasi-static

@@ -64,7 +64,10 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
     std::string scaled;
     const auto effects = scaled_to_base_run(library, study, scaled, std::cerr);
     std::vector<ModelPlan> models{study.base()};
-    for (const auto& e : effects) models.push_back(with_effect(study.base(), e, e.plausible));
+    for (const auto& e : effects) {
+      models.push_back(with_effect(study.base(), e, e.plausible));
+      models.back().probe = true;
+    }
     fmt::print(stderr, "diagnose: base and {} effects at {} rate(s) on {} packing seeds\n", effects.size(),
                study.rates().size(), o->sim.seeds);
     const auto sims = study.simulate(models, std::cerr);
@@ -87,6 +90,7 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
     confirm_contrasts(study, effects, sims[0], out, o->confirm, o->confirm_iterations, o->decide, std::cerr);
 
     const ContrastReport report{sets,     effects, cal, study, out, simulator.max_kinetic_to_elastic(),
+                                simulator.max_probe_kinetic_to_elastic(),
                                 finer ? &*finer : nullptr, o->finer, simulator.dynamic_warning(), scaled};
     const std::string md = contrast_markdown(report);
     std::ofstream(o->out / "diagnose.md") << md;
