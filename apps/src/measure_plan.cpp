@@ -371,7 +371,10 @@ Linearisation linearise(Simulator& simulator, const RateGroups& measured, const 
     stepped[i] *= 1 + kStep;
     models.push_back(with_parameters(base, keys, stepped));
   }
-  for (const auto& e : effects) models.push_back(with_effect(models.front(), e, e.plausible));
+  for (const auto& e : effects) {
+    models.push_back(with_effect(models.front(), e, e.plausible));
+    models.back().probe = true;  // a signature's trial, not a model of the data
+  }
   const auto comparisons = simulate_and_compare(simulator, measured, metadata, models, log);
   Linearisation l;
   l.base_comparison = comparisons[0];
