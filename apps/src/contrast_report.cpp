@@ -114,6 +114,8 @@ std::string contrast_markdown(const ContrastReport& r) {
               ? "resolution explains much of it; a finer model packing is worth its cost.\n"
               : "resolution does not explain it; it comes from the form of the laws or the fixture, and the contrasts "
                 "below are what can be trusted.\n";
+    // Which regimes and features stay beyond noise at the finer packing (the same verdict as above).
+    md += fmt::format("\nAt diameters x {:g}: {}\n", r.finer_factor, ff.verdict);
     md += "\n| regime | mean residual | force error |\n|---|---|---|\n";
     for (const auto& g : ff.regimes)
       if (g.points() > 0)
