@@ -6,6 +6,7 @@
 #include <ostream>
 
 #include "contrast_report.hpp"
+#include "shard/measure/effect_scaling.hpp"
 
 namespace shard {
 
@@ -39,6 +40,19 @@ std::vector<CandidateEffect> contrast_effects(const ContrastOptionsCli& o) {
                                          "--effects FILE, e.g. --effects scenes/measurements/effects.toml",
                                          library.string()));
   return select_effects(read_effect_library(library), o.only);
+}
+
+std::vector<CandidateEffect> scaled_to_base_run(std::vector<CandidateEffect> effects, ContrastStudy& study,
+                                               std::string& described, std::ostream& log) {
+  described.clear();
+  if (std::none_of(effects.begin(), effects.end(), [](const auto& e) { return !e.plausible_from.empty(); }))
+    return effects;
+  const auto base = study.simulate({study.base()}, log);
+  const TestScales scales = base_run_scales(base.front().curves);
+  effects = with_test_plausible(std::move(effects), scales);
+  described = describe_scaled_plausible(effects, scales);
+  log << "diagnose: plausible sizes from the base run:\n" << described;
+  return effects;
 }
 
 void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>& effects,

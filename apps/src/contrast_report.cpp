@@ -84,6 +84,9 @@ std::string contrast_markdown(const ContrastReport& r) {
   md += fmt::format("Components per curve: {}. Specimen scatter pooled over all sets: {:g} degrees of freedom. "
                     "Effects tried: {}.\n\n",
                     fmt::join(names, ", "), r.study.dof(), r.effects.size());
+  if (!r.scaled_sizes.empty())
+    md += "Trial sizes from the fitted base run (plausible_from rules, docs/measurements.md):\n\n```\n" + r.scaled_sizes +
+          "```\n\n";
   md += "## The base model and its form error\n\n";
   if (r.calibration.keys.empty())
     md += "Base parameters as in the scene (no --param given).\n\n";
@@ -111,6 +114,8 @@ std::string contrast_markdown(const ContrastReport& r) {
               ? "resolution explains much of it; a finer model packing is worth its cost.\n"
               : "resolution does not explain it; it comes from the form of the laws or the fixture, and the contrasts "
                 "below are what can be trusted.\n";
+    // Which regimes and features stay beyond noise at the finer packing (the same verdict as above).
+    md += fmt::format("\nAt diameters x {:g}: {}\n", r.finer_factor, ff.verdict);
     md += "\n| regime | mean residual | force error |\n|---|---|---|\n";
     for (const auto& g : ff.regimes)
       if (g.points() > 0)
@@ -158,7 +163,10 @@ std::string contrast_markdown(const ContrastReport& r) {
                         f.chi_square_form, f.p_after, f.at_bound ? "yes" : "");
     }
   }
-  md += fmt::format("\nLargest kinetic/elastic energy ratio of the runs before breakage: {:.2g}.\n", r.max_kinetic_to_elastic);
+  md += fmt::format("\nLargest kinetic/elastic energy ratio before breakage (deformation, less the rigid-body motion): "
+                    "{:.2g} over the base and the effects at their fitted sizes; {:.2g} over the effects' trials at their "
+                    "library sizes (not judged: a probe, not a model of the data).\n",
+                    r.max_kinetic_to_elastic, r.max_probe_kinetic_to_elastic);
   if (!r.dynamic_warning.empty()) md += "\n" + r.dynamic_warning + "\n";
   return md;
 }

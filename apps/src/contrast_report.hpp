@@ -31,6 +31,13 @@ struct ContrastOptionsCli {
 void add_contrast_options(CLI::App* cmd, ContrastOptionsCli& o);
 // The library (--effects, or effects.toml beside the scene) and its --only selection.
 std::vector<measure::CandidateEffect> contrast_effects(const ContrastOptionsCli& o);
+// The library's plausible_from rules resolved from the scene's fitted base run
+// (shard/measure/effect_scaling.hpp); simulates the base once when an effect has a rule (the
+// study's next batch then finds those runs in the cache). The sizes are logged and kept in
+// `described` for the report.
+std::vector<measure::CandidateEffect> scaled_to_base_run(std::vector<measure::CandidateEffect> effects,
+                                                         ContrastStudy& study, std::string& described,
+                                                         std::ostream& log);
 
 struct SetDiagnosis {
   std::size_t set = 0;
@@ -56,10 +63,12 @@ struct ContrastReport {
   const BaseCalibration& calibration;
   const ContrastStudy& study;
   const std::vector<SetDiagnosis>& diagnoses;
-  double max_kinetic_to_elastic = 0;
+  double max_kinetic_to_elastic = 0;        // the base and the confirmed effects' runs
+  double max_probe_kinetic_to_elastic = 0;  // the effects' trials at their library sizes
   const BaseCalibration* finer = nullptr;  // the base fitted at a finer packing, when asked for
   double finer_factor = 0;
   std::string dynamic_warning;  // Simulator::dynamic_warning(): empty while the runs are quasi-static
+  std::string scaled_sizes;     // scaled_to_base_run's lines: plausible sizes from the base run
 };
 
 std::string contrast_markdown(const ContrastReport& r);

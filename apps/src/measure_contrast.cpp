@@ -46,7 +46,7 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
   cmd->add_option("--out", o->out, "folder for diagnose.md, diagnose.json and contrasts.png")->default_val("diagnose");
   cmd->callback([o, &ctx] {
     const ContrastSets sets = read_contrast_sets(o->sets, o->reference);
-    const auto effects = contrast_effects(*o);
+    const auto library = contrast_effects(*o);
     prepare_output_folder(o->out, "--out");  // after the cheap reads, before the simulations
     Simulator simulator(o->sim, ctx.plugin_dirs);
     ContrastStudy study(sets, simulator, o->model);
@@ -62,8 +62,13 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
       finer = fine_study.calibrate_base(o->params, o->params.empty() ? 0 : o->base_iterations, std::cerr);
     }
 
+    std::string scaled;
+    const auto effects = scaled_to_base_run(library, study, scaled, std::cerr);
     std::vector<ModelPlan> models{study.base()};
-    for (const auto& e : effects) models.push_back(with_effect(study.base(), e, e.plausible));
+    for (const auto& e : effects) {
+      models.push_back(with_effect(study.base(), e, e.plausible));
+      models.back().probe = true;
+    }
     fmt::print(stderr, "diagnose: base and {} effects at {} rate(s) on {} packing seeds\n", effects.size(),
                study.rates().size(), o->sim.seeds);
     const auto sims = study.simulate(models, std::cerr);
@@ -86,7 +91,8 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
     confirm_contrasts(study, effects, sims[0], out, o->confirm, o->confirm_iterations, o->decide, std::cerr);
 
     const ContrastReport report{sets,     effects, cal, study, out, simulator.max_kinetic_to_elastic(),
-                                finer ? &*finer : nullptr, o->finer, simulator.dynamic_warning()};
+                                simulator.max_probe_kinetic_to_elastic(),
+                                finer ? &*finer : nullptr, o->finer, simulator.dynamic_warning(), scaled};
     const std::string md = contrast_markdown(report);
     std::ofstream(o->out / "diagnose.md") << md;
     std::ofstream(o->out / "diagnose.json") << contrast_json(report);

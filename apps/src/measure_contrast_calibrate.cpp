@@ -83,12 +83,14 @@ void add_calibrate_contrast_command(CLI::App& app, CommandContext& ctx) {
       }
     if (target == sets.sets.size())
       throw std::runtime_error(fmt::format("--target {}: not among the sets given, or it is the reference", o->target));
-    const auto effects = select_effects(contrast_effects(*o), {o->effect});
-    const CandidateEffect& effect = effects.front();
+    const auto library = select_effects(contrast_effects(*o), {o->effect});
     prepare_output_folder(o->out, "--out");  // after the cheap reads, before the simulations
     Simulator simulator(o->sim, ctx.plugin_dirs);
     ContrastStudy study(sets, simulator, o->model);
     const BaseCalibration cal = study.calibrate_base(o->params, o->params.empty() ? 0 : o->base_iterations, std::cerr);
+    std::string scaled;
+    const auto effects = scaled_to_base_run(library, study, scaled, std::cerr);
+    const CandidateEffect& effect = effects.front();
     const auto sims = study.simulate({study.base(), with_effect(study.base(), effect, effect.plausible)}, std::cerr);
     const ContrastStudy::Contrast contrast = study.contrast(target, sims[0]);
     const EffectSignature sig{effect.name, effect.plausible - effect.neutral,
@@ -125,6 +127,7 @@ void add_calibrate_contrast_command(CLI::App& app, CommandContext& ctx) {
                                  sets.names[*sets.reference]);
     md += fmt::format("{} = {:.4g} {} after {} evaluations{}.\n\n", effect.parameter, fitted, effect.unit, fit.evaluations,
                       at_bound ? " (at the bound of the range searched: the data ask for more)" : "");
+    if (!scaled.empty()) md += "Trial size from the fitted base run: " + scaled + "\n";
     md += "| model | contrast chi^2 | contrast NRMSE |\n|---|---|---|\n";
     md += fmt::format("| base | {:.2f} | {:.2f} % |\n| base + {} | {:.2f} | {:.2f} % |\n", chi0, 100 * before.nrmse,
                       effect.name, fit.best, 100 * after.nrmse);

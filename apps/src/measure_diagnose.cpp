@@ -414,8 +414,10 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
                             r.name, 100 * r.absorbed, join(keys));
       md += "\n";
     }
-    md += fmt::format("Largest kinetic/elastic energy ratio of the runs before breakage: {:.2g}.\n",
-                      simulator.max_kinetic_to_elastic());
+    md += fmt::format("Largest kinetic/elastic energy ratio before breakage (deformation, less the rigid-body motion): "
+                      "{:.2g} over the base and the refits; {:.2g} over the effects' trials at their library sizes (not "
+                      "judged: a probe, not a model of the data).\n",
+                      simulator.max_kinetic_to_elastic(), simulator.max_probe_kinetic_to_elastic());
     const std::string dynamic = simulator.dynamic_warning();
     if (!dynamic.empty()) md += fmt::format("\n**Warning.** {}.\n", dynamic);
 

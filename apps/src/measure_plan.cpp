@@ -90,7 +90,8 @@ std::vector<std::vector<Specimen>> Simulator::simulate(const std::vector<ModelPl
         s.curve = zeroed_at_preload(s.curve, test_.seating_preload,
                                     fmt::format("the simulated curve of {} (seed {}, run {})", models[m].scene.string(),
                                                 options_.first_seed + k, results[i].key));
-      max_ke_ = std::max(max_ke_, results[i].kinetic_to_elastic);
+      (models[m].probe ? max_probe_ke_ : max_ke_) = std::max(models[m].probe ? max_probe_ke_ : max_ke_,
+                                                             results[i].kinetic_to_elastic);
       s.crack_position = results[i].crack_position;
       for (double d : results[i].fragment_sizes)
         if (d >= test_.fragment_size_threshold) s.fragment_sizes.push_back(d);
@@ -381,7 +382,10 @@ Linearisation linearise(Simulator& simulator, const RateGroups& measured, const 
     stepped[i] *= 1 + kStep;
     models.push_back(with_parameters(base, keys, stepped));
   }
-  for (const auto& e : effects) models.push_back(with_effect(models.front(), e, e.plausible));
+  for (const auto& e : effects) {
+    models.push_back(with_effect(models.front(), e, e.plausible));
+    models.back().probe = true;  // a signature's trial, not a model of the data
+  }
   const auto comparisons = simulate_and_compare(simulator, measured, metadata, models, log);
   Linearisation l;
   l.base_comparison = comparisons[0];

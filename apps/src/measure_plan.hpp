@@ -23,6 +23,10 @@ struct ModelPlan {
   SceneOverrides overrides;  // typed; --set strings are parsed at the command line
   double machine_compliance = 0;  // m/N, series spring applied to the simulated curves
   double loading_rate = 0;        // m/s of the loading pins; 0 = the scene's own
+  // An effect's trial at its library size (a probe for its signature, not a model of the data):
+  // its kinetic/elastic ratio is kept apart from the dynamic warning (a lubricated-roller trial
+  // whose beam slides is dynamic, the model of the data need not be).
+  bool probe = false;
 };
 
 struct SimulationOptions {
@@ -63,6 +67,8 @@ class Simulator {
   const SimulationOptions& options() const { return options_; }
   // Largest kinetic/elastic ratio of the runs simulated so far (the quasi-static check).
   double max_kinetic_to_elastic() const { return max_ke_; }
+  // The same over the probes (ModelPlan::probe), which the warning does not judge.
+  double max_probe_kinetic_to_elastic() const { return max_probe_ke_; }
   // Largest ratio of a run's pin speed to the scene's own (the rate it was checked quasi-static
   // at with `shard bending-rate-check`); 1 when every run was at the scene's rate or slower.
   double max_rate_over_scene() const { return max_rate_factor_; }
@@ -87,6 +93,7 @@ class Simulator {
   SimulationOptions options_;
   RunPool pool_;
   double max_ke_ = 0;
+  double max_probe_ke_ = 0;
   double max_rate_factor_ = 1;
   double fastest_rate_ = 0, scene_rate_ = 0;  // m/s, of the run with max_rate_factor_
   measure::TestConditions test_;

@@ -37,10 +37,12 @@ struct RunResult {
   double peak_load = 0;             // N
   double displacement_at_peak = 0;  // m
   double final_displacement = 0;    // m
-  // Kinetic and elastic (bond + contact) energy of the series rows before the first bond broke.
+  // Kinetic energy less the rigid-body motion's (shard/bending/deformation_kinetic.hpp) and
+  // elastic (bond + contact) energy of the series rows before the first bond broke.
   std::vector<double> kinetic_before_break, elastic_before_break;
-  // Quasi-static check: the largest kinetic / elastic energy ratio over the rows before the first
-  // break whose load is at least 20 % of the run's peak load (shard/bending/quasi_static.hpp).
+  // Quasi-static check: the largest kinetic / elastic energy ratio over the rows up to the peak
+  // and before the first break whose load is at least 20 % of the run's peak load
+  // (shard/bending/quasi_static.hpp).
   double max_kinetic_to_elastic = 0;
   // Particle count of each fragment (connected set of bonded particles) at the last labelled
   // frame, largest first; empty when no frame was labelled (FragmentLabeller not composed).

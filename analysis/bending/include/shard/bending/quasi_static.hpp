@@ -3,6 +3,9 @@
 // report: the largest kinetic / stored elastic energy over the rows before the first broken bond
 // whose load is at least a fifth of the peak. Below that the pins are still seating and the
 // elastic energy is near zero, so the ratio says nothing about inertia in the test.
+// `shard run` (and every measurement command's run) passes the deformation's kinetic energy, less
+// the rigid-body motion (deformation_kinetic.hpp); `shard bending` reads the run file's total
+// kinetic energy series, an upper bound of it (equal when the beam neither slides nor sinks).
 #include <algorithm>
 #include <cstddef>
 #include <span>
