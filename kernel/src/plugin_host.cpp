@@ -87,21 +87,6 @@ constexpr RetiredPlugin kRetiredPlugins[] = {
      "(name the ones you use; their parameters keep their names, docs/effects.md)"},
 };
 
-// Names separated by commas and/or blanks, as the `effects` key lists them.
-std::vector<std::string> split_names(const std::string& text) {
-  std::vector<std::string> out;
-  std::string word;
-  for (const char c : text + ",") {
-    if (c == ',' || c == ' ' || c == '\t') {
-      if (!word.empty()) out.push_back(word);
-      word.clear();
-    } else {
-      word += c;
-    }
-  }
-  return out;
-}
-
 std::string joined(const std::vector<std::string>& names) {
   std::string s;
   for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
@@ -387,7 +372,7 @@ std::unique_ptr<BondModel> PluginHost::make_bond(const std::string& name, const 
   // The law gets its own parameters, with `effects` stripped of the names it does not know.
   const bool law_lists_effects = std::any_of(law.own_params.begin(), law.own_params.end(),
                                              [](const ParamSpec& s) { return s.name == "effects"; });
-  std::vector<std::string> named = p.has("effects") ? split_names(p.text("effects")) : std::vector<std::string>{};
+  std::vector<std::string> named = p.names("effects");
   std::vector<std::string> law_named;
   for (const auto& n : named)
     if (std::none_of(effects.begin(), effects.end(), [&](const LoadedPlugin* e) { return e->info.name == n; }))
@@ -415,8 +400,7 @@ std::unique_ptr<BondModel> PluginHost::make_bond(const std::string& name, const 
   return std::make_unique<ComposedBond>(law.make_bond(law_params), std::move(on));
 }
 std::vector<const LoadedPlugin*> PluginHost::bond_effects_on(const std::string& law, const ParamSet& p) const {
-  const std::vector<std::string> named =
-      p.has("effects") ? split_names(p.text("effects")) : std::vector<std::string>{};
+  const std::vector<std::string> named = p.names("effects");
   std::vector<const LoadedPlugin*> on;
   for (const auto* e : bond_effects_for(law)) {
     const bool is_named = std::find(named.begin(), named.end(), e->info.name) != named.end();

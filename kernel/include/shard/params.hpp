@@ -40,6 +40,22 @@ class ParamSet {
   bool flag(const std::string& name) const { return get<bool>(name); }
   const std::string& text(const std::string& name) const { return get<std::string>(name); }
   const Vec3& vec3(const std::string& name) const { return get<Vec3>(name); }
+  // A text parameter listing names separated by commas and/or blanks, as `effects` does; empty
+  // when the parameter is not set.
+  std::vector<std::string> names(const std::string& name) const {
+    std::vector<std::string> out;
+    if (!has(name)) return out;
+    std::string word;
+    for (const char c : text(name) + ",") {
+      if (c == ',' || c == ' ' || c == '\t') {
+        if (!word.empty()) out.push_back(word);
+        word.clear();
+      } else {
+        word += c;
+      }
+    }
+    return out;
+  }
   const std::map<std::string, ParamValue>& all() const { return values_; }
 
  private:

@@ -19,22 +19,6 @@ std::string valid_names(bool with_cohesion) {
   return s;
 }
 
-// Names separated by commas and/or blanks.
-std::vector<std::string> split_names(const std::string& text) {
-  std::vector<std::string> out;
-  std::string word;
-  for (const char c : text) {
-    if (c == ',' || c == ' ' || c == '\t') {
-      if (!word.empty()) out.push_back(word);
-      word.clear();
-    } else {
-      word += c;
-    }
-  }
-  if (!word.empty()) out.push_back(word);
-  return out;
-}
-
 }  // namespace
 
 std::vector<ContactEffectPolicy> contact_effect_policies(bool with_cohesion) {
@@ -76,7 +60,7 @@ ContactEffects ContactEffects::from(const ParamSet& p, const char* law, bool wit
   if (with_cohesion) e.cohesion_stress = p.number("cohesion_stress");
   e.support_friction_ratio = p.number("support_friction_ratio");
   const auto policies = contact_effect_policies(with_cohesion);
-  for (const auto& name : split_names(p.text("effects"))) {
+  for (const auto& name : p.names("effects")) {
     if (std::none_of(policies.begin(), policies.end(), [&](const ContactEffectPolicy& q) { return q.name == name; })) {
       std::string what = law;
       what += ": effects names '";

@@ -56,21 +56,6 @@ std::string valid_names() {
   return s;
 }
 
-// Names separated by commas and/or blanks.
-std::vector<std::string> split_names(const std::string& text) {
-  std::vector<std::string> out;
-  std::string word;
-  for (const char c : text + ",") {
-    if (c == ',' || c == ' ' || c == '\t') {
-      if (!word.empty()) out.push_back(word);
-      word.clear();
-    } else {
-      word += c;
-    }
-  }
-  return out;
-}
-
 }  // namespace
 
 const std::vector<BondEffectPolicy>& bond_effect_policies() {
@@ -100,7 +85,7 @@ BondEffects BondEffects::from(const ParamSet& p) {
   e.viscosity_time = p.number("viscosity_time");
   e.viscous_modulus_ratio = p.number("viscous_modulus_ratio");
   e.compression_stiffness_ratio = p.number("compression_stiffness_ratio");
-  for (const auto& name : split_names(p.text("effects"))) {
+  for (const auto& name : p.names("effects")) {
     const auto& policies = bond_effect_policies();
     if (std::none_of(policies.begin(), policies.end(), [&](const BondEffectPolicy& q) { return q.name == name; }))
       throw std::invalid_argument("beam_bond: effects names '" + name + "', which is no effect policy; valid: " +
