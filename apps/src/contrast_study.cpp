@@ -237,7 +237,7 @@ std::vector<std::vector<double>> ContrastStudy::components(const Simulated& mode
 BaseCalibration ContrastStudy::calibrate_base(const std::vector<std::string>& keys, int iterations, std::ostream& log) {
   BaseCalibration cal;
   cal.keys = keys;
-  for (const auto& k : keys) cal.start.push_back(scene_number(base_, k, {}));
+  for (const auto& k : keys) cal.start.push_back(scene_number(base_, k));
   cal.values = cal.start;
   // The reference's (or the consensus') logarithms of stiffness, peak force and peak displacement.
   constexpr std::size_t kTargets = 3;

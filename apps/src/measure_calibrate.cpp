@@ -120,7 +120,7 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
     Fit fit;
     fit.keys = o->params;
     fit.scoring = scoring_from_name(o->scoring);
-    for (const auto& k : o->params) fit.base_values.push_back(scene_number(o->model, k, ctx.plugin_dirs));
+    for (const auto& k : o->params) fit.base_values.push_back(scene_number(o->model, k));
     fit.effect = effects.empty() ? nullptr : &effects.front();
     Simulator simulator(o->sim, ctx.plugin_dirs);
     fit.simulator = &simulator;

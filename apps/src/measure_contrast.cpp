@@ -56,7 +56,7 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
     if (o->finer > 0) {
       ModelPlan fine = o->model;
       for (const char* key : {"generator.diameter_min", "generator.diameter_max"})
-        fine.overrides.push_back({key, significant(o->finer * scene_number(o->model, key, ctx.plugin_dirs), 9)});
+        fine.overrides.push_back({key, significant(o->finer * scene_number(o->model, key), 9)});
       ContrastStudy fine_study(sets, simulator, fine);
       fmt::print(stderr, "diagnose: the base fit again with diameters x {:g}\n", o->finer);
       finer = fine_study.calibrate_base(o->params, o->params.empty() ? 0 : o->base_iterations, std::cerr);

@@ -153,7 +153,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
                                              test_scales(measured.specimens, o->sim.time_compression));
     const auto& keys = o->params;
     StepModel model;
-    for (const auto& k : keys) model.parameters.push_back(scene_number(o->model, k, ctx.plugin_dirs));
+    for (const auto& k : keys) model.parameters.push_back(scene_number(o->model, k));
     Simulator simulator(o->sim, ctx.plugin_dirs);
     const auto tops = static_cast<std::size_t>(std::max(0, o->refit));
     const Scoring scoring = scoring_from_name(o->scoring);

@@ -156,8 +156,7 @@ std::vector<Specimen> Simulator::simulate(const ModelPlan& model, std::ostream& 
   return simulate(std::vector<ModelPlan>{model}, log).front();
 }
 
-double scene_number(const ModelPlan& model, const std::string& key, const std::vector<fs::path>& plugin_dirs) {
-  (void)plugin_dirs;
+double scene_number(const ModelPlan& model, const std::string& key) {
   // The last override of the key wins, as in the scene loader; otherwise the scene file's value.
   for (auto it = model.overrides.rbegin(); it != model.overrides.rend(); ++it)
     if (it->key == key) {

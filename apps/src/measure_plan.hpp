@@ -102,7 +102,7 @@ class Simulator {
 };
 
 // The value of section.key in the resolved scene (overrides applied); throws when absent.
-double scene_number(const ModelPlan& model, const std::string& key, const std::vector<std::filesystem::path>& plugin_dirs);
+double scene_number(const ModelPlan& model, const std::string& key);
 
 std::vector<measure::Specimen> specimens_at_rate(const measure::MeasurementSet& set, double rate);
 
