@@ -12,6 +12,7 @@
 #include "shard/analysis/fragment_table.hpp"
 #include "shard/analysis/fsd_plot.hpp"
 #include "shard/analysis/lineage.hpp"
+#include "shard/analysis/process_report.hpp"
 #include "shard/analysis/run_file.hpp"
 #include "shard/analysis/size_distribution.hpp"
 
@@ -133,6 +134,16 @@ int fragments_command(const FragmentsOptions& options, std::ostream& out, std::o
   try {
     if (options.body_csv && !options.by_body)
       throw RunFileError("--body-csv writes the per-body table of --by-body: add --by-body");
+    if (options.report && !options.by_body)
+      throw RunFileError("--report is the breakage report of --by-body: add --by-body");
+    if ((options.speed_bins > 0 || !options.speed_edges.empty()) && !options.report)
+      throw RunFileError("--speed-bins and --speed-edges bin the impact speeds of --report: add --report DIR");
+    if (options.speed_bins > 0 && !options.speed_edges.empty())
+      throw RunFileError("give either --speed-bins or --speed-edges, not both");
+    for (std::size_t e = 1; e < options.speed_edges.size(); ++e)
+      if (!(options.speed_edges[e] > options.speed_edges[e - 1]))
+        throw RunFileError(fmt::format("--speed-edges must ascend: {} follows {}", options.speed_edges[e],
+                                       options.speed_edges[e - 1]));
     const bool writes = options.write_labels || options.by_body;
     RunFile file(options.run_file, writes ? RunFile::Mode::read_write : RunFile::Mode::read);
     const std::vector<std::int64_t> frames = file.frames();
@@ -175,6 +186,15 @@ int fragments_command(const FragmentsOptions& options, std::ostream& out, std::o
       if (options.body_csv) {
         write_body_csv(report, *options.body_csv);
         out << "wrote " << options.body_csv->string() << "\n";
+      }
+      if (options.report) {
+        RunReportOptions ro;
+        ro.dir = *options.report;
+        ro.speed_bins = options.speed_bins;
+        ro.speed_edges = options.speed_edges;
+        ro.command = options.command_line;
+        write_run_breakage_report(file, {k, frame.time, analysis.fragments, report}, options.intact_fraction, ro,
+                                  out);
       }
     }
     if (options.plot) {

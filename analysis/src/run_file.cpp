@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "column_table_h5.hpp"
 #include "hdf5_handle.hpp"
 #include "shard/hdf5_quiet.hpp"
 
@@ -256,6 +257,11 @@ std::vector<BodyImpactRow> RunFile::read_body_impacts() const {
   std::vector<BodyImpactRow> out(n);
   for (std::size_t b = 0; b < n; ++b) out[b] = {hit[b] != 0, time[b], speed[b], angle[b], wall[b]};
   return out;
+}
+
+void RunFile::write_table(const std::string& group, const ColumnTable& table) {
+  const QuietHdf5Errors quiet;
+  h5::write_table(file_, path_.string(), group, table);
 }
 
 void RunFile::write_body_table(std::int64_t k, const BodyReport& report) {

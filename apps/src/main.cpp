@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   shard::add_fragments_command(app, ctx);
   shard::add_measure_command(app, ctx);
   shard::add_new_plugin_command(app, ctx);
+  shard::add_sweep_command(app, ctx);
   std::vector<std::string> args(argv, argv + argc);
   shard::route_measurement_command(args);
   std::vector<char*> words;

@@ -30,6 +30,14 @@ inline void add_fragments_options(CLI::App& app, FragmentsOptions& o) {
                  "(default 0.9)")
       ->check(CLI::Range(0.0, 1.0));
   app.add_option("--body-csv", o.body_csv, "with --by-body: write the per-body table as CSV");
+  app.add_option("--report", o.report,
+                 "with --by-body: breakage probability and x50 versus impact speed (Wilson and bootstrap 95 % "
+                 "intervals) as CSV, a gnuplot PNG and report.md in this folder, the table also under /breakage/<k>");
+  app.add_option("--speed-bins", o.speed_bins, "with --report: equal-width impact speed bins (default round(sqrt(plates)))")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1000}));
+  app.add_option("--speed-edges", o.speed_edges, "with --report: impact speed bin edges [m/s], ascending, e.g. 0.5,1,1.5,2")
+      ->delimiter(',')
+      ->expected(2, 1000);
 }
 
 }  // namespace shard::analysis

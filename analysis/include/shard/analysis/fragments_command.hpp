@@ -1,7 +1,8 @@
 #pragma once
 // `shard fragments run.h5 [--frame K] [--csv out.csv] [--plot fsd.png] [--write-labels]
 //                         [--fines D] [--density RHO] [--since K0] [--rows N]
-//                         [--by-body [--intact-fraction F] [--body-csv bodies.csv]]`
+//                         [--by-body [--intact-fraction F] [--body-csv bodies.csv]
+//                                    [--report DIR [--speed-bins N | --speed-edges V1,V2,...]]]`
 // Labels the fragments of one frame (default: the last), prints their table and the size
 // distribution, and optionally writes the CSV, the plot, and the labels back into the run file.
 #include <cstddef>
@@ -9,6 +10,8 @@
 #include <filesystem>
 #include <iosfwd>
 #include <optional>
+#include <string>
+#include <vector>
 
 namespace shard::analysis {
 
@@ -27,6 +30,11 @@ struct FragmentsOptions {
   bool by_body = false;
   double intact_fraction = 0.9;  // a body is broken when its largest fragment holds less of its mass
   std::optional<std::filesystem::path> body_csv;  // the per-body table as CSV
+  // Breakage versus impact speed (process_report.hpp): tables, picture and report.md in this folder.
+  std::optional<std::filesystem::path> report;
+  std::size_t speed_bins = 0;          // equal-width bins; 0: round(sqrt(plates))
+  std::vector<double> speed_edges;     // m/s, explicit bin edges instead
+  std::string command_line;            // for the report page
 };
 
 // Returns 0 on success, 1 on an error (reported on err as one line starting "error: ").

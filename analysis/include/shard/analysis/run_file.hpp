@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "shard/analysis/body_statistics.hpp"
+#include "shard/analysis/column_table.hpp"
 #include "shard/analysis/components.hpp"
 #include "shard/analysis/fragment_table.hpp"
 #include "shard/analysis/size_distribution.hpp"
@@ -71,6 +72,8 @@ class RunFile {
   void write_body_table(std::int64_t k, const BodyReport& report);
   // /body_impacts written at the end of a run; empty when absent.
   std::vector<BodyImpactRow> read_body_impacts() const;
+  // Replaces the group `group` (absolute; parents created) with the table (column_table.hpp).
+  void write_table(const std::string& group, const ColumnTable& table);
 
   const std::filesystem::path& path() const { return path_; }
 

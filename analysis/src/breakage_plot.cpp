@@ -1,0 +1,106 @@
+#include "shard/analysis/breakage_plot.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <fstream>
+
+#include "shard/analysis/fsd_plot.hpp"
+
+namespace shard::analysis {
+namespace {
+
+std::string terminal_for(const std::filesystem::path& image) {
+  const std::string extension = image.extension().string();
+  if (extension == ".png") return "pngcairo size 900,800 enhanced font 'Sans,11'";
+  if (extension == ".svg") return "svg size 900,800 enhanced font 'Sans,11'";
+  throw PlotError("plot file must end in .png or .svg: " + image.string());
+}
+
+}  // namespace
+
+std::filesystem::path write_breakage_plot_script(const std::vector<BreakageGroup>& groups,
+                                                 const std::vector<PlateOutcome>& plates,
+                                                 const std::filesystem::path& image, const BreakagePlot& plot) {
+  const std::string terminal = terminal_for(image);
+  std::filesystem::path data = image, plate_data = image, script = image;
+  data += ".dat";
+  plate_data += ".plates.dat";
+  script += ".gp";
+  double x_min = 0, x_max = 0;
+  bool any = false;
+  auto extend = [&](double x) {
+    x_min = any ? std::min(x_min, x) : x;
+    x_max = any ? std::max(x_max, x) : x;
+    any = true;
+  };
+  {
+    std::ofstream out(data);
+    if (!out) throw PlotError("cannot write " + data.string());
+    out << "# x x_low x_high broken_share share_low share_high x50[mm] x50_low[mm] x50_high[mm] plates\n";
+    for (const BreakageGroup& g : groups) {
+      if (g.plates == 0) continue;
+      // A speed bin is drawn at its plates' mean speed, spanning the bin; a value at itself.
+      const double x = plot.by_value ? g.lower : g.mean_speed;
+      extend(g.lower);
+      extend(g.upper);
+      out << fmt::format("{:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {}\n", x, g.lower, g.upper,
+                         g.broken_share, g.broken_interval.lower, g.broken_interval.upper, g.x50 * 1e3,
+                         g.x50_interval.lower * 1e3, g.x50_interval.upper * 1e3, g.plates);
+    }
+  }
+  if (!any) throw PlotError("no plate to plot");
+  {
+    std::ofstream out(plate_data);
+    if (!out) throw PlotError("cannot write " + plate_data.string());
+    out << "# x broken(0/1) x50[mm]  (one line per plate)\n";
+    for (const PlateOutcome& p : plates) {
+      if (!plot.by_value && !p.impacted) continue;
+      const double x = plot.by_value ? p.value : p.impact_speed;
+      if (!plot.by_value) extend(x);
+      out << fmt::format("{:.9g} {} {:.9g}\n", x, p.broken ? 1 : 0, p.x50 * 1e3);
+    }
+  }
+  const double span = x_max > x_min ? x_max - x_min : std::max(0.1 * std::abs(x_max), 1e-3);
+  const double lo = x_min - 0.08 * span, hi = x_max + 0.08 * span;
+  std::ofstream out(script);
+  if (!out) throw PlotError("cannot write " + script.string());
+  out << "set terminal " << terminal << "\n";
+  out << "set output " << gnuplot_quote(image.string()) << "\n";
+  out << "set multiplot layout 2,1 title " << gnuplot_quote(plot.title) << " noenhanced\n";
+  out << "set grid\nset key outside right top\nset lmargin 10\nset rmargin 28\n";
+  out << fmt::format("set xrange [{:.9g}:{:.9g}]\n", lo, hi);
+  out << "set xlabel " << gnuplot_quote(plot.x_label) << " noenhanced\n";
+  out << "set ylabel 'broken share'\nset yrange [-0.05:1.05]\n";
+  const std::string d = gnuplot_quote(data.string()), pl = gnuplot_quote(plate_data.string());
+  const std::string group_bars = plot.by_value ? "1:4:5:6 with yerrorbars" : "1:4:2:3:5:6 with xyerrorbars";
+  out << fmt::format(
+      "plot {0} using 1:2 with points pt 6 ps 0.7 lc rgb '#999999' title 'plates "
+      "(1 broken, 0 intact)', \\\n  {1} using {2} pt 7 ps 1.2 lw 2 lc rgb '#b2182b' title 'broken share, 95 % "
+      "Wilson', \\\n  {1} using 1:4 with lines lw 1 lc rgb '#b2182b' notitle\n",
+      pl, d, group_bars);
+  out << "set ylabel 'x_{50} [mm]'\nset autoscale y\n";
+  const std::string x50_bars = plot.by_value ? "1:7:8:9 with yerrorbars" : "1:7:2:3:8:9 with xyerrorbars";
+  out << fmt::format(
+      "plot {0} using 1:3 with points pt 6 ps 0.7 lc rgb '#999999' title 'plates (own x_{{50}})', \\\n"
+      "  {1} using {2} pt 7 ps 1.2 lw 2 lc rgb '#2166ac' title 'pooled x_{{50}}, 95 % bootstrap', \\\n"
+      "  {1} using 1:7 with lines lw 1 lc rgb '#2166ac' notitle\n",
+      pl, d, x50_bars);
+  out << "unset multiplot\n";
+  if (!out) throw PlotError("cannot write " + script.string());
+  return script;
+}
+
+void plot_breakage_curve(const std::vector<BreakageGroup>& groups, const std::vector<PlateOutcome>& plates,
+                         const std::filesystem::path& image, const BreakagePlot& plot) {
+  const auto gnuplot = find_program("gnuplot");
+  if (!gnuplot)
+    throw PlotError("gnuplot is not installed (on Debian: apt-get install gnuplot-nox); the tables are written as CSV");
+  const std::filesystem::path script = write_breakage_plot_script(groups, plates, image, plot);
+  const int status = run_program(*gnuplot, {script.string()});
+  if (status != 0)
+    throw PlotError("gnuplot failed (exit status " + std::to_string(status) + ") on " + script.string());
+  if (!std::filesystem::exists(image)) throw PlotError("gnuplot wrote no " + image.string());
+}
+
+}  // namespace shard::analysis

@@ -1,0 +1,167 @@
+// run_sweep: the (value, seed) runs of `shard sweep` on the run pool, each analysed per plate as
+// `shard fragments --by-body` analyses it, then pooled (sweep_outputs.cpp writes the results).
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+
+#include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <mutex>
+#include <ostream>
+#include <set>
+#include <thread>
+
+#include "shard/analysis/run_file.hpp"
+#include "shard/app/run_command.hpp"
+#include "shard/app/sweep_command.hpp"
+#include "shard/driver/fragment_labeller.hpp"
+#include "shard/driver/parallel_runs.hpp"
+#include "shard/driver/run_driver.hpp"
+#include "shard/driver/stop_rules.hpp"
+#include "shard/plugin_host.hpp"
+#include "shard/scene.hpp"
+#include "sweep_outputs.hpp"
+#include "sweep_plan.hpp"
+
+namespace shard {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+std::string duration_text(double seconds) {
+  if (seconds < 90) return fmt::format("{:.0f} s", seconds);
+  const auto minutes = static_cast<long>(seconds / 60);
+  return fmt::format("{} min {:02.0f} s", minutes, seconds - 60.0 * static_cast<double>(minutes));
+}
+
+void check_options(const SweepOptions& o) {
+  if (o.seeds < 1) throw SceneError(fmt::format("--seeds {}: at least one packing seed per value", o.seeds));
+  if (o.workers < 0) throw SceneError(fmt::format("--workers {}: at least 1 (leave it out to use every core)", o.workers));
+  if (!(o.intact_fraction > 0 && o.intact_fraction <= 1))
+    throw SceneError(fmt::format("--intact-fraction {}: must lie in (0, 1]", o.intact_fraction));
+  if (o.speed_bins > 0 && !o.speed_edges.empty()) throw SceneError("give either --speed-bins or --speed-edges, not both");
+  for (std::size_t e = 1; e < o.speed_edges.size(); ++e)
+    if (!(o.speed_edges[e] > o.speed_edges[e - 1]))
+      throw SceneError(fmt::format("--speed-edges must ascend: {} follows {}", o.speed_edges[e], o.speed_edges[e - 1]));
+  if (!fs::is_regular_file(o.scene)) throw SceneError(fmt::format("{}: no such scene file", o.scene.string()));
+}
+
+}  // namespace
+
+std::size_t SweepResult::failed() const {
+  return static_cast<std::size_t>(std::count_if(runs.begin(), runs.end(), [](const SweepRun& r) { return r.failed(); }));
+}
+
+SweepResult run_sweep(const SweepOptions& options, std::ostream& log) {
+  check_options(options);
+  const VarySpec vary = parse_vary(options.vary);
+  const SceneOverrides base = parse_overrides(options.sets);
+  PluginHost host;
+  load_plugins(host, options.plugin_dirs, log);
+  const SweepPlan plan = plan_sweep(options.scene, base, vary, host);
+
+  SweepResult result;
+  result.value_label = plan.value_label;
+  for (double v : vary.values)
+    for (std::int64_t s = 0; s < options.seeds; ++s) {
+      SweepRun r;
+      r.value = v;
+      r.seed = s;
+      r.label = fmt::format("v{:g}_s{}", v, s);
+      result.runs.push_back(r);
+    }
+  const std::size_t count = result.runs.size();
+  const int workers = options.workers > 0 ? options.workers
+                                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  fs::create_directories(options.out / "runs");
+  if (!options.quiet)
+    fmt::print(log, "sweep: {} runs ({} values of {} x {} seed{}) of {} on {} worker{} -> {}\n", count,
+               vary.values.size(), plan.value_label, options.seeds, options.seeds == 1 ? "" : "s",
+               options.scene.string(), std::min<std::size_t>(static_cast<std::size_t>(workers), count),
+               workers == 1 ? "" : "s", options.out.string());
+
+  // Written by run(i) for its own index only, read after it reported.
+  std::vector<fs::path> outputs(count);
+  std::vector<double> walls(count, 0.0);
+  std::vector<std::vector<analysis::PlateOutcome>> plates(count);
+  std::mutex warnings_lock;
+  std::set<std::string> warnings_seen;
+  auto warn = [&](const std::string& text) {
+    const std::lock_guard lock(warnings_lock);
+    if (warnings_seen.insert(text).second) fmt::print(log, "warning: {}\n", text);
+  };
+
+  // A full disk or a file-size limit must surface as a write error, not kill the process.
+  void (*previous_xfsz)(int) = std::signal(SIGXFSZ, SIG_IGN);
+  auto run_one = [&](std::size_t i) {
+    const SweepRun& r = result.runs[i];
+    driver::RunSpec spec;
+    spec.scene = options.scene;
+    spec.overrides = run_overrides(plan, base, r.value, r.seed);
+    spec.out_dir = options.out / "runs" / r.label;
+    spec.threads = 1;
+    std::error_code ignored;
+    fs::remove_all(spec.out_dir, ignored);  // an earlier sweep's run of this label
+    driver::LoadDropStop load_drop;
+    driver::MaxDisplacementStop max_displacement;
+    driver::FragmentLabeller labeller;  // frames carry fragment labels for ParaView, as `shard run` writes them
+    const driver::RunLog run_log{{}, warn};
+    const driver::RunResult rr = driver::run(spec, host, {&load_drop, &max_displacement, &labeller}, run_log);
+    outputs[i] = rr.output;
+    walls[i] = rr.wall_seconds;
+  };
+
+  const auto start = Clock::now();
+  std::size_t finished = 0, failed = 0, plates_so_far = 0, broken_so_far = 0;
+  auto done = [&](std::size_t i, const std::string& error) {
+    SweepRun& r = result.runs[i];
+    ++finished;
+    r.error = error;
+    if (r.error.empty()) {
+      r.run_file = outputs[i];
+      r.wall_seconds = walls[i];
+      try {
+        analysis::RunFile file(r.run_file, analysis::RunFile::Mode::read_write);
+        const analysis::RunBodies bodies =
+            analysis::analyse_run_bodies(file, std::nullopt, options.intact_fraction, options.fines_size);
+        file.write_body_table(bodies.frame, bodies.report);  // /bodies/<k>, as --by-body writes it
+        plates[i] = analysis::plate_outcomes(bodies.report, bodies.fragments, r.label, r.value, r.seed);
+        r.plates = bodies.report.bodies.size();
+        r.broken = bodies.report.broken;
+        r.x50 = bodies.report.pooled.x50;
+      } catch (const std::exception& e) {
+        r.error = fmt::format("the run ended but its plates could not be analysed: {}", e.what());
+      }
+    }
+    if (r.failed()) ++failed;
+    plates_so_far += r.plates;
+    broken_so_far += r.broken;
+    if (options.quiet) return;
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    const double eta = elapsed / static_cast<double>(finished) * static_cast<double>(count - finished);
+    const std::string this_run =
+        r.failed() ? fmt::format("FAILED: {}", r.error.substr(0, r.error.find('\n')))
+                   : fmt::format("{} plates, {} broken, {:.1f} s", r.plates, r.broken, r.wall_seconds);
+    const std::string share =
+        plates_so_far > 0 ? fmt::format(" ({:.0f} %)", 100.0 * static_cast<double>(broken_so_far) / static_cast<double>(plates_so_far)) : "";
+    fmt::print(log, "sweep: {}/{} runs{} | {} = {:g}, seed {}: {} | so far {} plates, {} broken{} | {} elapsed{}\n",
+               finished, count, failed > 0 ? fmt::format(" ({} failed)", failed) : "", plan.value_label, r.value,
+               r.seed, this_run, plates_so_far, broken_so_far, share, duration_text(elapsed),
+               finished < count ? fmt::format(", ETA {}", duration_text(eta)) : "");
+  };
+  driver::run_in_parallel(count, workers, run_one, done);
+  std::signal(SIGXFSZ, previous_xfsz);
+  result.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+
+  for (auto& p : plates) result.plates.insert(result.plates.end(), p.begin(), p.end());
+  const analysis::CurveOptions curve;
+  result.speed_edges = options.speed_edges.empty() ? analysis::speed_bin_edges(result.plates, options.speed_bins)
+                                                   : options.speed_edges;
+  result.by_speed = analysis::breakage_by_speed(result.plates, result.speed_edges, curve);
+  result.by_value = analysis::breakage_by_value(result.plates, curve);
+  write_sweep_outputs(options, plan, result, curve, log);
+  return result;
+}
+
+}  // namespace shard
