@@ -27,8 +27,8 @@ std::filesystem::path write_breakage_plot_script(const std::vector<BreakageGroup
   data += ".dat";
   plate_data += ".plates.dat";
   script += ".gp";
-  double x_min = 0, x_max = 0;
-  bool any = false;
+  double x_min = 0, x_max = 0, size_min = 0, size_max = 0;
+  bool any = false, any_size = false;
   auto extend = [&](double x) {
     x_min = any ? std::min(x_min, x) : x;
     x_max = any ? std::max(x_max, x) : x;
@@ -37,23 +37,29 @@ std::filesystem::path write_breakage_plot_script(const std::vector<BreakageGroup
   {
     std::ofstream out(data);
     if (!out) throw PlotError("cannot write " + data.string());
-    out << "# x x_low x_high broken_share share_low share_high x50[mm] x50_low[mm] x50_high[mm] plates\n";
+    out << "# x x_low x_high broken_share share_low share_high x50[mm] x50_low[mm] x50_high[mm] plates x10[mm] "
+           "x90[mm]\n";
     for (const BreakageGroup& g : groups) {
       if (g.plates == 0) continue;
       // A speed bin is drawn at its plates' mean speed, spanning the bin; a value at itself.
       const double x = plot.by_value ? g.lower : g.mean_speed;
       extend(g.lower);
       extend(g.upper);
-      out << fmt::format("{:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {}\n", x, g.lower, g.upper,
-                         g.broken_share, g.broken_interval.lower, g.broken_interval.upper, g.x50 * 1e3,
-                         g.x50_interval.lower * 1e3, g.x50_interval.upper * 1e3, g.plates);
+      if (g.fragments > 0) {
+        size_min = any_size ? std::min(size_min, g.x10) : g.x10;
+        size_max = any_size ? std::max({size_max, g.x90, g.x50_interval.upper}) : std::max(g.x90, g.x50_interval.upper);
+        any_size = true;
+      }
+      out << fmt::format("{:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {:.9g} {} {:.9g} {:.9g}\n", x, g.lower,
+                         g.upper, g.broken_share, g.broken_interval.lower, g.broken_interval.upper, g.x50 * 1e3,
+                         g.x50_interval.lower * 1e3, g.x50_interval.upper * 1e3, g.plates, g.x10 * 1e3, g.x90 * 1e3);
     }
   }
   if (!any) throw PlotError("no plate to plot");
   {
     std::ofstream out(plate_data);
     if (!out) throw PlotError("cannot write " + plate_data.string());
-    out << "# x broken(0/1) x50[mm]  (one line per plate)\n";
+    out << "# x broken(0/1) x50[mm]  (one line per plate; x50 of its own fragments)\n";
     for (const PlateOutcome& p : plates) {
       if (!plot.by_value && !p.impacted) continue;
       const double x = plot.by_value ? p.value : p.impact_speed;
@@ -68,24 +74,31 @@ std::filesystem::path write_breakage_plot_script(const std::vector<BreakageGroup
   out << "set terminal " << terminal << "\n";
   out << "set output " << gnuplot_quote(image.string()) << "\n";
   out << "set multiplot layout 2,1 title " << gnuplot_quote(plot.title) << " noenhanced\n";
-  out << "set grid\nset key outside right top\nset lmargin 10\nset rmargin 28\n";
+  out << "set grid\nset key outside below horizontal\nset lmargin 10\n";
   out << fmt::format("set xrange [{:.9g}:{:.9g}]\n", lo, hi);
   out << "set xlabel " << gnuplot_quote(plot.x_label) << " noenhanced\n";
   out << "set ylabel 'broken share'\nset yrange [-0.05:1.05]\n";
   const std::string d = gnuplot_quote(data.string()), pl = gnuplot_quote(plate_data.string());
   const std::string group_bars = plot.by_value ? "1:4:5:6 with yerrorbars" : "1:4:2:3:5:6 with xyerrorbars";
   out << fmt::format(
-      "plot {0} using 1:2 with points pt 6 ps 0.7 lc rgb '#999999' title 'plates "
+      "plot {0} using 1:2 with points pt 6 ps 1.0 lc rgb '#555555' title 'plates "
       "(1 broken, 0 intact)', \\\n  {1} using {2} pt 7 ps 1.2 lw 2 lc rgb '#b2182b' title 'broken share, 95 % "
       "Wilson', \\\n  {1} using 1:4 with lines lw 1 lc rgb '#b2182b' notitle\n",
       pl, d, group_bars);
-  out << "set ylabel 'x_{50} [mm]'\nset autoscale y\n";
+  out << "set ylabel 'fragment size d_{eq} [mm]'\n";
+  // A range of its own: one group of one-size fragments would give gnuplot an empty one.
+  const double size_pad = std::max(0.1 * (size_max - size_min), 0.05 * size_max);
+  out << fmt::format("set yrange [{:.9g}:{:.9g}]\n", std::max(0.0, size_min - size_pad) * 1e3,
+                     (size_max + size_pad) * 1e3 + (size_max > 0 ? 0.0 : 1.0));
+  // The pooled distribution of each group: x50 with its interval, x10 and x90 as a band. (A
+  // plate's own x50 is left out: with one chip off an intact plate it interpolates halfway between
+  // chip and plate, which says little about the product.)
   const std::string x50_bars = plot.by_value ? "1:7:8:9 with yerrorbars" : "1:7:2:3:8:9 with xyerrorbars";
   out << fmt::format(
-      "plot {0} using 1:3 with points pt 6 ps 0.7 lc rgb '#999999' title 'plates (own x_{{50}})', \\\n"
-      "  {1} using {2} pt 7 ps 1.2 lw 2 lc rgb '#2166ac' title 'pooled x_{{50}}, 95 % bootstrap', \\\n"
-      "  {1} using 1:7 with lines lw 1 lc rgb '#2166ac' notitle\n",
-      pl, d, x50_bars);
+      "plot {0} using 1:11:12 with filledcurves fc rgb '#d1e5f0' fs solid 0.6 title 'pooled x_{{10}} to x_{{90}}', "
+      "\\\n  {0} using {1} pt 7 ps 1.2 lw 2 lc rgb '#2166ac' title 'pooled x_{{50}}, 95 % bootstrap', \\\n"
+      "  {0} using 1:7 with lines lw 1 lc rgb '#2166ac' notitle\n",
+      d, x50_bars);
   out << "unset multiplot\n";
   if (!out) throw PlotError("cannot write " + script.string());
   return script;

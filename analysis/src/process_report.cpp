@@ -19,6 +19,7 @@ std::string share_cell(const BreakageGroup& g) {
 
 std::string x50_cell(const BreakageGroup& g) {
   if (g.fragments == 0) return "-";
+  if (g.plates < 2) return fmt::format("{:.1f} (one plate: no interval)", g.x50 * 1e3);
   return fmt::format("{:.1f} [{:.1f}, {:.1f}]", g.x50 * 1e3, g.x50_interval.lower * 1e3, g.x50_interval.upper * 1e3);
 }
 
@@ -79,7 +80,7 @@ std::string method_paragraph(const CurveOptions& options, double intact_fraction
       "its interval is a **bootstrap percentile interval** ({:.0f} %): the plates are resampled with replacement "
       "{} times (a plate's fragments stay together), the pooled x50 recomputed each time, and the {:g} % and "
       "{:g} % quantiles taken (fixed seed {}: the same interval on every run). Speed bins are [lower, upper), the "
-      "last closed; plates without a wall contact are left out of them.\n",
+      "last closed; plates without a wall contact are left out of them. A group of one plate has no x50 interval.\n",
       intact_fraction, options.z == kZ95 ? std::string("95 %, z = 1.95996") : fmt::format("z = {:.6g}", options.z),
       100 * options.level, options.resamples,
       50 * (1 - options.level), 100 - 50 * (1 - options.level), options.seed);

@@ -72,6 +72,29 @@ std::optional<Vec3> as_vec3(const toml::node& n) {
   return v;
 }
 
+// A key set from the command line has no line in the file: the loader's "file:0:0: " says nothing.
+std::string without_position(const std::string& message, const std::filesystem::path& file) {
+  const std::string empty_position = file.string() + ":0:0: ";
+  const auto at = message.find(empty_position);
+  if (at == std::string::npos) return message;
+  return message.substr(0, at) + file.string() + ": " + message.substr(at + empty_position.size());
+}
+
+// The names a body. or wall. key can use, when the loader found none of that name.
+std::string names_hint(const std::string& message, const Scene& scene) {
+  std::string names;
+  if (message.find("no [[body]] named") != std::string::npos) {
+    for (const BodySpec& b : scene.bodies)
+      if (!b.from_generator_section) names += fmt::format("{}{}", names.empty() ? "" : ", ", b.name);
+    return names.empty() ? "; the scene has no [[body]] entries" : fmt::format("; the scene's [[body]] names: {}", names);
+  }
+  if (message.find("no [[wall]] named") != std::string::npos) {
+    for (const Wall& w : scene.walls) names += fmt::format("{}{}", names.empty() ? "" : ", ", w.name);
+    return names.empty() ? "; the scene has no [[wall]]" : fmt::format("; the scene's [[wall]] names: {}", names);
+  }
+  return {};
+}
+
 std::string vec_text(const Vec3& v) { return fmt::format("[{:g}, {:g}, {:g}]", v.x(), v.y(), v.z()); }
 
 }  // namespace
@@ -141,7 +164,7 @@ SweepPlan plan_sweep(const std::filesystem::path& scene_file, const SceneOverrid
                                    *vary.component));
     plan.form = VaryForm::component;
     plan.base = *vector;
-    plan.value_label = fmt::format("{}[{}]", vary.key, *vary.component);
+    plan.value_name = plan.value_label = fmt::format("{}[{}]", vary.key, *vary.component);
   } else if (vector) {
     if (!(vector->norm() > 0))
       throw SceneError(fmt::format("--vary '{}': the scene's {} is {}, which has no direction for a magnitude; vary "
@@ -149,6 +172,7 @@ SweepPlan plan_sweep(const std::filesystem::path& scene_file, const SceneOverrid
                                    vary.text, vary.key, vec_text(*vector), vary.key));
     plan.form = VaryForm::magnitude;
     plan.base = *vector;
+    plan.value_name = fmt::format("|{}|", vary.key);
     plan.value_label = fmt::format("|{}| along {}", vary.key, vec_text(vector->normalized()));
     for (double v : vary.values)
       if (v < 0)
@@ -157,25 +181,22 @@ SweepPlan plan_sweep(const std::filesystem::path& scene_file, const SceneOverrid
                                      vary.text, v, vary.key, vary.key));
   } else if (node && node->is_integer()) {
     plan.form = VaryForm::integer;
-    plan.value_label = vary.key;
+    plan.value_name = plan.value_label = vary.key;
     for (double v : vary.values)
       if (v != std::floor(v) || std::abs(v) > 9.0e15)
         throw SceneError(fmt::format("--vary '{}': {} takes whole numbers (the scene has {}), not {}", vary.text,
                                      vary.key, node->value<std::int64_t>().value_or(0), v));
-  } else if (node && !node->is_floating_point()) {
-    throw SceneError(fmt::format("--vary '{}': the scene's {} is no number or 3-vector; --vary sets numbers only "
-                                 "(use --set for other values)",
-                                 vary.text, vary.key));
   } else {
     plan.form = VaryForm::number;
-    plan.value_label = vary.key;
+    plan.value_name = plan.value_label = vary.key;
   }
   // Every value through the loader: an unknown key or a value out of range is refused now.
   for (double v : vary.values) {
     try {
       load_scene(scene_file, host, run_overrides(plan, base, v, 0));
     } catch (const SceneError& e) {
-      throw SceneError(fmt::format("--vary '{}' (value {}): {}", vary.text, v, e.what()));
+      throw SceneError(fmt::format("--vary '{}' (value {}): {}{}", vary.text, v, without_position(e.what(), scene_file),
+                                   names_hint(e.what(), scene)));
     }
   }
   return plan;

@@ -40,7 +40,8 @@ struct SweepPlan {
   VarySpec vary;
   VaryForm form = VaryForm::number;
   Vec3 base = Vec3::Zero();       // the scene's vector (magnitude, component forms)
-  std::string value_label;        // "body.shard.velocity (magnitude along [0, 0, -1])"
+  std::string value_name;         // short, for progress lines: "|body.shard.velocity|", "KEY[2]", "KEY"
+  std::string value_label;        // what the value is: "|body.shard.velocity| along [0, 0, -1]"
   std::uint64_t scene_seed = 1;
   std::vector<std::pair<std::string, std::uint64_t>> stream_seeds;  // [[body]] name, its stream seed
 };

@@ -146,7 +146,7 @@ SweepResult run_sweep(const SweepOptions& options, std::ostream& log) {
     const std::string share =
         plates_so_far > 0 ? fmt::format(" ({:.0f} %)", 100.0 * static_cast<double>(broken_so_far) / static_cast<double>(plates_so_far)) : "";
     fmt::print(log, "sweep: {}/{} runs{} | {} = {:g}, seed {}: {} | so far {} plates, {} broken{} | {} elapsed{}\n",
-               finished, count, failed > 0 ? fmt::format(" ({} failed)", failed) : "", plan.value_label, r.value,
+               finished, count, failed > 0 ? fmt::format(" ({} failed)", failed) : "", plan.value_name, r.value,
                r.seed, this_run, plates_so_far, broken_so_far, share, duration_text(elapsed),
                finished < count ? fmt::format(", ETA {}", duration_text(eta)) : "");
   };

@@ -81,6 +81,8 @@ TEST_CASE("bad --vary input is refused before any run, naming the key and the fi
   CHECK(unknown.find("did you mean") != std::string::npos);
   const std::string no_body = refusal("body.plates.velocity=1,2");
   CHECK(no_body.find("no [[body]] named 'plates'") != std::string::npos);
+  CHECK(no_body.find("the scene's [[body]] names: shard") != std::string::npos);
+  CHECK(unknown.find(":0:0:") == std::string::npos);
   const std::string empty = refusal("body.shard.velocity=");
   CHECK(empty.find("no values") != std::string::npos);
   const std::string blank = refusal("body.shard.velocity=1,,2");

@@ -2,7 +2,7 @@
 // The breakage curve as a picture, drawn by gnuplot (as fsd_plot.hpp: data and script beside the
 // image, gnuplot started without a shell): above, the broken share of each group with its
 // interval and every plate as a dot at 0 (intact) or 1 (broken); below, the pooled x50 of each
-// group with its interval and every plate's own x50.
+// group with its interval over the band from the pooled x10 to x90.
 #include <filesystem>
 #include <string>
 #include <vector>
