@@ -116,13 +116,13 @@ void write_sweep_outputs(const SweepOptions& options, const SweepPlan& plan, con
     page += "\n\n";
   }
   page += fmt::format("## Breakage versus {}\n\n", plan.value_label) +
-          analysis::markdown_group_table(result.by_value, analysis::GroupedBy::value, "value") + "\n";
+          analysis::markdown_group_table(result.by_value, analysis::GroupedBy::value, plan.value_name) + "\n";
   if (value_png) page += "![breakage share and x50 versus the swept value](breakage_vs_value.png)\n\n";
   page += "## Breakage versus impact speed (all plates pooled)\n\n" +
           analysis::markdown_group_table(result.by_speed, analysis::GroupedBy::impact_speed) + "\n";
   if (speed_png) page += "![breakage share and x50 versus impact speed](breakage_vs_speed.png)\n\n";
   page += "## Runs\n\n" + run_lines(result) + "\n";
-  page += "## Plates\n\n" + analysis::markdown_plate_table(result.plates, 120, "value") + "\n";
+  page += "## Plates\n\n" + analysis::markdown_plate_table(result.plates, 120, plan.value_name) + "\n";
   page += "## Method\n\n" + analysis::method_paragraph(curve, options.intact_fraction);
   page += fmt::format(
       "Seed index s adds s to the scene's [simulation] seed (the packing) and to every [body.stream] seed "
