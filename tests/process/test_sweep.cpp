@@ -135,6 +135,24 @@ TEST_CASE("a sweep over impact speed and seeds: per-run plates equal --by-body, 
     }
   }
 
+  // The one-run report of the same file: its speed bins hold the run's three plates.
+  {
+    analysis::FragmentsOptions fo;
+    fo.run_file = out / "runs" / "v2.5_s1" / "run.h5";
+    fo.report = out / "one_run";
+    std::ostringstream fout, ferr;
+    CHECK(analysis::fragments_command(fo, fout, ferr) == 1);  // --report needs --by-body
+    CHECK(ferr.str().find("add --by-body") != std::string::npos);
+    fo.by_body = true;
+    fo.speed_bins = 2;
+    REQUIRE(analysis::fragments_command(fo, fout, ferr) == 0);
+    const auto bins = read_csv(out / "one_run" / "breakage_vs_speed.csv");
+    REQUIRE(bins.size() == 2);
+    CHECK(std::stoi(bins[0].at("plates")) + std::stoi(bins[1].at("plates")) == 3);
+    CHECK(read_csv(out / "one_run" / "plates.csv").size() == 3);
+    CHECK(fs::exists(out / "one_run" / "report.md"));
+  }
+
   // Faster plates strike faster and break no less than the bands allow.
   REQUIRE(r.by_value.size() == 2);
   const auto& slow = r.by_value[0];
