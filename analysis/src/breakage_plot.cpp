@@ -55,7 +55,7 @@ std::filesystem::path write_breakage_plot_script(const std::vector<BreakageGroup
                          g.x50_interval.lower * 1e3, g.x50_interval.upper * 1e3, g.plates, g.x10 * 1e3, g.x90 * 1e3);
     }
   }
-  if (!any) throw PlotError("no plate to plot");
+  if (!any) throw PlotError(plot.by_value ? "no plate to plot" : "no plate touched a wall: no impact speed to plot");
   {
     std::ofstream out(plate_data);
     if (!out) throw PlotError("cannot write " + plate_data.string());

@@ -140,8 +140,8 @@ void write_sweep_outputs(const SweepOptions& options, const SweepPlan& plan, con
       fmt::print(log, "  {} = {:g}: {} plates, {} broken, share {:.2f} [{:.2f}, {:.2f}], x50 {:.1f} mm [{:.1f}, {:.1f}]\n",
                  plan.value_name, g.lower, g.plates, g.broken, g.broken_share, g.broken_interval.lower,
                  g.broken_interval.upper, g.x50 * 1e3, g.x50_interval.lower * 1e3, g.x50_interval.upper * 1e3);
-    fmt::print(log, "wrote {}/report.md, runs.csv, plates.csv, breakage_vs_value.csv, breakage_vs_speed.csv, sweep.h5{}\n",
-               dir.string(), speed_png || value_png ? ", breakage_vs_value.png, breakage_vs_speed.png" : "");
+    fmt::print(log, "wrote {}/report.md, runs.csv, plates.csv, breakage_vs_value.csv, breakage_vs_speed.csv, sweep.h5{}{}\n",
+               dir.string(), value_png ? ", breakage_vs_value.png" : "", speed_png ? ", breakage_vs_speed.png" : "");
   }
 }
 
