@@ -20,12 +20,16 @@ double BodyImpact::angle_degrees() const {
   return std::acos(c) * 180.0 / std::numbers::pi;
 }
 
+bool carries_bodies(const Wall& wall) { return !wall.surface_velocity.isZero(); }
+
 BodyImpactRecorder::BodyImpactRecorder(const Particles& particles) {
   std::int32_t top = -1;
   for (std::int32_t b : particles.body) top = std::max(top, b);
   const auto bodies = static_cast<std::size_t>(top + 1);
   impacts_.resize(bodies);
   remaining_ = bodies;
+  candidate_.resize(bodies);
+  pending_.reserve(bodies);
   momentum_.resize(bodies);
   centre_.resize(bodies);
   mass_.resize(bodies);
@@ -33,20 +37,52 @@ BodyImpactRecorder::BodyImpactRecorder(const Particles& particles) {
   near_.resize(bodies);
 }
 
+void BodyImpactRecorder::offer(std::size_t body, std::int32_t wall, Index particle, const Vec3& normal) {
+  if (impacts_[body].hit) return;
+  Candidate& c = candidate_[body];
+  if (c.wall < 0) {
+    pending_.push_back(body);
+  } else if (wall > c.wall || (wall == c.wall && particle > c.particle)) {
+    return;
+  }
+  c = {wall, particle, normal};
+}
+
 void BodyImpactRecorder::update(const Simulation& simulation) {
   const Particles& p = simulation.particles();
+  const std::int64_t step = simulation.step_count();
+  const bool follows = last_step_ >= 0 && step == last_step_ + 1;
+  last_step_ = step;
   // Nothing left to record, or particles without body ids (all bodies are then unknown).
   if (remaining_ == 0 || p.body.size() != p.size()) return;
+  if (!follows) {
+    scan(simulation);
+  } else {
+    // A body without an impact touched no wall but its carriers at the last step (else it would
+    // have one), so every contact it has now with another wall began in this step.
+    const std::vector<Wall>& walls = simulation.walls();
+    for (const WallContactStart& c : simulation.wall_contacts_begun()) {
+      if (carries_bodies(walls[static_cast<std::size_t>(c.wall)])) continue;
+      offer(static_cast<std::size_t>(p.body[static_cast<std::size_t>(c.particle)]), c.wall, c.particle, c.normal);
+    }
+  }
+  if (!pending_.empty()) record(simulation);
+}
+
+// Every sphere of every body without an impact against every wall that does not carry it, with the
+// kernel's own contact condition (simulation.cpp): within reach and closer than the radius. A
+// sphere is tested only while its body's bounding sphere reaches the wall (a cylinder is always
+// tested: its finite length can hide a reachable end from the centre).
+void BodyImpactRecorder::scan(const Simulation& simulation) {
+  const Particles& p = simulation.particles();
   const std::vector<Wall>& walls = simulation.walls();
-  std::fill(momentum_.begin(), momentum_.end(), Vec3::Zero());
+  const std::size_t n = p.size();
   std::fill(centre_.begin(), centre_.end(), Vec3::Zero());
   std::fill(mass_.begin(), mass_.end(), 0.0);
   std::fill(reach_.begin(), reach_.end(), 0.0);
-  const std::size_t n = p.size();
   for (std::size_t k = 0; k < n; ++k) {
     const auto b = static_cast<std::size_t>(p.body[k]);
     if (impacts_[b].hit) continue;
-    momentum_[b] += p.mass[k] * p.velocity[k];
     centre_[b] += p.mass[k] * p.position[k];
     mass_[b] += p.mass[k];
   }
@@ -56,12 +92,11 @@ void BodyImpactRecorder::update(const Simulation& simulation) {
     const auto b = static_cast<std::size_t>(p.body[k]);
     if (!impacts_[b].hit) reach_[b] = std::max(reach_[b], (p.position[k] - centre_[b]).norm() + p.radius[k]);
   }
-  for (std::size_t w = 0; w < walls.size() && remaining_ > 0; ++w) {
+  for (std::size_t w = 0; w < walls.size(); ++w) {
     const Wall& wall = walls[w];
+    if (carries_bodies(wall)) continue;
     bool any_near = false;
     for (std::size_t b = 0; b < impacts_.size(); ++b) {
-      // A plane or mesh that the bounding sphere does not reach cannot touch a sphere of the body;
-      // a cylinder's finite length can hide a reachable end from the centre, so it is always tested.
       Vec3 normal;
       double distance = 0;
       near_[b] = !impacts_[b].hit && mass_[b] > 0 &&
@@ -71,21 +106,43 @@ void BodyImpactRecorder::update(const Simulation& simulation) {
     if (!any_near) continue;
     for (std::size_t k = 0; k < n; ++k) {
       const auto b = static_cast<std::size_t>(p.body[k]);
-      if (!near_[b] || impacts_[b].hit) continue;
+      if (!near_[b]) continue;
       Vec3 normal;
       double distance = 0;
-      // The kernel's own contact condition (simulation.cpp): within reach and closer than the radius.
       if (!wall_contact(wall, p.position[k], p.radius[k], normal, distance) || distance >= p.radius[k]) continue;
-      BodyImpact& hit = impacts_[b];
-      hit.hit = true;
-      hit.step = simulation.step_count();
-      hit.time = simulation.time();
-      hit.velocity = momentum_[b] / mass_[b];
-      hit.normal = normal;
-      hit.wall = static_cast<std::int32_t>(w);
-      --remaining_;
+      offer(b, static_cast<std::int32_t>(w), static_cast<Index>(k), normal);
     }
   }
+}
+
+// The pending bodies' impacts, with their centre-of-mass velocities summed over their spheres in
+// particle order.
+void BodyImpactRecorder::record(const Simulation& simulation) {
+  const Particles& p = simulation.particles();
+  for (std::size_t b : pending_) {
+    momentum_[b] = Vec3::Zero();
+    mass_[b] = 0;
+  }
+  const std::size_t n = p.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto b = static_cast<std::size_t>(p.body[k]);
+    if (candidate_[b].wall < 0) continue;
+    momentum_[b] += p.mass[k] * p.velocity[k];
+    mass_[b] += p.mass[k];
+  }
+  for (std::size_t b : pending_) {
+    Candidate& c = candidate_[b];
+    BodyImpact& hit = impacts_[b];
+    hit.hit = true;
+    hit.step = simulation.step_count();
+    hit.time = simulation.time();
+    hit.velocity = momentum_[b] / mass_[b];
+    hit.normal = c.normal;
+    hit.wall = c.wall;
+    --remaining_;
+    c = Candidate{};
+  }
+  pending_.clear();
 }
 
 std::vector<double> BodyImpactRecorder::state() const {
@@ -113,6 +170,7 @@ void BodyImpactRecorder::restore(const std::vector<double>& state) {
     i.wall = static_cast<std::int32_t>(s[9]);
     if (i.hit) --remaining_;
   }
+  last_step_ = -1;  // the contacts begun before the restart are not known: the next update scans
 }
 
 }  // namespace shard

@@ -75,6 +75,7 @@ struct alignas(64) ThreadShare {
   // Grows to the most wall contacts a thread has had and keeps that capacity: no allocation once
   // the run has warmed up.
   std::vector<WallTouch> wall_touches;
+  std::vector<WallContactStart> wall_begun;  // the same: capacity kept
   std::vector<Vec3> block_force, block_torque_i, block_torque_j;
   std::vector<double> block_energy;
   double bond_energy = 0;
@@ -329,6 +330,7 @@ void Simulation::compute_forces() {
     std::fill(share.wall_stored.begin(), share.wall_stored.end(), 0.0);
     std::fill(share.wall_impacts.begin(), share.wall_impacts.end(), 0);
     share.wall_touches.clear();
+    share.wall_begun.clear();
     share.contact_energy = 0;
     share.contacts = 0;
     share.bond_broke = false;
@@ -372,6 +374,7 @@ void Simulation::compute_forces() {
     w.torque.setZero();
     w.stored_energy = 0;
   }
+  wall_contacts_begun_.clear();
   for (int t = 0; t < used; ++t) {
     const ThreadShare& share = ws.threads[static_cast<std::size_t>(t)];
     energy += share.contact_energy;
@@ -381,6 +384,7 @@ void Simulation::compute_forces() {
     // The particles' whole forces are known now (wall_touch_work). In thread order, without a
     // barrier in the force pass: a wall's contacts are few next to the particles' pairs.
     for (const WallTouch& c : share.wall_touches) walls_[c.wall].contact_work -= wall_touch_work(p, c, dt_);
+    wall_contacts_begun_.insert(wall_contacts_begun_.end(), share.wall_begun.begin(), share.wall_begun.end());
     for (std::size_t w = 0; w < walls_.size(); ++w) {
       walls_[w].force += share.wall_force[w];
       walls_[w].torque += share.wall_torque[w];
@@ -564,6 +568,7 @@ double scatter_contacts(const Particles& p, const std::vector<Wall>& walls, Neig
       share.wall_touches.push_back({a, w, f, block.couple[k], arm_a, block.velocity[k], block.omega_rel[k]});
       share.wall_stored[w] += block.energy[k];
       share.wall_impacts[w] += block.touched[k] ^ 1;
+      if (!block.touched[k]) share.wall_begun.push_back({a, static_cast<std::int32_t>(w), n});
     }
     copy_history(block.history.data() + k * stride, history + block.pair[k] * stride, stride);
   }

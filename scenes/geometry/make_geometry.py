@@ -11,6 +11,13 @@ Only the standard library. Every body is closed, consistently oriented with outw
   cube_10mm.stl             10 mm cube, binary;  cube_10mm_ascii.stl the same cube in ASCII
   sphere_r10mm.stl          icosphere (1280 faces) inscribed in a 10 mm radius sphere
   shell_r10_r6mm.stl        thick spherical shell: outer r = 10 mm, inner r = 6 mm (hollow)
+  belt_to_chute_belt.stl    the conveyor of scenes/belt_to_chute.toml, in place: a 10 mm slab
+                            3500 x 300 mm whose top face (z = 600 mm) the plates ride on; its head
+                            end at x = 0
+  belt_to_chute_chute.stl   the chute below it, in place: a 10 mm slab 400 mm wide whose top face
+                            falls at 40 degrees along +x from (50, 500) mm to below the floor z = 0
+  belt_to_chute_bin.stl     the bin on the floor that keeps the rolling fragments: four 10 mm walls
+                            150 mm high around x in [-400, 1300] mm, y in [-250, 250] mm
 """
 import math
 import os
@@ -57,6 +64,34 @@ def icosphere(radius, levels, inward=False):
     if inward:
         f = [(a, c, b) for a, b, c in f]
     return v, f
+
+
+def slab(origin, u, v, w):
+    """Box spanned by the edge vectors u, v, w from corner `origin` (right-handed: (u x v) . w > 0)."""
+    verts, faces = box(1.0, 1.0, 1.0)
+    verts = [tuple(origin[k] + x * u[k] + y * v[k] + z * w[k] for k in range(3)) for x, y, z in verts]
+    return verts, faces
+
+
+def belt_to_chute_belt():
+    return slab((-3500.0, -150.0, 590.0), (3500.0, 0.0, 0.0), (0.0, 300.0, 0.0), (0.0, 0.0, 10.0))
+
+
+def belt_to_chute_chute():
+    angle = math.radians(40.0)
+    top, length, width, thickness = (50.0, 500.0), 820.0, 400.0, 10.0
+    down = (math.cos(angle), 0.0, -math.sin(angle))   # along the chute, downhill
+    n = (math.sin(angle), 0.0, math.cos(angle))       # the face the plates land on looks along n
+    origin = (top[0] - thickness * n[0], -width / 2, top[1] - thickness * n[2])
+    return slab(origin, tuple(length * c for c in down), (0.0, width, 0.0), tuple(thickness * c for c in n))
+
+
+def belt_to_chute_bin():
+    x0, x1, y0, y1, height, t = -400.0, 1300.0, -250.0, 250.0, 150.0, 10.0
+    return merge(slab((x0 - t, y0 - t, 0.0), (t, 0.0, 0.0), (0.0, y1 - y0 + 2 * t, 0.0), (0.0, 0.0, height)),
+                 slab((x1, y0 - t, 0.0), (t, 0.0, 0.0), (0.0, y1 - y0 + 2 * t, 0.0), (0.0, 0.0, height)),
+                 slab((x0, y0 - t, 0.0), (x1 - x0, 0.0, 0.0), (0.0, t, 0.0), (0.0, 0.0, height)),
+                 slab((x0, y1, 0.0), (x1 - x0, 0.0, 0.0), (0.0, t, 0.0), (0.0, 0.0, height)))
 
 
 def merge(*meshes):
@@ -186,6 +221,9 @@ def main():
         "cube_10mm.stl": box(10.0, 10.0, 10.0),
         "sphere_r10mm.stl": icosphere(10.0, 3),
         "shell_r10_r6mm.stl": merge(icosphere(10.0, 3), icosphere(6.0, 3, inward=True)),
+        "belt_to_chute_belt.stl": belt_to_chute_belt(),
+        "belt_to_chute_chute.stl": belt_to_chute_chute(),
+        "belt_to_chute_bin.stl": belt_to_chute_bin(),
     }
     for name, (v, f) in bodies.items():
         vol = check(name, v, f)

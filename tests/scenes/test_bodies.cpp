@@ -11,6 +11,7 @@
 #include <string>
 
 #include "shard/analysis/body_statistics.hpp"
+#include "shard/body_impacts.hpp"
 #include "shard/analysis/fragments_command.hpp"
 #include "shard/analysis/run_file.hpp"
 #include "shard/app/run_command.hpp"
@@ -18,6 +19,8 @@
 #include "shard/plugin_host.hpp"
 #include "shard/run_file.hpp"
 #include "shard/scene.hpp"
+#include "shard/simulation.hpp"
+#include "shard/wall.hpp"
 
 using namespace shard;
 
@@ -413,4 +416,90 @@ TEST_CASE("a stream over a region places copies at random, apart by a bounding d
             .find("[body.stream] spacing is given with a region") != std::string::npos);
   CHECK(error_of(head + "[body.stream]\ncopies = 2\nregion_min = [0, 0, 0]\nregion_max = [1, -1, 1]\n")
             .find("must not lie below it") != std::string::npos);
+}
+
+namespace {
+
+// Every (particle id, wall) pair touching now, by testing every sphere against every wall with the
+// kernel's contact condition (closer than the radius).
+std::map<std::pair<Index, std::int32_t>, Vec3> touching_now(const Simulation& sim) {
+  std::map<std::pair<Index, std::int32_t>, Vec3> out;
+  const Particles& p = sim.particles();
+  for (std::size_t k = 0; k < p.size(); ++k)
+    for (std::size_t w = 0; w < sim.walls().size(); ++w) {
+      Vec3 normal;
+      double distance = 0;
+      if (wall_contact(sim.walls()[w], p.position[k], p.radius[k], normal, distance) && distance < p.radius[k])
+        out[{p.id[k], static_cast<std::int32_t>(w)}] = normal;
+    }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("the impacts come from the kernel's begun wall contacts and equal a scan of every sphere at every step") {
+  for (const bool belt : {false, true}) {
+    CAPTURE(belt);
+    std::string text = kTwoBars;
+    // The same floor as a belt: it carries, so the bars record no impact although they land on it.
+    if (belt) text.replace(text.find("normal = [0, 0, 1]\n"), 19, "normal = [0, 0, 1]\nbelt_speed = 0.5\nbelt_direction = [1, 0, 0]\n");
+    const SceneInstance inst = instantiate(load(text), plugins(), {});
+    Simulation& sim = *inst.simulation;
+    BodyImpactRecorder recorder(sim.particles());
+    std::map<std::pair<Index, std::int32_t>, Vec3> before = touching_now(sim);
+    std::vector<std::int64_t> first_step(2, -1);
+    std::vector<Vec3> first_velocity(2, Vec3::Zero()), first_normal(2, Vec3::Zero());
+    std::size_t begun_total = 0;
+    while (sim.time() < 0.012) {
+      sim.step();
+      recorder.update(sim);
+      const auto now = touching_now(sim);
+      std::map<std::pair<Index, std::int32_t>, Vec3> begun;
+      for (const WallContactStart& c : sim.wall_contacts_begun())
+        begun[{sim.particles().id[static_cast<std::size_t>(c.particle)], c.wall}] = c.normal;
+      REQUIRE(begun.size() == sim.wall_contacts_begun().size());  // each pair once
+      begun_total += begun.size();
+      for (const auto& [pair, normal] : now)
+        if (!before.count(pair)) {
+          REQUIRE(begun.count(pair) == 1);
+          CHECK(begun[pair] == normal);
+        }
+      for (const auto& [pair, normal] : begun) CHECK((now.count(pair) == 1 && before.count(pair) == 0));
+      // The scan's first impact per body: lowest wall, then lowest sphere index; the centre-of-mass
+      // velocity summed in particle order.
+      const Particles& p = sim.particles();
+      for (std::size_t b = 0; b < 2; ++b) {
+        if (first_step[b] >= 0 || belt) continue;
+        for (std::size_t k = 0; k < p.size() && first_step[b] < 0; ++k) {
+          const auto at = now.find({p.id[k], 0});
+          if (p.body[k] != static_cast<std::int32_t>(b) || at == now.end()) continue;
+          first_step[b] = sim.step_count();
+          first_normal[b] = at->second;
+          Vec3 momentum = Vec3::Zero();
+          double mass = 0;
+          for (std::size_t q = 0; q < p.size(); ++q)
+            if (p.body[q] == static_cast<std::int32_t>(b)) {
+              momentum += p.mass[q] * p.velocity[q];
+              mass += p.mass[q];
+            }
+          first_velocity[b] = momentum / mass;
+        }
+      }
+      before = now;
+    }
+    CHECK(begun_total > 0);
+    for (std::size_t b = 0; b < 2; ++b) {
+      const BodyImpact& i = recorder.impacts()[b];
+      if (belt) {
+        CHECK_FALSE(i.hit);
+        continue;
+      }
+      REQUIRE(first_step[b] > 0);
+      CHECK(i.hit);
+      CHECK(i.step == first_step[b]);
+      CHECK(i.velocity == first_velocity[b]);
+      CHECK(i.normal == first_normal[b]);
+      CHECK(i.wall == 0);
+    }
+  }
 }

@@ -38,6 +38,14 @@ struct Energies {
   double gravity = 0;      // potential energy -m g.x, J
 };
 
+// A wall contact that began in the last force pass: the particle touches the wall now and did not
+// at the pass before (the contacts the wear indicator's `impacts` counts).
+struct WallContactStart {
+  Index particle = 0;
+  std::int32_t wall = 0;         // index in walls()
+  Vec3 normal = Vec3::Zero();    // unit, from the wall towards the particle
+};
+
 class NeighbourList;
 struct ContactWorkspace;
 struct SimulationState;
@@ -68,6 +76,9 @@ class Simulation {
   std::vector<BondBreakEvent> take_new_break_events();
   const std::vector<BondBreakEvent>& break_events() const { return events_; }
   Energies energies() const;
+  // The wall contacts begun in the last force pass, in no fixed order (empty without a contact
+  // model: walls then touch nothing). BodyImpactRecorder takes the first impacts from them.
+  const std::vector<WallContactStart>& wall_contacts_begun() const { return wall_contacts_begun_; }
   std::int64_t neighbour_rebuilds() const;
   // Checkpoint/restart (simulation_state.cpp): import_state continues bit-identically from an
   // exported state; the models, walls' geometry and settings come from this Simulation's setup.
@@ -104,6 +115,7 @@ class Simulation {
   std::size_t contacts_ = 0;
   std::vector<BondBreakEvent> events_;
   std::size_t events_taken_ = 0;
+  std::vector<WallContactStart> wall_contacts_begun_;
   double contact_energy_ = 0;
   double bond_energy_ = 0;
 };
