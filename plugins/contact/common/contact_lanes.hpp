@@ -75,13 +75,13 @@ void contact_lanes(const ContactArrays& a, const Law* laws, const EffectSizes& e
   [[maybe_unused]] const T ratio_wall(effects.support_friction_ratio);
   constexpr bool uses_walls = Cohesion || SupportFriction;
   // The law's constants as lanes: one pair's broadcast, or each lane's own row (gather_rows).
-  T c[K];
-  for (std::size_t f = 0; f < K; ++f) c[f] = T(laws[0].constant[f]);
+  T constants[K];
+  for (std::size_t f = 0; f < K; ++f) constants[f] = T(laws[0].constant[f]);
   alignas(64) double gathered[K][N];
   const auto gather_rows = [&](const std::int32_t* rows) {
     for (std::size_t l = 0; l < N; ++l)
       for (std::size_t f = 0; f < K; ++f) gathered[f][l] = laws[rows[l]].constant[f];
-    for (std::size_t f = 0; f < K; ++f) c[f] = L::load(gathered[f]);
+    for (std::size_t f = 0; f < K; ++f) constants[f] = L::load(gathered[f]);
   };
 
   // One block of N contacts from arrays laid out as the kernel's (vectors x, y, z interleaved),
@@ -98,8 +98,8 @@ void contact_lanes(const ContactArrays& a, const Law* laws, const EffectSizes& e
 
     // Normal: the law's spring and dashpot; v.n < 0 while approaching.
     const T v_n = dot3(vx, vy, vz, nx, ny, nz);
-    const NormalPart<T> normal_part = Law::normal(c, delta, R, m, v_n);
-    const T mu = c[Law::kFriction];
+    const NormalPart<T> normal_part = Law::normal(constants, delta, R, m, v_n);
+    const T mu = constants[Law::kFriction];
 
     // Tangential spring turned onto the contact plane, keeping its length, then stretched.
     const T tx = vx - v_n * nx, ty = vy - v_n * ny, tz = vz - v_n * nz;
