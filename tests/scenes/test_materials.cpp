@@ -10,7 +10,14 @@
 #include <numbers>
 #include <string>
 
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "shard/app/run_command.hpp"
+#include "shard/checkpoint.hpp"
 #include "shard/plugin_host.hpp"
+#include "shard/run_file.hpp"
 #include "shard/scene.hpp"
 
 using namespace shard;
@@ -285,5 +292,65 @@ TEST_CASE("materials: bad input names file:line, the key and the fix") {
     CHECK(error_of(head + wall("name = \"chute\"\nshape = \"plane\"\nnormal = [0.1, 0, 1]\nmaterial = \"steel\"") +
                    sphere("lost", "cake", "[0, 0, -0.05]", "[0, 0, 0]"))
               .empty());
+  }
+}
+
+TEST_CASE("material indices go through the run file, the checkpoint and a restart; the resumed run ends alike") {
+  // Two bonded bars, one of cake and one of a denser, stiffer 'chalk', dropped on a steel floor.
+  const std::string bar_generator =
+      "[body.generator]\nplugin = \"box_fill\"\nmin_corner = [0, 0, 0]\nmax_corner = [0.04, 0.008, 0.008]\n"
+      "diameter_min = 0.004\ndiameter_max = 0.004\nlattice = \"cubic\"\ngap = 0.3\n";
+  const std::string text =
+      simulation(0.008, "[0, 0, -9.81]") +
+      "[output]\nframe_interval = 0.002\n"
+      "[[material]]\nname = \"cake\"\ndensity = 3720\nshear_modulus = 10e6\npoisson_ratio = 0.25\n"
+      "[[material]]\nname = \"chalk\"\ndensity = 5000\nshear_modulus = 30e6\npoisson_ratio = 0.2\n"
+      "[[material]]\nname = \"steel\"\nshear_modulus = 79e9\npoisson_ratio = 0.3\n"
+      "[[material_pair]]\nmaterials = [\"*\", \"*\"]\nfriction = 0.6\nrestitution = 0.5\n"
+      "[[material_pair]]\nmaterials = [\"chalk\", \"steel\"]\nfriction = 0.2\n"
+      "[contact]\nplugin = \"hertz_mindlin\"\n"
+      "[bond]\nplugin = \"beam_bond\"\nyoungs_modulus = 12.8e6\ncritical_stress = 0.24e6\n" +
+      wall("name = \"floor\"\nshape = \"plane\"\nnormal = [0, 0, 1]\nmaterial = \"steel\"") +
+      "\n[[body]]\nname = \"cake_bar\"\nmaterial = \"cake\"\nposition = [0, 0, 0.01]\nvelocity = [0, 0, -3]\n" +
+      bar_generator + "\n[[body]]\nname = \"chalk_bar\"\nmaterial = \"chalk\"\nposition = [0, 0.05, 0.01]\n"
+      "velocity = [0, 0, -3]\n" + bar_generator;
+  const auto dir = std::filesystem::temp_directory_path() / "shard_test_materials_restart";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "bars.toml") << text;
+  std::ostringstream log;
+  RunOptions reference;
+  reference.scene = dir / "bars.toml";
+  reference.out_dir = dir / "reference";
+  reference.quiet = true;
+  const RunSummary whole = run_scene(reference, log);
+  REQUIRE(whole.particles == 80);
+
+  RunOptions first = reference;
+  first.out_dir = dir / "interrupted";
+  first.interrupt_at_step = whole.steps / 2;
+  REQUIRE(run_scene(first, log).interrupted());
+  const Checkpoint c = read_checkpoint(dir / "interrupted" / "run.checkpoint.h5");
+  REQUIRE(c.simulation.particles.material.size() == 80);
+  for (std::size_t k = 0; k < 80; ++k) {
+    CHECK(c.simulation.particles.material[k] == c.simulation.particles.body[k]);  // cake 0 = body 0, chalk 1 = body 1
+    // Each body's density is its material's.
+    const double r = c.simulation.particles.radius[k];
+    const double rho = c.simulation.particles.mass[k] / (4.0 / 3.0 * std::numbers::pi * r * r * r);
+    CHECK(rho == doctest::Approx(c.simulation.particles.material[k] == 0 ? 3720.0 : 5000.0).epsilon(1e-12));
+  }
+  RunOptions second = reference;
+  second.scene.clear();
+  second.out_dir = dir / "interrupted";
+  second.restart = dir / "interrupted" / "run.h5";
+  const RunSummary resumed = run_scene(second, log);
+  CHECK(resumed.bonds_broken == whole.bonds_broken);
+  const RunFile a(dir / "reference" / "run.h5"), b(dir / "interrupted" / "run.h5");
+  REQUIRE(a.frame_count() == b.frame_count());
+  for (std::size_t k = 0; k < a.frame_count(); ++k) {
+    const FrameData fa = a.read_frame(k), fb = b.read_frame(k);
+    CHECK(fa.material == fb.material);
+    CHECK(fa.material == fa.body);
+    CHECK(fa.position == fb.position);
   }
 }
