@@ -82,6 +82,10 @@ SceneInstance instantiate(const Scene& scene, const PluginHost& host,
       }
       table.pair = scene.material_pairs;
       out.contact->set_materials(table);
+      for (std::size_t m = 0; m < scene.materials.size() && log; ++m)
+        log(fmt::format("material {} '{}': {}", m, scene.materials[m].name,
+                        scene.materials[m].density > 0 ? fmt::format("{} kg/m^3", scene.materials[m].density)
+                                                       : std::string("walls only")));
     }
   } catch (const std::invalid_argument& e) {
     throw SceneError(fmt::format("{}: [contact] {}", scene.contact->where, e.what()));
