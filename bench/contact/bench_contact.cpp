@@ -87,7 +87,7 @@ int main(int argc, char** argv) {
     if (materials > 1) {
       ContactMaterials table;
       table.count = materials;
-      for (std::size_t m = 0; m < materials; ++m) table.names.push_back("m" + std::to_string(m)), table.material.push_back(params);
+      for (std::size_t m = 0; m < materials; ++m) table.names.push_back(std::to_string(m)), table.material.push_back(params);
       table.pair.assign(materials * materials, params);
       model->set_materials(table);
       std::mt19937 pick(7);
