@@ -74,21 +74,26 @@ void contact_lanes(const ContactArrays& a, const Law* laws, const EffectSizes& e
   const T dt(a.dt);
   [[maybe_unused]] const T ratio_wall(effects.support_friction_ratio);
   constexpr bool uses_walls = Cohesion || SupportFriction;
-  // The law's constants as lanes: one pair's broadcast, or each lane's own row (gather_rows).
-  T constants[K];
-  for (std::size_t f = 0; f < K; ++f) constants[f] = T(laws[0].constant[f]);
+  // The law's constants as lanes: one pair's broadcast once, or each lane's own row (gather_rows).
+  T one_pair[K];
+  for (std::size_t f = 0; f < K; ++f) one_pair[f] = T(laws[0].constant[f]);
+  T per_lane[K];
   alignas(64) double gathered[K][N];
-  const auto gather_rows = [&](const std::int32_t* rows) {
+  const auto gather_rows = [&](const std::int32_t* rows) -> const T* {
     for (std::size_t l = 0; l < N; ++l)
       for (std::size_t f = 0; f < K; ++f) gathered[f][l] = laws[rows[l]].constant[f];
-    for (std::size_t f = 0; f < K; ++f) constants[f] = L::load(gathered[f]);
+    for (std::size_t f = 0; f < K; ++f) per_lane[f] = L::load(gathered[f]);
+    return per_lane;
   };
 
   // One block of N contacts from arrays laid out as the kernel's (vectors x, y, z interleaved),
   // either the batch's own or the padded copy of its last, partial block.
   const auto block = [&](const double* normal, const double* velocity, double* history, const double* overlap,
                          const double* r_eff, const double* m_eff, const double* wall_flag, double* force,
-                         double* energy_out) {
+                         double* energy_out, const T* row) {
+    // A local copy: the stores below cannot alias it, so its lanes stay in registers.
+    T constants[K];
+    for (std::size_t f = 0; f < K; ++f) constants[f] = row[f];
     T nx, ny, nz, vx, vy, vz, hx, hy, hz;
     load3(normal, nx, ny, nz);
     load3(velocity, vx, vy, vz);
@@ -157,9 +162,8 @@ void contact_lanes(const ContactArrays& a, const Law* laws, const EffectSizes& e
   for (; k0 + N <= a.count; k0 += N) {
     if constexpr (uses_walls)
       for (std::size_t l = 0; l < N; ++l) wall_flag[l] = a.j[k0 + l] < 0 ? 1.0 : 0.0;
-    if (a.material_pair) gather_rows(a.material_pair + k0);
     block(a.normal + 3 * k0, a.velocity + 3 * k0, a.history + 3 * k0, a.overlap + k0, a.r_eff + k0, a.m_eff + k0,
-          wall_flag, a.force + 3 * k0, a.energy + k0);
+          wall_flag, a.force + 3 * k0, a.energy + k0, a.material_pair ? gather_rows(a.material_pair + k0) : one_pair);
   }
   if (k0 == a.count) return;
   // The last, partial block, padded with a harmless contact whose results are not kept.
@@ -181,8 +185,8 @@ void contact_lanes(const ContactArrays& a, const Law* laws, const EffectSizes& e
     wall_flag[l] = real && a.j[k] < 0 ? 1.0 : 0.0;
     rows[l] = real && a.material_pair ? a.material_pair[k] : 0;
   }
-  if (a.material_pair) gather_rows(rows);
-  block(normal, velocity, history, overlap, r_eff, m_eff, wall_flag, force, energy);
+  block(normal, velocity, history, overlap, r_eff, m_eff, wall_flag, force, energy,
+        a.material_pair ? gather_rows(rows) : one_pair);
   for (std::size_t l = 0; l < lanes; ++l) {
     for (std::size_t c = 0; c < 3; ++c) {
       a.force[3 * (k0 + l) + c] = force[3 * l + c];

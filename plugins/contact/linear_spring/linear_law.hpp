@@ -21,7 +21,7 @@ struct LinearLaw {
 
   template <class T>
   static contact::NormalPart<T> normal(const T* c, const T& delta, const T& /*R*/, const T& m, const T& v_n) {
-    const T &k_n = c[kNormalStiffness], &k_t = c[kTangentialStiffness], &two_zeta = c[kTwiceZeta];
+    const T k_n = c[kNormalStiffness], k_t = c[kTangentialStiffness], two_zeta = c[kTwiceZeta];
     const T f_n = contact::clamp_at_zero(k_n * delta - two_zeta * contact::root(k_n * m) * v_n);
     return {f_n, T(0.5) * k_n * delta * delta, k_t, two_zeta * contact::root(k_t * m)};
   }
