@@ -71,8 +71,11 @@ void add_plugins_command(CLI::App& app, CommandContext& ctx) {
       fmt::print("{}/{} {}  ({})\n  {}\n", to_string(p->info.kind), p->info.name, p->info.version, p->file,
                  p->info.doc);
       for (const auto& s : p->info.params)
-        fmt::print("    {:<26} {:<7} [{}] default {}{}  {}\n", s.name, param_type(s.type), s.unit, default_text(s),
-                   s.neutral ? fmt::format(", neutral {}", *s.neutral) : "", s.doc);
+        fmt::print("    {:<26} {:<7} [{}] default {}{}{}  {}\n", s.name, param_type(s.type), s.unit, default_text(s),
+                   s.neutral ? fmt::format(", neutral {}", *s.neutral) : "",
+                   s.scope == ParamScope::Material ? ", per [[material]]"
+                                                   : (s.scope == ParamScope::Pair ? ", per [[material_pair]]" : ""),
+                   s.doc);
     }
     ctx.exit_code = 0;
   });

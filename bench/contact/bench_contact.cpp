@@ -1,5 +1,5 @@
 // The contact law alone, without the neighbour search and integration around it (docs/performance.md):
-//   bench_contact PLUGIN [contacts=4096] [steps=2000] [key=value ...]
+//   bench_contact PLUGIN [contacts=4096] [steps=2000] [key=value ...] [materials=M]
 // e.g. bench_contact hertz_mindlin 4096 2000 effects=cohesion cohesion_stress=5e4
 // A fixed random batch (a quarter particle-wall contacts, overlaps 1e-4..1e-2 of the radius,
 // relative speeds up to 0.1 m/s, so some contacts slide) is computed `steps` times through the
@@ -15,6 +15,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "shard/plugin_host.hpp"
@@ -72,7 +73,26 @@ int main(int argc, char** argv) {
     const long steps = argc > 3 ? std::atol(argv[3]) : 2000;
     PluginHost host;
     host.load_directories(PluginHost::default_search_path());
-    const auto model = host.make_contact(plugin, host.params(PluginKind::Contact, plugin, overrides(argc, argv, 4)));
+    // materials=M (docs/materials.md): a table of M materials, all of the plugin's values, and each
+    // contact of a random pair: the cost of gathering the pair's row per lane (M = 1: no table).
+    auto values = overrides(argc, argv, 4);
+    std::size_t materials = 1;
+    if (const auto it = values.find("materials"); it != values.end()) {
+      materials = static_cast<std::size_t>(std::get<double>(it->second));
+      values.erase(it);
+    }
+    const ParamSet params = host.params(PluginKind::Contact, plugin, values);
+    const auto model = host.make_contact(plugin, params);
+    std::vector<std::int32_t> rows;
+    if (materials > 1) {
+      ContactMaterials table;
+      table.count = materials;
+      for (std::size_t m = 0; m < materials; ++m) table.names.push_back(std::to_string(m)), table.material.push_back(params);
+      table.pair.assign(materials * materials, params);
+      model->set_materials(table);
+      std::mt19937 pick(7);
+      for (std::size_t k = 0; k < n; ++k) rows.push_back(static_cast<std::int32_t>(pick() % (materials * materials)));
+    }
 
     std::mt19937_64 rng(20261202);
     std::uniform_real_distribution<double> u(-1.0, 1.0), unit(0.0, 1.0);
@@ -99,6 +119,7 @@ int main(int argc, char** argv) {
     batch.velocity = velocity.data(), batch.omega_rel = omega.data(), batch.r_eff = r_eff.data();
     batch.m_eff = m_eff.data(), batch.history = history.data(), batch.force = force.data();
     batch.couple = couple.data(), batch.energy = energy.data();
+    batch.material_pair = rows.empty() ? nullptr : rows.data();
 
     const double cpu0 = cpu_seconds();
     for (long s = 0; s < steps; ++s) {
@@ -110,8 +131,9 @@ int main(int argc, char** argv) {
     h = fnv1a(h, force.front().data(), 3 * n);
     h = fnv1a(h, history.data(), history.size());
     h = fnv1a(h, energy.data(), n);
-    std::printf("bench_contact %s: contacts=%zu steps=%ld cpu_seconds=%.3f cpu_ns_per_contact_step=%.2f hash=%016llx\n",
-                plugin.c_str(), n, steps, cpu, 1e9 * cpu / (static_cast<double>(n) * static_cast<double>(steps)),
+    std::printf("bench_contact %s: contacts=%zu steps=%ld materials=%zu cpu_seconds=%.3f cpu_ns_per_contact_step=%.2f "
+                "hash=%016llx\n",
+                plugin.c_str(), n, steps, materials, cpu, 1e9 * cpu / (static_cast<double>(n) * static_cast<double>(steps)),
                 static_cast<unsigned long long>(h));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_contact: %s\n", e.what());

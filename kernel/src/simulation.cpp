@@ -28,6 +28,7 @@ struct ContactArrays {
   std::size_t count = 0;
   std::vector<Index> i, j;
   std::vector<std::size_t> pair;
+  std::vector<std::int32_t> material_pair;  // per contact: the materials' row of the law table
   std::vector<std::uint8_t> candidate;  // per pair of the tile being looked at
   std::vector<std::uint8_t> touched;    // per contact: it touched at the last pass too (not a new impact)
   std::vector<Vec3> normal, velocity, omega_rel, force, couple;
@@ -38,6 +39,7 @@ struct ContactArrays {
     i.resize(n);
     j.resize(n);
     pair.resize(n);
+    material_pair.resize(n);
     candidate.resize(n);
     touched.resize(n);
     normal.resize(n);
@@ -155,6 +157,7 @@ Simulation::Simulation(SimulationSetup setup)
     : particles_(std::move(setup.particles)),
       contact_(setup.contact),
       bond_(setup.bond),
+      materials_(static_cast<std::int32_t>(setup.materials)),
       breakage_(setup.breakage),
       walls_(std::move(setup.walls)),
       gravity_(setup.gravity),
@@ -193,7 +196,29 @@ Simulation::Simulation(SimulationSetup setup)
     }
     r_max = std::max(r_max, particles_.radius[k]);
   }
-  if (contact_ && n > 0) limits_.push_back(contact_->time_step_limit(r_min, density_of(particles_, lightest)));
+  if (setup.materials == 0 || setup.materials > 1u << 15)
+    throw std::invalid_argument(fmt::format("{} materials: a scene has 1 to 32768", setup.materials));
+  if (materials_ > 1) {
+    for (std::size_t k = 0; k < n; ++k)
+      if (particles_.material[k] < 0 || particles_.material[k] >= materials_)
+        throw std::invalid_argument(fmt::format("particle {} has material {}, but the scene has materials 0 to {}",
+                                                particles_.id[k], particles_.material[k], materials_ - 1));
+    for (const auto& w : walls_)
+      if (w.material < 0 || w.material >= materials_)
+        throw std::invalid_argument(fmt::format("wall '{}' has material {}, but the scene has materials 0 to {}",
+                                                w.name, w.material, materials_ - 1));
+  }
+  if (contact_ && n > 0 && materials_ == 1)
+    limits_.push_back(contact_->time_step_limit(r_min, density_of(particles_, lightest)));
+  if (contact_ && n > 0 && materials_ > 1) {
+    // Each material's smallest (lightest) sphere: the laws differ per material and pair.
+    std::vector<MaterialExtent> extents(setup.materials);
+    for (std::size_t k = 0; k < n; ++k) {
+      MaterialExtent& e = extents[static_cast<std::size_t>(particles_.material[k])];
+      if (e.min_radius == 0 || particles_.radius[k] < e.min_radius) e = {particles_.radius[k], density_of(particles_, k)};
+    }
+    limits_.push_back(contact_->time_step_limit(extents));
+  }
   if (bond_ && bonds_.size() > 0) limits_.push_back(bond_->time_step_limit(bond_batch()));
   dt_ = setup.dt;
   if (dt_ <= 0) {
@@ -453,7 +478,7 @@ std::size_t compact_candidates(NeighbourList& list, std::size_t k, std::size_t s
 // Geometry of the touching pairs of the next tile of [k, end) into `block`; pairs that stopped
 // touching lose their history. Returns the first pair not looked at.
 std::size_t collect_contacts(const Particles& p, const std::vector<Wall>& walls, NeighbourList& list, std::size_t k,
-                             std::size_t end, ContactArrays& block) {
+                             std::size_t end, std::int32_t materials, ContactArrays& block) {
   const std::size_t stop = std::min(end, k + kContactBlock);
   mark_candidates(p.position.data(), p.radius.data(), list.first().data() + k, list.second().data() + k, stop - k,
                   block.candidate.data());
@@ -510,6 +535,9 @@ std::size_t collect_contacts(const Particles& p, const std::vector<Wall>& walls,
     block.omega_rel[c] = p.omega[a] - omega_b;
     block.r_eff[c] = r_eff;
     block.m_eff[c] = m_eff;
+    if (materials > 1)
+      block.material_pair[c] =
+          p.material[a] * materials + (b >= 0 ? p.material[b] : walls[static_cast<std::size_t>(-1 - b)].material);
     copy_history(history + pair * stride, block.history.data() + c * stride, stride);
     ++c;
   }
@@ -517,7 +545,7 @@ std::size_t collect_contacts(const Particles& p, const std::vector<Wall>& walls,
   return stop;
 }
 
-void run_model(const ContactModel& model, double dt, ContactArrays& block) {
+void run_model(const ContactModel& model, double dt, bool materials, ContactArrays& block) {
   ContactBatch batch;
   batch.count = block.count;
   batch.dt = dt;
@@ -533,6 +561,7 @@ void run_model(const ContactModel& model, double dt, ContactArrays& block) {
   batch.force = block.force.data();
   batch.couple = block.couple.data();
   batch.energy = block.energy.data();
+  batch.material_pair = materials ? block.material_pair.data() : nullptr;
   std::fill_n(batch.force, batch.count, Vec3::Zero());
   std::fill_n(batch.couple, batch.count, Vec3::Zero());
   std::fill_n(batch.energy, batch.count, 0.0);
@@ -585,10 +614,10 @@ void Simulation::contact_chunk(std::size_t begin, std::size_t end, Vec3* force, 
   double energy = 0;
   std::size_t contacts = 0;
   for (std::size_t k = begin; k < end;) {
-    k = collect_contacts(particles_, walls_, *neighbours_, k, end, block);
+    k = collect_contacts(particles_, walls_, *neighbours_, k, end, materials_, block);
     if (block.count == 0) continue;
     contacts += block.count;
-    run_model(*contact_, dt_, block);
+    run_model(*contact_, dt_, materials_ > 1, block);
     energy = scatter_contacts(particles_, walls_, *neighbours_, block, force, torque, share, energy);
   }
   share.contacts = contacts;

@@ -70,6 +70,13 @@ void Simulation::import_state(const SimulationState& s) {
   if (s.events_taken > s.events.size())
     throw std::invalid_argument("the checkpoint's break log is shorter than the part already written");
   if (!(s.dt > 0)) throw std::invalid_argument("the checkpoint's time step is not positive");
+  // With several materials each particle's index picks a row of the contact law's table.
+  if (materials_ > 1)
+    for (std::size_t k = 0; k < s.particles.size(); ++k)
+      if (s.particles.material[k] < 0 || s.particles.material[k] >= materials_)
+        throw std::invalid_argument(fmt::format("the checkpoint's particle {} has material {}, but the scene has "
+                                                "materials 0 to {}: restart with the scene the run was started with",
+                                                s.particles.id[k], s.particles.material[k], materials_ - 1));
   // Everything is checked before anything is replaced: a refused checkpoint leaves this intact.
   neighbours_->restore(s.neighbours);
   step_ = s.step;

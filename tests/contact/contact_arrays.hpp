@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "shard/contact_model.hpp"
@@ -17,6 +18,7 @@ struct ContactArrays {
   std::vector<Index> i, j;
   std::vector<Vec3> normal, velocity, omega_rel, force, couple;
   std::vector<double> overlap, r_eff, m_eff, energy, history;
+  std::vector<std::int32_t> material_pair;  // empty: one material (ContactBatch::material_pair null)
 
   // A batch over all contacts with the outputs zeroed, as the kernel hands it over.
   ContactBatch batch(double dt) {
@@ -38,6 +40,7 @@ struct ContactArrays {
     b.force = force.data();
     b.couple = couple.data();
     b.energy = energy.data();
+    b.material_pair = material_pair.empty() ? nullptr : material_pair.data();
     return b;
   }
 };

@@ -15,6 +15,11 @@ namespace shard {
 
 enum class ParamType { Number, Integer, Boolean, String, Vector3 };
 
+// Where a contact law's parameter is given in a scene with several materials (docs/materials.md):
+// once in [contact] (Model), per [[material]] (Material, e.g. a modulus), or per
+// [[material_pair]] (Pair, e.g. friction). With one material all come from [contact].
+enum class ParamScope { Model, Material, Pair };
+
 struct ParamSpec {
   std::string name;
   ParamType type = ParamType::Number;
@@ -26,6 +31,7 @@ struct ParamSpec {
   double max = std::numeric_limits<double>::infinity();
   bool min_exclusive = false;  // e.g. a modulus must be > 0, not >= 0
   std::optional<double> neutral;  // value at which this parameter's effect is off
+  ParamScope scope = ParamScope::Model;
 };
 
 using ParamValue = std::variant<double, bool, std::string, Vec3>;

@@ -19,8 +19,9 @@ namespace shard {
 
 // Bump on any change to a header plugins compile against (the installed API, docs/plugins.md).
 // 2: BondModel::writes_every_output; 3: bond effects (bond_effect.hpp, Registrar::add_bond_effect)
-// and the installed API reduced to the plugin headers.
-inline constexpr int kAbiVersion = 3;
+// and the installed API reduced to the plugin headers; 4: materials (ParamSpec::scope,
+// ContactBatch::material_pair, ContactModel::set_materials and its per-material time step).
+inline constexpr int kAbiVersion = 4;
 
 enum class PluginKind { Contact, Bond, Generator, BondEffect };
 const char* to_string(PluginKind kind);

@@ -82,6 +82,9 @@ struct BodyStream {
 struct BodySpec {
   std::string name;
   std::string where;  // file:line:column of the entry
+  std::string material_name;   // as written (`material = "..."`); empty: none named
+  std::string material_where;  // file:line:column of that key (of the entry when none)
+  std::int32_t material = 0;   // index into Scene::materials
   PluginChoice generator;
   BodyPlacement placement;
   std::optional<BodyStream> stream;
@@ -92,6 +95,14 @@ struct BodySpec {
 // Particles of different bodies closer than r_i + r_j - kBodyOverlapTolerance * min(r_i, r_j)
 // at placement are refused: bodies start apart (or touching within 0.1 % of a radius).
 inline constexpr double kBodyOverlapTolerance = 1e-3;
+
+// One [[material]] entry, or the single [material] section (docs/materials.md).
+struct Material {
+  std::string name;
+  std::string where;    // file:line:column of the entry
+  double density = 0;   // kg/m^3; 0: not given (a material only walls are made of)
+  ParamSet law;         // the contact law's ParamScope::Material parameters ([[material]] only)
+};
 
 struct Scene {
   std::filesystem::path file;
@@ -104,7 +115,13 @@ struct Scene {
   double global_damping = 0;
   Vec3 gravity = Vec3::Zero();
   bool breakage = true;
-  double density = 0;
+  double density = 0;  // the first material's (what readers of one-material scenes take)
+  // Materials (docs/materials.md): one from [material], or the [[material]] entries; with
+  // material_table the contact law gets per-material and per-pair parameters
+  // (material_pairs[a * count + b], symmetric), bodies and walls their material index.
+  std::vector<Material> materials;
+  bool material_table = false;
+  std::vector<ParamSet> material_pairs;
   std::string output_file = "run.h5";
   double frame_interval = 0;   // s; 0 = duration / 50
   double series_interval = 0;  // s; 0 = duration / 2000

@@ -20,6 +20,10 @@ struct SimulationSetup {
   std::vector<std::pair<Index, Index>> bonds;
   const ContactModel* contact = nullptr;  // master model; may be null (bonds only)
   const BondModel* bond = nullptr;        // may be null when there are no bonds
+  // Materials (docs/materials.md): with more than one, the contact model has its table
+  // (ContactModel::set_materials) and every particle's `material` and wall's `material` lie in
+  // [0, materials); with one, every contact uses the one law and the indices are not read.
+  std::size_t materials = 1;
   bool breakage = true;                   // false: bonds never fail (elastic calibration)
   std::vector<Wall> walls;
   Vec3 gravity = Vec3::Zero();
@@ -101,6 +105,7 @@ class Simulation {
   Bonds bonds_;
   const ContactModel* contact_;
   const BondModel* bond_;
+  std::int32_t materials_ = 1;
   bool breakage_;
   std::vector<Wall> walls_;
   Vec3 gravity_;

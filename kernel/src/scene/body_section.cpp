@@ -65,6 +65,8 @@ BodySpec read_body(const toml::table& t, const std::string& file, std::size_t in
   body.placement.rotation_angle = s.number("rotation_angle", 0, -360, 360, "degrees");
   body.placement.velocity = s.vec3("velocity", Vec3::Zero());
   body.placement.angular_velocity = s.vec3("angular_velocity", Vec3::Zero());
+  body.material_name = s.text("material", "");  // resolved with the materials (material_section.cpp)
+  body.material_where = s.at("material");
   s.allow("generator");
   s.allow("stream");
   s.finish();
@@ -110,6 +112,7 @@ std::vector<BodySpec> read_bodies(const toml::table& root, const std::string& fi
     body.from_generator_section = true;
     body.generator = plugin_choice(generator->as_table(), file, "generator", PluginKind::Generator, host);
     body.where = body.generator.where;
+    body.material_where = body.where;
     out.push_back(std::move(body));
     return out;
   }

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "body_placement.hpp"
+#include "wall_reach.hpp"
 #include "shard/scene.hpp"
 
 namespace shard {
@@ -57,11 +58,35 @@ SceneInstance instantiate(const Scene& scene, const PluginHost& host,
                       spec.stream ? fmt::format(", {} copies", spec.stream->copies) : std::string()));
   }
   scene_detail::check_body_overlaps(placed, scene.bodies);
+  scene_detail::check_bodies_reach_walls(placed, scene.bodies, scene.walls, scene.gravity);
+  // With [[material]] entries every particle is of its body's material (docs/materials.md); a
+  // one-material scene keeps the generator's material column as it is.
+  std::vector<double> density(placed.all.position.size(), scene.density);
+  for (std::size_t k = 0; k < density.size(); ++k) {
+    const BodySpec& spec = scene.bodies[placed.spec_of[static_cast<std::size_t>(placed.body[k])]];
+    if (!scene.material_table) continue;
+    placed.all.material[k] = spec.material;
+    density[k] = scene.materials[static_cast<std::size_t>(spec.material)].density;
+  }
   out.body = std::move(placed.all);
   out.body_names = std::move(placed.body_names);
   // The plugins' own parameter checks (an unknown effect policy, a modulus <= 0) name the section.
   try {
     if (scene.contact) out.contact = host.make_contact(scene.contact->name, scene.contact->params);
+    if (scene.contact && scene.material_table) {
+      ContactMaterials table;
+      table.count = scene.materials.size();
+      for (const auto& m : scene.materials) {
+        table.names.push_back(m.name);
+        table.material.push_back(m.law);
+      }
+      table.pair = scene.material_pairs;
+      out.contact->set_materials(table);
+      for (std::size_t m = 0; m < scene.materials.size() && log; ++m)
+        log(fmt::format("material {} '{}': {}", m, scene.materials[m].name,
+                        scene.materials[m].density > 0 ? fmt::format("{} kg/m^3", scene.materials[m].density)
+                                                       : std::string("walls only")));
+    }
   } catch (const std::invalid_argument& e) {
     throw SceneError(fmt::format("{}: [contact] {}", scene.contact->where, e.what()));
   }
@@ -75,8 +100,7 @@ SceneInstance instantiate(const Scene& scene, const PluginHost& host,
   const std::size_t n = out.body.position.size();
   setup.particles.reserve(n);
   for (std::size_t k = 0; k < n; ++k) {
-    setup.particles.add(out.body.position[k], out.body.radius[k], scene.density, out.body.material[k],
-                        placed.body[k]);
+    setup.particles.add(out.body.position[k], out.body.radius[k], density[k], out.body.material[k], placed.body[k]);
     setup.particles.velocity[k] = placed.velocity[k];
     setup.particles.omega[k] = placed.omega[k];
   }
@@ -99,6 +123,7 @@ SceneInstance instantiate(const Scene& scene, const PluginHost& host,
   setup.bonds = out.body.bonds;
   setup.contact = out.contact.get();
   setup.bond = out.bond.get();
+  setup.materials = scene.material_table ? scene.materials.size() : 1;
   setup.breakage = scene.breakage;
   setup.walls = scene.walls;
   setup.gravity = scene.gravity;

@@ -11,6 +11,7 @@
 #include "shard/geometry/stl.hpp"
 #include "shard/scene.hpp"
 #include "body_section.hpp"
+#include "material_section.hpp"
 #include "scene_override_toml.hpp"
 #include "scene_section.hpp"
 #include "wall_table_reader.hpp"
@@ -136,9 +137,11 @@ void read_wall_motion(Section& s, const toml::table& t, const std::filesystem::p
   w.motion.velocity = w.velocity;
 }
 
-Wall read_wall(const toml::table& t, const std::string& file, const std::filesystem::path& dir, std::size_t index) {
+Wall read_wall(const toml::table& t, const std::string& file, const std::filesystem::path& dir, std::size_t index,
+               scene_detail::WallMaterial& material) {
   Section s(&t, file, "wall");
   Wall w;
+  material = {s.text("material", ""), s.at("material")};
   w.name = s.text("name", fmt::format("wall{}", index));
   // The name becomes an HDF5 group of the run file (series/walls/<name>).
   if (w.name.empty() || w.name.find('/') != std::string::npos || w.name == "." || w.name == "..")
@@ -370,7 +373,7 @@ Scene load_scene_text(const std::string& text, const std::filesystem::path& file
 
   static const std::vector<std::string> sections = {"simulation", "material", "output", "generator", "contact",
                                                     "bond",       "wall",     "stop",   "analysis", "grip",
-                                                    "body"};
+                                                    "body",       "material_pair"};
   for (auto&& [k, v] : root) {
     const std::string key(k.str());
     if (std::find(sections.begin(), sections.end(), key) != sections.end()) continue;
@@ -398,12 +401,6 @@ Scene load_scene_text(const std::string& text, const std::filesystem::path& file
   scene.global_damping = sim.number("global_damping", 0, 0, 0.99);
   scene.breakage = sim.flag("breakage", true);
   sim.finish();
-
-  Section mat(root["material"].as_table(), file, "material");
-  scene.density = mat.number("density", 0, 0, 1e6, "kg/m^3");
-  if (scene.density <= 0) mat.fail("density", "is missing: particle density in kg/m^3 (filter cake: 3720)");
-  mat.text("name", "");
-  mat.finish();
 
   Section out(root["output"].as_table(), file, "output");
   scene.output_file = out.text("file", "run.h5");
@@ -435,12 +432,13 @@ Scene load_scene_text(const std::string& text, const std::filesystem::path& file
     scene.bond = plugin_choice(bond, file, "bond", PluginKind::Bond, host);
   }
 
+  std::vector<scene_detail::WallMaterial> wall_materials;
   if (const auto* walls = root["wall"].as_array()) {
     std::size_t k = 0;
     for (const auto& w : *walls) {
       const auto* t = w.as_table();
       if (!t) throw SceneError(fmt::format("{}: [[wall]] entries must be tables", where(file, w.source())));
-      Wall wall = read_wall(*t, file, scene.dir, k++);
+      Wall wall = read_wall(*t, file, scene.dir, k++, wall_materials.emplace_back());
       // Each wall has its own series in the run file, found by name (and --set wall.NAME.key).
       for (const auto& earlier : scene.walls)
         if (earlier.name == wall.name) {
@@ -474,6 +472,8 @@ Scene load_scene_text(const std::string& text, const std::filesystem::path& file
     throw SceneError(fmt::format("{}: grips are an array of tables: write [[grip]], not [grip]",
                                  where(file, root["grip"].node()->source())));
   }
+
+  scene_detail::read_materials(root, file, host, wall_materials, scene);
 
   Section stop(root["stop"].as_table(), file, "stop");
   scene.stop.load_walls = stop.strings("load_walls");

@@ -11,7 +11,7 @@ inline ContactArrays arrays_of(ContactBatch& b) {
   static_assert(sizeof(Vec3) == 3 * sizeof(double));
   if (b.count == 0) return {};
   return {b.count, b.dt, b.j, b.normal->data(), b.velocity->data(), b.overlap, b.r_eff, b.m_eff, b.history,
-          b.force->data(), b.energy};
+          b.force->data(), b.energy, b.material_pair};
 }
 
 }  // namespace shard::contact

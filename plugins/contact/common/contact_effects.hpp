@@ -4,7 +4,7 @@
 //   cohesion          cohesion_stress sigma_c [Pa] (neutral 0): a pull sigma_c pi R* delta between
 //                     touching particles (not at walls), the linear simplification of JKR
 //   support_friction  support_friction_ratio r_w [1] (neutral 1): Coulomb friction at
-//                     particle-wall contacts (supports, pins) r_w times the particles' mu
+//                     particle-wall contacts (supports, pins) r_w times the contact pair's mu
 // A policy joins the law when `effects` names it or its parameter is away from its neutral value;
 // each is exact at its neutral value (at r_w = 1 the wall's mu is the particles' to the bit; a
 // pull of 0 changes no bit), so naming it without moving its parameter reproduces the plain law.
@@ -44,7 +44,7 @@ struct ContactEffects {
   // policy throws, listing the valid ones (`law` names the plugin in the message).
   static ContactEffects from(const ParamSet& p, const char* law, bool with_cohesion);
   EffectSwitches switches() const;
-  EffectSizes sizes(double friction) const { return {cohesion_stress, support_friction_ratio * friction}; }
+  EffectSizes sizes() const { return {cohesion_stress, support_friction_ratio}; }
 };
 
 inline double pull_off_force(double sigma_c, double R, double E_star) {

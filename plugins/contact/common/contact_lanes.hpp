@@ -10,6 +10,11 @@
 // elastic energy on every rotation), stretched by v_t dt, and F_t = -S_t xi - c_t v_t is capped
 // at mu F_n; a sliding contact's spring is reset to hold the capped force, -F_t / S_t, so sticking
 // resumes from the cap without a jump and the stored energy matches the force it transmits.
+//
+// Materials (docs/materials.md): a law's constants form a small dense table, one row per pair of
+// materials, and each block of lanes gathers its contacts' rows by ContactArrays::material_pair
+// (null with one material: row 0 broadcast once, as before there were materials). No per-pair
+// call, and the same IEEE operations per lane as the scalar instance.
 #include <cstddef>
 #include <cstdint>
 #include <numbers>
@@ -34,6 +39,7 @@ struct ContactArrays {
   double* history = nullptr;
   double* force = nullptr;
   double* energy = nullptr;
+  const std::int32_t* material_pair = nullptr;  // per contact, the row of the law table; null: row 0
 };
 
 // What a law computes from the normal geometry of its lanes.
@@ -51,27 +57,43 @@ struct EffectSwitches {
   bool support_friction = false;
 };
 struct EffectSizes {
-  double cohesion_stress = 0;        // sigma_c, Pa
-  double support_friction = 0;       // mu_w = support_friction_ratio * mu, 1
+  double cohesion_stress = 0;         // sigma_c, Pa
+  double support_friction_ratio = 1;  // r_w: mu_w = r_w mu of the contact's pair, 1
 };
 
-// Law: a data member `friction` (mu) and `template <class T> NormalPart<T> normal(delta, R, m, v_n) const`.
-// (No non-template member functions and no std:: calls: see lanes.hpp on per-instruction-set symbols.)
+// Law: one row of constants, `double constant[kConstants]`, of which constant[kFriction] is mu,
+// and `template <class T> static NormalPart<T> normal(const T* c, delta, R, m, v_n)` reading the
+// row as lanes c[0 .. kConstants). (No non-template member functions and no std:: calls: see
+// lanes.hpp on per-instruction-set symbols.) `laws` is the table, a.material_pair its rows.
 template <class T, bool Cohesion, bool SupportFriction, class Law>
-void contact_lanes(const ContactArrays& a, const Law& law, const EffectSizes& effects) {
+void contact_lanes(const ContactArrays& a, const Law* laws, const EffectSizes& effects) {
   using L = Lane<T>;
   constexpr std::size_t N = L::width;
+  constexpr std::size_t K = Law::kConstants;
   const T zero(0.0);
   const T dt(a.dt);
-  const T mu(law.friction);
-  [[maybe_unused]] const T mu_wall(effects.support_friction);
+  [[maybe_unused]] const T ratio_wall(effects.support_friction_ratio);
   constexpr bool uses_walls = Cohesion || SupportFriction;
+  // The law's constants as lanes: one pair's broadcast once, or each lane's own row (gather_rows).
+  T one_pair[K];
+  for (std::size_t f = 0; f < K; ++f) one_pair[f] = T(laws[0].constant[f]);
+  T per_lane[K];
+  alignas(64) double gathered[K][N];
+  const auto gather_rows = [&](const std::int32_t* rows) -> const T* {
+    for (std::size_t l = 0; l < N; ++l)
+      for (std::size_t f = 0; f < K; ++f) gathered[f][l] = laws[rows[l]].constant[f];
+    for (std::size_t f = 0; f < K; ++f) per_lane[f] = L::load(gathered[f]);
+    return per_lane;
+  };
 
   // One block of N contacts from arrays laid out as the kernel's (vectors x, y, z interleaved),
   // either the batch's own or the padded copy of its last, partial block.
   const auto block = [&](const double* normal, const double* velocity, double* history, const double* overlap,
                          const double* r_eff, const double* m_eff, const double* wall_flag, double* force,
-                         double* energy_out) {
+                         double* energy_out, const T* row) {
+    // A local copy: the stores below cannot alias it, so its lanes stay in registers.
+    T constants[K];
+    for (std::size_t f = 0; f < K; ++f) constants[f] = row[f];
     T nx, ny, nz, vx, vy, vz, hx, hy, hz;
     load3(normal, nx, ny, nz);
     load3(velocity, vx, vy, vz);
@@ -81,7 +103,8 @@ void contact_lanes(const ContactArrays& a, const Law& law, const EffectSizes& ef
 
     // Normal: the law's spring and dashpot; v.n < 0 while approaching.
     const T v_n = dot3(vx, vy, vz, nx, ny, nz);
-    const NormalPart<T> normal_part = law.normal(delta, R, m, v_n);
+    const NormalPart<T> normal_part = Law::normal(constants, delta, R, m, v_n);
+    const T mu = constants[Law::kFriction];
 
     // Tangential spring turned onto the contact plane, keeping its length, then stretched.
     const T tx = vx - v_n * nx, ty = vy - v_n * ny, tz = vz - v_n * nz;
@@ -99,7 +122,7 @@ void contact_lanes(const ContactArrays& a, const Law& law, const EffectSizes& ef
     const T s_t = normal_part.tangential_stiffness, c_t = normal_part.tangential_damping;
     T limit;
     if constexpr (SupportFriction)
-      limit = pick(wall, mu_wall, mu) * normal_part.force;
+      limit = pick(wall, ratio_wall * mu, mu) * normal_part.force;
     else
       limit = mu * normal_part.force;
     const T minus_s_t = negate(s_t);
@@ -140,13 +163,14 @@ void contact_lanes(const ContactArrays& a, const Law& law, const EffectSizes& ef
     if constexpr (uses_walls)
       for (std::size_t l = 0; l < N; ++l) wall_flag[l] = a.j[k0 + l] < 0 ? 1.0 : 0.0;
     block(a.normal + 3 * k0, a.velocity + 3 * k0, a.history + 3 * k0, a.overlap + k0, a.r_eff + k0, a.m_eff + k0,
-          wall_flag, a.force + 3 * k0, a.energy + k0);
+          wall_flag, a.force + 3 * k0, a.energy + k0, a.material_pair ? gather_rows(a.material_pair + k0) : one_pair);
   }
   if (k0 == a.count) return;
   // The last, partial block, padded with a harmless contact whose results are not kept.
   const std::size_t lanes = a.count - k0;
   alignas(64) double normal[3 * N], velocity[3 * N], history[3 * N], force[3 * N];
   alignas(64) double overlap[N], r_eff[N], m_eff[N], energy[N];
+  std::int32_t rows[N];
   for (std::size_t l = 0; l < N; ++l) {
     const bool real = l < lanes;
     const std::size_t k = k0 + (real ? l : 0);
@@ -159,8 +183,10 @@ void contact_lanes(const ContactArrays& a, const Law& law, const EffectSizes& ef
     r_eff[l] = real ? a.r_eff[k] : 1.0;
     m_eff[l] = real ? a.m_eff[k] : 1.0;
     wall_flag[l] = real && a.j[k] < 0 ? 1.0 : 0.0;
+    rows[l] = real && a.material_pair ? a.material_pair[k] : 0;
   }
-  block(normal, velocity, history, overlap, r_eff, m_eff, wall_flag, force, energy);
+  block(normal, velocity, history, overlap, r_eff, m_eff, wall_flag, force, energy,
+        a.material_pair ? gather_rows(rows) : one_pair);
   for (std::size_t l = 0; l < lanes; ++l) {
     for (std::size_t c = 0; c < 3; ++c) {
       a.force[3 * (k0 + l) + c] = force[3 * l + c];
@@ -172,7 +198,7 @@ void contact_lanes(const ContactArrays& a, const Law& law, const EffectSizes& ef
 
 // A law's batch loop for one lane type and effect selection.
 template <class Law>
-using LawKernel = void (*)(const ContactArrays&, const Law&, const EffectSizes&);
+using LawKernel = void (*)(const ContactArrays&, const Law*, const EffectSizes&);
 
 template <class T, class Law>
 LawKernel<Law> kernel_for(EffectSwitches on) {

@@ -1,9 +1,9 @@
 #pragma once
-// Hertz-Mindlin contact of two spheres of one material (README.md), one equation each.
+// Hertz-Mindlin contact of two spheres (README.md), one equation each.
 // Symbols: E Young's modulus, G shear modulus, nu Poisson's ratio, R* effective radius,
-// delta overlap, m* effective mass. A wall is taken to be of the particles' material with
-// infinite radius, so the same E* and G* serve particle-wall contacts (the kernel passes
-// R* = r, m* = m).
+// delta overlap, m* effective mass. A wall has infinite radius (the kernel passes R* = r,
+// m* = m); with one material it is taken to be of the particles' material, so the same E* and G*
+// serve particle-wall contacts; with several, of its own (the mixed forms below).
 #include <cmath>
 #include <numbers>
 
@@ -20,6 +20,19 @@ inline double effective_shear_modulus(double G, double nu) { return G / (2.0 * (
 // F_n = 4/3 E* sqrt(R*) delta^1.5
 inline double normal_elastic_force(double E_star, double R, double delta) {
   return 4.0 / 3.0 * E_star * std::sqrt(R) * delta * std::sqrt(delta);
+}
+
+// Two materials (docs/materials.md; Johnson, Contact Mechanics, 1985, eq. 4.22 for E*; Mindlin
+// 1949 as in Di Renzo and Di Maio, Chem. Eng. Sci. 59 (2004) 525, for G*): a wall's material
+// against the particles', or two kinds of particles.
+// 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2
+inline double mixed_young_modulus(double E1, double nu1, double E2, double nu2) {
+  return 1.0 / ((1.0 - nu1 * nu1) / E1 + (1.0 - nu2 * nu2) / E2);
+}
+
+// 1/G* = (2 - nu1)/G1 + (2 - nu2)/G2
+inline double mixed_shear_modulus(double G1, double nu1, double G2, double nu2) {
+  return 1.0 / ((2.0 - nu1) / G1 + (2.0 - nu2) / G2);
 }
 
 // S_n = dF_n/d delta = 2 E* sqrt(R* delta)

@@ -11,29 +11,34 @@
 
 namespace shard::hertz {
 
+// One pair of materials' constants (a row of the law table, ../common/contact_lanes.hpp).
 struct HertzLaw {
-  double force_factor;       // 4/3 E*
-  double energy_factor;      // 8/15 E*
-  double normal_factor;      // 2 E*
-  double tangential_factor;  // 8 G*
-  double damping;            // dimensionless c of both dashpots c sqrt(S m*)
-  double friction;           // mu
+  enum Constant : std::size_t {
+    kForceFactor,       // 4/3 E*
+    kEnergyFactor,      // 8/15 E*
+    kNormalFactor,      // 2 E*
+    kTangentialFactor,  // 8 G*
+    kDamping,           // dimensionless c of both dashpots c sqrt(S m*)
+    kFriction,          // mu
+    kConstants
+  };
+  double constant[kConstants];
 
   static HertzLaw of(double e_star, double g_star, double damping, double friction) {
-    return {4.0 / 3.0 * e_star, 8.0 / 15.0 * e_star, 2.0 * e_star, 8.0 * g_star, damping, friction};
+    return {{4.0 / 3.0 * e_star, 8.0 / 15.0 * e_star, 2.0 * e_star, 8.0 * g_star, damping, friction}};
   }
 
   template <class T>
-  contact::NormalPart<T> normal(const T& delta, const T& R, const T& m, const T& v_n) const {
+  static contact::NormalPart<T> normal(const T* c, const T& delta, const T& R, const T& m, const T& v_n) {
     const T root_r = contact::root(R), root_delta = contact::root(delta), root_r_delta = contact::root(R * delta);
-    const T c(damping);
+    const T& damping = c[kDamping];
     // F_n = max(0, 4/3 E* sqrt(R*) delta^1.5 - c sqrt(S_n m*) v_n), S_n = 2 E* sqrt(R* delta): never pulling.
-    const T s_n = T(normal_factor) * root_r_delta;
-    const T elastic = T(force_factor) * root_r * delta * root_delta;
-    const T f_n = contact::clamp_at_zero(elastic - c * contact::root(s_n * m) * v_n);
+    const T s_n = c[kNormalFactor] * root_r_delta;
+    const T elastic = c[kForceFactor] * root_r * delta * root_delta;
+    const T f_n = contact::clamp_at_zero(elastic - damping * contact::root(s_n * m) * v_n);
     // S_t = 8 G* sqrt(R* delta), c_t = c sqrt(S_t m*); U_n = 8/15 E* sqrt(R*) delta^2.5.
-    const T s_t = T(tangential_factor) * root_r_delta;
-    return {f_n, T(energy_factor) * root_r * delta * delta * root_delta, s_t, c * contact::root(s_t * m)};
+    const T s_t = c[kTangentialFactor] * root_r_delta;
+    return {f_n, c[kEnergyFactor] * root_r * delta * delta * root_delta, s_t, damping * contact::root(s_t * m)};
   }
 };
 

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "../common/contact_batch_arrays.hpp"
 #include "hertz_damping.hpp"
@@ -36,9 +37,11 @@ HertzMindlin::HertzMindlin(const HertzMindlinMaterial& material, const contact::
           hertz::young_modulus(material.shear_modulus, material.poisson_ratio), material.poisson_ratio)),
       g_star_(hertz::effective_shear_modulus(material.shear_modulus, material.poisson_ratio)),
       damping_(hertz::damping_for_restitution(material.restitution)),
-      law_(hertz::HertzLaw::of(e_star_, g_star_, damping_, material.friction)),
+      materials_{material},
+      names_{""},
+      laws_{hertz::HertzLaw::of(e_star_, g_star_, damping_, material.friction)},
       on_(effects.switches()),
-      sizes_(effects.sizes(material.friction)),
+      sizes_(effects.sizes()),
       kernel_(hertz::hertz_kernel(contact::best_lane_set(), on_)) {}
 
 HertzMindlin HertzMindlin::from(const ParamSet& params) {
@@ -49,18 +52,71 @@ HertzMindlin HertzMindlin::from(const ParamSet& params) {
 std::size_t HertzMindlin::history_size() const { return contact::kTangentialHistorySize; }
 
 TimeStepLimit HertzMindlin::time_step_limit(double min_radius, double density) const {
+  // The first material's (the only one, unless set_materials gave a table of one).
   const double t_rayleigh =
-      hertz::rayleigh_time(min_radius, density, material_.shear_modulus, material_.poisson_ratio);
+      hertz::rayleigh_time(min_radius, density, materials_[0].shear_modulus, materials_[0].poisson_ratio);
   return {"hertz_mindlin Rayleigh time", t_rayleigh, 0.2 * t_rayleigh};
 }
 
-void HertzMindlin::compute(ContactBatch& batch) const { kernel_(contact::arrays_of(batch), law_, sizes_); }
+void HertzMindlin::set_materials(const ContactMaterials& m) {
+  const std::size_t n = m.count;
+  if (n == 0 || m.material.size() != n || m.pair.size() != n * n || m.names.size() != n)
+    throw std::invalid_argument("hertz_mindlin: a material table needs one entry per material and per pair");
+  std::vector<HertzMindlinMaterial> materials(n);
+  for (std::size_t a = 0; a < n; ++a) {
+    materials[a].shear_modulus = m.material[a].number("shear_modulus");
+    materials[a].poisson_ratio = m.material[a].number("poisson_ratio");
+  }
+  std::vector<hertz::HertzLaw> laws(n * n);
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = 0; b < n; ++b) {
+      const ParamSet& pair = m.pair[a * n + b];
+      const HertzMindlinMaterial& A = materials[a];
+      const HertzMindlinMaterial& B = materials[b];
+      try {
+        checked({A.shear_modulus, A.poisson_ratio, pair.number("friction"), pair.number("restitution")});
+        checked({B.shear_modulus, B.poisson_ratio, pair.number("friction"), pair.number("restitution")});
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(std::string(e.what()) + " (materials '" + m.names[a] + "' and '" + m.names[b] + "')");
+      }
+      // One material: the alike forms, bit for bit those of the one-material constructor.
+      const double e_star =
+          a == b ? hertz::effective_young_modulus(hertz::young_modulus(A.shear_modulus, A.poisson_ratio), A.poisson_ratio)
+                 : hertz::mixed_young_modulus(hertz::young_modulus(A.shear_modulus, A.poisson_ratio), A.poisson_ratio,
+                                              hertz::young_modulus(B.shear_modulus, B.poisson_ratio), B.poisson_ratio);
+      const double g_star = a == b ? hertz::effective_shear_modulus(A.shear_modulus, A.poisson_ratio)
+                                   : hertz::mixed_shear_modulus(A.shear_modulus, A.poisson_ratio, B.shear_modulus,
+                                                                B.poisson_ratio);
+      laws[a * n + b] = hertz::HertzLaw::of(e_star, g_star, hertz::damping_for_restitution(pair.number("restitution")),
+                                            pair.number("friction"));
+    }
+  materials_ = std::move(materials);
+  names_ = m.names;
+  laws_ = std::move(laws);
+}
+
+TimeStepLimit HertzMindlin::time_step_limit(const std::vector<MaterialExtent>& per_material) const {
+  TimeStepLimit out{"hertz_mindlin Rayleigh time", 0, 0};
+  bool any = false;
+  for (std::size_t a = 0; a < per_material.size() && a < materials_.size(); ++a) {
+    if (!(per_material[a].min_radius > 0)) continue;
+    const double t = hertz::rayleigh_time(per_material[a].min_radius, per_material[a].density,
+                                          materials_[a].shear_modulus, materials_[a].poisson_ratio);
+    if (any && !(t < out.critical)) continue;
+    any = true;
+    out = {names_[a].empty() ? "hertz_mindlin Rayleigh time" : "hertz_mindlin Rayleigh time (" + names_[a] + ")", t,
+           0.2 * t};
+  }
+  return out;
+}
+
+void HertzMindlin::compute(ContactBatch& batch) const { kernel_(contact::arrays_of(batch), laws_.data(), sizes_); }
 
 void HertzMindlin::compute_with(contact::LaneSet set, ContactBatch& batch) const {
   if (!contact::lane_set_available(set))
     throw std::invalid_argument(std::string("hertz_mindlin: this machine cannot run the ") +
                                 std::string(contact::lane_set_name(set)) + " lanes");
-  hertz::hertz_kernel(set, on_)(contact::arrays_of(batch), law_, sizes_);
+  hertz::hertz_kernel(set, on_)(contact::arrays_of(batch), laws_.data(), sizes_);
 }
 
 }  // namespace shard

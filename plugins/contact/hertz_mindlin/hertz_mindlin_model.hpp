@@ -2,6 +2,8 @@
 // Hertz-Mindlin with Coulomb friction, the master contact model of the seed (README.md), with the
 // contact effect policies cohesion and support_friction (../common/contact_effects.hpp).
 #include <cstddef>
+#include <string>
+#include <vector>
 
 #include "../common/contact_effects.hpp"
 #include "../common/lane_sets.hpp"
@@ -26,7 +28,12 @@ class HertzMindlin final : public ContactModel {
   static HertzMindlin from(const ParamSet& params);
 
   std::size_t history_size() const override;
+  using ContactModel::time_step_limit;
   TimeStepLimit time_step_limit(double min_radius, double density) const override;
+  // Several materials (docs/materials.md): G and nu per material, mu and e per pair; E* and G* of
+  // a pair from both materials' moduli (hertz_equations.hpp), the Rayleigh time per material.
+  void set_materials(const ContactMaterials& materials) override;
+  TimeStepLimit time_step_limit(const std::vector<MaterialExtent>& per_material) const override;
   // The batch in the widest lanes this machine runs (hertz_kernels.hpp); every width gives the same bits.
   void compute(ContactBatch& batch) const override;
   // The same law in the lanes of `set` (tests compare them; scalar is the reference).
@@ -37,13 +44,19 @@ class HertzMindlin final : public ContactModel {
   // Dimensionless c of the dashpot c sqrt(S m*), solved from the restitution.
   double damping() const { return damping_; }
   contact::EffectSwitches effects_on() const { return on_; }
+  // The law of the pair of materials a, b (0, 0 with one material).
+  const hertz::HertzLaw& law(std::size_t a, std::size_t b) const { return laws_[a * materials_.size() + b]; }
 
  private:
   HertzMindlinMaterial material_;
   double e_star_;
   double g_star_;
   double damping_;
-  hertz::HertzLaw law_;
+  // One material per scene material (one from the constructor until set_materials), one law per
+  // pair of them: the table the lanes gather from (row a * count + b).
+  std::vector<HertzMindlinMaterial> materials_;
+  std::vector<std::string> names_;
+  std::vector<hertz::HertzLaw> laws_;
   contact::EffectSwitches on_;
   contact::EffectSizes sizes_;
   contact::LawKernel<hertz::HertzLaw> kernel_;

@@ -8,15 +8,20 @@
 
 namespace shard::linear {
 
+// One pair of materials' constants (a row of the law table, ../common/contact_lanes.hpp).
 struct LinearLaw {
-  double normal_stiffness;      // k_n, N/m
-  double tangential_stiffness;  // k_t, N/m
-  double twice_zeta;            // 2 zeta, the dashpot's factor on sqrt(k m*)
-  double friction;              // mu
+  enum Constant : std::size_t {
+    kNormalStiffness,      // k_n, N/m
+    kTangentialStiffness,  // k_t, N/m
+    kTwiceZeta,            // 2 zeta, the dashpot's factor on sqrt(k m*)
+    kFriction,             // mu
+    kConstants
+  };
+  double constant[kConstants];
 
   template <class T>
-  contact::NormalPart<T> normal(const T& delta, const T& /*R*/, const T& m, const T& v_n) const {
-    const T k_n(normal_stiffness), k_t(tangential_stiffness), two_zeta(twice_zeta);
+  static contact::NormalPart<T> normal(const T* c, const T& delta, const T& /*R*/, const T& m, const T& v_n) {
+    const T k_n = c[kNormalStiffness], k_t = c[kTangentialStiffness], two_zeta = c[kTwiceZeta];
     const T f_n = contact::clamp_at_zero(k_n * delta - two_zeta * contact::root(k_n * m) * v_n);
     return {f_n, T(0.5) * k_n * delta * delta, k_t, two_zeta * contact::root(k_t * m)};
   }

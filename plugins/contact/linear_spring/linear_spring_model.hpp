@@ -2,6 +2,8 @@
 // Linear spring-dashpot with Coulomb friction: the cheap baseline contact model (README.md),
 // with the contact effect policy support_friction (../common/contact_effects.hpp).
 #include <cstddef>
+#include <string>
+#include <vector>
 
 #include "../common/contact_effects.hpp"
 #include "../common/lane_sets.hpp"
@@ -26,7 +28,12 @@ class LinearSpring final : public ContactModel {
   static LinearSpring from(const ParamSet& params);
 
   std::size_t history_size() const override;
+  using ContactModel::time_step_limit;
   TimeStepLimit time_step_limit(double min_radius, double density) const override;
+  // Several materials (docs/materials.md): every parameter is per pair (a spring has no mixing
+  // rule); the time step from the stiffest pair on its lightest particles.
+  void set_materials(const ContactMaterials& materials) override;
+  TimeStepLimit time_step_limit(const std::vector<MaterialExtent>& per_material) const override;
   // The batch in the widest lanes this machine runs (linear_kernels.hpp); every width gives the same bits.
   void compute(ContactBatch& batch) const override;
   // The same law in the lanes of `set` (tests compare them; scalar is the reference).
@@ -37,13 +44,18 @@ class LinearSpring final : public ContactModel {
   // Damping ratio zeta of both dashpots, solved from the restitution.
   double damping_ratio() const { return zeta_; }
   contact::EffectSwitches effects_on() const { return on_; }
+  // The law of the pair of materials a, b (0, 0 with one material).
+  const linear::LinearLaw& law(std::size_t a, std::size_t b) const { return laws_[a * count_ + b]; }
 
  private:
   double k_n_;
   double k_t_;
   double friction_;
   double zeta_;
-  linear::LinearLaw law_;
+  // One law per pair of materials, the table the lanes gather from (row a * count + b).
+  std::size_t count_ = 1;
+  std::vector<std::string> names_{""};
+  std::vector<linear::LinearLaw> laws_;
   contact::EffectSwitches on_;
   contact::EffectSizes sizes_;
   contact::LawKernel<linear::LinearLaw> kernel_;

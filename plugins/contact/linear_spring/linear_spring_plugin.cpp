@@ -20,20 +20,23 @@ shard::PluginInfo linear_spring_info() {
                    .default_value = defaults.normal_stiffness,
                    .min = 0.0,
                    .min_exclusive = true,
-                   .neutral = std::nullopt};
+                   .neutral = std::nullopt,
+                   .scope = shard::ParamScope::Pair};
   ParamSpec ratio{.name = "tangential_stiffness_ratio",
                   .unit = "1",
                   .doc = "k_t / k_n; 2/7 makes the tangential and normal oscillations of spheres equally fast",
                   .default_value = defaults.tangential_stiffness_ratio,
                   .min = 0.0,
                   .min_exclusive = true,
-                  .neutral = std::nullopt};
+                  .neutral = std::nullopt,
+                  .scope = shard::ParamScope::Pair};
   const ParamSpec friction = shard::contact_params::friction(defaults.friction);
   const ParamSpec restitution = shard::contact_params::restitution(defaults.restitution);
   std::vector<ParamSpec> params{normal, ratio, friction, restitution};
   for (auto& spec : shard::contact::contact_effect_params(/*with_cohesion=*/false)) params.push_back(std::move(spec));
-  // 1.1: the effect policy support_friction (docs/effects.md).
-  return {shard::PluginKind::Contact, "linear_spring", "1.1.0",
+  // 1.1: the effect policy support_friction (docs/effects.md); 1.2: materials, every parameter per pair
+  // (docs/materials.md).
+  return {shard::PluginKind::Contact, "linear_spring", "1.2.0",
           "linear normal and tangential spring-dashpot with exact restitution and Coulomb friction; effect policy "
           "support_friction (docs/effects.md)",
           std::move(params)};
