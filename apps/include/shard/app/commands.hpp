@@ -21,5 +21,6 @@ void add_bending_command(CLI::App& app, CommandContext& ctx);  // bending, calib
 void add_fragments_command(CLI::App& app, CommandContext& ctx);
 void add_measure_command(CLI::App& app, CommandContext& ctx);  // compare, synth, diagnose
 void add_new_plugin_command(CLI::App& app, CommandContext& ctx);
+void add_run_worker_command(CLI::App& app, CommandContext& ctx);  // hidden: one isolated run
 
 }  // namespace shard
