@@ -124,7 +124,7 @@ std::string describe_request(const RunRequest& r) {
   std::string text = fmt::format("seed {}", r.seed);
   if (!r.overrides.empty()) {
     text += ", with";
-    for (const auto& o : r.overrides) text += " " + o.text();
+    for (const auto& o : r.overrides) text += fmt::format(" {}", o.text());
   }
   return text;
 }

@@ -48,7 +48,7 @@ void leave_segv_to_the_kernel() {
 TEST_CASE("an isolated pool: the segfaulting run fails alone, named by its signal; the others are unchanged") {
   leave_segv_to_the_kernel();
   const std::vector<fs::path> plugin_dirs{SEGFAULT_PLUGIN_DIR};
-  const SceneOverrides crash{{"bond.segfault_trigger", 1.0}};
+  const SceneOverrides crash{{"bond.segfault_after", 200.0}};
   const std::vector<RunRequest> with_crash{tiny(1), tiny(2), tiny(1, crash), tiny(3)};
   const std::vector<RunRequest> without{tiny(1), tiny(2), tiny(3)};
 
@@ -66,7 +66,7 @@ TEST_CASE("an isolated pool: the segfaulting run fails alone, named by its signa
   CHECK(crashed.failure.find("SIGSEGV") != std::string::npos);
   CHECK(crashed.failure.find("tiny_bending.toml") != std::string::npos);
   CHECK(crashed.failure.find("seed 1") != std::string::npos);
-  CHECK(crashed.failure.find("bond.segfault_trigger=1") != std::string::npos);
+  CHECK(crashed.failure.find("bond.segfault_after=200") != std::string::npos);
   CHECK_FALSE(fs::exists(isolated.work_dir() / "cache" / (crashed.key + ".csv")));
 
   RunPool threads(fresh("thread_pool"), plugin_dirs, 2);
