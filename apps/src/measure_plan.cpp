@@ -32,9 +32,9 @@ void add_simulation_options(CLI::App* cmd, ModelPlan& model, SimulationOptions& 
   cmd->add_option("--first-seed", options.first_seed, "first packing seed");
   cmd->add_option("--work", options.work_dir, "folder for the run cache and history.jsonl");
   cmd->add_option("--workers", options.workers, "simulations run at once (one run each)")->check(CLI::PositiveNumber);
-  cmd->add_flag("!--in-process", options.isolate,
-                "run the simulations on threads of this process instead of one worker process each (a crash in "
-                "a plugin then ends the command)");
+  cmd->add_flag("--isolate", options.isolate,
+                "run each simulation in a worker process of its own: a crash in a plugin (a segmentation fault) "
+                "fails that run, not the command (costs ~0.3 s of CPU per run)");
   cmd->add_flag("!--no-seat", options.seat, "do not bring pins and supports into contact before loading");
   cmd->add_option("--machine-compliance", model.machine_compliance,
                   "load-frame compliance C in m/N added to the simulated displacement (w + C F)");
