@@ -2,12 +2,18 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "shard/app/command_routing.hpp"
 #include "shard/app/commands.hpp"
 #include "shard/hdf5_quiet.hpp"
+#if SHARD_MPI_ENSEMBLE
+#include "run_job.hpp"
+#include "shard/app/run_ensemble.hpp"
+#include "shard/driver/rank_runs.hpp"
+#endif
 
 int main(int argc, char** argv) {
   // Before HDF5's first use, which the guard below is: see run_scene (run_command.cpp).
@@ -26,8 +32,18 @@ int main(int argc, char** argv) {
   shard::add_measure_command(app, ctx);
   shard::add_new_plugin_command(app, ctx);
   shard::add_sweep_command(app, ctx);
+  shard::add_run_worker_command(app, ctx);
   std::vector<std::string> args(argv, argv + argc);
   shard::route_measurement_command(args);
+#if SHARD_MPI_ENSEMBLE
+  // Under mpirun a measurement command's runs spread over the ranks: rank 0 runs the command, the
+  // others run its simulations until it ends (docs/scaling-out.md, "Distributed ensembles").
+  std::optional<shard::driver::RankEnsemble> ensemble;
+  if (shard::spreads_runs_over_ranks(args)) {
+    ensemble.emplace(argc, argv);
+    if (ensemble->rank() > 0) return ensemble->serve(shard::run_encoded_job);
+  }
+#endif
   std::vector<char*> words;
   for (auto& a : args) words.push_back(a.data());
   try {

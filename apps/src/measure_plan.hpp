@@ -34,6 +34,10 @@ struct SimulationOptions {
   long first_seed = 1;
   std::filesystem::path work_dir = "shard_work";
   int workers = 2;
+  // Each run in a worker process of its own (`shard run-worker`), so a crash in a plugin fails
+  // that run and not the command. Off by default: a worker's start and plugin loading cost
+  // 0.3-0.4 s of CPU per run, half a tiny-beam run (docs/driver.md, "Isolated runs").
+  bool isolate = false;
   bool seat = true;
   // The model runs each specimen at this factor times its measured loading rate. Explicit DEM
   // cannot afford a lab's 0.2 mm/s on a resolved beam; a quasi-static model gives the same

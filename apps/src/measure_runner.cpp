@@ -1,5 +1,7 @@
 #include "measure_runner.hpp"
 
+#include <unistd.h>
+
 #include <fmt/format.h>
 #include <fmt/os.h>
 #include <fmt/ostream.h>
@@ -13,13 +15,13 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "run_job.hpp"
 #include "shard/app/run_command.hpp"
-#include "shard/bending/bending_run.hpp"
 #include "shard/bending/test_setup.hpp"
-#include "shard/driver/fragment_labeller.hpp"
 #include "shard/driver/parallel_runs.hpp"
-#include "shard/driver/run_driver.hpp"
-#include "shard/driver/stop_rules.hpp"
+#if SHARD_MPI_ENSEMBLE
+#include "shard/driver/rank_runs.hpp"
+#endif
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
 #include "significant_digits.hpp"
@@ -88,23 +90,43 @@ measure::Curve read_cached_curve(const fs::path& file) {
   return c;
 }
 
-// <key>.fracture.csv beside a cached curve: "# crack_position=<m or nan>", then one fragment
-// size (m) per line.
-void write_fracture(const fs::path& run, const fs::path& file) {
-  bending::BendingReport report;
-  try {
-    report = bending::analyse_bending_run(run);
-  } catch (const std::exception&) {
-    return;  // not a four-point bending run: the curve is all there is
-  }
-  const fs::path tmp = file.string() + ".tmp";
+// The run's outcome as a cache entry: <key>.csv, the curve with a "# kinetic_to_elastic=...
+// wall_seconds=..." line, and beside it <key>.fracture.csv: "# crack_position=<m or nan>", then
+// one fragment size (m) per line (only for a four-point bending run). Written under names of this
+// process, then renamed into place: a killed diagnosis leaves no torn entry, and two processes
+// that share the work folder never write into one file.
+void write_cache(const fs::path& cache, const std::string& key, const RunOutcome& r) {
+  const std::string tmp_suffix = fmt::format(".{}.tmp", ::getpid());
+  const fs::path tmp = cache / (key + tmp_suffix);
   {
     auto out = fmt::output_file(tmp.string());
-    out.print("# crack_position={:.9g}\nsize\n",
-              report.crack.found ? report.crack.position : std::numeric_limits<double>::quiet_NaN());
-    for (double d : report.fragments.sizes) out.print("{:.9g}\n", d);
+    out.print("# kinetic_to_elastic={:.6g} wall_seconds={:.3f}\ntime,displacement,force\n", r.kinetic_to_elastic,
+              r.wall_seconds);
+    // Nine significant digits, the curves' precision in every figure measured so far
+    // (significant_digits.hpp); far below the force noise of any testing machine.
+    for (std::size_t k = 0; k < r.time.size(); ++k)
+      out.print("{:.9g},{:.9g},{:.9g}\n", r.time[k], r.displacement[k], r.load[k]);
   }
-  fs::rename(tmp, file);
+  if (r.fracture_analysed) {
+    const fs::path fracture_tmp = cache / (key + ".fracture" + tmp_suffix);
+    {
+      auto out = fmt::output_file(fracture_tmp.string());
+      out.print("# crack_position={:.9g}\nsize\n", r.crack_position);
+      for (double d : r.fragment_sizes) out.print("{:.9g}\n", d);
+    }
+    fs::rename(fracture_tmp, cache / (key + ".fracture.csv"));
+  }
+  fs::rename(tmp, cache / (key + ".csv"));  // last: the curve's presence marks a complete entry
+}
+
+// "seed 3, with bond.x=1 wall.pin.velocity=[...]": the request as the user can repeat it.
+std::string describe_request(const RunRequest& r) {
+  std::string text = fmt::format("seed {}", r.seed);
+  if (!r.overrides.empty()) {
+    text += ", with";
+    for (const auto& o : r.overrides) text += fmt::format(" {}", o.text());
+  }
+  return text;
 }
 
 void read_fracture(const fs::path& file, RunResult& r) {
@@ -260,13 +282,8 @@ std::string RunPool::resolved_text(const RunRequest& request) const {
 }
 
 std::vector<RunResult> RunPool::try_run(const std::vector<RunRequest>& requests, std::ostream& log) {
-  struct Job {
-    std::string key;
-    fs::path scene;
-    SceneOverrides overrides;
-  };
   std::vector<std::string> keys(requests.size());
-  std::map<std::string, Job> pending;  // one job per distinct key
+  std::map<std::string, RunJob> pending;  // one job per distinct key
   const fs::path cache = work_dir_ / "cache";
   fs::create_directories(cache);
   for (std::size_t i = 0; i < requests.size(); ++i) {
@@ -276,45 +293,23 @@ std::vector<RunResult> RunPool::try_run(const std::vector<RunRequest>& requests,
       for (auto& s : seating_overrides(r)) o.push_back(std::move(s));
     keys[i] = fnv1a_hex(load_scene(r.scene, *host_, o).resolved_text);
     if (fs::exists(cache / (keys[i] + ".csv")) || pending.count(keys[i])) continue;
-    pending.emplace(keys[i], Job{keys[i], r.scene, std::move(o)});
+    RunJob job;
+    job.key = keys[i];
+    job.scene = r.scene;
+    job.overrides = std::move(o);
+    job.out_dir = work_dir_ / "runs" / keys[i];
+    job.plugin_dirs = plugin_dirs_;
+    job.isolated = worker_.has_value();
+    pending.emplace(keys[i], std::move(job));
   }
 
-  std::vector<Job> queue;
+  std::vector<RunJob> queue;
   for (auto& [k, j] : pending) queue.push_back(std::move(j));
   runs_started_ += queue.size();
   std::size_t done = 0;
   std::map<std::string, std::string> failures;  // key -> why
   // A full disk or a file-size limit must surface as a write error, not kill the process.
   void (*previous_xfsz)(int) = std::signal(SIGXFSZ, SIG_IGN);
-  // Each run on its own thread with one OpenMP thread; its run.h5 is read for the fracture, then
-  // the curve is cached and the run folder removed (the curve is all the workflow uses).
-  auto run_one = [&](std::size_t j) {
-    const Job& job = queue[j];
-    driver::RunSpec spec;
-    spec.scene = job.scene;
-    spec.overrides = job.overrides;
-    spec.out_dir = work_dir_ / "runs" / job.key;
-    spec.threads = 1;
-    std::error_code ignored;
-    fs::remove_all(spec.out_dir, ignored);  // a killed earlier attempt's leftovers
-    driver::LoadDropStop load_drop;
-    driver::MaxDisplacementStop max_displacement;
-    driver::FragmentLabeller labeller;  // the frames carry fragment labels, as `shard run` writes them
-    const driver::RunResult r = driver::run(spec, *host_, {&load_drop, &max_displacement, &labeller});
-    const fs::path tmp = cache / (job.key + ".tmp");
-    {
-      auto out = fmt::output_file(tmp.string());
-      out.print("# kinetic_to_elastic={:.6g} wall_seconds={:.3f}\ntime,displacement,force\n", r.max_kinetic_to_elastic,
-                r.wall_seconds);
-      // Nine significant digits, the curves' precision in every figure measured so far
-      // (significant_digits.hpp); far below the force noise of any testing machine.
-      for (std::size_t k = 0; k < r.curve.size(); ++k)
-        out.print("{:.9g},{:.9g},{:.9g}\n", r.curve.time[k], r.curve.displacement[k], r.curve.load[k]);
-    }
-    write_fracture(r.output, cache / (job.key + ".fracture.csv"));
-    fs::rename(tmp, cache / (job.key + ".csv"));  // atomic: a killed diagnosis leaves no torn entry
-    fs::remove_all(spec.out_dir, ignored);
-  };
   auto report = [&](std::size_t j, const std::string& error) {
     if (!error.empty()) {
       failures[queue[j].key] = error;
@@ -327,19 +322,53 @@ std::vector<RunResult> RunPool::try_run(const std::vector<RunRequest>& requests,
     fmt::print(log, "  run {}/{} done ({:.1f} s, kinetic/elastic {:.2g})\n", done, queue.size(), cached.wall_seconds,
                cached.kinetic_to_elastic);
   };
+#if SHARD_MPI_ENSEMBLE
+  if (driver::ranks_available()) {
+    // Rank 0 hands the runs out to the other ranks and writes their outcomes to the cache.
+    if (!queue.empty())
+      fmt::print(log, "  {} runs over {} MPI rank{}\n", queue.size(), driver::worker_rank_count(),
+                 driver::worker_rank_count() > 1 ? "s" : "");
+    driver::run_on_ranks(
+        queue.size(), [&](std::size_t j) { return encode_job(queue[j]); },
+        [&](std::size_t j, const std::string& record) {
+          std::string error;
+          try {
+            const RunOutcome outcome = decode_outcome(record);
+            if (!outcome.failure.empty()) error = outcome.failure;
+            else write_cache(cache, queue[j].key, outcome);
+          } catch (const std::exception& e) {
+            error = e.what();
+          }
+          report(j, error);
+        });
+    std::signal(SIGXFSZ, previous_xfsz);
+    return collect(requests, keys, pending, failures);
+  }
+#endif
+  // One OpenMP thread per run, on its own thread or in its own worker process.
+  auto run_one = [&](std::size_t j) {
+    const RunJob& job = queue[j];
+    write_cache(cache, job.key, worker_ ? execute_run_job_isolated(job, *worker_) : execute_run_job(job, *host_));
+  };
   driver::run_in_parallel(queue.size(), workers_, run_one, report);
   std::signal(SIGXFSZ, previous_xfsz);
+  return collect(requests, keys, pending, failures);
+}
 
+std::vector<RunResult> RunPool::collect(const std::vector<RunRequest>& requests, const std::vector<std::string>& keys,
+                                        const std::map<std::string, RunJob>& started,
+                                        const std::map<std::string, std::string>& failures) const {
+  const fs::path cache = work_dir_ / "cache";
   std::vector<RunResult> results(requests.size());
   for (std::size_t i = 0; i < requests.size(); ++i) {
     if (const auto f = failures.find(keys[i]); f != failures.end()) {
       results[i].key = keys[i];
-      results[i].failure = fmt::format("a simulation of {} (seed {}) failed: {}", requests[i].scene.string(),
-                                       requests[i].seed, f->second);
+      results[i].failure = fmt::format("a simulation of {} ({}) failed: {}", requests[i].scene.string(),
+                                       describe_request(requests[i]), f->second);
       continue;
     }
     results[i] = read_cached(cache / (keys[i] + ".csv"), keys[i]);
-    results[i].cached = !pending.count(keys[i]);
+    results[i].cached = !started.count(keys[i]);
   }
   return results;
 }

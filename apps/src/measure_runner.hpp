@@ -2,8 +2,12 @@
 // Simulations for the measurement workflow (compare, synth, diagnose, calibrate-effect): each
 // request (scene, overrides, packing seed) is resolved to its full scene text, looked up in a run
 // cache keyed by that text, and otherwise run in-process through the run driver
-// (shard/driver/run_driver.hpp), several at a time on worker threads (one OpenMP thread each).
-// A run that fails (bad input, a numerical blow-up) is reported as failed and the others go on.
+// (shard/driver/run_driver.hpp), several at a time (one OpenMP thread each): on worker threads,
+// or isolated, each in a worker process of its own (isolate_runs), or, in an MPI build started by
+// mpirun, on the other ranks (docs/scaling-out.md). A run that fails (bad input, a numerical
+// blow-up; with isolation also a crash, named by its signal) is reported as failed and the others
+// go on. However they run, the runs' outcomes come back as records (run_job.hpp) and this process
+// alone writes the cache, so no two writers meet on a cache file.
 //
 // Seating: a testing machine brings the pins into contact before it records. With `seat`, the
 // loading walls ([stop] load_walls) and the resting cylinders (supports) are moved along the
@@ -12,17 +16,20 @@
 #include <cstdint>
 #include <filesystem>
 #include <iosfwd>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "shard/driver/worker_process.hpp"
 #include "shard/measure/curve.hpp"
 #include "shard/scene_override.hpp"
 
 namespace shard {
 
 class PluginHost;
+struct RunJob;
 
 struct RunRequest {
   std::filesystem::path scene;
@@ -85,16 +92,26 @@ class RunPool {
   // The same, but throws (after every run ended) with the first failed run's message.
   std::vector<RunResult> run(const std::vector<RunRequest>& requests, std::ostream& log);
 
+  // From now on each run goes to a worker process started by `worker` (shard_run_worker() in
+  // run_job.hpp): a crash ends that run only. Without this call the runs are threads of this process.
+  void isolate_runs(driver::WorkerCommand worker) { worker_ = std::move(worker); }
+  bool isolated() const { return worker_.has_value(); }
+
   std::size_t runs_started() const { return runs_started_; }
   const std::filesystem::path& work_dir() const { return work_dir_; }
 
  private:
   SceneOverrides full_overrides(const RunRequest& request) const;
+  // The results in the order of the requests: failed, or read from the cache.
+  std::vector<RunResult> collect(const std::vector<RunRequest>& requests, const std::vector<std::string>& keys,
+                                 const std::map<std::string, RunJob>& started,
+                                 const std::map<std::string, std::string>& failures) const;
 
   std::filesystem::path work_dir_;
   std::vector<std::filesystem::path> plugin_dirs_;
   int workers_;
   std::unique_ptr<PluginHost> host_;
+  std::optional<driver::WorkerCommand> worker_;
   std::size_t runs_started_ = 0;
 };
 

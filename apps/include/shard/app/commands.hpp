@@ -22,5 +22,6 @@ void add_fragments_command(CLI::App& app, CommandContext& ctx);
 void add_measure_command(CLI::App& app, CommandContext& ctx);  // compare, synth, diagnose
 void add_new_plugin_command(CLI::App& app, CommandContext& ctx);
 void add_sweep_command(CLI::App& app, CommandContext& ctx);  // sweep: many runs, pooled plate statistics
+void add_run_worker_command(CLI::App& app, CommandContext& ctx);  // hidden: one isolated run
 
 }  // namespace shard
