@@ -8,8 +8,8 @@ namespace shard {
 
 bool spreads_runs_over_ranks(const std::vector<std::string>& args) {
   // Every command that simulates through the RunPool (measure_runner.hpp).
-  static constexpr std::array<std::string_view, 7> kEnsembleCommands{
-      "synth", "compare", "diagnose", "diagnose-sets", "calibrate-effect", "calibrate-contrast", "sweep"};
+  static constexpr std::array<std::string_view, 6> kEnsembleCommands{
+      "synth", "compare", "diagnose", "diagnose-sets", "calibrate-effect", "calibrate-contrast"};
   // The sub-command is the first word that is not an option or the value of --plugin-dir.
   for (std::size_t k = 1; k < args.size(); ++k) {
     if (args[k] == "--plugin-dir") {
