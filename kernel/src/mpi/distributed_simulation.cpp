@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <unordered_map>
 #include <utility>
 
 #include "comm.hpp"
@@ -80,11 +81,12 @@ bool event_order(const EventRecord& a, const EventRecord& b) {
 
 bool by_id(const ParticleRecord& a, const ParticleRecord& b) { return a.id < b.id; }
 
-// Repartition when some particle has moved this fraction of the skin since the last one. The
-// ghost layer (one neighbour cell, >= 2 r_max + skin) then still holds every particle that can
-// touch an owned one, and the local neighbour lists (rebuilt at half the skin) never need
-// particles they do not hold.
-constexpr double kRepartitionSkinFraction = 0.25;
+// Re-partition before some particle can have moved half the skin since the last partition by the
+// end of the next step (its travel so far plus twice the largest |v| dt, a margin for the next
+// drift). Two particles that touch before then were at most 2 r_max + skin apart at the partition,
+// in neighbouring cells: the ghost layer (the 26 cells around each owned one) holds every particle
+// an owned one can touch. The serial run rebuilds its list at the same travel (half the skin).
+constexpr double kStepMargin = 2;
 
 }  // namespace
 
@@ -179,19 +181,25 @@ void DistributedSimulation::distribute(Owned owned, double longest_bond, const S
   }
   const Partition partition = Partition::balance(all_gather(cells, comm_), ranks_, grid.cell);
 
+  // The ranks owning the cells around a cell, looked up once per cell (27 searches each).
+  std::unordered_map<std::uint64_t, std::vector<int>> around;
+  const auto ranks_around = [&](std::uint64_t cell, int self) -> const std::vector<int>& {
+    auto [it, fresh] = around.try_emplace(cell);
+    if (fresh) partition.neighbour_ranks(cell, self, it->second);
+    return it->second;
+  };
+
   // Where everything goes.
   const auto R = static_cast<std::size_t>(ranks_);
   std::vector<std::vector<ParticleRecord>> to_owner(R), to_ghost(R);
   std::vector<std::vector<double>> bonds_to(R), contacts_to(R);
-  std::vector<int> near;
   std::vector<int> owner(owned.particles.size());
   for (std::size_t k = 0; k < owned.particles.size(); ++k) {
     ParticleRecord r = owned.particles[k];
     r.owner = partition.owner_of(key[k]);
     owner[k] = r.owner;
     to_owner[static_cast<std::size_t>(r.owner)].push_back(r);
-    partition.neighbour_ranks(key[k], r.owner, near);
-    for (int d : near) to_ghost[static_cast<std::size_t>(d)].push_back(r);
+    for (int d : ranks_around(key[k], r.owner)) to_ghost[static_cast<std::size_t>(d)].push_back(r);
   }
   for (std::size_t b = 0; b < bond_count; ++b) {
     const double* rec = owned.bonds.data() + b * bond_record;
@@ -230,10 +238,10 @@ void DistributedSimulation::distribute(Owned owned, double longest_bond, const S
   // The halo: which owned particles each neighbour keeps a ghost of, and which ghosts come from whom.
   std::vector<HaloLink> links(R);
   for (std::size_t r = 0; r < R; ++r) links[r].rank = static_cast<int>(r);
-  for (const ParticleRecord& r : mine) {
-    partition.neighbour_ranks(grid.key(Vec3(r.position[0], r.position[1], r.position[2])), rank_, near);
-    for (int d : near) links[static_cast<std::size_t>(d)].send.push_back(r.id);
-  }
+  around.clear();  // (keyed by cell only: the owner, passed as `self`, is this rank from here on)
+  for (const ParticleRecord& r : mine)
+    for (int d : ranks_around(grid.key(Vec3(r.position[0], r.position[1], r.position[2])), rank_))
+      links[static_cast<std::size_t>(d)].send.push_back(r.id);
   for (const ParticleRecord& r : ghosts) links[static_cast<std::size_t>(r.owner)].recv.push_back(r.id);
   std::erase_if(links, [](const HaloLink& l) { return l.send.empty() && l.recv.empty(); });
   halo_->reset(std::move(links));
@@ -367,11 +375,14 @@ void DistributedSimulation::finish_step() {
     }
     partition_id_ = p.id;
   }
-  double moved = 0;
-  for (std::size_t k = 0; k < p.size(); ++k)
-    if (!(p.flags[k] & kGhost)) moved = std::max(moved, (p.position[k] - position_at_partition_[k]).squaredNorm());
+  double moved = 0, speed = 0;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    if (p.flags[k] & kGhost) continue;
+    moved = std::max(moved, (p.position[k] - position_at_partition_[k]).squaredNorm());
+    speed = std::max(speed, p.velocity[k].squaredNorm());
+  }
   std::vector<Wall>& walls = sim.walls();
-  std::vector<double> mine{static_cast<double>(fresh.size()), moved};
+  std::vector<double> mine{static_cast<double>(fresh.size()), std::sqrt(moved) + kStepMargin * std::sqrt(speed) * sim.dt()};
   for (const Wall& w : walls) {
     mine.insert(mine.end(), w.force.data(), w.force.data() + 3);
     mine.insert(mine.end(), w.torque.data(), w.torque.data() + 3);
@@ -421,8 +432,7 @@ void DistributedSimulation::finish_step() {
       events_.push_back(e);
     }
   }
-  const double trigger = kRepartitionSkinFraction * skin_;
-  if (max_moved > trigger * trigger) repartition();
+  if (!(max_moved < 0.5 * skin_)) repartition();  // also when not finite: the partition then names the particle
 }
 
 std::size_t DistributedSimulation::ghosts() const { return halo_->ghosts(); }

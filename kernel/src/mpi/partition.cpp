@@ -90,6 +90,26 @@ Partition Partition::balance(std::vector<CellCost> cells, int ranks, double cell
     ++count[static_cast<std::size_t>(r)];
     before += cost[k];
   }
+  std::array<std::int64_t, 3> lo{kAxisCells, kAxisCells, kAxisCells}, hi{0, 0, 0};
+  for (std::uint64_t key : p.keys_) {
+    const auto c = morton_coords(key);
+    for (std::size_t a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], c[a]);
+      hi[a] = std::max(hi[a], c[a]);
+    }
+  }
+  const double box = static_cast<double>(hi[0] - lo[0] + 1) * static_cast<double>(hi[1] - lo[1] + 1) *
+                     static_cast<double>(hi[2] - lo[2] + 1);
+  if (!p.keys_.empty() && box <= 8.0 * static_cast<double>(p.keys_.size()) + 4096) {
+    p.box_lo_ = lo;
+    for (std::size_t a = 0; a < 3; ++a) p.box_size_[a] = hi[a] - lo[a] + 1;
+    p.dense_.assign(static_cast<std::size_t>(box), -1);
+    for (std::size_t k = 0; k < p.keys_.size(); ++k) {
+      const auto c = morton_coords(p.keys_[k]);
+      p.dense_[static_cast<std::size_t>(((c[2] - lo[2]) * p.box_size_[1] + (c[1] - lo[1])) * p.box_size_[0] + (c[0] - lo[0]))] =
+          p.owner_[k];
+    }
+  }
   for (int r = 0; r < ranks; ++r)
     if (count[static_cast<std::size_t>(r)] == 0)
       throw std::invalid_argument(fmt::format(
@@ -114,7 +134,14 @@ void Partition::neighbour_ranks(std::uint64_t key, int self, std::vector<int>& o
       for (std::int64_t dx = -1; dx <= 1; ++dx) {
         const std::int64_t x = c[0] + dx, y = c[1] + dy, z = c[2] + dz;
         if (x < 0 || y < 0 || z < 0 || x >= kAxisCells || y >= kAxisCells || z >= kAxisCells) continue;
-        const int r = owner_of(morton_key(x, y, z));
+        int r = -1;
+        if (!dense_.empty()) {
+          const std::int64_t u = x - box_lo_[0], v = y - box_lo_[1], w = z - box_lo_[2];
+          if (u >= 0 && v >= 0 && w >= 0 && u < box_size_[0] && v < box_size_[1] && w < box_size_[2])
+            r = dense_[static_cast<std::size_t>((w * box_size_[1] + v) * box_size_[0] + u)];
+        } else {
+          r = owner_of(morton_key(x, y, z));
+        }
         if (r >= 0 && r != self) out.push_back(r);
       }
   std::sort(out.begin(), out.end());

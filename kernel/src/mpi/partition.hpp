@@ -45,6 +45,10 @@ class Partition {
   std::vector<std::uint64_t> keys_;  // ascending
   std::vector<int> owner_;
   std::vector<double> cost_;  // per rank
+  // The owners over the cells' bounding box, when it is not much larger than the cells themselves
+  // (a solid block): a ghost search looks up 26 neighbours per cell, a search each otherwise.
+  std::array<std::int64_t, 3> box_lo_{}, box_size_{};
+  std::vector<int> dense_;
 };
 
 }  // namespace shard::mpi

@@ -3,8 +3,8 @@
 // the particles it owns plus ghost copies of its neighbours' particles near the border; pairs and
 // bonds are computed once, by the rank owning the end with the smaller stable id, and the reaction
 // on a ghost end goes back to its owner (halo.hpp). The partition is a cost-balanced cut of the
-// Morton-ordered neighbour-cell grid, re-balanced, with migration, whenever some particle has moved
-// a quarter of the Verlet skin since the last one. Global quantities (time step, wall loads, break
+// Morton-ordered neighbour-cell grid, re-balanced, with migration, whenever some particle may have
+// moved half the Verlet skin since the last one (when the serial run rebuilds its list). Global quantities (time step, wall loads, break
 // log, energies) are reduced in rank order. Plugins are unchanged: they see a particle view.
 //
 // Every call is collective over the communicator unless it says otherwise.
