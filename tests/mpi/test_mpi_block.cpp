@@ -6,13 +6,17 @@
 //   agreement  the decomposed run agrees with the serial one (rank 0 runs it) within 1e-9 of the
 //              largest displacement up to the first break, breaks the same bonds in the same order,
 //              and a second decomposed run is identical to the bit
+//   scene F N [section.key=value ...]  the scene file F (e.g. the four-point bending beam) over N steps: decomposed and
+//              serial agree within 1e-9 of the displacement scale and break the same bonds
 //   too_many   a scene of 8 spheres on more ranks than it has cells: every rank refuses it alike
 // Exit code 0 on success; each failed check prints one line on rank 0.
 #include <mpi.h>
+#include <omp.h>
 #include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <memory>
@@ -23,6 +27,7 @@
 
 #include "shard/mpi/distributed_simulation.hpp"
 #include "shard/plugin_host.hpp"
+#include "shard/scene.hpp"
 #include "shard/simulation.hpp"
 
 using namespace shard;
@@ -265,6 +270,73 @@ int too_many(int rank, int ranks) {
   return failures == 0 ? 0 : 1;
 }
 
+// The scene's setup as the serial run got it, taken from the constructed serial Simulation (its
+// particles, ids, flags and bonds), so both runs start from the same state.
+SimulationSetup setup_of(const Scene& scene, const SceneInstance& inst) {
+  const Simulation& sim = *inst.simulation;
+  SimulationSetup s;
+  s.particles = sim.particles();
+  for (std::size_t b = 0; b < sim.bonds().size(); ++b) s.bonds.emplace_back(sim.bonds().i[b], sim.bonds().j[b]);
+  s.contact = inst.contact.get();
+  s.bond = inst.bond.get();
+  s.breakage = scene.breakage;
+  s.walls = scene.walls;
+  s.gravity = scene.gravity;
+  s.dt = sim.dt();
+  s.skin = scene.skin;
+  s.global_damping = scene.global_damping;
+  return s;
+}
+
+int scene_run(int rank, int ranks, const std::string& file, std::int64_t steps, const std::vector<std::string>& overrides) {
+  PluginHost host;
+  host.load_directories(PluginHost::default_search_path());
+  const Scene scene = load_scene(std::filesystem::path(file), overrides, host);
+  SceneInstance inst = instantiate(scene, host, nullptr);
+  Simulation& serial_sim = *inst.simulation;
+  std::vector<Vec3> start(serial_sim.particles().size());
+  for (std::size_t k = 0; k < start.size(); ++k)
+    start[static_cast<std::size_t>(serial_sim.particles().id[k])] = serial_sim.particles().position[k];
+  mpi::DistributedSimulation sim(MPI_COMM_WORLD, setup_of(scene, inst));
+  const double t0 = MPI_Wtime();
+  sim.run(steps);
+  const double t1 = MPI_Wtime();
+  const mpi::GatheredParticles g = sim.gather(0);
+  const auto breaks = break_list(sim.break_events());
+  std::vector<Vec3> wall_force;
+  for (const Wall& w : sim.walls()) wall_force.push_back(w.force);
+  if (rank == 0) {  // the serial run after the decomposed one: the other ranks wait in MPI_Finalize
+    // SHARD_SERIAL_THREADS: the serial reference on another OpenMP team (how far thread counts
+    // alone move the run apart).
+    if (const char* t = std::getenv("SHARD_SERIAL_THREADS")) omp_set_num_threads(std::atoi(t));
+    serial_sim.run(steps);
+    const Particles& p = serial_sim.particles();
+    double worst = 0, scale = 0;
+    std::vector<Vec3> ref(p.size());
+    for (std::size_t k = 0; k < p.size(); ++k) ref[static_cast<std::size_t>(p.id[k])] = p.position[k];
+    for (std::size_t k = 0; k < ref.size() && g.position.size() == ref.size(); ++k) {
+      worst = std::max(worst, (g.position[k] - ref[k]).norm());
+      scale = std::max(scale, (ref[k] - start[k]).norm());
+    }
+    double force_gap = 0, force_scale = 0;
+    for (std::size_t w = 0; w < wall_force.size(); ++w) {
+      force_gap = std::max(force_gap, (wall_force[w] - serial_sim.walls()[w].force).norm());
+      force_scale = std::max(force_scale, serial_sim.walls()[w].force.norm());
+    }
+    std::printf("dt %.3g s; %s on %d ranks: %zu particles, %lld steps in %.2f s (halo %.0f %%, re-partitions %lld); max |dx| %.3g "
+                "of a displacement scale %.3g m; wall forces within %.3g of %.3g N; %zu breaks (serial %zu)\n",
+                sim.dt(), file.c_str(), ranks, g.id.size(), static_cast<long long>(steps), t1 - t0,
+                100 * sim.halo_seconds() / (t1 - t0), static_cast<long long>(sim.repartitions()), worst, scale, force_gap,
+                force_scale, breaks.size(), serial_sim.break_events().size());
+    check(g.position.size() == ref.size(), rank, "every particle gathered");
+    check(scale > 0 && worst < 1e-9 * scale, rank, "positions agree with the serial run within 1e-9 of the displacement scale");
+    check(force_scale > 0 && force_gap <= 1e-9 * force_scale, rank, "the walls' forces agree within 1e-9");
+    check(breaks == break_list(serial_sim.break_events()), rank, "the same bonds break at the same steps");
+  }
+  MPI_Bcast(&failures, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return failures == 0 ? 0 : 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -277,6 +349,7 @@ int main(int argc, char** argv) {
   try {
     if (mode == "agreement") code = agreement(rank, ranks);
     if (mode == "too_many") code = too_many(rank, ranks);
+    if (mode == "scene" && argc > 3) code = scene_run(rank, ranks, argv[2], std::stoll(argv[3]), std::vector<std::string>(argv + 4, argv + argc));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rank %d: %s\n", rank, e.what());
     MPI_Abort(MPI_COMM_WORLD, 3);
