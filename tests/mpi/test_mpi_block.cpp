@@ -318,6 +318,9 @@ int scene_run(int rank, int ranks, const std::string& file, std::int64_t steps, 
       worst = std::max(worst, (g.position[k] - ref[k]).norm());
       scale = std::max(scale, (ref[k] - start[k]).norm());
     }
+    // The displacement scale: the largest of the particles' displacements and the walls' travel
+    // (the imposed loading; while the pins only start pressing it is the larger one).
+    for (const Wall& w : serial_sim.walls()) scale = std::max(scale, w.displacement.norm());
     double force_gap = 0, force_scale = 0;
     for (std::size_t w = 0; w < wall_force.size(); ++w) {
       force_gap = std::max(force_gap, (wall_force[w] - serial_sim.walls()[w].force).norm());
