@@ -113,7 +113,7 @@ Partition Partition::balance(std::vector<CellCost> cells, int ranks, double cell
   for (int r = 0; r < ranks; ++r)
     if (count[static_cast<std::size_t>(r)] == 0)
       throw std::invalid_argument(fmt::format(
-          "{} MPI ranks cannot hold a partition of this scene: it fills only {} neighbour cells of {:.4g} m, and "
+          "{} MPI ranks cannot hold a partition of this scene: it fills only {} neighbour cell(s) of {:.4g} m, and "
           "the cost-balanced ranges leave rank {} without a cell; run on fewer ranks (at most {}, fewer when a few "
           "cells carry most of the particles, bonds and contacts)",
           ranks, p.keys_.size(), cell_size, r, p.keys_.size()));
