@@ -231,8 +231,6 @@ int agreement(int rank, int ranks) {
       worst = std::max(worst, (a.position[k] - ref.position[k]).norm());
       turn = std::max(turn, a.orientation[k].angularDistance(ref.orientation[k]));
     }
-    const Models& unused = m;
-    (void)unused;
     // The largest displacement at the first break: the slabs' travel.
     scale = kSpeed * ref.dt * static_cast<double>(ref.first_break);
     std::printf("at the first break: max |dx| %.3g m over a displacement scale of %.3g m = %.3g; max turn %.3g rad; "
