@@ -5,13 +5,17 @@
 #include <numeric>
 
 #include "parallel.hpp"
+#include "shard/domain_exchange.hpp"
 
 namespace shard {
 namespace {
 
-// The pair (a, b), a < b by index, oriented so that first has the smaller stable id.
-inline void push_pair(std::vector<Index>& out_i, std::vector<Index>& out_j, const Index* id, Index a, Index b) {
+// The pair (a, b), a < b by index, oriented so that first has the smaller stable id. Not listed
+// when that end is a ghost: its owner's rank computes the pair (domain_exchange.hpp).
+inline void push_pair(std::vector<Index>& out_i, std::vector<Index>& out_j, const Index* id, const std::uint8_t* flags,
+                      Index a, Index b) {
   const bool swap = id[b] < id[a];
+  if (flags[swap ? b : a] & kGhost) return;
   out_i.push_back(swap ? b : a);
   out_j.push_back(swap ? a : b);
 }
@@ -103,6 +107,7 @@ void NeighbourList::find_pairs(const Particles& particles, const std::vector<Wal
   const int team = team_for(n);
   if (threads_.size() < static_cast<std::size_t>(team)) threads_.resize(static_cast<std::size_t>(team));
   const Index* id = particles.id.data();
+  const std::uint8_t* flags = particles.flags.data();
 #pragma omp parallel num_threads(team)
   {
     const int t = omp_get_thread_num();
@@ -136,13 +141,13 @@ void NeighbourList::find_pairs(const Particles& particles, const std::vector<Wal
       for (std::size_t w = walls.size(); w-- > 0;) {
         Vec3 normal;
         double distance;
-        if (wall_contact(walls[w], xa, ra + skin_, normal, distance)) {
+        if (!(particles.flags[a] & kGhost) && wall_contact(walls[w], xa, ra + skin_, normal, distance)) {
           out.i.push_back(static_cast<Index>(a));
           out.j.push_back(-1 - static_cast<Index>(w));
         }
       }
       std::sort(out.candidates.begin(), out.candidates.end());
-      for (Index b : out.candidates) push_pair(out.i, out.j, id, static_cast<Index>(a), b);
+      for (Index b : out.candidates) push_pair(out.i, out.j, id, flags, static_cast<Index>(a), b);
     }
   }
   // Concatenate in thread order: the same list as one thread would have made.

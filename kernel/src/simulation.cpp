@@ -107,6 +107,18 @@ double density_of(const Particles& p, std::size_t k) {
 
 double sign_of(double v) { return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0); }
 
+// Gravity and Cundall's local non-viscous damping (opposes the motion with a fraction of the
+// force) on particle k, once its pair and bond forces are complete.
+void add_body_forces(Particles& p, std::size_t k, bool gravity, const Vec3& g, double damping) {
+  if (gravity) p.force[k] += p.mass[k] * g;
+  if (damping > 0) {
+    for (int c = 0; c < 3; ++c) {
+      p.force[k][c] -= damping * std::abs(p.force[k][c]) * sign_of(p.velocity[k][c]);
+      p.torque[k][c] -= damping * std::abs(p.torque[k][c]) * sign_of(p.omega[k][c]);
+    }
+  }
+}
+
 // Below this many particles everything fits in cache and renumbering would only cost time (and
 // move particles that small hand-built scenes address by index).
 constexpr std::size_t kReorderMinParticles = 10000;
@@ -161,7 +173,8 @@ Simulation::Simulation(SimulationSetup setup)
       breakage_(setup.breakage),
       walls_(std::move(setup.walls)),
       gravity_(setup.gravity),
-      global_damping_(setup.global_damping) {
+      global_damping_(setup.global_damping),
+      exchange_(setup.exchange) {
   const std::size_t n = particles_.size();
   if (!setup.bonds.empty() && !bond_)
     throw std::invalid_argument("the scene has bonds but no bond model: add a [bond] section (e.g. plugin = \"beam_bond\")");
@@ -264,6 +277,7 @@ void Simulation::step() {
   integrate_first_half();
   time_ += dt_;
   ++step_;
+  if (exchange_) exchange_->refresh_ghosts(particles_);
   compute_forces();
   integrate_second_half();
 }
@@ -381,15 +395,12 @@ void Simulation::compute_forces() {
         other.force[k].setZero();
         other.torque[k].setZero();
       }
-      if (gravity) p.force[k] += p.mass[k] * gravity_;
-      if (global_damping_ > 0) {
-        // Cundall's local non-viscous damping: opposes the motion with a fraction of the force.
-        for (int c = 0; c < 3; ++c) {
-          p.force[k][c] -= global_damping_ * std::abs(p.force[k][c]) * sign_of(p.velocity[k][c]);
-          p.torque[k][c] -= global_damping_ * std::abs(p.torque[k][c]) * sign_of(p.omega[k][c]);
-        }
-      }
+      if (!exchange_) add_body_forces(p, k, gravity, gravity_, global_damping_);
     }
+  }
+  if (exchange_) {  // a sub-domain: the reactions computed on other ranks first
+    exchange_->return_reactions(p);
+    for (std::size_t k = 0; k < n; ++k) add_body_forces(p, k, gravity, gravity_, global_damping_);
   }
   double energy = 0, bond_energy = 0;
   std::size_t contacts = 0;

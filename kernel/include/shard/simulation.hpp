@@ -9,6 +9,7 @@
 #include "shard/bond_model.hpp"
 #include "shard/bonds.hpp"
 #include "shard/contact_model.hpp"
+#include "shard/domain_exchange.hpp"
 #include "shard/particles.hpp"
 #include "shard/time_step.hpp"
 #include "shard/wall.hpp"
@@ -33,6 +34,9 @@ struct SimulationSetup {
   // Keep every bond's last force, torques and energy in bonds() (tests, post-processing); off,
   // they live only in a per-thread block buffer until they are added to the particles.
   bool record_bond_loads = false;
+  // A sub-domain of a decomposed run (domain_exchange.hpp): ghosts refreshed and reactions
+  // returned through it. Null: the whole world. Borrowed; must outlive the Simulation.
+  DomainExchange* exchange = nullptr;
 };
 
 struct Energies {
@@ -123,6 +127,7 @@ class Simulation {
   std::vector<WallContactStart> wall_contacts_begun_;
   double contact_energy_ = 0;
   double bond_energy_ = 0;
+  DomainExchange* exchange_ = nullptr;
 };
 
 }  // namespace shard

@@ -1,0 +1,94 @@
+#pragma once
+// A run decomposed in space over MPI ranks (docs/scaling-out.md). Each rank steps a Simulation of
+// the particles it owns plus ghost copies of its neighbours' particles near the border; pairs and
+// bonds are computed once, by the rank owning the end with the smaller stable id, and the reaction
+// on a ghost end goes back to its owner (halo.hpp). The partition is a cost-balanced cut of the
+// Morton-ordered neighbour-cell grid, re-balanced, with migration, whenever some particle may have
+// moved half the Verlet skin since the last one (when the serial run rebuilds its list). Global quantities (time step, wall loads, break
+// log, energies) are reduced in rank order. Plugins are unchanged: they see a particle view.
+//
+// Every call is collective over the communicator unless it says otherwise.
+#include <mpi.h>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "shard/simulation.hpp"
+
+namespace shard::mpi {
+
+class Halo;
+
+// The run's particles gathered on one rank, in ascending stable id.
+struct GatheredParticles {
+  std::vector<Index> id;
+  std::vector<Vec3> position, velocity, omega;
+  std::vector<Quat> orientation;
+};
+
+class DistributedSimulation {
+ public:
+  // `setup` is the whole scene, the same on every rank (each keeps its part). Throws
+  // std::invalid_argument, on every rank alike, when the rank count cannot hold the partition.
+  DistributedSimulation(MPI_Comm comm, SimulationSetup setup);
+  ~DistributedSimulation();
+  DistributedSimulation(const DistributedSimulation&) = delete;
+  DistributedSimulation& operator=(const DistributedSimulation&) = delete;
+
+  void step();
+  void run(std::int64_t steps);
+
+  // Local, the same on every rank.
+  int rank() const { return rank_; }
+  int ranks() const { return ranks_; }
+  double time() const { return local_->time(); }
+  double dt() const { return local_->dt(); }
+  std::int64_t step_count() const { return local_->step_count(); }
+  const std::vector<Wall>& walls() const { return local_->walls(); }  // loads summed over ranks
+  // Every rank's break events of the run, sorted by (step, smaller id, larger id); id_i < id_j.
+  const std::vector<BondBreakEvent>& break_events() const { return events_; }
+  std::int64_t bonds_broken() const { return static_cast<std::int64_t>(events_.size()); }
+  std::int64_t repartitions() const { return repartitions_; }
+
+  // Local, this rank's share.
+  const Simulation& local() const { return *local_; }
+  std::size_t owned() const { return owned_; }
+  std::size_t ghosts() const;
+  double halo_seconds() const;      // wall time in the per-step ghost and reaction exchanges
+  double partition_seconds() const { return partition_seconds_; }  // in re-partitions and migration
+
+  // Collective.
+  Energies energies() const;
+  std::size_t contact_count() const;
+  std::size_t bond_count() const;
+  // Throws std::runtime_error on every rank when some rank holds a non-finite position or velocity.
+  void check_finite() const;
+  // All particles on `root` (empty elsewhere).
+  GatheredParticles gather(int root = 0) const;
+
+ private:
+  struct Owned;
+  void repartition();
+  void distribute(Owned owned, double longest_bond, const SimulationSetup* initial);
+  void finish_step();
+
+  MPI_Comm comm_;
+  int rank_ = 0, ranks_ = 1;
+  const ContactModel* contact_;
+  const BondModel* bond_;
+  double skin_ = 0;  // the Verlet skin, m (the serial run's)
+  double r_max_ = 0;
+  std::unique_ptr<Halo> halo_;
+  std::unique_ptr<Simulation> local_;
+  std::size_t owned_ = 0;
+  Vec3 gravity_ = Vec3::Zero();
+  // Positions at the last partition and the ids they belong to, in the local order.
+  std::vector<Vec3> position_at_partition_;
+  std::vector<Index> partition_id_;
+  std::vector<BondBreakEvent> events_;
+  std::int64_t repartitions_ = 0;
+  double partition_seconds_ = 0;
+};
+
+}  // namespace shard::mpi

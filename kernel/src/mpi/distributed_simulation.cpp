@@ -1,0 +1,499 @@
+#include "shard/mpi/distributed_simulation.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <unordered_map>
+#include <utility>
+
+#include "comm.hpp"
+#include "halo.hpp"
+#include "partition.hpp"
+#include "shard/checkpoint.hpp"
+
+namespace shard::mpi {
+namespace {
+
+// One particle on its way to another rank: its whole state, so a migrated particle continues
+// exactly (the force of the last step included: the next half-kick uses it).
+struct ParticleRecord {
+  double position[3], velocity[3], orientation[4], omega[3], force[3], torque[3];
+  double radius, mass, inertia;
+  std::int32_t material, body;
+  Index id;
+  std::int32_t owner;  // the rank owning it after the partition
+  std::uint8_t flags;
+};
+
+ParticleRecord record_of(const Particles& p, std::size_t k) {
+  ParticleRecord r{};
+  std::copy_n(p.position[k].data(), 3, r.position);
+  std::copy_n(p.velocity[k].data(), 3, r.velocity);
+  std::copy_n(p.orientation[k].coeffs().data(), 4, r.orientation);
+  std::copy_n(p.omega[k].data(), 3, r.omega);
+  std::copy_n(p.force[k].data(), 3, r.force);
+  std::copy_n(p.torque[k].data(), 3, r.torque);
+  r.radius = p.radius[k];
+  r.mass = p.mass[k];
+  r.inertia = p.inertia[k];
+  r.material = p.material[k];
+  r.body = p.body[k];
+  r.id = p.id[k];
+  r.flags = static_cast<std::uint8_t>(p.flags[k] & ~kGhost);
+  return r;
+}
+
+void append(Particles& p, const ParticleRecord& r, bool ghost) {
+  p.position.emplace_back(r.position[0], r.position[1], r.position[2]);
+  p.velocity.emplace_back(r.velocity[0], r.velocity[1], r.velocity[2]);
+  Quat q;
+  std::copy_n(r.orientation, 4, q.coeffs().data());
+  p.orientation.push_back(q);
+  p.omega.emplace_back(r.omega[0], r.omega[1], r.omega[2]);
+  p.force.emplace_back(r.force[0], r.force[1], r.force[2]);
+  p.torque.emplace_back(r.torque[0], r.torque[1], r.torque[2]);
+  p.radius.push_back(r.radius);
+  p.mass.push_back(r.mass);
+  p.inertia.push_back(r.inertia);
+  p.material.push_back(r.material);
+  p.body.push_back(r.body);
+  p.id.push_back(r.id);
+  p.flags.push_back(ghost ? static_cast<std::uint8_t>(r.flags | kGhost) : r.flags);
+}
+
+// A break event as plain numbers, for the gather.
+struct EventRecord {
+  std::int64_t step;
+  double time;
+  Index id_i, id_j;  // id_i < id_j
+  double midpoint[3];
+  BondStress stress;
+};
+
+bool event_order(const EventRecord& a, const EventRecord& b) {
+  if (a.step != b.step) return a.step < b.step;
+  if (a.id_i != b.id_i) return a.id_i < b.id_i;
+  return a.id_j < b.id_j;
+}
+
+bool by_id(const ParticleRecord& a, const ParticleRecord& b) { return a.id < b.id; }
+
+// Re-partition before some particle can have moved half the skin since the last partition by the
+// end of the next step (its travel so far plus twice the largest |v| dt, a margin for the next
+// drift). Two particles that touch before then were at most 2 r_max + skin apart at the partition,
+// in neighbouring cells: the ghost layer (the 26 cells around each owned one) holds every particle
+// an owned one can touch. The serial run rebuilds its list at the same travel (half the skin).
+constexpr double kStepMargin = 2;
+
+}  // namespace
+
+// This rank's particles, bonds and touching contacts before a partition, by stable id.
+struct DistributedSimulation::Owned {
+  std::vector<ParticleRecord> particles;
+  std::size_t bond_stride = 0, history_stride = 0;
+  std::vector<double> bonds;     // smaller id, larger id, model state (bond_stride)
+  std::vector<double> contacts;  // first id, second id (or -1 - wall), history (history_stride)
+};
+
+DistributedSimulation::DistributedSimulation(MPI_Comm comm, SimulationSetup setup)
+    : comm_(comm), contact_(setup.contact), bond_(setup.bond) {
+  rank_ = rank_of(comm);
+  ranks_ = size_of(comm);
+  const Particles& p = setup.particles;
+  const std::size_t n = p.size();
+  if (n == 0) throw std::invalid_argument("a decomposed run needs particles");
+  for (std::size_t k = 0; k < n; ++k) r_max_ = std::max(r_max_, p.radius[k]);
+  skin_ = setup.skin > 0 ? setup.skin : 0.2 * std::max(r_max_, 1e-12);  // Simulation's default
+  gravity_ = setup.gravity;
+  halo_ = std::make_unique<Halo>(comm);
+  // Before the first partition every rank takes an equal slice of the scene's listing.
+  Owned owned;
+  owned.bond_stride = bond_ ? bond_->state_size() : 0;
+  owned.history_stride = contact_ ? contact_->history_size() : 0;
+  const std::size_t begin = n * static_cast<std::size_t>(rank_) / static_cast<std::size_t>(ranks_);
+  const std::size_t end = n * static_cast<std::size_t>(rank_ + 1) / static_cast<std::size_t>(ranks_);
+  for (std::size_t k = begin; k < end; ++k) owned.particles.push_back(record_of(p, k));
+  std::vector<std::pair<Index, Index>> bonds;
+  double longest = 0;
+  for (const auto& [a, b] : setup.bonds) {
+    if (a < 0 || b < 0 || static_cast<std::size_t>(a) >= n || static_cast<std::size_t>(b) >= n || a == b)
+      throw std::invalid_argument(fmt::format("bond ({}, {}) names a particle that does not exist", a, b));
+    const auto first = static_cast<std::size_t>(p.id[static_cast<std::size_t>(a)] < p.id[static_cast<std::size_t>(b)] ? a : b);
+    if (first < begin || first >= end) continue;
+    bonds.emplace_back(std::min(p.id[static_cast<std::size_t>(a)], p.id[static_cast<std::size_t>(b)]),
+                       std::max(p.id[static_cast<std::size_t>(a)], p.id[static_cast<std::size_t>(b)]));
+    longest = std::max(longest, (p.position[static_cast<std::size_t>(a)] - p.position[static_cast<std::size_t>(b)]).norm());
+  }
+  std::sort(bonds.begin(), bonds.end());
+  bonds.erase(std::unique(bonds.begin(), bonds.end()), bonds.end());
+  for (const auto& [a, b] : bonds) {
+    owned.bonds.push_back(a);
+    owned.bonds.push_back(b);
+    owned.bonds.insert(owned.bonds.end(), owned.bond_stride, 0.0);  // the bond model initialises it
+  }
+  distribute(std::move(owned), longest, &setup);
+}
+
+DistributedSimulation::~DistributedSimulation() = default;
+
+// Cuts the grid anew, sends every particle, bond and touching contact to its new owner and the
+// ghost copies to the ranks next to it, then builds (initial) or replaces this rank's Simulation.
+void DistributedSimulation::distribute(Owned owned, double longest_bond, const SimulationSetup* initial) {
+  const double start = MPI_Wtime();
+  std::sort(owned.particles.begin(), owned.particles.end(), by_id);
+  const std::size_t bond_record = 2 + owned.bond_stride, contact_record = 2 + owned.history_stride;
+  const std::size_t bond_count = owned.bonds.size() / bond_record;
+  const std::size_t contact_count = owned.contacts.size() / contact_record;
+  const auto owned_slot = [&](Index id) {
+    const auto it = std::lower_bound(owned.particles.begin(), owned.particles.end(), id,
+                                     [](const ParticleRecord& r, Index v) { return r.id < v; });
+    if (it == owned.particles.end() || it->id != id)
+      throw std::logic_error(fmt::format("partition: particle id {} is not owned here", id));
+    return static_cast<std::size_t>(it - owned.particles.begin());
+  };
+
+  // The grid: one cell reaches every particle an owned one can touch before the next partition
+  // (2 r_max + skin), and the far end of every bond.
+  double lo[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                  std::numeric_limits<double>::infinity()};
+  for (const ParticleRecord& r : owned.particles)
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], r.position[a]);
+  double global_lo[3];
+  MPI_Allreduce(lo, global_lo, 3, MPI_DOUBLE, MPI_MIN, comm_);
+  CellGrid grid;
+  grid.cell = std::max(2 * r_max_, max_over_ranks(longest_bond, comm_)) + skin_;
+  grid.origin = Vec3(global_lo[0], global_lo[1], global_lo[2]) - Vec3::Constant(grid.cell);
+
+  // Cost of each owned particle's cell: itself, the bonds and contacts it owns.
+  std::vector<double> cost(owned.particles.size(), 1.0);
+  for (std::size_t b = 0; b < bond_count; ++b) cost[owned_slot(static_cast<Index>(owned.bonds[b * bond_record]))] += 1;
+  for (std::size_t c = 0; c < contact_count; ++c)
+    cost[owned_slot(static_cast<Index>(owned.contacts[c * contact_record]))] += 1;
+  std::vector<std::uint64_t> key(owned.particles.size());
+  std::vector<CellCost> cells;
+  for (std::size_t k = 0; k < owned.particles.size(); ++k) {
+    const ParticleRecord& r = owned.particles[k];
+    key[k] = grid.key(Vec3(r.position[0], r.position[1], r.position[2]));
+    cells.push_back({key[k], cost[k]});
+  }
+  const Partition partition = Partition::balance(all_gather(cells, comm_), ranks_, grid.cell);
+
+  // The ranks owning the cells around a cell, looked up once per cell (27 searches each).
+  std::unordered_map<std::uint64_t, std::vector<int>> around;
+  const auto ranks_around = [&](std::uint64_t cell, int self) -> const std::vector<int>& {
+    auto [it, fresh] = around.try_emplace(cell);
+    if (fresh) partition.neighbour_ranks(cell, self, it->second);
+    return it->second;
+  };
+
+  // Where everything goes.
+  const auto R = static_cast<std::size_t>(ranks_);
+  std::vector<std::vector<ParticleRecord>> to_owner(R), to_ghost(R);
+  std::vector<std::vector<double>> bonds_to(R), contacts_to(R);
+  std::vector<int> owner(owned.particles.size());
+  for (std::size_t k = 0; k < owned.particles.size(); ++k) {
+    ParticleRecord r = owned.particles[k];
+    r.owner = partition.owner_of(key[k]);
+    owner[k] = r.owner;
+    to_owner[static_cast<std::size_t>(r.owner)].push_back(r);
+    for (int d : ranks_around(key[k], r.owner)) to_ghost[static_cast<std::size_t>(d)].push_back(r);
+  }
+  for (std::size_t b = 0; b < bond_count; ++b) {
+    const double* rec = owned.bonds.data() + b * bond_record;
+    auto& out = bonds_to[static_cast<std::size_t>(owner[owned_slot(static_cast<Index>(rec[0]))])];
+    out.insert(out.end(), rec, rec + bond_record);
+  }
+  for (std::size_t c = 0; c < contact_count; ++c) {
+    const double* rec = owned.contacts.data() + c * contact_record;
+    auto& out = contacts_to[static_cast<std::size_t>(owner[owned_slot(static_cast<Index>(rec[0]))])];
+    out.insert(out.end(), rec, rec + contact_record);
+  }
+  owned = Owned{};
+  std::vector<ParticleRecord> mine = all_to_all(to_owner, comm_);
+  std::vector<ParticleRecord> ghosts = all_to_all(to_ghost, comm_);
+  const std::vector<double> bonds_in = all_to_all(bonds_to, comm_);
+  const std::vector<double> contacts_in = all_to_all(contacts_to, comm_);
+  std::sort(mine.begin(), mine.end(), by_id);
+  std::sort(ghosts.begin(), ghosts.end(), by_id);
+
+  // This rank's particles: owned ones first, then the ghosts, each in ascending id.
+  Particles local;
+  local.reserve(mine.size() + ghosts.size());
+  for (const ParticleRecord& r : mine) append(local, r, false);
+  for (const ParticleRecord& r : ghosts) append(local, r, true);
+  const auto local_index = [&](Index id) -> Index {
+    const auto find = [id](const std::vector<ParticleRecord>& v) {
+      const auto it = std::lower_bound(v.begin(), v.end(), id, [](const ParticleRecord& r, Index x) { return r.id < x; });
+      return it != v.end() && it->id == id ? static_cast<Index>(it - v.begin()) : Index{-1};
+    };
+    const Index o = find(mine);
+    if (o >= 0) return o;
+    const Index g = find(ghosts);
+    return g >= 0 ? static_cast<Index>(mine.size()) + g : Index{-1};
+  };
+
+  // The halo: which owned particles each neighbour keeps a ghost of, and which ghosts come from whom.
+  std::vector<HaloLink> links(R);
+  for (std::size_t r = 0; r < R; ++r) links[r].rank = static_cast<int>(r);
+  around.clear();  // (keyed by cell only: the owner, passed as `self`, is this rank from here on)
+  for (const ParticleRecord& r : mine)
+    for (int d : ranks_around(grid.key(Vec3(r.position[0], r.position[1], r.position[2])), rank_))
+      links[static_cast<std::size_t>(d)].send.push_back(r.id);
+  for (const ParticleRecord& r : ghosts) links[static_cast<std::size_t>(r.owner)].recv.push_back(r.id);
+  std::erase_if(links, [](const HaloLink& l) { return l.send.empty() && l.recv.empty(); });
+  halo_->reset(std::move(links));
+
+  // Bonds and contacts in local indices; a far end not held here would be a gap in the ghost layer.
+  const std::size_t bond_stride = bond_ ? bond_->state_size() : 0;
+  const std::size_t history_stride = contact_ ? contact_->history_size() : 0;
+  const auto held = [&](double id, const char* what) {
+    const Index k = local_index(static_cast<Index>(id));
+    if (k < 0)
+      throw std::logic_error(fmt::format("partition: the {} end id {} is not within the ghost layer of rank {}", what,
+                                         static_cast<Index>(id), rank_));
+    return k;
+  };
+  std::vector<std::pair<Index, Index>> bond_ends;
+  for (std::size_t b = 0; b < bonds_in.size() / (2 + bond_stride); ++b) {
+    const double* rec = bonds_in.data() + b * (2 + bond_stride);
+    bond_ends.emplace_back(held(rec[0], "bond's"), held(rec[1], "bond's"));
+  }
+  NeighbourState touching;
+  touching.skin = skin_;
+  touching.history_stride = history_stride;
+  for (std::size_t c = 0; c < contacts_in.size() / (2 + history_stride); ++c) {
+    const double* rec = contacts_in.data() + c * (2 + history_stride);
+    touching.first.push_back(held(rec[0], "contact's"));
+    touching.second.push_back(rec[1] < 0 ? static_cast<Index>(rec[1]) : held(rec[1], "contact's"));
+    touching.history.insert(touching.history.end(), rec + 2, rec + 2 + history_stride);
+    touching.touching.push_back(1);
+  }
+  owned_ = mine.size();
+
+  if (initial) {
+    SimulationSetup s;
+    s.particles = std::move(local);
+    s.bonds = std::move(bond_ends);
+    s.contact = initial->contact;
+    s.bond = initial->bond;
+    s.breakage = initial->breakage;
+    s.walls = initial->walls;
+    s.gravity = initial->gravity;
+    s.skin = skin_;
+    s.global_damping = initial->global_damping;
+    s.dt = initial->dt;
+    if (!(s.dt > 0)) {
+      // "auto": every rank's models state their limits over its particles and bonds (a probe
+      // without the halo); the smallest over the ranks is the serial run's.
+      SimulationSetup probe = s;
+      s.dt = min_over_ranks(Simulation(std::move(probe)).dt(), comm_);
+    }
+    s.exchange = halo_.get();
+    local_ = std::make_unique<Simulation>(std::move(s));
+  } else {
+    SimulationState s;
+    s.step = local_->step_count();
+    s.time = local_->time();
+    s.dt = local_->dt();
+    s.particles = std::move(local);
+    s.bonds.stride = bond_stride;
+    s.bonds.resize(bond_ends.size());
+    for (std::size_t b = 0; b < bond_ends.size(); ++b) {
+      s.bonds.i[b] = std::min(bond_ends[b].first, bond_ends[b].second);
+      s.bonds.j[b] = std::max(bond_ends[b].first, bond_ends[b].second);
+      std::copy_n(bonds_in.data() + b * (2 + bond_stride) + 2, bond_stride, s.bonds.state.data() + b * bond_stride);
+    }
+    for (const Wall& w : local_->walls())
+      s.walls.push_back({w.velocity, w.displacement, w.force, w.torque, w.contact_work, w.stored_energy, w.impacts});
+    touching.rebuilds = local_->neighbour_rebuilds();
+    s.neighbours = std::move(touching);  // no build positions: the next force pass rebuilds the list
+    local_->import_state(s);
+  }
+  position_at_partition_ = local_->particles().position;
+  partition_id_ = local_->particles().id;
+  partition_seconds_ += MPI_Wtime() - start;
+  if (initial) finish_step();  // the first force pass's wall loads and breaks
+}
+
+void DistributedSimulation::repartition() {
+  const SimulationState s = local_->export_state();
+  const Particles& p = s.particles;
+  Owned owned;
+  owned.bond_stride = s.bonds.stride;
+  owned.history_stride = s.neighbours.history_stride;
+  for (std::size_t k = 0; k < p.size(); ++k)
+    if (!(p.flags[k] & kGhost)) owned.particles.push_back(record_of(p, k));
+  double longest = 0;
+  for (std::size_t b = 0; b < s.bonds.size(); ++b) {
+    const auto i = static_cast<std::size_t>(s.bonds.i[b]), j = static_cast<std::size_t>(s.bonds.j[b]);
+    owned.bonds.push_back(std::min(p.id[i], p.id[j]));
+    owned.bonds.push_back(std::max(p.id[i], p.id[j]));
+    owned.bonds.insert(owned.bonds.end(), s.bonds.state.begin() + static_cast<std::ptrdiff_t>(b * s.bonds.stride),
+                       s.bonds.state.begin() + static_cast<std::ptrdiff_t>((b + 1) * s.bonds.stride));
+    longest = std::max(longest, (p.position[i] - p.position[j]).norm());
+  }
+  const NeighbourState& list = s.neighbours;
+  for (std::size_t k = 0; k < list.first.size(); ++k) {
+    if (!list.touching[k]) continue;  // a pair that does not touch has no history to carry
+    const Index b = list.second[k];
+    owned.contacts.push_back(p.id[static_cast<std::size_t>(list.first[k])]);
+    owned.contacts.push_back(b < 0 ? b : p.id[static_cast<std::size_t>(b)]);
+    owned.contacts.insert(owned.contacts.end(), list.history.begin() + static_cast<std::ptrdiff_t>(k * list.history_stride),
+                          list.history.begin() + static_cast<std::ptrdiff_t>((k + 1) * list.history_stride));
+  }
+  ++repartitions_;
+  distribute(std::move(owned), longest, nullptr);
+}
+
+void DistributedSimulation::step() {
+  local_->step();
+  finish_step();
+}
+
+void DistributedSimulation::run(std::int64_t steps) {
+  for (std::int64_t s = 0; s < steps; ++s) step();
+}
+
+// After a step: the new break events, the walls' loads summed over the ranks (a wall driven by
+// its force then moves alike everywhere), and whether to re-partition. One gather of a few
+// numbers per rank; a second only when some bond broke.
+void DistributedSimulation::finish_step() {
+  Simulation& sim = *local_;
+  std::vector<BondBreakEvent> fresh = sim.take_new_break_events();
+  const Particles& p = sim.particles();
+  // The kernel renumbers its particles at its own rebuilds (Morton order): follow by id.
+  if (!std::equal(p.id.begin(), p.id.end(), partition_id_.begin(), partition_id_.end())) {
+    std::vector<std::pair<Index, Vec3>> at(partition_id_.size());
+    for (std::size_t k = 0; k < at.size(); ++k) at[k] = {partition_id_[k], position_at_partition_[k]};
+    std::sort(at.begin(), at.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      const auto it = std::lower_bound(at.begin(), at.end(), p.id[k], [](const auto& a, Index id) { return a.first < id; });
+      position_at_partition_[k] = it->second;
+    }
+    partition_id_ = p.id;
+  }
+  double moved = 0, speed = 0;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    if (p.flags[k] & kGhost) continue;
+    moved = std::max(moved, (p.position[k] - position_at_partition_[k]).squaredNorm());
+    speed = std::max(speed, p.velocity[k].squaredNorm());
+  }
+  std::vector<Wall>& walls = sim.walls();
+  std::vector<double> mine{static_cast<double>(fresh.size()), std::sqrt(moved) + kStepMargin * std::sqrt(speed) * sim.dt()};
+  for (const Wall& w : walls) {
+    mine.insert(mine.end(), w.force.data(), w.force.data() + 3);
+    mine.insert(mine.end(), w.torque.data(), w.torque.data() + 3);
+    mine.push_back(w.stored_energy);
+  }
+  const std::vector<double> all = all_gather(mine, comm_);
+  const std::size_t per = mine.size();
+  double events = 0, max_moved = 0;
+  for (auto& w : walls) {
+    w.force.setZero();
+    w.torque.setZero();
+    w.stored_energy = 0;
+  }
+  for (int r = 0; r < ranks_; ++r) {
+    const double* v = all.data() + static_cast<std::size_t>(r) * per;
+    events += v[0];
+    max_moved = std::max(max_moved, v[1]);
+    for (std::size_t w = 0; w < walls.size(); ++w) {
+      const double* x = v + 2 + 7 * w;
+      walls[w].force += Vec3(x[0], x[1], x[2]);
+      walls[w].torque += Vec3(x[3], x[4], x[5]);
+      walls[w].stored_energy += x[6];
+    }
+  }
+  if (events > 0) {
+    std::vector<EventRecord> records;
+    for (const BondBreakEvent& e : fresh) {
+      EventRecord r{};
+      r.step = e.step;
+      r.time = e.time;
+      r.id_i = std::min(e.id_i, e.id_j);
+      r.id_j = std::max(e.id_i, e.id_j);
+      std::copy_n(e.midpoint.data(), 3, r.midpoint);
+      r.stress = e.stress;
+      records.push_back(r);
+    }
+    std::vector<EventRecord> gathered = all_gather(records, comm_);
+    std::sort(gathered.begin(), gathered.end(), event_order);
+    for (const EventRecord& r : gathered) {
+      BondBreakEvent e;
+      e.step = r.step;
+      e.time = r.time;
+      e.id_i = r.id_i;
+      e.id_j = r.id_j;
+      e.midpoint = Vec3(r.midpoint[0], r.midpoint[1], r.midpoint[2]);
+      e.stress = r.stress;
+      events_.push_back(e);
+    }
+  }
+  if (!(max_moved < 0.5 * skin_)) repartition();  // also when not finite: the partition then names the particle
+}
+
+std::size_t DistributedSimulation::ghosts() const { return halo_->ghosts(); }
+double DistributedSimulation::halo_seconds() const { return halo_->seconds(); }
+
+Energies DistributedSimulation::energies() const {
+  const Particles& p = local_->particles();
+  double kinetic = 0, gravity = 0;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    if (p.flags[k] & kGhost) continue;
+    kinetic += 0.5 * p.mass[k] * p.velocity[k].squaredNorm() + 0.5 * p.inertia[k] * p.omega[k].squaredNorm();
+    gravity -= p.mass[k] * gravity_.dot(p.position[k]);
+  }
+  const Energies local = local_->energies();  // bonds and contacts: this rank's own only
+  Energies e;
+  e.kinetic = sum_in_rank_order(kinetic, comm_);
+  e.gravity = sum_in_rank_order(gravity, comm_);
+  e.bond = sum_in_rank_order(local.bond, comm_);
+  e.contact = sum_in_rank_order(local.contact, comm_);
+  return e;
+}
+
+std::size_t DistributedSimulation::contact_count() const {
+  return static_cast<std::size_t>(sum_in_rank_order(static_cast<double>(local_->contact_count()), comm_));
+}
+
+std::size_t DistributedSimulation::bond_count() const {
+  return static_cast<std::size_t>(sum_in_rank_order(static_cast<double>(local_->bonds().size()), comm_));
+}
+
+void DistributedSimulation::check_finite() const {
+  const Particles& p = local_->particles();
+  double bad = 0;
+  for (std::size_t k = 0; k < p.size() && bad == 0; ++k)
+    if (!(p.flags[k] & kGhost) && !(p.position[k].allFinite() && p.velocity[k].allFinite())) bad = 1;
+  if (max_over_ranks(bad, comm_) > 0)
+    throw std::runtime_error(fmt::format("the run has blown up at step {}: a particle's position or velocity is not "
+                                         "finite (reduce dt or check the contact and bond stiffness)",
+                                         step_count()));
+}
+
+GatheredParticles DistributedSimulation::gather(int root) const {
+  const Particles& p = local_->particles();
+  std::vector<ParticleRecord> mine;
+  for (std::size_t k = 0; k < p.size(); ++k)
+    if (!(p.flags[k] & kGhost)) mine.push_back(record_of(p, k));
+  // An all-gather keeps this short; the output of a large run would use MPI_Gatherv or parallel HDF5.
+  std::vector<ParticleRecord> all = all_gather(mine, comm_);
+  GatheredParticles g;
+  if (rank_ != root) return g;
+  std::sort(all.begin(), all.end(), by_id);
+  for (const ParticleRecord& r : all) {
+    g.id.push_back(r.id);
+    g.position.emplace_back(r.position[0], r.position[1], r.position[2]);
+    g.velocity.emplace_back(r.velocity[0], r.velocity[1], r.velocity[2]);
+    g.omega.emplace_back(r.omega[0], r.omega[1], r.omega[2]);
+    Quat q;
+    std::copy_n(r.orientation, 4, q.coeffs().data());
+    g.orientation.push_back(q);
+  }
+  return g;
+}
+
+}  // namespace shard::mpi
