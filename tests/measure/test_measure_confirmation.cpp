@@ -193,3 +193,16 @@ TEST_CASE("a rate effect refit on one loading rate is neither named nor kept, bu
   CHECK(alone.unidentifiable == "bond_viscosity");
   CHECK(alone.kept.empty());
 }
+
+TEST_CASE("of two kept refits that chi^2 cannot tell apart, the closer curve goes on") {
+  // The two-effect test's first step with the scaled compliance trial: compliance 29.1 (NRMSE
+  // 7.3 %), softening 28.0 (11.4 %): both qualify, neither leaves noise (m = 10, p = 2).
+  const auto d = decide_from_refits({"base refit", 75.9, 0.144}, {{"machine_compliance", 29.1, 0.073},
+                                                                   {"bond_softening", 28.0, 0.114}}, 10, 2);
+  CHECK(d.verdict == kUnexplained);
+  CHECK(d.kept == "machine_compliance");
+  // Further apart than 2 in chi^2, the lower chi^2 goes on whatever the NRMSE.
+  const auto far = decide_from_refits({"base refit", 75.9, 0.144}, {{"machine_compliance", 31.0, 0.073},
+                                                                     {"bond_softening", 28.0, 0.114}}, 10, 2);
+  CHECK(far.kept == "bond_softening");
+}

@@ -87,7 +87,9 @@ struct ConfirmationDecision {
   std::vector<ConfirmedEffect> effects;  // in the order given
   std::string verdict;                   // the named effect, "unexplained structured residual" or "adequate"
   std::string best_partial;              // the refit that lowered chi^2 most when none is named
-  std::string kept;                      // when none is named: the qualifying refit with the lowest chi^2
+  // When none is named: the qualifying refit with the lowest chi^2, or of those within
+  // rival_chi_square of it the one with the lowest NRMSE (chi^2 does not tell them apart).
+  std::string kept;
   std::vector<std::string> rivals;       // refits the data cannot tell from the named one
   std::string unidentifiable;            // with no name: an unidentifiable refit that would have been named
 };
