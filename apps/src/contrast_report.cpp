@@ -107,7 +107,7 @@ std::string contrast_markdown(const ContrastReport& r) {
                                                           "post-peak regime"
                                                         : "the reference's stiffness, peak force and peak displacement");
     for (std::size_t k = 0; k < c.keys.size(); ++k) {
-      md += fmt::format(" {}{} = {:.4g} +- {:.2g}", k ? "; " : "", c.keys[k], c.values[k], c.uncertainty[k]);
+      md += fmt::format("{}{} = {:.4g} +- {:.2g}", k ? "; " : " ", c.keys[k], c.values[k], c.uncertainty[k]);
       if (c.at_range_bound[k])
         md += fmt::format(" (at the bound of its range [{:g}, {:g}]: the data ask for more than the plugin accepts)",
                           c.range[k].min, c.range[k].max);
