@@ -79,7 +79,8 @@ void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>&
   }
   auto signature_of = [&](const SetDiagnosis& d, const Trial& t) {
     const CandidateEffect& e = effects[t.effect];
-    return EffectSignature{e.name, e.value_at(t.scale) - e.neutral, study.model_contrast(d.contrast, t.run, base), 1, 1};
+    return EffectSignature{e.name, e.value_at(t.scale) - e.neutral, study.model_contrast(d.contrast, t.run, base), 1, 1,
+                           e.identifiable_at(study.rate_count(d.contrast))};
   };
   for (int pass = 0; pass < iterations; ++pass) {
     std::vector<ModelPlan> models;

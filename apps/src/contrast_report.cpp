@@ -40,6 +40,15 @@ double fitted_uncertainty(const ContrastReport& r, const SetDiagnosis& d, std::s
   return std::abs(f.u_scale * unit);
 }
 
+// A fit that would be named but cannot be told apart at the contrast's rates (a rate effect).
+std::string unidentifiable_text(const ContrastReport& r, const std::string& name) {
+  const CandidateEffect* e = effect_named(r, name);
+  return fmt::format(" {} would explain it, but set and reference span fewer than the {} loading rates it needs: a rate "
+                     "effect at one rate changes only the curve's shape, which rate-independent effects change too. "
+                     "{} would tell.",
+                     name, e ? e->rates_needed : 2, e && !e->separated_by.empty() ? e->separated_by : "A second rate");
+}
+
 std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
   const ContrastDecision& c = d.decision;
   const std::string& name = r.sets.names[d.set];
@@ -56,6 +65,7 @@ std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
                        "in the library. Add it as a plugin parameter with a neutral value (shard new-plugin, "
                        "docs/plugins.md) and an [[effect]] entry, then diagnose again.",
                        c.fits.front().name, c.fits.front().chi_square, c.fits.front().p_after);
+    if (!c.unidentifiable.empty()) s += unidentifiable_text(r, c.unidentifiable);
     return s;
   }
   const CandidateEffect* e = effect_named(r, c.verdict);
@@ -92,6 +102,17 @@ std::string contrast_markdown(const ContrastReport& r) {
     md += "Base parameters as in the scene (no --param given).\n\n";
   else {
     for (std::size_t k = 0; k < r.calibration.path.size(); ++k) md += fmt::format("{}. {}\n", k + 1, r.calibration.path[k]);
+    const BaseCalibration& c = r.calibration;
+    md += fmt::format("\nFitted to {}:", c.form_targets ? "the reference's stiffness, peak force, peak displacement and "
+                                                          "post-peak regime"
+                                                        : "the reference's stiffness, peak force and peak displacement");
+    for (std::size_t k = 0; k < c.keys.size(); ++k) {
+      md += fmt::format("{}{} = {:.4g} +- {:.2g}", k ? "; " : " ", c.keys[k], c.values[k], c.uncertainty[k]);
+      if (c.at_range_bound[k])
+        md += fmt::format(" (at the bound of its range [{:g}, {:g}]: the data ask for more than the plugin accepts)",
+                          c.range[k].min, c.range[k].max);
+    }
+    md += " (uncertainties from the reference's specimen scatter through the last Gauss-Newton step).\n";
     for (const auto& key : r.calibration.at_bound)
       md += fmt::format("\n{}'s last step was clamped to a factor of 2: the base fit did not converge in the "
                         "iterations given (--base-iterations).\n",
@@ -158,7 +179,8 @@ std::string contrast_markdown(const ContrastReport& r) {
                       d.confirmed_values.empty() ? "| effect (linear, from the signatures)" : "| effect (simulated at its size)");
     for (std::size_t k = 0; k < d.decision.fits.size(); ++k) {
       const ContrastFit& f = d.decision.fits[k];
-      md += fmt::format("| {} | {:.4g} | {:.2g} | {:.1f} | {:.1f} | {:.2g} | {:.1f} | {:.2g} | {} |\n", f.name,
+      md += fmt::format("| {}{} | {:.4g} | {:.2g} | {:.1f} | {:.1f} | {:.2g} | {:.1f} | {:.2g} | {} |\n", f.name,
+                        f.identifiable ? "" : " (not nameable at one rate)",
                         fitted_value(r, d, k), fitted_uncertainty(r, d, k), f.chi_square, f.drop, f.p_drop,
                         f.chi_square_form, f.p_after, f.at_bound ? "yes" : "");
     }
@@ -177,7 +199,17 @@ std::string contrast_json(const ContrastReport& r) {
                               r.calibration.form_error.nrmse);
   for (std::size_t k = 0; k < r.calibration.keys.size(); ++k)
     j += fmt::format("{}\"{}\": {:.9g}", k ? ", " : "", json_escape(r.calibration.keys[k]), r.calibration.values[k]);
-  j += fmt::format("}}, \"dynamic_warning\": \"{}\", \"sets\": [", json_escape(r.dynamic_warning));
+  j += "}, \"base_uncertainty\": {";
+  for (std::size_t k = 0; k < r.calibration.keys.size(); ++k)
+    j += fmt::format("{}\"{}\": {}", k ? ", " : "", json_escape(r.calibration.keys[k]),
+                     std::isfinite(r.calibration.uncertainty[k]) ? fmt::format("{:.9g}", r.calibration.uncertainty[k])
+                                                                 : std::string("null"));
+  j += "}, \"base_at_range_bound\": [";
+  std::string sep;
+  for (std::size_t k = 0; k < r.calibration.keys.size(); ++k)
+    if (r.calibration.at_range_bound[k]) j += fmt::format("{}\"{}\"", sep, json_escape(r.calibration.keys[k])), sep = ", ";
+  j += fmt::format("], \"base_form_targets\": {}", r.calibration.form_targets);
+  j += fmt::format(", \"dynamic_warning\": \"{}\", \"sets\": [", json_escape(r.dynamic_warning));
   for (std::size_t s = 0; s < r.diagnoses.size(); ++s) {
     const SetDiagnosis& d = r.diagnoses[s];
     const ContrastDecision& c = d.decision;
@@ -188,11 +220,11 @@ std::string contrast_json(const ContrastReport& r) {
     for (std::size_t k = 0; k < c.fits.size(); ++k) {
       const ContrastFit& f = c.fits[k];
       j += fmt::format("{}{{\"name\": \"{}\", \"value\": {:.9g}, \"u_value\": {:.9g}, \"chi_square\": {:.9g}, "
-                       "\"p_drop\": {:.9g}, \"p_after\": {:.9g}, \"at_bound\": {}}}",
+                       "\"p_drop\": {:.9g}, \"p_after\": {:.9g}, \"at_bound\": {}, \"identifiable\": {}}}",
                        k ? ", " : "", json_escape(f.name), fitted_value(r, d, k), fitted_uncertainty(r, d, k), f.chi_square,
-                       f.p_drop, f.p_after, f.at_bound);
+                       f.p_drop, f.p_after, f.at_bound, f.identifiable);
     }
-    j += "], \"rivals\": [";
+    j += fmt::format("], \"unidentifiable\": \"{}\", \"rivals\": [", json_escape(c.unidentifiable));
     for (std::size_t k = 0; k < c.rivals.size(); ++k) j += fmt::format("{}\"{}\"", k ? ", " : "", json_escape(c.rivals[k]));
     j += "]}";
   }

@@ -5,11 +5,13 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <ostream>
 #include <stdexcept>
 
+#include "shard/measure/effect_library.hpp"
 #include "shard/measure/statistics.hpp"
 
 namespace shard {
@@ -234,62 +236,103 @@ std::vector<std::vector<double>> ContrastStudy::components(const Simulated& mode
   return rows;
 }
 
-BaseCalibration ContrastStudy::calibrate_base(const std::vector<std::string>& keys, int iterations, std::ostream& log) {
+BaseCalibration ContrastStudy::calibrate_base(const std::vector<std::string>& keys, int iterations, std::ostream& log,
+                                              const std::vector<fs::path>& plugin_dirs) {
   BaseCalibration cal;
   cal.keys = keys;
-  for (const auto& k : keys) cal.start.push_back(scene_number(base_, k));
+  for (const auto& k : keys) {
+    cal.start.push_back(scene_number(base_, k));
+    cal.range.push_back(plugin_parameter_range(k, plugin_dirs));
+  }
   cal.values = cal.start;
-  // The reference's (or the consensus') logarithms of stiffness, peak force and peak displacement.
-  constexpr std::size_t kTargets = 3;
-  std::vector<std::vector<double>> means;
+  cal.uncertainty.assign(keys.size(), 0.0);
+  cal.at_range_bound.assign(keys.size(), false);
+  // Targets: the reference's (or the consensus') logarithms of stiffness, peak force and peak
+  // displacement, the form-free scale of a curve. They hold about two independent numbers (w_peak
+  // follows from the other two for a nearly linear rise), enough for E_b and sigma_crit; a third
+  // parameter moves the form (bond.poisson_ratio: the bond's shear-to-normal stiffness), and the
+  // fit then also asks the post-peak regime of the curve (the comparison's mean standardised
+  // residual after the peak, to the end of the shortest measured curve) to vanish.
+  constexpr std::size_t kScaleTargets = 3;
+  cal.form_targets = keys.size() > 2;
+  std::vector<std::vector<double>> means, rows;
   for (const auto& g : groups_)
-    if (same_rate(g.rate, scale_rate_) && (!sets_.reference || g.set == *sets_.reference))
+    if (same_rate(g.rate, scale_rate_) && (!sets_.reference || g.set == *sets_.reference)) {
       means.push_back(component_mean(g.components));
+      rows.insert(rows.end(), g.components.begin(), g.components.end());
+    }
   const std::vector<double> target = median_of(means);
+  // Each scale target in units of its standard uncertainty: the pooled specimen scatter over the
+  // reference's specimens (the post-peak residual is standardised by the comparison itself).
+  std::vector<double> u_target(kScaleTargets);
+  for (std::size_t i = 0; i < kScaleTargets; ++i)
+    u_target[i] = std::sqrt(covariance_[i][i] / static_cast<double>(rows.size()));
   std::vector<Specimen> reference;
   for (std::size_t k = 0; k < sets_.sets.size(); ++k)
     if (!sets_.reference || *sets_.reference == k)
       for (const auto& sp : sets_.sets[k].specimens)
         if (same_rate(sp.loading_rate, scale_rate_)) reference.push_back(sp);
+  const Metadata& metadata = sets_.sets[sets_.reference.value_or(0)].metadata;
 
   auto features_of = [&](const std::vector<Specimen>& sims) {
-    std::vector<std::vector<double>> rows;
-    for (const auto& s : sims) rows.push_back(contrast_components(s.curve));
-    return component_mean(rows);
+    std::vector<std::vector<double>> r;
+    for (const auto& s : sims) r.push_back(contrast_components(s.curve));
+    return component_mean(r);
+  };
+  const std::size_t n_targets = kScaleTargets + (cal.form_targets ? 1 : 0);
+  // Standardised residuals of a model's runs; `band`: the comparison whose simulated band scores
+  // the post-peak regime (the base's, so that a step's difference is its mean's).
+  auto residual = [&](const std::vector<Specimen>& sims, const Comparison* band, Comparison& own) {
+    const std::vector<double> f = features_of(sims);
+    Eigen::VectorXd z(static_cast<Eigen::Index>(n_targets));
+    for (std::size_t i = 0; i < kScaleTargets; ++i) z(static_cast<Eigen::Index>(i)) = (f[i] - target[i]) / u_target[i];
+    if (cal.form_targets) {
+      own = compare(reference, metadata, sims);
+      const Comparison scored = band ? with_simulated_band(own, *band) : own;
+      z(static_cast<Eigen::Index>(kScaleTargets)) = scored.regimes[static_cast<std::size_t>(Regime::PostPeak)].mean_residual;
+    }
+    return z;
   };
   const double log_step = std::log1p(kBaseStep);
   std::vector<Specimen> final_sims;
+  Eigen::MatrixXd last_jacobian;
   for (int it = 0; it <= iterations; ++it) {
     std::vector<ModelPlan> models{with_parameters(base_, keys, cal.values)};
+    std::vector<double> steps(keys.size(), log_step);
     if (it < iterations)
       for (std::size_t i = 0; i < keys.size(); ++i) {
         std::vector<double> v = cal.values;
+        // Upwards, unless that leaves the parameter's range (poisson_ratio at 0.5).
         v[i] *= 1 + kBaseStep;
+        if (v[i] > cal.range[i].max) v[i] = cal.values[i] / (1 + kBaseStep), steps[i] = -log_step;
         models.push_back(with_parameters(base_, keys, v));
       }
     for (auto& m : models) m.loading_rate = scale_rate_;
-    simulator_.check_inputs(models.front(), reference, sets_.sets[sets_.reference.value_or(0)].metadata);
+    simulator_.check_inputs(models.front(), reference, metadata);
     const auto sims = simulator_.simulate(models, log);
-    const std::vector<double> f = features_of(sims[0]);
-    Eigen::VectorXd r(kTargets);
-    for (std::size_t i = 0; i < kTargets; ++i) r(static_cast<Eigen::Index>(i)) = target[i] - f[i];
+    Comparison base_comparison;
+    const Eigen::VectorXd z = residual(sims[0], nullptr, base_comparison);
     std::string values;
     for (std::size_t i = 0; i < keys.size(); ++i) values += fmt::format("{}{}={:.4g}", i ? ", " : "", keys[i], cal.values[i]);
+    // z holds (model - target) / u: the relative error is exp(z u) - 1.
     cal.path.push_back(fmt::format("{}: stiffness {:+.1f} %, peak force {:+.1f} %, peak displacement {:+.1f} % against "
-                                   "the reference",
-                                   values, 100 * std::expm1(-r(0)), 100 * std::expm1(-r(1)), 100 * std::expm1(-r(2))));
+                                   "the reference{}",
+                                   values, 100 * std::expm1(z(0) * u_target[0]),
+                                   100 * std::expm1(z(1) * u_target[1]), 100 * std::expm1(z(2) * u_target[2]),
+                                   cal.form_targets ? fmt::format(", post-peak regime {:+.2f} sigma", z(3)) : ""));
     log << "contrast: base " << cal.path.back() << '\n';
     if (it == iterations) {
       final_sims = sims[0];
       break;
     }
-    Eigen::MatrixXd J(kTargets, static_cast<Eigen::Index>(keys.size()));
+    Eigen::MatrixXd J(static_cast<Eigen::Index>(n_targets), static_cast<Eigen::Index>(keys.size()));
     for (std::size_t i = 0; i < keys.size(); ++i) {
-      const std::vector<double> fi = features_of(sims[1 + i]);
-      for (std::size_t t = 0; t < kTargets; ++t)
-        J(static_cast<Eigen::Index>(t), static_cast<Eigen::Index>(i)) = (fi[t] - f[t]) / log_step;
+      Comparison unused;
+      const Eigen::VectorXd zi = residual(sims[1 + i], &base_comparison, unused);
+      J.col(static_cast<Eigen::Index>(i)) = (zi - z) / steps[i];
     }
-    const Eigen::VectorXd step = J.colPivHouseholderQr().solve(r);
+    last_jacobian = J;
+    const Eigen::VectorXd step = J.colPivHouseholderQr().solve(-z);
     cal.at_bound.clear();
     double largest = 0;
     for (std::size_t i = 0; i < keys.size(); ++i) {
@@ -299,15 +342,31 @@ BaseCalibration ContrastStudy::calibrate_base(const std::vector<std::string>& ke
         s = std::copysign(std::log(2.0), s);
         cal.at_bound.push_back(keys[i]);
       }
-      largest = std::max(largest, std::abs(s));
-      cal.values[i] *= std::exp(s);
+      const double previous = cal.values[i], asked = previous * std::exp(s);
+      cal.values[i] = std::clamp(asked, cal.range[i].min, cal.range[i].max);
+      cal.at_range_bound[i] = cal.values[i] != asked;
+      largest = std::max(largest, std::abs(std::log(cal.values[i] / previous)));
     }
     if (largest < 0.005) {  // converged: the next pass only re-runs what is cached
       iterations = it + 1;
     }
   }
+  // Standard uncertainties from the last Jacobian: the targets are standardised, so the
+  // covariance of the log-parameters is (J'J)^-1 (Gauss-Newton's; the specimens' scatter of the
+  // reference, not the model's form error).
+  if (last_jacobian.size() > 0) {
+    const Eigen::MatrixXd info = last_jacobian.transpose() * last_jacobian;
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(info);
+    if (lu.isInvertible()) {
+      const Eigen::MatrixXd cov = lu.inverse();
+      for (std::size_t i = 0; i < keys.size(); ++i)
+        cal.uncertainty[i] = cal.values[i] * std::sqrt(std::max(0.0, cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i))));
+    } else {
+      cal.uncertainty.assign(keys.size(), std::numeric_limits<double>::infinity());
+    }
+  }
   base_ = with_parameters(base_, keys, cal.values);
-  cal.form_error = compare(reference, sets_.sets[sets_.reference.value_or(0)].metadata, final_sims);
+  cal.form_error = compare(reference, metadata, final_sims);
   return cal;
 }
 
@@ -388,6 +447,17 @@ ContrastStudy::Contrast ContrastStudy::contrast(std::size_t set, const Simulated
   if (blocks.size() == 1)  // one rate: the component names need no rate
     c.names.assign(contrast_component_names().begin(), contrast_component_names().end());
   return c;
+}
+
+std::size_t ContrastStudy::rate_count(const Contrast& c) const {
+  std::vector<double> seen;
+  auto add = [&](double v) {
+    for (double x : seen)
+      if (same_rate(x, v)) return;
+    seen.push_back(v);
+  };
+  for (std::size_t gi : c.groups) add(groups_[gi].rate), add(groups_[gi].reference_rate);
+  return seen.size();
 }
 
 std::vector<double> ContrastStudy::model_contrast(const Contrast& c, const Simulated& with_effect,

@@ -12,6 +12,7 @@
 
 #include "measure_plan.hpp"
 #include "shard/measure/contrast.hpp"
+#include "shard/measure/effect_library.hpp"
 
 namespace shard {
 
@@ -35,10 +36,17 @@ struct ContrastGroup {
 };
 
 // The base parameters fitted to the reference: Gauss-Newton on the logarithms of stiffness,
-// peak force and peak displacement (the form-free part of a curve), relative steps of 5 %.
+// peak force and peak displacement (the form-free part of a curve), each in units of its
+// standard uncertainty, relative steps of 5 %. With more than two parameters (a form parameter
+// such as bond.poisson_ratio) the post-peak regime's mean standardised residual joins the
+// targets: the scale targets alone do not see the curve after the peak.
 struct BaseCalibration {
   std::vector<std::string> keys;
   std::vector<double> start, values;
+  std::vector<double> uncertainty;           // standard uncertainty of each value ((J'J)^-1 of the last step)
+  std::vector<measure::ParameterRange> range;  // what the plugins accept (ParamSpec)
+  std::vector<bool> at_range_bound;          // the last step asked for a value outside the range
+  bool form_targets = false;                 // the post-peak regime was a target
   std::vector<std::string> path;  // one line per iteration
   std::vector<std::string> at_bound;  // parameters whose step was clamped in the last iteration
   measure::Comparison form_error;     // the calibrated base against the reference
@@ -50,7 +58,9 @@ class ContrastStudy {
 
   double dof() const { return dof_; }
 
-  BaseCalibration calibrate_base(const std::vector<std::string>& keys, int iterations, std::ostream& log);
+  // plugin_dirs: where the parameters' ranges are looked up besides the default search path.
+  BaseCalibration calibrate_base(const std::vector<std::string>& keys, int iterations, std::ostream& log,
+                                 const std::vector<std::filesystem::path>& plugin_dirs = {});
   const ModelPlan& base() const { return base_; }
 
   // The rates every model must run at (all groups' rates and their references').
@@ -71,6 +81,9 @@ class ContrastStudy {
     std::vector<std::size_t> groups;  // indices into groups()
   };
   Contrast contrast(std::size_t set, const Simulated& base) const;
+  // The loading rates a contrast spans: its groups' and their references' (a rate effect is told
+  // apart from a rate-independent one only across two or more).
+  std::size_t rate_count(const Contrast& c) const;
   // The model's contrast of `set`'s groups: effect minus base on each seed, averaged.
   std::vector<double> model_contrast(const Contrast& c, const Simulated& with_effect, const Simulated& base) const;
 

@@ -2,8 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
+
+#include "shard/measure/effect_scaling.hpp"
 
 namespace shard {
 
@@ -98,9 +101,36 @@ StepLinearisation linearise_step(Simulator& simulator, const RateGroups& measure
     // The candidate switched on from its neutral value: one trial step.
     l.signatures.push_back({e->name, e->plausible - e->neutral,
                             difference(comparisons[m++].residual_vector(), l.base, e->name, 1.0), e->scale_min(),
-                            e->scale_max()});
+                            e->scale_max(), e->identifiable_at(measured.rates.size())});
   }
   return l;
+}
+
+std::vector<CandidateEffect> plausible_on_base_run(std::vector<CandidateEffect> effects, Simulator& simulator,
+                                                const RateGroups& measured, const Metadata& metadata, const ModelPlan& base,
+                                                std::string& described, std::ostream& log) {
+  described.clear();
+  if (std::none_of(effects.begin(), effects.end(), [](const CandidateEffect& e) { return !e.plausible_from.empty(); }))
+    return effects;
+  std::vector<Specimen> every_rate;
+  for (const auto& at : measured.specimens) every_rate.insert(every_rate.end(), at.begin(), at.end());
+  simulator.check_inputs(base, every_rate, metadata);
+  std::vector<ModelPlan> runs;
+  for (double r : measured.rates) {
+    ModelPlan at = base;
+    at.loading_rate = r;
+    runs.push_back(std::move(at));
+  }
+  std::vector<std::vector<Curve>> curves;
+  for (const auto& replicates : simulator.simulate(runs, log)) {
+    auto& at_rate = curves.emplace_back();
+    for (const auto& sp : replicates) at_rate.push_back(sp.curve);
+  }
+  const TestScales scales = base_run_scales(curves);
+  effects = with_test_plausible(std::move(effects), scales);
+  described = describe_scaled_plausible(effects, scales);
+  log << "diagnose: plausible sizes from the base run:\n" << described;
+  return effects;
 }
 
 RefitPlan refit_plan(const std::vector<std::string>& keys, const StepModel& start, const LinearRefit& lr,

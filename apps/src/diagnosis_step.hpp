@@ -60,6 +60,17 @@ StepLinearisation linearise_step(Simulator& simulator, const RateGroups& measure
                                  const std::vector<const measure::CandidateEffect*>& candidates,
                                  const RateComparison* band, Scoring scoring, std::ostream& log);
 
+// The effects with their plausible_from rules resolved on the base run (effect_scaling.hpp): the
+// model `base` at every rate of the data, on the command's packing seeds, recorded as the lab
+// recorded (the linearisation's first run, so it is simulated once). The scales are the model's,
+// not the measured curves': a hidden compliance, a seating toe, a preload or the lab's noise do
+// not move the probe, and the tiny beam at its scene values gets the sizes its tests were tuned
+// with. `described` receives one line per resolved effect (empty when none has a rule).
+std::vector<measure::CandidateEffect> plausible_on_base_run(std::vector<measure::CandidateEffect> effects,
+                                                            Simulator& simulator, const RateGroups& measured,
+                                                            const measure::Metadata& metadata, const ModelPlan& base,
+                                                            std::string& described, std::ostream& log);
+
 // Where a linearised refit takes a step's model: base factors and effect sizes clamped as
 // clamp_base_factor / clamp_effect_scale and the effect's physical range; `at_bound` lists what
 // was clamped, e.g. "bond.youngs_modulus at 1.9 x (asked 2.4 x)".

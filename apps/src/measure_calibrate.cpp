@@ -112,17 +112,21 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
     const RateGroups measured = rate_groups(set, o->rate);
     prepare_output_folder(o->out, "--out");  // after the cheap reads, before the simulations
     const fs::path library = o->library.empty() ? o->model.scene.parent_path() / "effects.toml" : o->library;
+    if (o->params.empty() && o->effect.empty())
+      throw std::runtime_error("calibrate-effect: give --with EFFECT and/or --param");
     std::vector<CandidateEffect> effects;
-    if (!o->effect.empty())
-      effects = with_test_plausible(select_effects(read_effect_library(library), {o->effect}),
-                                    test_scales(measured.specimens, o->sim.time_compression));
-    if (o->params.empty() && effects.empty()) throw std::runtime_error("calibrate-effect: give --with EFFECT and/or --param");
+    if (!o->effect.empty()) effects = select_effects(read_effect_library(library), {o->effect});
     Fit fit;
     fit.keys = o->params;
     fit.scoring = scoring_from_name(o->scoring);
     for (const auto& k : o->params) fit.base_values.push_back(scene_number(o->model, k));
-    fit.effect = effects.empty() ? nullptr : &effects.front();
     Simulator simulator(o->sim, ctx.plugin_dirs);
+    // The trial size as diagnose resolves it (the base run at the scene's values), so the
+    // linearised start below is diagnose's first step, cached.
+    std::string scaled;
+    effects = plausible_on_base_run(std::move(effects), simulator, measured, set.metadata,
+                                    step_plan(o->model, o->params, StepModel{fit.base_values, {}}), scaled, std::cerr);
+    fit.effect = effects.empty() ? nullptr : &effects.front();
     fit.simulator = &simulator;
     fit.measured = &measured;
     fit.metadata = &set.metadata;

@@ -50,7 +50,8 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
     prepare_output_folder(o->out, "--out");  // after the cheap reads, before the simulations
     Simulator simulator(o->sim, ctx.plugin_dirs);
     ContrastStudy study(sets, simulator, o->model);
-    const BaseCalibration cal = study.calibrate_base(o->params, o->params.empty() ? 0 : o->base_iterations, std::cerr);
+    const BaseCalibration cal = study.calibrate_base(o->params, o->params.empty() ? 0 : o->base_iterations, std::cerr,
+                                                     ctx.plugin_dirs);
     // Does resolution explain the form error? The same base fit at a finer packing.
     std::optional<BaseCalibration> finer;
     if (o->finer > 0) {
@@ -59,7 +60,8 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
         fine.overrides.push_back({key, significant(o->finer * scene_number(o->model, key), 9)});
       ContrastStudy fine_study(sets, simulator, fine);
       fmt::print(stderr, "diagnose: the base fit again with diameters x {:g}\n", o->finer);
-      finer = fine_study.calibrate_base(o->params, o->params.empty() ? 0 : o->base_iterations, std::cerr);
+      finer = fine_study.calibrate_base(o->params, o->params.empty() ? 0 : o->base_iterations, std::cerr,
+                                                     ctx.plugin_dirs);
     }
 
     std::string scaled;
@@ -82,7 +84,8 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
       std::vector<EffectSignature> sig;
       for (std::size_t e = 0; e < effects.size(); ++e)
         sig.push_back({effects[e].name, effects[e].plausible - effects[e].neutral,
-                       study.model_contrast(d.contrast, sims[1 + e], sims[0]), effects[e].scale_min(), effects[e].scale_max()});
+                       study.model_contrast(d.contrast, sims[1 + e], sims[0]), effects[e].scale_min(), effects[e].scale_max(),
+                       effects[e].identifiable_at(study.rate_count(d.contrast))});
       d.linear = decide_contrast(d.contrast.difference, d.contrast.weight, sig, study.dof(), o->decide);
       d.decision = d.linear;
       d.before = study.curve_contrast(d.contrast, sims[0], sims[0]);

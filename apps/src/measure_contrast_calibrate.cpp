@@ -87,7 +87,8 @@ void add_calibrate_contrast_command(CLI::App& app, CommandContext& ctx) {
     prepare_output_folder(o->out, "--out");  // after the cheap reads, before the simulations
     Simulator simulator(o->sim, ctx.plugin_dirs);
     ContrastStudy study(sets, simulator, o->model);
-    const BaseCalibration cal = study.calibrate_base(o->params, o->params.empty() ? 0 : o->base_iterations, std::cerr);
+    const BaseCalibration cal = study.calibrate_base(o->params, o->params.empty() ? 0 : o->base_iterations, std::cerr,
+                                                     ctx.plugin_dirs);
     std::string scaled;
     const auto effects = scaled_to_base_run(library, study, scaled, std::cerr);
     const CandidateEffect& effect = effects.front();

@@ -149,12 +149,14 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
     const RateGroups measured = rate_groups(set, o->rate);
     prepare_output_folder(o->out, "--out");  // after the cheap reads, before the simulations
     const fs::path library = o->library.empty() ? o->model.scene.parent_path() / "effects.toml" : o->library;
-    const auto effects = with_test_plausible(select_effects(read_effect_library(library), o->only),
-                                             test_scales(measured.specimens, o->sim.time_compression));
     const auto& keys = o->params;
     StepModel model;
     for (const auto& k : keys) model.parameters.push_back(scene_number(o->model, k));
     Simulator simulator(o->sim, ctx.plugin_dirs);
+    std::string scaled;  // the trial sizes that follow from the base run
+    const auto effects = plausible_on_base_run(select_effects(read_effect_library(library), o->only), simulator,
+                                               measured, set.metadata, step_plan(o->model, keys, model), scaled,
+                                               std::cerr);
     const auto tops = static_cast<std::size_t>(std::max(0, o->refit));
     const Scoring scoring = scoring_from_name(o->scoring);
 
@@ -195,14 +197,21 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
         s.confirmations.push_back(std::move(c));
       };
       add_refit({}, nullptr);
-      for (std::size_t k = 0; k < std::min(tops, s.diagnosis.ranking.size()); ++k)
+      // The top --refit effects that can be named; an effect these data cannot identify (a rate
+      // effect at one rate) that ranks among them is refit in addition, to show how much it
+      // explains, without taking a nameable effect's place.
+      std::size_t nameable = 0;
+      for (std::size_t k = 0; k < s.diagnosis.ranking.size() && nameable < tops; ++k)
         for (std::size_t e = 0; e < s.candidates.size(); ++e)
-          if (s.candidates[e]->name == s.diagnosis.ranking[k].name && s.diagnosis.ranking[k].score > 0)
+          if (s.candidates[e]->name == s.diagnosis.ranking[k].name && s.diagnosis.ranking[k].score > 0) {
             add_refit({s.lin.signatures[e]}, s.candidates[e]);
+            if (s.lin.signatures[e].identifiable) ++nameable;
+          }
       run_confirmations(simulator, measured, set.metadata, o->model, keys, band, scoring, s.confirmations, m);
       std::vector<RefitOutcome> refits;
       for (std::size_t k = 1; k < s.confirmations.size(); ++k)
-        refits.push_back({s.confirmations[k].name, s.confirmations[k].chi_square, s.confirmations[k].nrmse});
+        refits.push_back({s.confirmations[k].name, s.confirmations[k].chi_square, s.confirmations[k].nrmse,
+                          find_effect(effects, s.confirmations[k].name)->identifiable_at(measured.rates.size())});
       // Bonferroni within the step (an alpha-to-enter of 0.05 shared by the refits it tries), as
       // forward selection does: counting the earlier steps' refits too left the hidden softening of
       // the two-effect test unnamed at p_drop 0.015 > 0.05 / 4 (docs/measurements.md).
@@ -258,6 +267,14 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
                           ? "The refits' chi^2 carry the likelihood's log-variance term against the base model's band."
                           : "A refit whose NRMSE rises above the base refit's is neither named nor kept, whatever its "
                             "chi^2 (a wider band must not pass for a better model).");
+    if (!scaled.empty())
+      md += "Trial sizes from the base run (plausible_from rules, docs/measurements.md):\n\n```\n" + scaled + "```\n\n";
+    for (const auto& e : effects)
+      if (!e.identifiable_at(measured.rates.size()))
+        md += fmt::format("{} is a rate effect: at {} loading rate{} it changes only the curve's shape, which "
+                          "rate-independent effects change too, so it is scored and refit but named only with {} "
+                          "rates.\n\n",
+                          e.name, measured.rates.size(), measured.rates.size() == 1 ? "" : "s", e.rates_needed);
     bool base_out_of_range = false;
     for (const auto& s : steps)
       if (!s.confirmations.empty() && s.confirmations.front().plan.base_at_bound) base_out_of_range = true;
@@ -297,6 +314,18 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
                                 "leaves p = {:.2g}{}: not enough to name it.",
                                 e.name, 100 * e.share_explained, s.decision.excess, e.p_after,
                                 e.nrmse_rose ? " and raises the NRMSE" : "");
+      for (const auto& s : steps)
+        if (!s.decision.unidentifiable.empty()) {
+          const CandidateEffect* e = find_effect(effects, s.decision.unidentifiable);
+          double p_after = 0;
+          for (const auto& c : s.decision.effects)
+            if (c.name == e->name) p_after = c.p_after;
+          md += fmt::format(" {}'s refit would leave noise (p after {:.2g}), but these data have {} loading rate{}: a "
+                            "rate effect then changes only the curve's shape, which rate-independent effects change "
+                            "too, so it is identifiable only with {} rates ({}).",
+                            e->name, p_after, measured.rates.size(), measured.rates.size() == 1 ? "" : "s",
+                            e->rates_needed, e->separated_by.empty() ? "test at another loading rate" : e->separated_by);
+        }
       // Say what the data show that the base model does not, in the comparison's words, and how a
       // user adds the missing physics: the library is open.
       if (resized_p >= 0)
@@ -342,7 +371,8 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
             "|---|---|---|---|---|---|---|---|---|\n";
       for (const auto& r : d.ranking) {
         const CandidateEffect* e = find_effect(effects, r.name);
-        md += fmt::format("| {} | {:.2f} | {:.3g} | {:.0f} % | {:.0f} % | {:.4g} {}{} | {:+.1f} | {:+.1f} | {} |\n", r.name,
+        md += fmt::format("| {}{} | {:.2f} | {:.3g} | {:.0f} % | {:.0f} % | {:.4g} {}{} | {:+.1f} | {:+.1f} | {} |\n", r.name,
+                          r.identifiable ? "" : fmt::format(" (identifiable only with {} loading rates)", e->rates_needed),
                           r.score, r.p_value, 100 * r.explained, 100 * r.absorbed, e->neutral + r.size, e->unit,
                           !r.at_bound ? "" : r.size == 0 ? " (the data ask for it reversed: outside its physical range)"
                                                          : " (clamped at its physical bound)",
@@ -361,7 +391,8 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
             md += fmt::format("| {} | run failed | - | - | - | - | - | - | {} |\n", cf.name, v);
             continue;
           }
-          md += fmt::format("| {} | {:.1f} | {:.1f} %{} | {:+.1f} | {:+.1f} | {} | {} | {} | {} |\n", cf.name, cf.chi_square,
+          md += fmt::format("| {}{} | {:.1f} | {:.1f} %{} | {:+.1f} | {:+.1f} | {} | {} | {} | {} |\n", cf.name,
+                            ce && !ce->identifiable ? " (not nameable at these rates)" : "", cf.chi_square,
                             100 * cf.nrmse, ce && ce->nrmse_rose ? " (rose)" : "", cf.delta_aic, cf.delta_bic,
                             ce ? fmt::format("{:.0f} %", 100 * ce->share_explained) : "-",
                             ce ? fmt::format("{:.2g}", ce->p_after) : fmt::format("{:.2g}", s.decision.base_p),
@@ -431,9 +462,9 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
       const auto& r = d0.ranking[k];
       const CandidateEffect* e = find_effect(effects, r.name);
       json += fmt::format("{}{{\"name\": \"{}\", \"score\": {:.9g}, \"p_value\": {:.9g}, \"explained\": {:.9g}, "
-                          "\"absorbed\": {:.9g}, \"value\": {:.9g}, \"at_bound\": {}}}",
+                          "\"absorbed\": {:.9g}, \"value\": {:.9g}, \"at_bound\": {}, \"identifiable\": {}}}",
                           k ? ", " : "", json_escape(r.name), r.score, r.p_value, r.explained, r.absorbed,
-                          e->neutral + r.size, r.at_bound);
+                          e->neutral + r.size, r.at_bound, r.identifiable);
     }
     // Every step's refits, the first step's first (as before steps existed); a refit that failed
     // has null numbers and its error (JSON has no infinity).
@@ -466,7 +497,11 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
                                number(st.chi_square_after), number(st.nrmse_before), number(st.nrmse_after),
                                number(st.p_after), st.named);
     std::string partial = first.decision.best_partial;
-    json += fmt::format("], \"excess\": {:.9g}, \"partial\": \"{}\", \"rivals\": [{}], \"path\": [{}], "
+    std::string unidentifiable;
+    for (const auto& st : steps)
+      if (unidentifiable.empty()) unidentifiable = st.decision.unidentifiable;
+    json += fmt::format("], \"unidentifiable\": \"{}\"", json_escape(unidentifiable));
+    json += fmt::format(", \"excess\": {:.9g}, \"partial\": \"{}\", \"rivals\": [{}], \"path\": [{}], "
                         "\"base_out_of_range\": {}, \"model\": \"{}\", \"resized_p\": {}, \"dynamic_warning\": \"{}\"}}\n",
                         first.decision.excess, json_escape(partial), rivals, path_json, base_out_of_range,
                         json_escape(path.empty() ? std::string() : values_text(keys, model)),

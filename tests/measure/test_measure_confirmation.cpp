@@ -171,3 +171,38 @@ TEST_CASE("a stepwise path is named only when its last step leaves noise") {
                           {"bond_softening", 3, 20, 8, 0.114, 0.06, 0.35, true}}) ==
         "machine_compliance + bond_softening");
 }
+
+TEST_CASE("a rate effect refit on one loading rate is neither named nor kept, but reported") {
+  // The hidden-softening data at one rate with the scaled viscosity trial: the viscosity refit fits
+  // as well as softening's (docs/measurements.md). m = 11, p = 2.
+  const RefitOutcome viscosity{"bond_viscosity", 8.0, 0.06, false};
+  const auto d = decide_from_refits({"base refit", 60, 0.12}, {{"bond_softening", 9.0, 0.065}, viscosity}, 11, 2);
+  CHECK(d.verdict == "bond_softening");
+  REQUIRE(d.rivals.size() == 1);
+  CHECK(d.rivals.front() == "bond_viscosity");
+  CHECK_FALSE(d.effects[1].named);
+  CHECK(d.effects[1].would_name);
+  // The unidentifiable refit does not share the Bonferroni level: one nameable refit, 0.05 / 1.
+  // A drop of 5 (p 0.025) passes at 0.05 / 1 and would fail at 0.05 / 2.
+  const auto one = decide_from_refits({"base refit", 13.5, 0.1}, {{"a", 8.5, 0.08}, viscosity}, 11, 2);
+  CHECK(one.effects[0].p_drop == doctest::Approx(0.0253).epsilon(0.01));
+  CHECK(one.effects[0].qualifies);
+  // Alone, it would have been named: unexplained, with its name kept for the report; not kept either.
+  const auto alone = decide_from_refits({"base refit", 60, 0.12}, {{"bond_softening", 40, 0.1}, viscosity}, 11, 2);
+  CHECK(alone.verdict == kUnexplained);
+  CHECK(alone.unidentifiable == "bond_viscosity");
+  CHECK(alone.kept.empty());
+}
+
+TEST_CASE("of two kept refits that chi^2 cannot tell apart, the closer curve goes on") {
+  // The two-effect test's first step with the scaled compliance trial: compliance 29.1 (NRMSE
+  // 7.3 %), softening 28.0 (11.4 %): both qualify, neither leaves noise (m = 10, p = 2).
+  const auto d = decide_from_refits({"base refit", 75.9, 0.144}, {{"machine_compliance", 29.1, 0.073},
+                                                                   {"bond_softening", 28.0, 0.114}}, 10, 2);
+  CHECK(d.verdict == kUnexplained);
+  CHECK(d.kept == "machine_compliance");
+  // Further apart than 2 in chi^2, the lower chi^2 goes on whatever the NRMSE.
+  const auto far = decide_from_refits({"base refit", 75.9, 0.144}, {{"machine_compliance", 31.0, 0.073},
+                                                                     {"bond_softening", 28.0, 0.114}}, 10, 2);
+  CHECK(far.kept == "bond_softening");
+}

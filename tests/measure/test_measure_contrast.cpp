@@ -144,3 +144,23 @@ TEST_CASE("decision: an effect of another form is named within the form toleranc
   CHECK(decide_contrast(shaped, w, effects, 60, exact).verdict == kUnexplainedDifference);
   CHECK(decide_contrast(shaped, w, effects, 60).verdict == "a");
 }
+
+TEST_CASE("decision: a rate effect at one rate is never the verdict, a rival at most") {
+  const auto w = identity(4);
+  const double inf = std::numeric_limits<double>::infinity();
+  // d = 3 a: "a" explains it exactly; "v" (a rate effect on a contrast of one rate) nearly as well.
+  std::vector<EffectSignature> effects{{"a", 1, {1, 0.5, 0, 0}, 0, inf}, {"v", 1, {1, 0.52, 0, 0}, 0, inf, false}};
+  const auto both = decide_contrast({3.0, 1.5, 0.1, -0.1}, w, effects, 40);
+  CHECK(both.verdict == "a");
+  REQUIRE(both.rivals.size() == 1);
+  CHECK(both.rivals.front() == "v");
+  CHECK(both.unidentifiable.empty());
+  // Only the rate effect fits: the difference stays unexplained, and the report names what would fit.
+  effects.front().signature = {0, 0, 1, -1};
+  const auto alone = decide_contrast({3.0, 1.56, 0.1, -0.1}, w, effects, 40);
+  CHECK(alone.verdict == kUnexplainedDifference);
+  CHECK(alone.unidentifiable == "v");
+  // The same effect with two rates behind the contrast is named.
+  effects.back().identifiable = true;
+  CHECK(decide_contrast({3.0, 1.56, 0.1, -0.1}, w, effects, 40).verdict == "v");
+}

@@ -163,6 +163,7 @@ ContrastDecision decide_contrast(const std::vector<double>& difference, const st
     const double tt = t.dot(w * t), td = t.dot(w * d);
     ContrastFit fit;
     fit.name = e.name;
+    fit.identifiable = e.identifiable;
     const double raw = tt > 0 ? td / tt : 0.0;
     fit.scale = std::clamp(raw, e.scale_min, e.scale_max);
     fit.at_bound = fit.scale != raw;
@@ -192,6 +193,10 @@ ContrastDecision decide_contrast(const std::vector<double>& difference, const st
   const ContrastFit* named = nullptr;
   for (const auto& f : out.fits)
     if (f.scale != 0 && f.p_drop < options.drop_p / n && f.p_after > options.remaining_p) {
+      if (!f.identifiable) {
+        if (out.unidentifiable.empty()) out.unidentifiable = f.name;
+        continue;
+      }
       named = &f;
       break;
     }
@@ -200,6 +205,7 @@ ContrastDecision decide_contrast(const std::vector<double>& difference, const st
     return out;
   }
   out.verdict = named->name;
+  out.unidentifiable.clear();  // a better fit that cannot be named is a rival (below)
   for (const auto& f : out.fits)
     if (&f != named && f.scale != 0 && f.p_drop < options.drop_p / n &&
         f.chi_square - named->chi_square < options.rival_chi_square)

@@ -79,6 +79,7 @@ Diagnosis diagnose(const std::vector<std::string>& names, const std::vector<doub
       for (auto i : order)
         if (gain(i) > 0.1 * s.score && s.explains.size() < 4) s.explains.push_back(names[i]);
     }
+    s.identifiable = e.identifiable;
     s.p_value = chi_square_survival(s.score, 1);
     s.explained = d.chi_square_unabsorbed > 0 ? s.score / d.chi_square_unabsorbed : 0;
     s.chi_square_after = d.chi_square_unabsorbed - s.score;
@@ -103,7 +104,7 @@ Diagnosis diagnose(const std::vector<std::string>& names, const std::vector<doub
                        d.ranking.front().p_value < options.significant_p / static_cast<double>(d.ranking.size());
   if (d.p_value > options.adequate_p && !focused) {
     d.verdict = "adequate";
-  } else if (focused && d.ranking.front().explained >= options.min_explained) {
+  } else if (focused && d.ranking.front().explained >= options.min_explained && d.ranking.front().identifiable) {
     d.verdict = d.ranking.front().name;
   } else {
     d.verdict = "unexplained structured residual";

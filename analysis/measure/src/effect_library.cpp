@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -49,6 +50,26 @@ SchemaNeutral plugin_schema_neutrals() {
     }
     return neutral;
   };
+}
+
+ParameterRange plugin_parameter_range(const std::string& parameter, const std::vector<std::filesystem::path>& extra_dirs) {
+  ParameterRange range;
+  const auto dot = parameter.find('.');
+  const std::string section = parameter.substr(0, dot);
+  if (dot == std::string::npos || (section != "bond" && section != "contact")) return range;
+  PluginHost host;
+  host.load_directories(PluginHost::default_search_path(extra_dirs));
+  const PluginKind kind = section == "bond" ? PluginKind::Bond : PluginKind::Contact;
+  const std::string key = parameter.substr(dot + 1);
+  for (const LoadedPlugin* plugin : host.plugins()) {
+    if (plugin->info.kind != kind) continue;
+    for (const auto& spec : plugin->info.params)
+      if (spec.name == key) {
+        range.min = std::max(range.min, spec.min);
+        range.max = std::min(range.max, spec.max);
+      }
+  }
+  return range;
 }
 
 std::string CandidateEffect::scene_value(double value) const {
@@ -137,6 +158,14 @@ std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& fi
          : k == "min"       ? e.min
          : k == "max"       ? e.max
                             : e.plausible_factor) = *v;
+      } else if (k == "rates_needed") {
+        const auto v = value.value<std::int64_t>();
+        if (!value.is_integer() || !v || *v < 1)
+          throw std::runtime_error(fmt::format(
+              "{}: 'rates_needed' must be a whole number >= 1 (the loading rates the data need before the effect can "
+              "be named; 2 for a rate effect such as a viscosity)",
+              where(file, value)));
+        e.rates_needed = static_cast<int>(*v);
       } else if (k == "set") {
         const auto* a = value.as_array();
         if (!a) throw std::runtime_error(fmt::format("{}: 'set' must be an array of \"section.key=value\" strings", where(file, value)));
@@ -149,7 +178,7 @@ std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& fi
       } else {
         throw std::runtime_error(fmt::format(
             "{}: unknown key '{}' in [[effect]]; the keys are name, parameter, value_format, unit, neutral, "
-            "plausible, plausible_from, plausible_factor, min, max, set, separated_by, doc",
+            "plausible, plausible_from, plausible_factor, min, max, rates_needed, set, separated_by, doc",
             where(file, value), k));
       }
     }

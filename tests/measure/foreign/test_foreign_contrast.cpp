@@ -12,6 +12,7 @@
 // Slow (the model's ~100 runs; the truth's 28 are test_foreign_sets'): see docs/measurements.md.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -90,4 +91,50 @@ TEST_CASE("contrast diagnosis on foreign truth: null, four library effects, one 
   const double before = number_after(c, "\"nrmse_before\": "), after = number_after(c, "\"nrmse_after\": ");
   MESSAGE(calibrate_set << ": contrast NRMSE " << before << " -> " << after);
   CHECK(after <= 0.5 * before);
+}
+
+TEST_CASE("the base fit moves bond.poisson_ratio on foreign truth: the post-peak form error falls") {
+  // E_b and sigma_crit fit the reference's stiffness, peak force and peak displacement; the
+  // lattice's bonds are stiffer in shear relative to their normal stiffness than the scene's
+  // (poisson 0.25), which shows after the peak only (docs/measurements.md: poisson 0.4 by hand took
+  // the form error from 8.0 to 3.5 %, the post-peak regime from -4.2 to -0.1 sigma). With the
+  // post-peak regime among its targets, a base fit of the three must find it.
+  fs::create_directories(kWork);
+  const fs::path sets = FOREIGN_SETS_DIR;
+  REQUIRE(fs::exists(sets / "null" / "specimens.csv"));
+  auto fit = [&](const std::string& params, const std::string& out) {
+    // Appended piecewise (GCC 12's false -Wrestrict on long operator+ chains).
+    std::string args = "diagnose ";
+    args += (sets / "reference").string();
+    args += ' ';
+    args += (sets / "null").string();
+    args += " --reference reference --scene ";
+    args += kScene;
+    args += " --work ";
+    args += (kWork / "model").string();
+    args += params;
+    args += " --only machine_compliance --confirm 0 --out ";
+    args += (kWork / out).string();
+    shard_test::run_shard(args, kWork);
+    return read_text(kWork / out / "diagnose.json");
+  };
+  const std::string two = fit(kParams, "base_two");
+  std::string three_params = kParams;
+  // tiny_bending.toml leaves poisson_ratio at beam_bond's default; a base parameter is read from the scene.
+  three_params += " --param bond.poisson_ratio --set bond.poisson_ratio=0.25";
+  const std::string three = fit(three_params, "base_three");
+  const double nrmse_two = number_after(two, "\"form_error_nrmse\": ");
+  const double nrmse_three = number_after(three, "\"form_error_nrmse\": ");
+  const double poisson = number_after(three, "\"bond.poisson_ratio\": ");
+  const double u_poisson = number_after(three, "\"bond.poisson_ratio\": ", three.find("\"base_uncertainty\""));
+  MESSAGE("form error NRMSE " << nrmse_two << " -> " << nrmse_three << ", poisson_ratio " << poisson << " +- "
+                              << u_poisson);
+  CHECK(three.find("\"base_form_targets\": true") != std::string::npos);
+  CHECK(two.find("\"base_form_targets\": false") != std::string::npos);
+  // Measured: 6.7 % -> 2.6 % (the sets' noise floor against their own model is 2.8 %), poisson_ratio
+  // 0.125 +- 0.028 with sigma_crit 7 % higher: the fit found another route than the by-hand
+  // poisson 0.4 (one parameter moved at a time), so the direction is not asserted, the move is.
+  CHECK(u_poisson > 0);
+  CHECK(std::abs(poisson - 0.25) > 2 * u_poisson);  // the move stands above its own uncertainty
+  CHECK(nrmse_three < 0.75 * nrmse_two);
 }

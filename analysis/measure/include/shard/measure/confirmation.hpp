@@ -31,6 +31,15 @@
 // (Comparison::with_simulated_band), and a refit whose NRMSE rises above the base refit's is not
 // named or kept, whatever its chi^2 did (`nrmse_may_rise` = false).
 //
+// Identifiability. A rate effect refit on data of one loading rate (RefitOutcome::identifiable
+// false: CandidateEffect::rates_needed) is judged like the others but can be neither named nor
+// kept: at one rate it changes only the curve's shape, which a rate-independent effect changes
+// too (a viscosity a tenth of the time to peak fitted hidden softening and asymmetry data as well
+// as the right effect did). It is a rival when it fits as well as the named one, and when it alone
+// would have been named the verdict stays "unexplained structured residual" with its name in
+// `unidentifiable` (the report asks for a second rate). It does not count in the Bonferroni share:
+// it cannot produce a name.
+//
 // Several effects (stepwise). A refit that meets every rule but the last (it explains most of the
 // excess, significantly, and the information criteria prefer it, but structure remains) is
 // `kept`: the diagnosis adds it to the model and diagnoses the remainder with it (DiagnosisStep).
@@ -46,6 +55,7 @@ struct RefitOutcome {
   double chi_square = 0;  // simulated chi^2 of the refit with this effect
   // Its NRMSE; NaN when not known (the no-rise rule is then not applied).
   double nrmse = std::numeric_limits<double>::quiet_NaN();
+  bool identifiable = true;  // false: a rate effect on data of too few rates (above)
 };
 
 struct ConfirmedEffect {
@@ -55,6 +65,8 @@ struct ConfirmedEffect {
   bool nrmse_rose = false;  // its NRMSE is above the base refit's: it won chi^2 by scattering
   bool qualifies = false;   // every rule but "what remains is noise"
   bool named = false;
+  bool identifiable = true;  // RefitOutcome::identifiable; when false, qualifies and named stay false
+  bool would_name = false;   // not identifiable, but meets every rule a name needs
 };
 
 struct ConfirmationRule {
@@ -75,8 +87,11 @@ struct ConfirmationDecision {
   std::vector<ConfirmedEffect> effects;  // in the order given
   std::string verdict;                   // the named effect, "unexplained structured residual" or "adequate"
   std::string best_partial;              // the refit that lowered chi^2 most when none is named
-  std::string kept;                      // when none is named: the qualifying refit with the lowest chi^2
+  // When none is named: the qualifying refit with the lowest chi^2, or of those within
+  // rival_chi_square of it the one with the lowest NRMSE (chi^2 does not tell them apart).
+  std::string kept;
   std::vector<std::string> rivals;       // refits the data cannot tell from the named one
+  std::string unidentifiable;            // with no name: an unidentifiable refit that would have been named
 };
 
 inline constexpr const char* kUnexplained = "unexplained structured residual";

@@ -72,6 +72,7 @@ struct ContrastFit {
   double drop = 0;         // chi^2_0 - chi^2_e
   double p_drop = 1;       // hotelling_p(drop, 1, nu - m + 1)
   double p_after = 1;      // Hotelling-type p of chi_square_form, m - 1 components
+  bool identifiable = true;  // EffectSignature::identifiable: false, never the verdict (a rival at most)
 };
 
 struct ContrastOptions {
@@ -98,6 +99,9 @@ struct ContrastDecision {
   std::vector<ContrastFit> fits;  // best (lowest chi^2_e) first
   std::string verdict;            // kNoDifference, the effect's name, or kUnexplainedDifference
   std::vector<std::string> rivals;
+  // With no effect named: the best fit that would have been named but cannot be told apart at the
+  // rates of this contrast (a rate effect when set and reference were tested at one rate).
+  std::string unidentifiable;
 };
 
 inline constexpr const char* kNoDifference = "no difference";

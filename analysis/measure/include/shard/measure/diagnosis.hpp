@@ -29,6 +29,9 @@ struct EffectSignature {
   // compliance, a viscosity or a Weibull modulus cannot go below neutral, so a = [0, inf).
   double scale_min = -std::numeric_limits<double>::infinity();
   double scale_max = std::numeric_limits<double>::infinity();
+  // False for a rate effect on data of fewer loading rates than it needs (CandidateEffect::
+  // rates_needed): scored and ranked, never the verdict.
+  bool identifiable = true;
 };
 
 struct EffectScore {
@@ -43,6 +46,7 @@ struct EffectScore {
   double delta_aic = 0;       // AIC(with effect) - AIC(base) = -LM + 2
   double delta_bic = 0;
   std::vector<std::string> explains;  // residual components it reduces the most
+  bool identifiable = true;           // EffectSignature::identifiable
 };
 
 struct Diagnosis {

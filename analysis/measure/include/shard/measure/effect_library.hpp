@@ -25,6 +25,10 @@
 //   peak_displacement   m, mean w at F_max
 //   secant_compliance   m/N, w_peak / F_max: a machine compliance is a fraction of the specimen's
 //   e.g.  plausible_from = "time_to_peak"   plausible_factor = 0.1
+// A rate effect (a viscosity) changes a curve at one loading rate only in its shape, which
+// rate-independent effects (softening, asymmetry) also change: `rates_needed = 2` says that the
+// data need that many loading rates before the effect can be told apart and named. With fewer, a
+// diagnosis still scores, refits and reports it (a rival, with the caveat), never names it.
 // A parameter that is not a plain number in the scene (a vector such as simulation.gravity) takes
 // `value_format = "[0.0, 0.0, {}]"`: the effect's scalar value goes where {} stands.
 #include <filesystem>
@@ -55,6 +59,10 @@ struct CandidateEffect {
   double max = std::numeric_limits<double>::infinity();
   std::string plausible_from;  // "" or a scale of the measurements (above)
   double plausible_factor = 0;
+  int rates_needed = 1;  // loading rates the data need before the effect can be named (above)
+
+  // Can the effect be told apart on data tested at `rates` loading rates?
+  bool identifiable_at(std::size_t rates) const { return rates >= static_cast<std::size_t>(rates_needed); }
 
   bool post_processing() const { return parameter == kMachineCompliance; }
   // The overrides that put the effect at `value` into a scene (none for machine compliance).
@@ -78,6 +86,17 @@ using SchemaNeutral = std::function<std::optional<double>(const std::string& par
 // (contact) plugin declaring KEY declares; none when no plugin declares one; throws when two
 // plugins declare different ones (the library entry must then give `neutral` itself).
 SchemaNeutral plugin_schema_neutrals();
+
+// The range a scene parameter may take: for bond.KEY and contact.KEY the tightest [min, max] over
+// every bond (contact) plugin on the default search path (and `extra_dirs`) declaring KEY
+// (ParamSpec); unbounded for other keys or when no plugin declares it. What a base fit may ask of
+// a parameter (bond.poisson_ratio <= 0.5).
+struct ParameterRange {
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+};
+ParameterRange plugin_parameter_range(const std::string& parameter,
+                                      const std::vector<std::filesystem::path>& extra_dirs = {});
 
 // Reads the library; errors name the file, line and column. An entry for a plugin parameter
 // leaves out `neutral`: it is the one the plugin's schema declares (`schema`), so that a neutral
