@@ -52,7 +52,9 @@ TEST_CASE("mass: the mass dataset wins; without density the reader asks for one"
   test::write_run_file(path, frames, 0.0);
   const RunFile file(path);
   CHECK(file.read_frame(0).mass == std::vector<double>{1.0, 2.0, 3.0, 4.0, 5.0, 6.0});
-  CHECK_THROWS_AS(file.read_frame(2), OutputError);
+  CHECK_THROWS_WITH_AS(file.read_frame(2), doctest::Contains("no mass dataset and the file no density attribute: "
+                                                              "give the particle density (e.g. --density 2500"),
+                       OutputError);
   const FrameData given = file.read_frame(2, 3000.0);
   CHECK(given.mass[3] == doctest::Approx(3000.0 * kSphere).epsilon(1e-14));
   CHECK_THROWS_AS(file.read_frame(1), OutputError);  // no such frame
@@ -112,6 +114,10 @@ TEST_CASE("a frame cut off before its time attribute is not listed") {
   const auto path = scratch("partial");
   test::write_run_file(path, frames, 2500.0);
   CHECK(RunFile(path).frames() == std::vector<std::size_t>{0});
+  // Asked for, it is named with what it lacks (docs/errors.md, row 66).
+  CHECK_THROWS_WITH_AS(RunFile(path).read_frame(2), doctest::Contains("frame 2 of '" + path.string() +
+                                                                      "' is incomplete (it lacks its step attribute)"),
+                       OutputError);
   std::filesystem::remove(path);
 }
 

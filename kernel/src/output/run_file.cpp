@@ -191,9 +191,9 @@ struct RunFile::Impl {
 
   // Why frame k is not readable, for the error message.
   std::string absent_frame(std::size_t k) const {
-    const std::string listed =
-        frames.empty() ? "it holds no complete frame yet"
-                       : fmt::format("its complete frames are {} to {}", frames.front(), frames.back());
+    std::string listed = "it holds no complete frame yet";
+    if (frames.size() == 1) listed = fmt::format("its one complete frame is {}", frames.front());
+    if (frames.size() > 1) listed = fmt::format("its complete frames are {} to {}", frames.front(), frames.back());
     if (h5::path_exists(id(), frame_path(k))) {
       std::string missing;
       try {
