@@ -3,7 +3,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <limits>
+#include <optional>
+#include <string>
 #include <numbers>
 #include <type_traits>
 
@@ -152,6 +155,14 @@ struct RunFile::Impl {
     }
   }
 
+  bool named_frame_complete(std::size_t k) const {
+    try {
+      return frame_complete(h5::open_group(id(), frame_path(k)).get());
+    } catch (const OutputError&) {
+      return false;
+    }
+  }
+
   h5::Handle open_frame(std::size_t k) const {
     if (k < addresses.size())
       return h5::check(H5Oopen_by_addr(id(), addresses[k]), H5Oclose,
@@ -181,7 +192,7 @@ struct RunFile::Impl {
       for (const std::string& name : h5::child_names(h5::open_group(id(), "frames").get())) {
         if (!is_frame_name(name)) continue;
         const std::size_t k = std::stoull(name);
-        if (k >= indexed && frame_complete(h5::open_group(id(), frame_path(k)).get())) frames.push_back(k);
+        if (k >= indexed && named_frame_complete(k)) frames.push_back(k);
       }
     } catch (const OutputError&) {
       // A torn link index ends the frames found by name; those found by address remain.
@@ -244,6 +255,17 @@ struct RunFile::Impl {
       event_rows = 0;
       event_error = error.what();
     }
+  }
+
+  // A scalar series column, cut to the rows every column holds.
+  template <class T>
+  std::vector<T> series(const std::string& name) const {
+    const auto& names = scalar_series_names();
+    if (std::find(names.begin(), names.end(), name) == names.end())
+      throw OutputError(fmt::format("no series '{}' in a run file; the series are: {}", name, fmt::join(names, ", ")));
+    require_series();
+    const h5::QuietErrors quiet;
+    return h5::read_dataset<T>(id(), "series/" + name, 0, series_rows);
   }
 
   void require_series() const {
@@ -386,24 +408,10 @@ FrameData RunFile::read_frame(std::size_t k, std::optional<double> density) cons
 
 std::size_t RunFile::series_rows() const { return impl_->series_rows; }
 
-std::vector<double> RunFile::read_series(const std::string& name) const {
-  const auto& names = scalar_series_names();
-  if (std::find(names.begin(), names.end(), name) == names.end())
-    throw OutputError(fmt::format("no series '{}' in a run file; the series are: {}", name,
-                                  fmt::join(names, ", ")));
-  impl_->require_series();
-  const h5::QuietErrors quiet;
-  return h5::read_dataset<double>(impl_->id(), "series/" + name, 0, impl_->series_rows);
-}
+std::vector<double> RunFile::read_series(const std::string& name) const { return impl_->series<double>(name); }
 
 std::vector<std::int64_t> RunFile::read_integer_series(const std::string& name) const {
-  const auto& names = scalar_series_names();
-  if (std::find(names.begin(), names.end(), name) == names.end())
-    throw OutputError(fmt::format("no series '{}' in a run file; the series are: {}", name,
-                                  fmt::join(names, ", ")));
-  impl_->require_series();
-  const h5::QuietErrors quiet;
-  return h5::read_dataset<std::int64_t>(impl_->id(), "series/" + name, 0, impl_->series_rows);
+  return impl_->series<std::int64_t>(name);
 }
 
 std::vector<std::string> RunFile::wall_names() const { return impl_->walls; }
