@@ -1,7 +1,7 @@
 #pragma once
 // The linear spring-dashpot law for any lane type (shard/lanes/lanes.hpp): F_n = max(0, k_n delta -
 // gamma v_n), gamma = 2 zeta sqrt(k_n m*); tangential spring k_t with dashpot 2 zeta sqrt(k_t m*)
-// (model.md sec. 2). The tangential spring, friction and the effect policies are the shared
+// (README.md, "Normal"). The tangential spring, friction and the effect policies are the shared
 // loop's (../common/contact_lanes.hpp). Each lane performs the operations of
 // linear_equations.hpp in their order, so the result does not depend on the lane width.
 #include "../common/contact_lanes.hpp"
