@@ -22,7 +22,7 @@ endfunction()
 # no a * b + c may be fused into one rounding (GCC would in an AVX-512 version, whose target
 # enables FMA).
 #
-# LANE_KERNELS: sources written once for a lane type (plugins/contact/common/lanes.hpp, lane_type.hpp),
+# LANE_KERNELS: sources written once for a lane type (kernel/include/shard/lanes/, lane_type.hpp),
 # each compiled once per instruction set with SHARD_LANES_<SET> defined: SCALAR (the reference,
 # T = double), BASELINE (xsimd's batch for the target's default set) and, on x86-64, AVX2 and
 # AVX512 (chosen at run time, lane_sets.hpp). All with -ffp-contract=off, so every set rounds as

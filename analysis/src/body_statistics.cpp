@@ -40,15 +40,16 @@ BodyReport body_statistics(const ParticleSample& particles, const std::vector<Fr
   return report;
 }
 
-void attach_impacts(BodyReport& report, const std::vector<BodyImpactRow>& impacts) {
+void attach_impacts(BodyReport& report, const std::vector<BodyImpact>& impacts) {
   for (BodyStatistics& b : report.bodies) {
     if (b.body < 0 || static_cast<std::size_t>(b.body) >= impacts.size()) continue;
-    const BodyImpactRow& row = impacts[static_cast<std::size_t>(b.body)];
-    b.impacted = row.hit;
-    b.impact_time = row.time;
-    b.impact_speed = row.speed;
-    b.impact_angle = row.angle;
-    b.impact_wall = row.wall;
+    const BodyImpact& impact = impacts[static_cast<std::size_t>(b.body)];
+    b.impacted = impact.hit;
+    b.impact_time = impact.time;
+    // As the run wrote them into /body_impacts (speed, angle): the same functions of the same numbers.
+    b.impact_speed = impact.speed();
+    b.impact_angle = impact.angle_degrees();
+    b.impact_wall = impact.wall;
   }
 }
 

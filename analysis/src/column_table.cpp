@@ -6,8 +6,7 @@
 #include <stdexcept>
 
 #include "column_table_h5.hpp"
-#include "hdf5_handle.hpp"
-#include "shard/analysis/run_file.hpp"
+#include "hdf5_writer.hpp"
 #include "shard/hdf5_quiet.hpp"
 
 namespace shard::analysis {
@@ -39,7 +38,7 @@ void write_string_attribute(hid_t object, const std::string& name, const std::st
   if (H5Aexists(object, name.c_str()) > 0) H5Adelete(object, name.c_str());
   h5::Handle attr(H5Acreate2(object, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
   if (!attr.valid() || H5Awrite(attr.get(), type.get(), text.c_str()) < 0)
-    throw RunFileError(fmt::format("HDF5: cannot write attribute {} of {}", name, what));
+    throw std::runtime_error(fmt::format("HDF5: cannot write attribute {} of {}", name, what));
 }
 
 void write_strings(hid_t group, const std::string& name, const std::vector<std::string>& values,
@@ -53,7 +52,7 @@ void write_strings(hid_t group, const std::string& name, const std::vector<std::
   h5::Handle set(H5Dcreate2(group, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                  H5Dclose);
   if (!set.valid() || (n > 0 && H5Dwrite(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, pointers.data()) < 0))
-    throw RunFileError("HDF5: cannot write " + what);
+    throw std::runtime_error("HDF5: cannot write " + what);
 }
 
 }  // namespace
@@ -92,27 +91,27 @@ std::size_t ColumnTable::rows() const {
 void write_csv(const ColumnTable& table, const std::filesystem::path& file) {
   const std::size_t rows = table.rows();
   std::ofstream out(file);
-  if (!out) throw RunFileError("cannot write " + file.string());
+  if (!out) throw std::runtime_error("cannot write " + file.string());
   for (std::size_t c = 0; c < table.columns.size(); ++c) out << (c ? "," : "") << csv_text(table.columns[c].name);
   out << "\n";
   for (std::size_t r = 0; r < rows; ++r) {
     for (std::size_t c = 0; c < table.columns.size(); ++c) out << (c ? "," : "") << cell(table.columns[c], r);
     out << "\n";
   }
-  if (!out) throw RunFileError("cannot write " + file.string());
+  if (!out) throw std::runtime_error("cannot write " + file.string());
 }
 
 void h5::write_table(hid_t file, const std::string& file_name, const std::string& group, const ColumnTable& table) {
   const std::size_t rows = table.rows();
   const std::string what = fmt::format("{} in {}", group, file_name);
-  if (group.empty() || group.front() != '/') throw RunFileError("HDF5 table group must be absolute: " + group);
+  if (group.empty() || group.front() != '/') throw std::runtime_error("HDF5 table group must be absolute: " + group);
   // Parents first, then the group itself replaced.
   for (std::size_t at = group.find('/', 1); at != std::string::npos; at = group.find('/', at + 1)) {
     const std::string parent = group.substr(0, at);
     if (!h5::has_link(file, parent)) h5::create_group(file, parent, fmt::format("{} in {}", parent, file_name));
   }
   if (h5::has_link(file, group) && H5Ldelete(file, group.c_str(), H5P_DEFAULT) < 0)
-    throw RunFileError("HDF5: cannot replace " + what);
+    throw std::runtime_error("HDF5: cannot replace " + what);
   const h5::Handle g = h5::create_group(file, group, what);
   for (const Column& c : table.columns) {
     const std::string where = fmt::format("{}/{} in {}", group, c.name, file_name);
@@ -136,7 +135,7 @@ void write_hdf5_table(const std::filesystem::path& file, const std::string& grou
                       : H5Fcreate(file.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT),
                H5Fclose);
   if (!f.valid())
-    throw RunFileError(fmt::format("HDF5: cannot {} {}", exists ? "open for writing" : "create", file.string()));
+    throw std::runtime_error(fmt::format("HDF5: cannot {} {}", exists ? "open for writing" : "create", file.string()));
   h5::write_table(f.get(), file.string(), group, table);
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <fstream>
 #include <ostream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -13,8 +14,9 @@
 #include "shard/analysis/fsd_plot.hpp"
 #include "shard/analysis/lineage.hpp"
 #include "shard/analysis/process_report.hpp"
-#include "shard/analysis/run_file.hpp"
+#include "shard/analysis/run_tables.hpp"
 #include "shard/analysis/size_distribution.hpp"
+#include "shard/run_file.hpp"
 
 namespace shard::analysis {
 
@@ -47,7 +49,7 @@ void print_distribution(const SizeDistribution& fsd, std::ostream& out) {
 
 void write_csv(const std::vector<Fragment>& fragments, const std::filesystem::path& path) {
   std::ofstream csv(path);
-  if (!csv) throw RunFileError("cannot write " + path.string());
+  if (!csv) throw std::runtime_error("cannot write " + path.string());
   csv << "fragment,particles,mass_kg,volume_m3,d_eq_m,cx_m,cy_m,cz_m,vx_m_s,vy_m_s,vz_m_s,"
          "min_x_m,min_y_m,min_z_m,max_x_m,max_y_m,max_z_m,body,mixed_bodies,smallest_id\n";
   for (const Fragment& f : fragments) {
@@ -58,7 +60,7 @@ void write_csv(const std::vector<Fragment>& fragments, const std::filesystem::pa
                        f.box_min.y(), f.box_min.z(), f.box_max.x(), f.box_max.y(), f.box_max.z(),
                        f.body, f.mixed_bodies ? 1 : 0, f.smallest_id);
   }
-  if (!csv) throw RunFileError("cannot write " + path.string());
+  if (!csv) throw std::runtime_error("cannot write " + path.string());
 }
 
 void print_bodies(const BodyReport& report, std::size_t rows, std::ostream& out) {
@@ -85,7 +87,7 @@ void print_bodies(const BodyReport& report, std::size_t rows, std::ostream& out)
 
 void write_body_csv(const BodyReport& report, const std::filesystem::path& path) {
   std::ofstream csv(path);
-  if (!csv) throw RunFileError("cannot write " + path.string());
+  if (!csv) throw std::runtime_error("cannot write " + path.string());
   csv << "body,particles,mass_kg,fragments,largest_fraction,broken,x10_m,x50_m,x90_m,fines_size_m,fines_mass_kg,"
          "impacted,impact_time_s,impact_speed_m_s,impact_angle_deg,impact_wall\n";
   for (const BodyStatistics& b : report.bodies) {
@@ -94,7 +96,7 @@ void write_body_csv(const BodyReport& report, const std::filesystem::path& path)
                        b.fsd.x50, b.fsd.x90, b.fsd.fines_size, b.fsd.fines_mass, b.impacted ? 1 : 0, b.impact_time,
                        b.impact_speed, b.impact_angle, b.impact_wall);
   }
-  if (!csv) throw RunFileError("cannot write " + path.string());
+  if (!csv) throw std::runtime_error("cannot write " + path.string());
 }
 
 // Bounded output: the first `rows` fragments of the earlier frame, at most 8 pieces each.
@@ -128,29 +130,37 @@ void print_lineage(std::int64_t from, std::int64_t to, const Lineage& l, std::si
   if (orphans > 0) out << fmt::format("  {} fragments have no particle in frame {}\n", orphans, from);
 }
 
+// --frame and --since: a frame number k of /frames/<k:06d>.
+std::size_t frame_number(std::int64_t k, const RunFile& file) {
+  if (k < 0)
+    throw std::invalid_argument(fmt::format("no frame {} in {}: frames are numbered from 0 (the last is {})", k,
+                                            file.path().string(), file.frames().back()));
+  return static_cast<std::size_t>(k);
+}
+
 }  // namespace
 
 int fragments_command(const FragmentsOptions& options, std::ostream& out, std::ostream& err) {
   try {
     if (options.body_csv && !options.by_body)
-      throw RunFileError("--body-csv writes the per-body table of --by-body: add --by-body");
+      throw std::invalid_argument("--body-csv writes the per-body table of --by-body: add --by-body");
     if (options.report && !options.by_body)
-      throw RunFileError("--report is the breakage report of --by-body: add --by-body");
+      throw std::invalid_argument("--report is the breakage report of --by-body: add --by-body");
     if ((options.speed_bins > 0 || !options.speed_edges.empty()) && !options.report)
-      throw RunFileError("--speed-bins and --speed-edges bin the impact speeds of --report: add --report DIR");
+      throw std::invalid_argument("--speed-bins and --speed-edges bin the impact speeds of --report: add --report DIR");
     if (options.speed_bins > 0 && !options.speed_edges.empty())
-      throw RunFileError("give either --speed-bins or --speed-edges, not both");
+      throw std::invalid_argument("give either --speed-bins or --speed-edges, not both");
     for (std::size_t e = 1; e < options.speed_edges.size(); ++e)
       if (!(options.speed_edges[e] > options.speed_edges[e - 1]))
-        throw RunFileError(fmt::format("--speed-edges must ascend: {} follows {}", options.speed_edges[e],
+        throw std::invalid_argument(fmt::format("--speed-edges must ascend: {} follows {}", options.speed_edges[e],
                                        options.speed_edges[e - 1]));
     const bool writes = options.write_labels || options.by_body;
     RunFile file(options.run_file, writes ? RunFile::Mode::read_write : RunFile::Mode::read);
-    const std::vector<std::int64_t> frames = file.frames();
-    if (frames.empty()) throw RunFileError(options.run_file.string() + " holds no frame yet");
-    const std::int64_t k = options.frame.value_or(frames.back());
-    const Frame frame = file.read_frame(k, options.density);
-    const FragmentAnalysis analysis = analyse_fragments(frame.sample(), frame.bonds());
+    const std::vector<std::size_t>& frames = file.frames();
+    if (frames.empty()) throw std::runtime_error(options.run_file.string() + " holds no frame yet");
+    const std::size_t k = frame_number(options.frame.value_or(static_cast<std::int64_t>(frames.back())), file);
+    const FrameData frame = file.read_frame(k, options.density);
+    const FragmentAnalysis analysis = analyse_fragments(particle_sample(frame), bond_list(frame));
     const SizeDistribution fsd = size_distribution(analysis.fragments, options.fines_size);
 
     out << fmt::format("{}: frame {} (step {}, t = {:.6g} s), {} particles, {} bonds\n",
@@ -161,11 +171,11 @@ int fragments_command(const FragmentsOptions& options, std::ostream& out, std::o
     print_distribution(fsd, out);
 
     if (options.since) {
-      const Frame earlier = file.read_frame(*options.since, options.density);
-      const FragmentAnalysis before = analyse_fragments(earlier.sample(), earlier.bonds());
+      const FrameData earlier = file.read_frame(frame_number(*options.since, file), options.density);
+      const FragmentAnalysis before = analyse_fragments(particle_sample(earlier), bond_list(earlier));
       const Lineage l = lineage({earlier.id, before.labels, static_cast<Index>(before.fragments.size())},
                                 {frame.id, analysis.labels, static_cast<Index>(analysis.fragments.size())});
-      print_lineage(*options.since, k, l, options.rows, out);
+      print_lineage(*options.since, static_cast<std::int64_t>(k), l, options.rows, out);
     }
     if (options.csv) {
       write_csv(analysis.fragments, *options.csv);
@@ -173,15 +183,15 @@ int fragments_command(const FragmentsOptions& options, std::ostream& out, std::o
     }
     if (options.write_labels) {
       file.write_fragment_labels(k, analysis.labels);
-      file.write_fragment_table(k, analysis.fragments, fsd);
+      write_fragment_table(file, k, analysis.fragments, fsd);
       out << fmt::format("wrote /frames/{0}/fragment and /fragments/{0}\n", frame_name(k));
     }
     if (options.by_body) {
       BodyReport report =
-          body_statistics(frame.sample(), analysis.fragments, options.intact_fraction, options.fines_size);
+          body_statistics(particle_sample(frame), analysis.fragments, options.intact_fraction, options.fines_size);
       attach_impacts(report, file.read_body_impacts());
       print_bodies(report, options.rows, out);
-      file.write_body_table(k, report);
+      write_body_table(file, k, report);
       out << fmt::format("wrote /bodies/{}\n", frame_name(k));
       if (options.body_csv) {
         write_body_csv(report, *options.body_csv);

@@ -1,8 +1,9 @@
 #include "shard/analysis/plate_outcome.hpp"
 
 #include <map>
+#include <stdexcept>
 
-#include "shard/analysis/run_file.hpp"
+#include "shard/analysis/run_tables.hpp"
 
 namespace shard::analysis {
 
@@ -40,14 +41,14 @@ std::vector<PlateOutcome> plate_outcomes(const BodyReport& report, const std::ve
 
 RunBodies analyse_run_bodies(const RunFile& file, std::optional<std::int64_t> frame, double intact_fraction,
                              double fines_size, std::optional<double> density) {
-  const std::vector<std::int64_t> frames = file.frames();
-  if (frames.empty()) throw RunFileError(file.path().string() + " holds no frame yet");
+  const std::vector<std::size_t>& frames = file.frames();
+  if (frames.empty()) throw std::runtime_error(file.path().string() + " holds no frame yet");
   RunBodies out;
-  out.frame = frame.value_or(frames.back());
-  const Frame f = file.read_frame(out.frame, density);
+  out.frame = frame.value_or(static_cast<std::int64_t>(frames.back()));
+  const FrameData f = file.read_frame(static_cast<std::size_t>(out.frame), density);
   out.time = f.time;
-  out.fragments = analyse_fragments(f.sample(), f.bonds()).fragments;
-  out.report = body_statistics(f.sample(), out.fragments, intact_fraction, fines_size);
+  out.fragments = analyse_fragments(particle_sample(f), bond_list(f)).fragments;
+  out.report = body_statistics(particle_sample(f), out.fragments, intact_fraction, fines_size);
   attach_impacts(out.report, file.read_body_impacts());
   return out;
 }

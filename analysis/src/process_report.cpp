@@ -4,10 +4,11 @@
 
 #include <fstream>
 #include <ostream>
+#include <stdexcept>
 
 #include "shard/analysis/breakage_plot.hpp"
 #include "shard/analysis/fsd_plot.hpp"
-#include "shard/analysis/run_file.hpp"
+#include "shard/analysis/column_table.hpp"
 
 namespace shard::analysis {
 namespace {
@@ -88,9 +89,9 @@ std::string method_paragraph(const CurveOptions& options, double intact_fraction
 
 void write_text_file(const std::filesystem::path& file, const std::string& text) {
   std::ofstream out(file);
-  if (!out) throw RunFileError("cannot write " + file.string());
+  if (!out) throw std::runtime_error("cannot write " + file.string());
   out << text;
-  if (!out) throw RunFileError("cannot write " + file.string());
+  if (!out) throw std::runtime_error("cannot write " + file.string());
 }
 
 void write_run_breakage_report(RunFile& file, const RunBodies& bodies, double intact_fraction,
@@ -108,8 +109,8 @@ void write_run_breakage_report(RunFile& file, const RunBodies& bodies, double in
   const ColumnTable speed_table = group_table(by_speed, GroupedBy::impact_speed, options.curve);
   write_csv(plate_table(plates), options.dir / "plates.csv");
   write_csv(speed_table, options.dir / "breakage_vs_speed.csv");
-  const std::string group = fmt::format("/breakage/{}/by_impact_speed", frame_name(bodies.frame));
-  file.write_table(group, speed_table);
+  const std::string group = fmt::format("/breakage/{}/by_impact_speed", frame_name(static_cast<std::size_t>(bodies.frame)));
+  write_hdf5_table(file.path(), group, speed_table);  // beside the run file's own tables
 
   const fs::path image = options.dir / "breakage_vs_speed.png";
   bool pictured = true;

@@ -11,7 +11,8 @@
 #include <set>
 #include <thread>
 
-#include "shard/analysis/run_file.hpp"
+#include "shard/analysis/run_tables.hpp"
+#include "shard/run_file.hpp"
 #include "shard/app/run_command.hpp"
 #include "shard/app/sweep_command.hpp"
 #include "shard/driver/fragment_labeller.hpp"
@@ -122,10 +123,10 @@ SweepResult run_sweep(const SweepOptions& options, std::ostream& log) {
       r.run_file = outputs[i];
       r.wall_seconds = walls[i];
       try {
-        analysis::RunFile file(r.run_file, analysis::RunFile::Mode::read_write);
+        RunFile file(r.run_file, RunFile::Mode::read_write);
         const analysis::RunBodies bodies =
             analysis::analyse_run_bodies(file, std::nullopt, options.intact_fraction, options.fines_size);
-        file.write_body_table(bodies.frame, bodies.report);  // /bodies/<k>, as --by-body writes it
+        analysis::write_body_table(file, static_cast<std::size_t>(bodies.frame), bodies.report);  // /bodies/<k>, as --by-body writes it
         plates[i] = analysis::plate_outcomes(bodies.report, bodies.fragments, r.label, r.value, r.seed);
         r.plates = bodies.report.bodies.size();
         r.broken = bodies.report.broken;

@@ -71,7 +71,7 @@ std::int64_t copy_run_prefix(const std::filesystem::path& old_file, RunWriter& w
   writer.append_break_events(std::vector<BondBreakEvent>(
       s.events.begin(), s.events.begin() + static_cast<std::ptrdiff_t>(s.events_taken)));
   std::int64_t copied = 0;
-  for (std::size_t k = 0; k < old.frame_count(); ++k) {
+  for (const std::size_t k : old.frames()) {
     const FrameData f = old.read_frame(k);
     if (f.step > s.step) break;
     if (!on_cadence(f.step, cadence.frame_every)) continue;
@@ -83,11 +83,10 @@ std::int64_t copy_run_prefix(const std::filesystem::path& old_file, RunWriter& w
     p.radius = f.radius;
     p.material = f.material;
     p.body = f.body;
+    p.mass = f.mass;
     Bonds b;
-    for (const auto& pair : f.bonds) {
-      b.i.push_back(pair[0]);
-      b.j.push_back(pair[1]);
-    }
+    b.i = f.bond_i;
+    b.j = f.bond_j;
     writer.write_frame(f.step, f.time, p, b, f.fragment ? &*f.fragment : nullptr);
     ++copied;
   }

@@ -1,6 +1,6 @@
 #pragma once
 // Writes a small run.h5 in the layout of docs/output-format.md with HDF5's C API directly (not
-// through the analysis library), so the reader is checked against the documented layout.
+// through shard::RunWriter), so the reader is checked against the documented layout.
 #include <hdf5.h>
 
 #include <cstdint>

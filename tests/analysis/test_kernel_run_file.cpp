@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "shard/analysis/fragment_table.hpp"
-#include "shard/analysis/run_file.hpp"
+#include "shard/analysis/run_tables.hpp"
 #include "shard/bonds.hpp"
 #include "shard/output.hpp"
 #include "shard/particles.hpp"
@@ -31,8 +31,8 @@ TEST_CASE("a frame written by RunWriter reads back: ids, state, bonds, fragments
     writer.write_frame(250, 2.5e-6, p, bonds);
   }
   const RunFile file(dir / "run.h5");
-  REQUIRE(file.frames() == std::vector<std::int64_t>{0, 1});
-  const Frame f = file.read_frame(1, rho);
+  REQUIRE(file.frames() == std::vector<std::size_t>{0, 1});
+  const FrameData f = file.read_frame(1, rho);
   CHECK(f.step == 250);
   CHECK(f.time == doctest::Approx(2.5e-6));
   CHECK(f.id == p.id);
@@ -44,7 +44,7 @@ TEST_CASE("a frame written by RunWriter reads back: ids, state, bonds, fragments
     CHECK(f.position[k].x() == p.position[k].x());
     CHECK(f.mass[k] == doctest::Approx(p.mass[k]).epsilon(1e-14));  // same formula, same rho
   }
-  const FragmentAnalysis a = analyse_fragments(f.sample(), f.bonds());
+  const FragmentAnalysis a = analyse_fragments(particle_sample(f), bond_list(f));
   REQUIRE(a.fragments.size() == 2);
   CHECK(a.labels == std::vector<Index>{0, 0, 0, 1, 1});
   CHECK(a.fragments[0].mass == doctest::Approx(p.mass[0] + p.mass[1] + p.mass[2]).epsilon(1e-14));

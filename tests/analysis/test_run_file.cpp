@@ -6,7 +6,7 @@
 #include <numbers>
 
 #include "run_file_fixture.hpp"
-#include "shard/analysis/run_file.hpp"
+#include "shard/analysis/run_tables.hpp"
 
 using namespace shard;
 using namespace shard::analysis;
@@ -22,9 +22,9 @@ TEST_CASE("frames, particles and bonds read as written; mass from the density at
   const auto path = scratch("read");
   test::write_run_file(path, test::breaking_bar(), 2500.0);
   const RunFile file(path);
-  CHECK(file.frames() == std::vector<std::int64_t>{0, 2});
+  CHECK(file.frames() == std::vector<std::size_t>{0, 2});
 
-  const Frame f = file.read_frame(2);
+  const FrameData f = file.read_frame(2);
   CHECK(f.step == 1000);
   CHECK(f.time == doctest::Approx(1e-4));
   REQUIRE(f.id.size() == 6);
@@ -34,10 +34,10 @@ TEST_CASE("frames, particles and bonds read as written; mass from the density at
   CHECK(f.bond_i.size() == 4);
   CHECK(f.bond_i[0] == 5);  // bond 100-101: rows 5 and 4
   CHECK(f.bond_j[0] == 4);
-  CHECK(f.body.empty());
+  CHECK(f.body == std::vector<std::int32_t>(6, 0));  // no body dataset: one body
   for (double m : f.mass) CHECK(m == doctest::Approx(2500.0 * kSphere).epsilon(1e-14));
 
-  const FragmentAnalysis a = analyse_fragments(f.sample(), f.bonds());
+  const FragmentAnalysis a = analyse_fragments(particle_sample(f), bond_list(f));
   REQUIRE(a.fragments.size() == 2);
   // Equal masses (3 particles each): fragment 0 holds the smallest id, 100..102 (rows 3..5).
   CHECK(a.labels == std::vector<Index>{1, 1, 1, 0, 0, 0});
@@ -52,10 +52,12 @@ TEST_CASE("mass: the mass dataset wins; without density the reader asks for one"
   test::write_run_file(path, frames, 0.0);
   const RunFile file(path);
   CHECK(file.read_frame(0).mass == std::vector<double>{1.0, 2.0, 3.0, 4.0, 5.0, 6.0});
-  CHECK_THROWS_AS(file.read_frame(2), RunFileError);
-  const Frame given = file.read_frame(2, 3000.0);
+  CHECK_THROWS_WITH_AS(file.read_frame(2), doctest::Contains("no mass dataset and the file no density attribute: "
+                                                              "give the particle density (e.g. --density 2500"),
+                       OutputError);
+  const FrameData given = file.read_frame(2, 3000.0);
   CHECK(given.mass[3] == doctest::Approx(3000.0 * kSphere).epsilon(1e-14));
-  CHECK_THROWS_AS(file.read_frame(1), RunFileError);  // no such frame
+  CHECK_THROWS_AS(file.read_frame(1), OutputError);  // no such frame
   std::filesystem::remove(path);
 }
 
@@ -64,9 +66,9 @@ TEST_CASE("an empty bond set reads as no bond: every particle its own fragment")
   frames[1].bonds.clear();
   const auto path = scratch("empty");
   test::write_run_file(path, frames, 2500.0);
-  const Frame f = RunFile(path).read_frame(2);
+  const FrameData f = RunFile(path).read_frame(2);
   CHECK(f.bond_i.empty());
-  CHECK(analyse_fragments(f.sample(), f.bonds()).fragments.size() == 6);
+  CHECK(analyse_fragments(particle_sample(f), bond_list(f)).fragments.size() == 6);
   std::filesystem::remove(path);
 }
 
@@ -75,10 +77,10 @@ TEST_CASE("labels and the fragment table are written back and read by HDF5") {
   test::write_run_file(path, test::breaking_bar(), 2500.0);
   {
     RunFile file(path, RunFile::Mode::read_write);
-    const Frame f = file.read_frame(2);
-    const FragmentAnalysis a = analyse_fragments(f.sample(), f.bonds());
+    const FrameData f = file.read_frame(2);
+    const FragmentAnalysis a = analyse_fragments(particle_sample(f), bond_list(f));
     file.write_fragment_labels(2, a.labels);
-    file.write_fragment_table(2, a.fragments, size_distribution(a.fragments));
+    write_fragment_table(file, 2, a.fragments, size_distribution(a.fragments));
     file.write_fragment_labels(2, a.labels);  // replacing must work too
   }
   const hid_t h = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
@@ -111,14 +113,17 @@ TEST_CASE("a frame cut off before its time attribute is not listed") {
   frames[1].complete = false;
   const auto path = scratch("partial");
   test::write_run_file(path, frames, 2500.0);
-  CHECK(RunFile(path).frames() == std::vector<std::int64_t>{0});
+  CHECK(RunFile(path).frames() == std::vector<std::size_t>{0});
+  // Asked for, it is named with what it lacks (docs/errors.md, row 73).
+  const std::string incomplete = "frame 2 of '" + path.string() + "' is incomplete (it lacks its step attribute)";
+  CHECK_THROWS_WITH_AS(RunFile(path).read_frame(2), doctest::Contains(incomplete.c_str()), OutputError);
   std::filesystem::remove(path);
 }
 
 TEST_CASE("a missing or foreign file is reported by name") {
-  CHECK_THROWS_AS(RunFile{scratch("does_not_exist")}, RunFileError);
+  CHECK_THROWS_AS(RunFile{scratch("does_not_exist")}, OutputError);
   const auto text = std::filesystem::temp_directory_path() / "shard_test_not_hdf5.h5";
   { std::ofstream(text) << "hello"; }
-  CHECK_THROWS_AS(RunFile{text}, RunFileError);
+  CHECK_THROWS_AS(RunFile{text}, OutputError);
   std::filesystem::remove(text);
 }

@@ -68,7 +68,7 @@ void check_file(const std::filesystem::path& path, int frames_reported) {
     CHECK(f.omega == p.omega);
     CHECK(f.radius == p.radius);
     CHECK(f.material == p.material);
-    CHECK(f.bonds.size() == kParticles - 2);
+    CHECK(f.bond_i.size() == kParticles - 2);
   }
   // Every frame flushed the rows and events appended before it.
   const std::size_t rows = run.series_rows();

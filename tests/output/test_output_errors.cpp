@@ -94,7 +94,7 @@ TEST_CASE("inconsistent input is refused before anything is written") {
   const RunFile run(path);
   REQUIRE(run.frame_count() == 1);
   CHECK(run.read_frame(0).step == 7);
-  CHECK(run.read_frame(0).bonds.size() == 3);
+  CHECK(run.read_frame(0).bond_i.size() == 3);
 }
 
 TEST_CASE("RunFile refuses missing files and files that are not run files") {

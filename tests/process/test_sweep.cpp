@@ -12,7 +12,7 @@
 #include <string>
 
 #include "shard/analysis/fragments_command.hpp"
-#include "shard/analysis/run_file.hpp"
+#include "shard/run_file.hpp"
 #include "shard/app/sweep_command.hpp"
 #include "shard/scene.hpp"
 
@@ -68,7 +68,7 @@ std::vector<std::map<std::string, std::string>> read_csv(const fs::path& file) {
 }
 
 std::vector<double> first_frame_radii(const fs::path& run) {
-  const analysis::RunFile f(run);
+  const RunFile f(run);
   return f.read_frame(f.frames().front()).radius;
 }
 

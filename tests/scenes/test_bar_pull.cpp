@@ -23,15 +23,10 @@ TEST_CASE("the notched bar of scenes/bar_pull parts at its notch into two fragme
 
   RunFile run(summary.output);
   const FrameData frame = run.read_frame(run.frame_count() - 1);
-  std::vector<Index> bi, bj;
-  for (const auto& b : frame.bonds) {
-    bi.push_back(b[0]);
-    bj.push_back(b[1]);
-  }
   const double sphere_mass = 3720.0 * 4.0 / 3.0 * std::numbers::pi * 1e-9;
   std::vector<double> mass(frame.id.size(), sphere_mass);
   analysis::ParticleSample sample{frame.id, frame.position, frame.velocity, frame.radius, mass, {}};
-  const auto result = analysis::analyse_fragments(sample, {bi, bj});
+  const auto result = analysis::analyse_fragments(sample, {frame.bond_i, frame.bond_j});
   REQUIRE(result.fragments.size() == 2);
   for (const auto& f : result.fragments) {
     CHECK(f.particles == 90);

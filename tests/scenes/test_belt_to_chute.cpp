@@ -12,7 +12,8 @@
 #include <vector>
 
 #include "shard/analysis/body_statistics.hpp"
-#include "shard/analysis/run_file.hpp"
+#include "shard/analysis/components.hpp"
+#include "shard/analysis/run_tables.hpp"
 #include "shard/app/run_command.hpp"
 #include "shard/run_file.hpp"
 #include "shard/scene_override.hpp"
@@ -52,7 +53,7 @@ std::vector<BodyMotion> bodies_of(const FrameData& frame) {
     b.centre /= b.mass;
     b.velocity /= b.mass;
   }
-  for (const auto& bond : frame.bonds) ++out[static_cast<std::size_t>(frame.body[static_cast<std::size_t>(bond[0])])].bonds;
+  for (const Index i : frame.bond_i) ++out[static_cast<std::size_t>(frame.body[static_cast<std::size_t>(i)])].bonds;
   return out;
 }
 
@@ -140,10 +141,10 @@ TEST_CASE("scenes/belt_to_chute reduced: belt-thrown plates strike the chute as 
   CHECK(on_belt >= 1);
 
   // Per-body statistics on the last frame: mass conserved, and only struck plates are broken.
-  const analysis::RunFile file(summary.output);
-  const analysis::Frame frame = file.read_frame(file.frames().back());
-  const auto fragments = analysis::analyse_fragments(frame.sample(), frame.bonds());
-  const analysis::BodyReport report = analysis::body_statistics(frame.sample(), fragments.fragments, 0.9, 0.005);
+  const FrameData frame = run.read_frame(run.frame_count() - 1);
+  const auto fragments = analysis::analyse_fragments(analysis::particle_sample(frame), analysis::bond_list(frame));
+  const analysis::BodyReport report =
+      analysis::body_statistics(analysis::particle_sample(frame), fragments.fragments, 0.9, 0.005);
   double fragment_mass = 0, particle_mass = 0;
   for (const auto& f : fragments.fragments) fragment_mass += f.mass;
   for (const auto& b : report.bodies) particle_mass += b.mass;

@@ -13,7 +13,7 @@
 #include "shard/analysis/body_statistics.hpp"
 #include "shard/body_impacts.hpp"
 #include "shard/analysis/fragments_command.hpp"
-#include "shard/analysis/run_file.hpp"
+#include "shard/analysis/run_tables.hpp"
 #include "shard/app/run_command.hpp"
 #include "shard/checkpoint.hpp"
 #include "shard/plugin_host.hpp"
@@ -284,18 +284,19 @@ TEST_CASE("two identical bars dropped identically keep their body ids, never bon
       const FrameData frame = run.read_frame(f);
       // Ids 0..39 were generated in body 0, 40..79 in body 1, whatever the row order.
       for (std::size_t k = 0; k < frame.id.size(); ++k) CHECK(frame.body[k] == (frame.id[k] < 40 ? 0 : 1));
-      for (const auto& b : frame.bonds)
-        CHECK(frame.body[static_cast<std::size_t>(b[0])] == frame.body[static_cast<std::size_t>(b[1])]);
+      for (std::size_t b = 0; b < frame.bond_i.size(); ++b)
+        CHECK(frame.body[static_cast<std::size_t>(frame.bond_i[b])] ==
+              frame.body[static_cast<std::size_t>(frame.bond_j[b])]);
     }
   }
 
   analysis::BodyReport report;
   std::multiset<std::size_t> sizes_left, sizes_right;
   {
-    const analysis::RunFile file(summary.output);  // closed before the command reopens it for writing
-    const analysis::Frame last = file.read_frame(file.frames().back());
-    const auto fragments = analysis::analyse_fragments(last.sample(), last.bonds());
-    report = analysis::body_statistics(last.sample(), fragments.fragments, 0.9, 0.005);
+    const RunFile file(summary.output);  // closed before the command reopens it for writing
+    const FrameData last = file.read_frame(file.frames().back());
+    const auto fragments = analysis::analyse_fragments(analysis::particle_sample(last), analysis::bond_list(last));
+    report = analysis::body_statistics(analysis::particle_sample(last), fragments.fragments, 0.9, 0.005);
     for (const auto& f : fragments.fragments) (f.body == 0 ? sizes_left : sizes_right).insert(f.particles);
   }
   REQUIRE(report.bodies.size() == 2);

@@ -134,7 +134,7 @@ BendingReport analyse_bending_run(const std::filesystem::path& path, const Bendi
   if (file.frame_count() == 0) throw std::runtime_error(fmt::format("{}: no frames", path.string()));
   const FrameData first = file.read_frame(0);
   r.particles = first.id.size();
-  r.bonds = first.bonds.size();
+  r.bonds = first.bond_i.size();
   if (r.particles == 0) throw std::runtime_error(fmt::format("{}: the first frame holds no particles", path.string()));
   const SphereExtent extent = sphere_extent(frame, first.position, first.radius);
   double dsum = 0;
@@ -176,10 +176,8 @@ BendingReport analyse_bending_run(const std::filesystem::path& path, const Bendi
   {
     std::vector<double> mass(last.radius.size());
     for (std::size_t k = 0; k < mass.size(); ++k) mass[k] = density * analysis::sphere_volume(last.radius[k]);
-    std::vector<Index> bi, bj;
-    for (const auto& b : last.bonds) bi.push_back(b[0]), bj.push_back(b[1]);
     const analysis::ParticleSample sample{last.id, last.position, last.velocity, last.radius, mass, {}};
-    const auto fa = analysis::analyse_fragments(sample, {bi, bj});
+    const auto fa = analysis::analyse_fragments(sample, {last.bond_i, last.bond_j});
     double total = 0;
     for (const auto& f : fa.fragments) total += f.mass;
     r.fragments.count = fa.fragments.size();
@@ -192,10 +190,8 @@ BendingReport analyse_bending_run(const std::filesystem::path& path, const Bendi
 
   // The network's own stiffness: the Voigt estimate of the first frame's bonds.
   {
-    std::vector<Index> bi, bj;
-    for (const auto& b : first.bonds) bi.push_back(b[0]), bj.push_back(b[1]);
     const double volume = r.length * g.width * g.height;
-    r.voigt = voigt_modulus(first.position, first.radius, bi, bj, r.bond, volume, r.axis);
+    r.voigt = voigt_modulus(first.position, first.radius, first.bond_i, first.bond_j, r.bond, volume, r.axis);
     const double e_over_g = 2.0 * (1.0 + std::clamp(r.voigt.poisson_ratio, 0.0, 0.49));
     r.shear_correction = shear_to_bending_deflection(g, e_over_g);
   }

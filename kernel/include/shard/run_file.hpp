@@ -1,15 +1,18 @@
 #pragma once
-// Reads a run file written by RunWriter (layout in docs/output-format.md): the metadata, the
-// time series, the bond-break log and the frames. Opens finished runs, running ones (what has
-// been flushed when it is opened) and killed ones: a frame is listed only when all of it was
-// flushed, and the series columns are cut to the rows every column holds.
-#include <array>
+// The one reader of a run file (layout in docs/output-format.md): the metadata, the time series,
+// the bond-break log and the frames, for `shard run --restart`, `shard bending`, `shard fragments`
+// and the tests. Opens finished runs, running ones (what has been flushed when it is opened) and
+// killed ones: a frame is listed only when all of it was flushed, and the series columns are cut
+// to the rows every column holds. Opened for writing, it stores what the analysis adds: fragment
+// labels in a frame and tables under a group (docs/fragments.md).
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <variant>
 #include <vector>
 
 #include "shard/bonds.hpp"
@@ -26,16 +29,34 @@ struct FrameData {
   std::vector<Vec3> velocity;  // m/s
   std::vector<Vec3> omega;     // rad/s
   std::vector<double> radius;  // m
+  // kg: the frame's mass dataset, else rho 4/3 pi r^3 (RunFile::read_frame); mass_source says which.
+  std::vector<double> mass;
+  std::string mass_source;
   std::vector<std::int32_t> material;
   std::vector<std::int32_t> body;  // scene body of each particle (all 0 in files without the dataset)
-  std::vector<std::array<Index, 2>> bonds;  // row indices into this frame's arrays
+  std::vector<Index> bond_i, bond_j;  // surviving bonds, row indices into this frame's arrays
   std::optional<std::vector<Index>> fragment;  // present when fragments were analysed
 };
 
+// A table stored under one group of a run file: a dataset per column (all of one length) and the
+// table's figures as attributes, in the order given.
+struct RunTable {
+  using Column = std::variant<std::vector<std::int32_t>, std::vector<std::int64_t>, std::vector<double>,
+                              std::vector<Vec3>>;
+  using Figure = std::variant<std::int64_t, double>;
+  std::vector<std::pair<std::string, Column>> columns;
+  std::vector<std::pair<std::string, Figure>> figures;
+};
+
+// "000012": the name of frame 12 under /frames.
+std::string frame_name(std::size_t k);
+
 class RunFile {
  public:
-  // Throws OutputError naming the path when it is missing or not a Shard run file.
-  explicit RunFile(const std::filesystem::path& path);
+  enum class Mode { read, read_write };
+  // Throws OutputError naming the path and the fix when it is missing, a folder, no HDF5 file, no
+  // run file (no /frames group: a checkpoint?) or, for writing, cannot be opened for writing.
+  explicit RunFile(const std::filesystem::path& path, Mode mode = Mode::read);
   static RunFile open(const std::filesystem::path& path) { return RunFile(path); }
   ~RunFile();
   RunFile(RunFile&&) noexcept;
@@ -49,8 +70,16 @@ class RunFile {
   RunMetadata metadata() const;
   int abi_version() const;
 
+  // The numbers k of the complete frames /frames/<k:06d>, ascending; a run of `shard run` numbers
+  // them 0 .. frame_count() - 1. A frame is complete once it holds its step and time attributes and
+  // every dataset of the layout (a kill may have torn the last one).
+  const std::vector<std::size_t>& frames() const;
   std::size_t frame_count() const;
-  FrameData read_frame(std::size_t k) const;
+  // Frame k (a number of frames()). Masses: the frame's "mass" dataset when it has one, else
+  // m = rho 4/3 pi r^3 with rho = `density` (kg/m^3) when given, else the "density" attribute of
+  // the frame group or of the root (a number for every particle or a list indexed by material);
+  // throws OutputError asking for the density when there is none of these.
+  FrameData read_frame(std::size_t k, std::optional<double> density = std::nullopt) const;
 
   // Series rows held by every column.
   std::size_t series_rows() const;
@@ -69,6 +98,11 @@ class RunFile {
   std::vector<BondBreakEvent> read_break_events() const;
   // /body_impacts; empty when the run wrote none (killed, or older than the record).
   std::vector<BodyImpact> read_body_impacts() const;
+
+  // Mode::read_write only. Replaces frame k's "fragment" dataset (one label per particle row).
+  void write_fragment_labels(std::size_t k, const std::vector<Index>& labels);
+  // Replaces the group `group` (e.g. "fragments/000012", parents created) with the table.
+  void write_table(const std::string& group, const RunTable& table);
 
  private:
   struct Impl;

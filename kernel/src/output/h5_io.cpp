@@ -108,6 +108,20 @@ std::uint64_t read_uint_attribute(hid_t object, const std::string& name) {
   return read_scalar_attribute<std::uint64_t>(object, name);
 }
 
+std::vector<double> read_double_array_attribute(hid_t object, const std::string& name) {
+  Handle attribute = attribute_handle(H5Aopen(object, name.c_str(), H5P_DEFAULT),
+                                      "opening attribute '" + name + "'");
+  Handle space = space_handle(H5Aget_space(attribute.get()), "reading the shape of attribute '" + name + "'");
+  if (H5Sget_simple_extent_ndims(space.get()) > 1)
+    throw OutputError("attribute '" + name + "' has more than one dimension, expected a number or a list");
+  const hssize_t count = H5Sget_simple_extent_npoints(space.get());
+  if (count < 0) fail("counting the values of attribute '" + name + "'");
+  std::vector<double> values(static_cast<std::size_t>(count));
+  if (!values.empty())
+    check(H5Aread(attribute.get(), H5T_NATIVE_DOUBLE, values.data()), "reading attribute '" + name + "'");
+  return values;
+}
+
 std::vector<std::string> attribute_names(hid_t object) {
   std::vector<std::string> names;
   hsize_t position = 0;
@@ -165,6 +179,10 @@ std::vector<std::string> child_names(hid_t group) {
   check(H5Literate(group, H5_INDEX_NAME, H5_ITER_INC, &position, collect_link_name, &names),
         "listing group members");
   return names;
+}
+
+void remove_link(hid_t parent, const std::string& name) {
+  if (path_exists(parent, name)) check(H5Ldelete(parent, name.c_str(), H5P_DEFAULT), "removing '" + name + "'");
 }
 
 void write_dataset(hid_t parent, const std::string& name, hid_t file_type, hid_t memory_type,

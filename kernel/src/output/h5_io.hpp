@@ -53,6 +53,8 @@ std::string read_string_attribute(hid_t object, const std::string& name);
 double read_double_attribute(hid_t object, const std::string& name);
 std::int64_t read_int_attribute(hid_t object, const std::string& name);
 std::uint64_t read_uint_attribute(hid_t object, const std::string& name);
+// A scalar or one-dimensional numeric attribute, converted to double.
+std::vector<double> read_double_array_attribute(hid_t object, const std::string& name);
 // Names in creation order when tracked, else in name order.
 std::vector<std::string> attribute_names(hid_t object);
 
@@ -67,6 +69,8 @@ Handle open_group(hid_t parent, const std::string& path);
 // True when every component of `path` exists (H5Lexists on each prefix, as HDF5 requires).
 bool path_exists(hid_t parent, const std::string& path);
 std::vector<std::string> child_names(hid_t group);
+// Removes the link `name` below parent when there is one (a dataset or group to be replaced).
+void remove_link(hid_t parent, const std::string& name);
 
 // --- fixed-size datasets ------------------------------------------------------------------
 // A [rows] dataset when cols == 0, else [rows, cols]; contiguous storage.

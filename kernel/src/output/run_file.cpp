@@ -3,7 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <limits>
+#include <optional>
+#include <string>
+#include <numbers>
+#include <type_traits>
 
 #include "h5_io.hpp"
 
@@ -40,44 +45,95 @@ std::vector<Vec3> read_vec3(hid_t file, const std::string& path, std::size_t row
   return out;
 }
 
-std::string frame_path(std::size_t k) { return fmt::format("frames/{:06d}", k); }
+std::string frame_path(std::size_t k) { return "frames/" + frame_name(k); }
 
-h5::Handle open_file(const std::filesystem::path& path) {
+bool is_frame_name(const std::string& name) {
+  if (name.empty() || name.size() > 18) return false;
+  if (!std::all_of(name.begin(), name.end(), [](char c) { return c >= '0' && c <= '9'; })) return false;
+  return frame_name(std::stoull(name)) == name;
+}
+
+// What a frame group lacks of the layout ("" when complete): a kill may have torn the last frame,
+// and the writer sets step and time after the datasets.
+std::string missing_part(hid_t group) {
+  for (const char* name : {"step", "time"})
+    if (!h5::has_attribute(group, name)) return fmt::format("its {} attribute", name);
+  for (const char* name : {"id", "position", "velocity", "omega", "radius", "material", "bonds"})
+    if (!h5::path_exists(group, name)) return fmt::format("its '{}' dataset", name);
+  return {};
+}
+
+h5::Handle open_file(const std::filesystem::path& path, RunFile::Mode mode) {
+  const std::string name = path.string();
   std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error))
-    throw OutputError("run file '" + path.string() +
-                      "' does not exist or is not a file; give the run.h5 that `shard run` wrote");
-  // A running job holds an exclusive lock on its file; reading what it has flushed is the point
-  // of flushing, so a locked file is opened again without locking. (Not the first choice:
-  // within the writer's own process HDF5 refuses a second open with other locking flags.)
-  hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (id < 0) {
+  if (!std::filesystem::exists(path, error))
+    throw OutputError(name + ": no such run file; give the run.h5 that `shard run` wrote");
+  if (std::filesystem::is_directory(path, error))
+    throw OutputError(name + ": is a folder, not a run file; give the run.h5 inside it");
+  if (H5Fis_hdf5(path.c_str()) <= 0) {
     H5Eclear2(H5E_DEFAULT);
-    h5::Handle access =
-        h5::plist_handle(H5Pcreate(H5P_FILE_ACCESS), "creating file access list");
-    h5::check(H5Pset_file_locking(access.get(), false, true), "disabling file locking");
-    id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, access.get());
+    throw OutputError(name + ": not an HDF5 file, so not a run file; give the run.h5 that `shard run` wrote");
+  }
+  hid_t id = -1;
+  if (mode == RunFile::Mode::read_write) {
+    id = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  } else {
+    // A running job holds an exclusive lock on its file; reading what it has flushed is the point
+    // of flushing, so a locked file is opened again without locking. (Not the first choice:
+    // within the writer's own process HDF5 refuses a second open with other locking flags.)
+    id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (id < 0) {
+      H5Eclear2(H5E_DEFAULT);
+      h5::Handle access = h5::plist_handle(H5Pcreate(H5P_FILE_ACCESS), "creating file access list");
+      h5::check(H5Pset_file_locking(access.get(), false, true), "disabling file locking");
+      id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, access.get());
+    }
   }
   if (id < 0) {
     const std::string cause = h5::take_error_stack();
-    throw OutputError("cannot open the run file '" + path.string() + "' as HDF5" +
-                      (cause.empty() ? "" : " (" + cause + ")") +
-                      "; it is no HDF5 file or is damaged: give the run.h5 that `shard run` wrote");
+    const std::string detail = cause.empty() ? "" : " (" + cause + ")";
+    if (mode == RunFile::Mode::read_write)
+      throw OutputError(fmt::format("cannot open the run file '{}' for writing{}; is it read-only, or is its run "
+                                    "still going?",
+                                    name, detail));
+    throw OutputError(fmt::format("cannot open the run file '{}'{}; it is damaged: give the run.h5 that `shard run` "
+                                  "wrote",
+                                  name, detail));
   }
   h5::Handle file(id, H5Fclose);
-  if (!h5::has_attribute(file.get(), "abi_version") || !h5::path_exists(file.get(), "frames"))
-    throw OutputError("'" + path.string() +
-                      "' is an HDF5 file but not a Shard run file (a checkpoint?); give the run.h5 "
-                      "that `shard run` wrote");
+  if (!h5::path_exists(file.get(), "frames"))
+    throw OutputError(name + ": has no /frames group, so it is no Shard run file (a checkpoint?); give the run.h5 "
+                             "that `shard run` wrote");
   return file;
+}
+
+// Per-particle masses rho 4/3 pi r^3 (rho: one value, or one per material id).
+std::vector<double> masses_from_density(const std::vector<double>& rho, const FrameData& f, const std::string& source) {
+  if (rho.empty()) throw OutputError("the density " + source + " holds no value");
+  std::vector<double> mass(f.radius.size());
+  for (std::size_t v = 0; v < mass.size(); ++v) {
+    double value = rho[0];
+    if (rho.size() > 1) {
+      const std::int32_t m = f.material[v];
+      if (m < 0 || static_cast<std::size_t>(m) >= rho.size())
+        throw OutputError(fmt::format("the density {} has {} entries but particle row {} has material {}", source,
+                                      rho.size(), v, m));
+      value = rho[static_cast<std::size_t>(m)];
+    }
+    if (!(value > 0)) throw OutputError("the density " + source + " is not positive");
+    const double r = f.radius[v];
+    mass[v] = value * (4.0 / 3.0 * std::numbers::pi * r * r * r);
+  }
+  return mass;
 }
 
 }  // namespace
 
 struct RunFile::Impl {
   std::filesystem::path path;
+  RunFile::Mode mode = RunFile::Mode::read;
   h5::Handle file;
-  std::size_t frames = 0;
+  std::vector<std::size_t> frames;  // numbers of the complete frames, ascending
   std::size_t series_rows = 0;
   std::size_t event_rows = 0;
   std::vector<std::string> walls;
@@ -90,14 +146,18 @@ struct RunFile::Impl {
     return h5::dataset_shape(id(), dataset).rows;
   }
 
-  // A frame counts once its group opens and holds every attribute and dataset: a kill may have
-  // torn the last one.
+  // A frame counts once its group opens and holds every attribute and dataset.
   static bool frame_complete(hid_t group) {
     try {
-      if (!h5::has_attribute(group, "time") || !h5::has_attribute(group, "step")) return false;
-      for (const char* name : {"id", "position", "velocity", "omega", "radius", "material", "bonds"})
-        if (!h5::path_exists(group, name)) return false;
-      return true;
+      return missing_part(group).empty();
+    } catch (const OutputError&) {
+      return false;
+    }
+  }
+
+  bool named_frame_complete(std::size_t k) const {
+    try {
+      return frame_complete(h5::open_group(id(), frame_path(k)).get());
     } catch (const OutputError&) {
       return false;
     }
@@ -110,29 +170,60 @@ struct RunFile::Impl {
     return h5::open_group(id(), frame_path(k));
   }
 
-  // Frames through /frame_index (written so that a kill cannot tear it), then through /frames
-  // for any beyond the index's capacity or in files without one.
+  // Frames through /frame_index (written so that a kill cannot tear it), then by name through
+  // /frames for any beyond the index's capacity or in files without one.
   void scan_frames() {
     try {
       addresses = h5::read_frame_addresses(id());
     } catch (const OutputError&) {
       addresses.clear();
     }
-    for (frames = 0; frames < addresses.size(); ++frames) {
+    std::size_t indexed = 0;
+    for (; indexed < addresses.size(); ++indexed) {
       try {
-        if (!frame_complete(open_frame(frames).get())) break;
+        if (!frame_complete(open_frame(indexed).get())) break;
       } catch (const OutputError&) {
         break;
       }
     }
-    addresses.resize(frames);
+    addresses.resize(indexed);
+    for (std::size_t k = 0; k < indexed; ++k) frames.push_back(k);
     try {
-      while (h5::path_exists(id(), frame_path(frames)) &&
-             frame_complete(h5::open_group(id(), frame_path(frames)).get()))
-        ++frames;
+      for (const std::string& name : h5::child_names(h5::open_group(id(), "frames").get())) {
+        if (!is_frame_name(name)) continue;
+        const std::size_t k = std::stoull(name);
+        if (k >= indexed && named_frame_complete(k)) frames.push_back(k);
+      }
     } catch (const OutputError&) {
       // A torn link index ends the frames found by name; those found by address remain.
     }
+    std::sort(frames.begin(), frames.end());
+  }
+
+  // Why frame k is not readable, for the error message.
+  std::string absent_frame(std::size_t k) const {
+    std::string listed = "it holds no complete frame yet";
+    if (frames.size() == 1) listed = fmt::format("its one complete frame is {}", frames.front());
+    if (frames.size() > 1) listed = fmt::format("its complete frames are {} to {}", frames.front(), frames.back());
+    if (h5::path_exists(id(), frame_path(k))) {
+      std::string missing;
+      try {
+        missing = missing_part(h5::open_group(id(), frame_path(k)).get());
+      } catch (const OutputError& error) {
+        missing = error.what();
+      }
+      return fmt::format("frame {} of '{}' is incomplete (it lacks {}): the run was killed while writing it, or "
+                         "the file was not written by `shard run`; {}",
+                         k, path.string(), missing, listed);
+    }
+    return fmt::format("'{}' has no frame {} (/{}); {}", path.string(), k, frame_path(k), listed);
+  }
+
+  void require_writable() const {
+    if (mode != RunFile::Mode::read_write)
+      throw OutputError(fmt::format("'{}' was opened for reading; open it with RunFile::Mode::read_write to "
+                                    "store analysis results",
+                                    path.string()));
   }
 
   // Columns are written one after another; a killed run may hold a block in some and not in
@@ -166,17 +257,31 @@ struct RunFile::Impl {
     }
   }
 
+  // A scalar series column, cut to the rows every column holds.
+  template <class T>
+  std::vector<T> series(const std::string& name) const {
+    const auto& names = scalar_series_names();
+    if (std::find(names.begin(), names.end(), name) == names.end())
+      throw OutputError(fmt::format("no series '{}' in a run file; the series are: {}", name, fmt::join(names, ", ")));
+    require_series();
+    const h5::QuietErrors quiet;
+    return h5::read_dataset<T>(id(), "series/" + name, 0, series_rows);
+  }
+
   void require_series() const {
     if (!series_error.empty())
       throw OutputError("the series of '" + path.string() + "' are damaged: " + series_error);
   }
 };
 
-RunFile::RunFile(const std::filesystem::path& path) {
+std::string frame_name(std::size_t k) { return fmt::format("{:06d}", k); }
+
+RunFile::RunFile(const std::filesystem::path& path, Mode mode) {
   const h5::QuietErrors quiet;
   impl_ = std::make_unique<Impl>();
   impl_->path = path;
-  impl_->file = open_file(path);
+  impl_->mode = mode;
+  impl_->file = open_file(path, mode);
   impl_->scan_frames();
   impl_->scan_series();
 }
@@ -187,9 +292,9 @@ RunFile& RunFile::operator=(RunFile&&) noexcept = default;
 
 const std::filesystem::path& RunFile::path() const { return impl_->path; }
 
-RunMetadata RunFile::metadata() const {
-  const h5::QuietErrors quiet;
-  const hid_t f = impl_->id();
+namespace {
+
+RunMetadata read_metadata(hid_t f) {
   RunMetadata meta;
   meta.shard_version = h5::read_string_attribute(f, "shard_version");
   meta.git_revision = h5::read_string_attribute(f, "git_revision");
@@ -208,66 +313,105 @@ RunMetadata RunFile::metadata() const {
   return meta;
 }
 
+}  // namespace
+
+RunMetadata RunFile::metadata() const {
+  const h5::QuietErrors quiet;
+  try {
+    return read_metadata(impl_->id());
+  } catch (const OutputError& error) {
+    throw OutputError(fmt::format("'{}' lacks metadata that `shard run` writes ({}): give the run.h5 that `shard "
+                                  "run` wrote",
+                                  impl_->path.string(), error.what()));
+  }
+}
+
 int RunFile::abi_version() const {
   const h5::QuietErrors quiet;
+  if (!h5::has_attribute(impl_->id(), "abi_version"))
+    throw OutputError(fmt::format("'{}' has no abi_version attribute: it was not written by `shard run`",
+                                  impl_->path.string()));
   return static_cast<int>(h5::read_int_attribute(impl_->id(), "abi_version"));
 }
 
-std::size_t RunFile::frame_count() const { return impl_->frames; }
+const std::vector<std::size_t>& RunFile::frames() const { return impl_->frames; }
 
-FrameData RunFile::read_frame(std::size_t k) const {
-  if (k >= impl_->frames)
-    throw OutputError(fmt::format("frame {} is not in '{}', which holds {} frames", k,
-                                  impl_->path.string(), impl_->frames));
+std::size_t RunFile::frame_count() const { return impl_->frames.size(); }
+
+namespace {
+
+void read_masses(hid_t frame, hid_t root, std::size_t k, std::optional<double> density, FrameData& f) {
+  if (h5::path_exists(frame, "mass")) {
+    f.mass = h5::read_dataset<double>(frame, "mass", 0);
+    f.mass_source = "mass dataset";
+    return;
+  }
+  std::vector<double> rho;
+  std::string source;
+  if (density) {
+    rho = {*density};
+    source = fmt::format("{} kg/m^3 (given)", *density);
+  } else if (h5::has_attribute(frame, "density")) {
+    rho = h5::read_double_array_attribute(frame, "density");
+    source = fmt::format("attribute of /{}", frame_path(k));
+  } else if (h5::has_attribute(root, "density")) {
+    rho = h5::read_double_array_attribute(root, "density");
+    source = "attribute of /";
+  } else {
+    throw OutputError(fmt::format("/{} has no mass dataset and the file no density attribute: give the particle "
+                                  "density (e.g. --density 2500 for 2500 kg/m^3)",
+                                  frame_path(k)));
+  }
+  f.mass = masses_from_density(rho, f, source);
+  f.mass_source = "m = rho 4/3 pi r^3, density " + source;
+}
+
+}  // namespace
+
+FrameData RunFile::read_frame(std::size_t k, std::optional<double> density) const {
   const h5::QuietErrors quiet;
-  h5::Handle group = impl_->open_frame(k);
-  const hid_t g = group.get();
+  if (!std::binary_search(impl_->frames.begin(), impl_->frames.end(), k)) throw OutputError(impl_->absent_frame(k));
   FrameData frame;
-  frame.step = h5::read_int_attribute(g, "step");
-  frame.time = h5::read_double_attribute(g, "time");
-  frame.id = h5::read_dataset<Index>(g, "id", 0);
-  const std::size_t n = frame.id.size();
-  frame.position = read_vec3(g, "position");
-  frame.velocity = read_vec3(g, "velocity");
-  frame.omega = read_vec3(g, "omega");
-  frame.radius = h5::read_dataset<double>(g, "radius", 0);
-  frame.material = h5::read_dataset<std::int32_t>(g, "material", 0);
-  // Run files written before bodies existed hold one body.
-  frame.body = h5::path_exists(g, "body") ? h5::read_dataset<std::int32_t>(g, "body", 0)
-                                          : std::vector<std::int32_t>(n, 0);
-  for (std::size_t size : {frame.position.size(), frame.velocity.size(), frame.omega.size(),
-                           frame.radius.size(), frame.material.size(), frame.body.size()})
-    if (size != n)
-      throw OutputError(fmt::format("frame {} of '{}' has arrays of different lengths", k,
-                                    impl_->path.string()));
-  const std::vector<Index> pairs = h5::read_dataset<Index>(g, "bonds", 2);
-  frame.bonds.resize(pairs.size() / 2);
-  for (std::size_t b = 0; b < frame.bonds.size(); ++b)
-    frame.bonds[b] = {pairs[2 * b], pairs[2 * b + 1]};
-  if (h5::path_exists(g, "fragment")) frame.fragment = h5::read_dataset<Index>(g, "fragment", 0);
+  try {
+    h5::Handle group = impl_->open_frame(k);
+    const hid_t g = group.get();
+    frame.step = h5::read_int_attribute(g, "step");
+    frame.time = h5::read_double_attribute(g, "time");
+    frame.id = h5::read_dataset<Index>(g, "id", 0);
+    const std::size_t n = frame.id.size();
+    frame.position = read_vec3(g, "position");
+    frame.velocity = read_vec3(g, "velocity");
+    frame.omega = read_vec3(g, "omega");
+    frame.radius = h5::read_dataset<double>(g, "radius", 0);
+    frame.material = h5::read_dataset<std::int32_t>(g, "material", 0);
+    // Run files written before bodies existed hold one body.
+    frame.body = h5::path_exists(g, "body") ? h5::read_dataset<std::int32_t>(g, "body", 0)
+                                            : std::vector<std::int32_t>(n, 0);
+    for (std::size_t size : {frame.position.size(), frame.velocity.size(), frame.omega.size(),
+                             frame.radius.size(), frame.material.size(), frame.body.size()})
+      if (size != n) throw OutputError("its particle arrays have different lengths");
+    read_masses(g, impl_->id(), k, density, frame);
+    if (frame.mass.size() != n) throw OutputError("its mass dataset has another length than its id dataset");
+    const std::vector<Index> pairs = h5::read_dataset<Index>(g, "bonds", 2);
+    frame.bond_i.resize(pairs.size() / 2);
+    frame.bond_j.resize(pairs.size() / 2);
+    for (std::size_t b = 0; b < frame.bond_i.size(); ++b) {
+      frame.bond_i[b] = pairs[2 * b];
+      frame.bond_j[b] = pairs[2 * b + 1];
+    }
+    if (h5::path_exists(g, "fragment")) frame.fragment = h5::read_dataset<Index>(g, "fragment", 0);
+  } catch (const OutputError& error) {
+    throw OutputError(fmt::format("frame {} of '{}': {}", k, impl_->path.string(), error.what()));
+  }
   return frame;
 }
 
 std::size_t RunFile::series_rows() const { return impl_->series_rows; }
 
-std::vector<double> RunFile::read_series(const std::string& name) const {
-  const auto& names = scalar_series_names();
-  if (std::find(names.begin(), names.end(), name) == names.end())
-    throw OutputError(fmt::format("no series '{}' in a run file; the series are: {}", name,
-                                  fmt::join(names, ", ")));
-  impl_->require_series();
-  const h5::QuietErrors quiet;
-  return h5::read_dataset<double>(impl_->id(), "series/" + name, 0, impl_->series_rows);
-}
+std::vector<double> RunFile::read_series(const std::string& name) const { return impl_->series<double>(name); }
 
 std::vector<std::int64_t> RunFile::read_integer_series(const std::string& name) const {
-  const auto& names = scalar_series_names();
-  if (std::find(names.begin(), names.end(), name) == names.end())
-    throw OutputError(fmt::format("no series '{}' in a run file; the series are: {}", name,
-                                  fmt::join(names, ", ")));
-  impl_->require_series();
-  const h5::QuietErrors quiet;
-  return h5::read_dataset<std::int64_t>(impl_->id(), "series/" + name, 0, impl_->series_rows);
+  return impl_->series<std::int64_t>(name);
 }
 
 std::vector<std::string> RunFile::wall_names() const { return impl_->walls; }
@@ -380,6 +524,52 @@ std::vector<BodyImpact> RunFile::read_body_impacts() const {
     out[b].wall = wall[b];
   }
   return out;
+}
+
+namespace {
+
+// Writes one column, of whichever element type it holds, as a dataset `name` below group.
+void write_column(hid_t group, const std::string& name, const RunTable::Column& column) {
+  std::visit(
+      [&](const auto& values) {
+        using Value = typename std::decay_t<decltype(values)>::value_type;
+        if constexpr (std::is_same_v<Value, Vec3>)
+          h5::write_dataset(group, name, values.empty() ? nullptr : values.front().data(), values.size(), 3);
+        else
+          h5::write_dataset(group, name, values.data(), values.size());
+      },
+      column);
+}
+
+}  // namespace
+
+void RunFile::write_fragment_labels(std::size_t k, const std::vector<Index>& labels) {
+  impl_->require_writable();
+  const h5::QuietErrors quiet;
+  if (!std::binary_search(impl_->frames.begin(), impl_->frames.end(), k)) throw OutputError(impl_->absent_frame(k));
+  h5::Handle group = impl_->open_frame(k);
+  const std::size_t n = h5::dataset_shape(group.get(), "id").rows;
+  if (labels.size() != n)
+    throw OutputError(fmt::format("{} fragment labels for the {} particles of frame {} of '{}'", labels.size(), n, k,
+                                  impl_->path.string()));
+  h5::remove_link(group.get(), "fragment");
+  h5::write_dataset(group.get(), "fragment", labels.data(), n);
+  h5::check(H5Fflush(impl_->id(), H5F_SCOPE_GLOBAL), "flushing '" + impl_->path.string() + "'");
+}
+
+void RunFile::write_table(const std::string& group, const RunTable& table) {
+  impl_->require_writable();
+  const h5::QuietErrors quiet;
+  const hid_t f = impl_->id();
+  // Parents first (HDF5 creates one level at a time), then the table's group afresh.
+  for (std::size_t slash = group.find('/'); slash != std::string::npos; slash = group.find('/', slash + 1))
+    if (!h5::path_exists(f, group.substr(0, slash))) h5::create_group(f, group.substr(0, slash));
+  h5::remove_link(f, group);
+  h5::Handle g = h5::create_group(f, group);
+  for (const auto& [name, column] : table.columns) write_column(g.get(), name, column);
+  for (const auto& [name, figure] : table.figures)
+    std::visit([&](auto value) { h5::write_attribute(g.get(), name, value); }, figure);
+  h5::check(H5Fflush(f, H5F_SCOPE_GLOBAL), "flushing '" + impl_->path.string() + "'");
 }
 
 }  // namespace shard

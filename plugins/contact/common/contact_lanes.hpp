@@ -1,5 +1,5 @@
 #pragma once
-// The batch loop every contact law shares, written once for any lane type (lanes.hpp): the law
+// The batch loop every contact law shares, written once for any lane type (shard/lanes/lanes.hpp): the law
 // gives the normal force and the tangential spring's stiffness and dashpot; this loop adds the
 // incremental tangential spring with Coulomb friction (docs/physics.md, "Forces") and the contact effect
 // policies (contact_effects.hpp), switched on at compile time so that a law without effects
@@ -19,7 +19,7 @@
 #include <cstdint>
 #include <numbers>
 
-#include "lanes.hpp"
+#include "shard/lanes/xsimd_lanes.hpp"
 
 namespace shard::contact {
 
@@ -67,7 +67,8 @@ struct EffectSizes {
 // lanes.hpp on per-instruction-set symbols.) `laws` is the table, a.material_pair its rows.
 template <class T, bool Cohesion, bool SupportFriction, class Law>
 void contact_lanes(const ContactArrays& a, const Law* laws, const EffectSizes& effects) {
-  using L = Lane<T>;
+  using namespace lanes;
+  using L = Lanes<T>;
   constexpr std::size_t N = L::width;
   constexpr std::size_t K = Law::kConstants;
   const T zero(0.0);
@@ -110,33 +111,33 @@ void contact_lanes(const ContactArrays& a, const Law* laws, const EffectSizes& e
     const T tx = vx - v_n * nx, ty = vy - v_n * ny, tz = vz - v_n * nz;
     const T h_n = dot3(hx, hy, hz, nx, ny, nz);
     const T px = hx - h_n * nx, py = hy - h_n * ny, pz = hz - h_n * nz;
-    const T old_length = root(dot3(hx, hy, hz, hx, hy, hz));
-    const T new_length = root(dot3(px, py, pz, px, py, pz));
+    const T old_length = sqrt(dot3(hx, hy, hz, hx, hy, hz));
+    const T new_length = sqrt(dot3(px, py, pz, px, py, pz));
     const auto flat = new_length == zero;
     const T scale = old_length / new_length;
-    const T xi_x = pick(flat, zero, px * scale) + tx * dt;
-    const T xi_y = pick(flat, zero, py * scale) + ty * dt;
-    const T xi_z = pick(flat, zero, pz * scale) + tz * dt;
+    const T xi_x = select(flat, zero, px * scale) + tx * dt;
+    const T xi_y = select(flat, zero, py * scale) + ty * dt;
+    const T xi_z = select(flat, zero, pz * scale) + tz * dt;
 
     // Spring and dashpot, capped by Coulomb (support_friction: supports and pins have their own mu).
     const T s_t = normal_part.tangential_stiffness, c_t = normal_part.tangential_damping;
     T limit;
     if constexpr (SupportFriction)
-      limit = pick(wall, ratio_wall * mu, mu) * normal_part.force;
+      limit = select(wall, ratio_wall * mu, mu) * normal_part.force;
     else
       limit = mu * normal_part.force;
     const T minus_s_t = negate(s_t);
     const T fx = minus_s_t * xi_x - c_t * tx, fy = minus_s_t * xi_y - c_t * ty, fz = minus_s_t * xi_z - c_t * tz;
-    const T magnitude = root(dot3(fx, fy, fz, fx, fy, fz));
+    const T magnitude = sqrt(dot3(fx, fy, fz, fx, fy, fz));
     const auto sticks = magnitude <= limit;
     const T cap = limit / magnitude;
     const T cx = fx * cap, cy = fy * cap, cz = fz * cap;
-    const T sx = pick(sticks, xi_x, negate(cx) / s_t), sy = pick(sticks, xi_y, negate(cy) / s_t),
-            sz = pick(sticks, xi_z, negate(cz) / s_t);
+    const T sx = select(sticks, xi_x, negate(cx) / s_t), sy = select(sticks, xi_y, negate(cy) / s_t),
+            sz = select(sticks, xi_z, negate(cz) / s_t);
 
-    T force_x = normal_part.force * nx + pick(sticks, fx, cx);
-    T force_y = normal_part.force * ny + pick(sticks, fy, cy);
-    T force_z = normal_part.force * nz + pick(sticks, fz, cz);
+    T force_x = normal_part.force * nx + select(sticks, fx, cx);
+    T force_y = normal_part.force * ny + select(sticks, fy, cy);
+    T force_z = normal_part.force * nz + select(sticks, fz, cz);
     T energy = normal_part.energy + T(0.5) * s_t * dot3(sx, sy, sz, sx, sy, sz);
     if constexpr (Cohesion) {
       // Between particles only (not at walls): a pull sigma_c pi R* delta along -n on i while they
@@ -146,10 +147,10 @@ void contact_lanes(const ContactArrays& a, const Law* laws, const EffectSizes& e
       const T sigma(effects.cohesion_stress);
       const T pull = sigma * (T(std::numbers::pi) * R * delta);
       const auto none = pull == zero;
-      force_x = pick(wall, force_x, pick(none, force_x, force_x - pull * nx));
-      force_y = pick(wall, force_y, pick(none, force_y, force_y - pull * ny));
-      force_z = pick(wall, force_z, pick(none, force_z, force_z - pull * nz));
-      energy = pick(wall, energy, pick(none, energy, energy + T(-0.5) * sigma * T(std::numbers::pi) * R * delta * delta));
+      force_x = select(wall, force_x, select(none, force_x, force_x - pull * nx));
+      force_y = select(wall, force_y, select(none, force_y, force_y - pull * ny));
+      force_z = select(wall, force_z, select(none, force_z, force_z - pull * nz));
+      energy = select(wall, energy, select(none, energy, energy + T(-0.5) * sigma * T(std::numbers::pi) * R * delta * delta));
     }
     store3(force, force_x, force_y, force_z);
     store3(history, sx, sy, sz);

@@ -1,5 +1,5 @@
 #pragma once
-// The Hertz-Mindlin law for any lane type (../common/lanes.hpp): Hertz normal spring, restitution
+// The Hertz-Mindlin law for any lane type (shard/lanes/lanes.hpp): Hertz normal spring, restitution
 // dashpot, Mindlin no-slip tangential stiffness (README.md; docs/physics.md, "Forces"). The tangential spring, friction
 // and the effect policies are the shared loop's (../common/contact_lanes.hpp).
 //
@@ -30,15 +30,16 @@ struct HertzLaw {
 
   template <class T>
   static contact::NormalPart<T> normal(const T* c, const T& delta, const T& R, const T& m, const T& v_n) {
-    const T root_r = contact::root(R), root_delta = contact::root(delta), root_r_delta = contact::root(R * delta);
+    using namespace lanes;
+    const T root_r = sqrt(R), root_delta = sqrt(delta), root_r_delta = sqrt(R * delta);
     const T& damping = c[kDamping];
     // F_n = max(0, 4/3 E* sqrt(R*) delta^1.5 - c sqrt(S_n m*) v_n), S_n = 2 E* sqrt(R* delta): never pulling.
     const T s_n = c[kNormalFactor] * root_r_delta;
     const T elastic = c[kForceFactor] * root_r * delta * root_delta;
-    const T f_n = contact::clamp_at_zero(elastic - damping * contact::root(s_n * m) * v_n);
+    const T f_n = clamp_at_zero(elastic - damping * sqrt(s_n * m) * v_n);
     // S_t = 8 G* sqrt(R* delta), c_t = c sqrt(S_t m*); U_n = 8/15 E* sqrt(R*) delta^2.5.
     const T s_t = c[kTangentialFactor] * root_r_delta;
-    return {f_n, c[kEnergyFactor] * root_r * delta * delta * root_delta, s_t, damping * contact::root(s_t * m)};
+    return {f_n, c[kEnergyFactor] * root_r * delta * delta * root_delta, s_t, damping * sqrt(s_t * m)};
   }
 };
 

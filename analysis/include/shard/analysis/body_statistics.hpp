@@ -8,6 +8,7 @@
 
 #include "shard/analysis/fragment_table.hpp"
 #include "shard/analysis/size_distribution.hpp"
+#include "shard/body_impacts.hpp"
 
 namespace shard::analysis {
 
@@ -27,13 +28,6 @@ struct BodyStatistics {
   std::int32_t impact_wall = -1;  // index in the scene's [[wall]] order
 };
 
-// One row of /body_impacts (row = body id).
-struct BodyImpactRow {
-  bool hit = false;
-  double time = 0, speed = 0, angle = 0;
-  std::int32_t wall = -1;
-};
-
 struct BodyReport {
   std::vector<BodyStatistics> bodies;  // ascending body id; ids without particles are left out
   std::size_t broken = 0;
@@ -47,7 +41,8 @@ struct BodyReport {
 BodyReport body_statistics(const ParticleSample& particles, const std::vector<Fragment>& fragments,
                            double intact_fraction, double fines_size);
 
-// Copies each body's row of `impacts` (indexed by body id) into the report.
-void attach_impacts(BodyReport& report, const std::vector<BodyImpactRow>& impacts);
+// Copies each body's first wall contact (`impacts` indexed by body id, RunFile::read_body_impacts)
+// into the report.
+void attach_impacts(BodyReport& report, const std::vector<BodyImpact>& impacts);
 
 }  // namespace shard::analysis

@@ -30,12 +30,12 @@ struct ColumnTable {
 };
 
 // CSV: the header, then one line per row; numbers with 17 significant digits, text quoted when it
-// holds a comma, a quote or a line break. Throws RunFileError when the file cannot be written.
+// holds a comma, a quote or a line break. Throws std::runtime_error when the file cannot be written.
 void write_csv(const ColumnTable& table, const std::filesystem::path& file);
 
 // Replaces the group `group` ("/a/b": parents are created) of the HDF5 file `file` (created when
 // absent) with the table: float64 / int64 / variable-length string datasets [rows], the notes as
-// string attributes. Throws RunFileError naming the file and group.
+// string attributes. Throws std::runtime_error naming the file and group.
 void write_hdf5_table(const std::filesystem::path& file, const std::string& group, const ColumnTable& table);
 
 }  // namespace shard::analysis

@@ -11,6 +11,7 @@
 
 #include "shard/analysis/body_statistics.hpp"
 #include "shard/analysis/fragment_table.hpp"
+#include "shard/run_file.hpp"
 
 namespace shard::analysis {
 
@@ -45,7 +46,6 @@ struct RunBodies {
   std::vector<Fragment> fragments;
   BodyReport report;
 };
-class RunFile;
 RunBodies analyse_run_bodies(const RunFile& file, std::optional<std::int64_t> frame, double intact_fraction,
                              double fines_size, std::optional<double> density = std::nullopt);
 

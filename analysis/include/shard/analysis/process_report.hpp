@@ -11,6 +11,7 @@
 #include "shard/analysis/breakage_curve.hpp"
 #include "shard/analysis/breakage_tables.hpp"
 #include "shard/analysis/plate_outcome.hpp"
+#include "shard/run_file.hpp"
 
 namespace shard::analysis {
 
@@ -22,7 +23,7 @@ std::string markdown_plate_table(const std::vector<PlateOutcome>& plates, std::s
                                  const std::string& value_name = "");
 // How broken, the share's interval and the x50 interval are defined.
 std::string method_paragraph(const CurveOptions& options, double intact_fraction);
-// Writes text to file; throws RunFileError when it cannot.
+// Writes text to file; throws std::runtime_error when it cannot.
 void write_text_file(const std::filesystem::path& file, const std::string& text);
 
 struct RunReportOptions {
@@ -33,7 +34,6 @@ struct RunReportOptions {
   std::string command;                // the command line that made it, for the page
 };
 
-class RunFile;
 // The breakage report of one analysed run: DIR/plates.csv, DIR/breakage_vs_speed.csv,
 // DIR/breakage_vs_speed.png (gnuplot), DIR/report.md, and the table by impact speed in the run
 // file as /breakage/<k:06d>/by_impact_speed. Lines saying what was written go to `out`. A

@@ -4,7 +4,14 @@
 // calls the operations below unqualified after `using namespace shard::lanes`: for double these
 // overloads are found, for an xsimd batch argument-dependent lookup finds xsimd's of the same
 // name. Each rounds as the IEEE operation it names, so a law without fused multiply-adds gives
-// the same bits at every width.
+// the same bits at every width (compile it with -ffp-contract=off: EXACT_LANES or LANE_KERNELS in
+// cmake/ShardPlugin.cmake). The bond law (plugins/bond/beam_bond/beam_law.hpp) and the contact
+// laws (plugins/contact/common/contact_lanes.hpp) are written in these operations.
+//
+// An object compiled for a wider instruction set (-mavx2, -mavx512f) instantiates a law for its
+// batch type alone and calls none of the width-1 functions below: an inline function it emitted
+// out of line could be the copy the linker keeps for every object of the module, and then run on
+// a machine without that instruction set.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -37,5 +44,28 @@ inline double abs(double x) { return std::abs(x); }
 inline double min(double a, double b) { return std::min(a, b); }
 inline double max(double a, double b) { return std::max(a, b); }
 inline double copysign(double a, double b) { return std::copysign(a, b); }
+// -x, the sign flipped (+0 to -0 included); a law writes negate(x) rather than -x because the
+// SIMD unary minus of xsimd 8.1 is not that operation (xsimd_lanes.hpp).
+inline double negate(double x) { return -x; }
+
+// A 3-vector stored x, y, z from p, as one lane each of x, y and z (xsimd_lanes.hpp: N vectors
+// interleaved, transposed into three batches).
+inline void load3(const double* p, double& x, double& y, double& z) { x = p[0], y = p[1], z = p[2]; }
+inline void store3(double* p, double x, double y, double z) { p[0] = x, p[1] = y, p[2] = z; }
+
+// std::max(0.0, x) as the scalar code writes it: x when 0 < x, else +0 (NaN and -0 included).
+template <class T>
+T clamp_at_zero(const T& x) {
+  const T zero(0.0);
+  return select(zero < x, x, zero);
+}
+
+// Eigen's order for a 3-vector dot product and squared norm: the first two terms as one packet.
+// The contact laws keep it so that their results equal those of the Eigen code they replaced
+// (same state hashes in docs/performance.md).
+template <class T>
+T dot3(const T& ax, const T& ay, const T& az, const T& bx, const T& by, const T& bz) {
+  return (ax * bx + ay * by) + az * bz;
+}
 
 }  // namespace shard::lanes

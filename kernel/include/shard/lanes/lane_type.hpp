@@ -3,7 +3,9 @@
 // SHARD_LANES_<SET>), and the name its kernel function takes, so one source serves every set.
 #include <xsimd/xsimd.hpp>
 
-namespace shard::contact {
+#include "shard/lanes/xsimd_lanes.hpp"
+
+namespace shard::lanes {
 
 #if defined(SHARD_LANES_AVX512)
 using LaneType = xsimd::batch<double, xsimd::avx512f>;
@@ -21,4 +23,4 @@ using LaneType = double;  // the scalar reference
 #error "a lane kernel is compiled through LANE_KERNELS (cmake/ShardPlugin.cmake), which defines SHARD_LANES_<SET>"
 #endif
 
-}  // namespace shard::contact
+}  // namespace shard::lanes

@@ -1,13 +1,12 @@
 #pragma once
-// Private RAII and read/write helpers over HDF5's C API.
+// RAII and the few write helpers over HDF5's C API that the standalone tables (column_table.hpp:
+// sweep.h5, /breakage groups) need; run.h5 itself is read and written by shard/run_file.hpp.
 #include <hdf5.h>
 
 #include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include "shard/analysis/run_file.hpp"
 
 namespace shard::analysis::h5 {
 
@@ -41,26 +40,12 @@ class Handle {
   Closer close_ = nullptr;
 };
 
-// Each throws RunFileError with `what` (a path inside the file) when HDF5 reports failure.
-Handle open_group(hid_t parent, const std::string& name, const std::string& what);
+// Each throws std::runtime_error with `what` (a path inside the file) when HDF5 reports failure.
 Handle create_group(hid_t parent, const std::string& name, const std::string& what);
 bool has_link(hid_t parent, const std::string& name);
-bool has_attribute(hid_t object, const std::string& name);
-
-// A dataset's dimensions.
-std::vector<hsize_t> dataset_shape(hid_t parent, const std::string& name, const std::string& what);
-
-// Reads a whole dataset converted to the memory type; checks the element count.
-void read_dataset(hid_t parent, const std::string& name, hid_t mem_type, void* buffer,
-                  std::size_t expected_elements, const std::string& what);
-std::vector<double> read_double_attribute(hid_t object, const std::string& name,
-                                          const std::string& what);
-std::int64_t read_int_attribute(hid_t object, const std::string& name, const std::string& what);
-
 // Creates (replacing) a dataset of the given shape and writes buffer into it.
 void write_dataset(hid_t parent, const std::string& name, hid_t type, const std::vector<hsize_t>& shape,
                    const void* buffer, const std::string& what);
-void write_double_attribute(hid_t object, const std::string& name, double value, const std::string& what);
 void write_int_attribute(hid_t object, const std::string& name, std::int64_t value, const std::string& what);
 
 }  // namespace shard::analysis::h5
