@@ -7,6 +7,7 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 
 #include "drift_lanes.hpp"
 #include "neighbour_list.hpp"
@@ -116,6 +117,9 @@ struct ContactWorkspace {
   double order_cell = 1;  // m: the Morton grid, one neighbour-search cell
   // The first half-step's turn per particle: angle, unit axis, rotation quaternion (x, y, z, w).
   std::vector<double> turn_angle, turn_axis, turn_rotation;
+  // The largest squared displacement since the neighbour build, found by the last drift; < 0
+  // when not known (before the first step), and then the rebuild check finds it itself.
+  double drift_moved2 = -1;
 
   void prepare_drift(std::size_t n) {
     turn_angle.resize(n);
@@ -238,8 +242,7 @@ void Simulation::step() {
   integrate_first_half();
   time_ += dt_;
   ++step_;
-  compute_forces();
-  integrate_second_half();
+  compute_forces(true);
 }
 
 void Simulation::run(std::int64_t steps) {
@@ -249,6 +252,9 @@ void Simulation::run(std::int64_t steps) {
 // Spheres have isotropic inertia: the lab-frame angular velocity is constant over the drift, so the
 // exact rotation is one turn of |omega| dt about omega. The kick and drift and the turn run in
 // SIMD lanes (drift_lanes.hpp); only the turn's sin and cos, from libm, one particle at a time.
+// Each thread also takes its particles' largest displacement for the neighbour list's rebuild
+// check while they are in cache: every parallel region costs the waking of the team (~10-15 us
+// with OMP_WAIT_POLICY=passive on a virtual machine), several times a step.
 void Simulation::integrate_first_half() {
   const std::size_t n = particles_.size();
   const double h = 0.5 * dt_;
@@ -261,7 +267,9 @@ void Simulation::integrate_first_half() {
   double* angle = ws.turn_angle.data();
   double* axis = ws.turn_axis.data();
   double* rotation = ws.turn_rotation.data();
-#pragma omp parallel num_threads(team_for(n))
+  const NeighbourList* list = contact_ ? neighbours_.get() : nullptr;
+  double moved2 = 0;
+#pragma omp parallel num_threads(team_for(n)) reduction(max : moved2)
   {
     const Range r = range_of(n, omp_get_thread_num(), omp_get_num_threads());
     kick_and_drift(lanes, r.begin, r.end, h, dt_, angle, axis);
@@ -271,26 +279,17 @@ void Simulation::integrate_first_half() {
       std::copy_n(turn.coeffs().data(), 4, rotation + 4 * k);
     }
     turn(lanes, r.begin, r.end, angle, rotation);
+    if (list) moved2 = std::max(moved2, list->max_displacement2(p, r.begin, r.end));
   }
+  ws.drift_moved2 = list ? moved2 : -1;
   const double t_next = time_ + dt_;  // the time step() reaches
   for (auto& w : walls_) move_wall(w, t_next, dt_);
 }
 
-void Simulation::integrate_second_half() {
-  const std::size_t n = particles_.size();
-  const double h = 0.5 * dt_;
-  auto& p = particles_;
-#pragma omp parallel for schedule(static) num_threads(team_for(n))
-  for (std::size_t k = 0; k < n; ++k) {
-    if (p.flags[k] & (kFixed | kPrescribed)) continue;
-    p.velocity[k] += h * p.force[k] / p.mass[k];
-    p.omega[k] += h * p.torque[k] / p.inertia[k];
-  }
-}
-
 void Simulation::update_neighbours() {
   NeighbourList& list = *neighbours_;
-  if (!list.needs_rebuild(particles_, walls_)) return;
+  const double moved2 = std::exchange(workspace_->drift_moved2, -1.0);
+  if (!(moved2 >= 0 ? list.needs_rebuild(particles_, walls_, moved2) : list.needs_rebuild(particles_, walls_))) return;
   // Renumber along the Morton curve while the list is rebuilt anyway.
   SpatialOrder& order = workspace_->order;
   if (particles_.size() >= kReorderMinParticles && order.compute(particles_, workspace_->order_cell)) {
@@ -302,8 +301,10 @@ void Simulation::update_neighbours() {
 
 // One pass over all forces: each thread takes its range of contact pairs and of bonds, computes
 // them with one batch call each, and adds the results to its share (see ThreadShare); then each
-// thread sums the shares over its range of particles and adds gravity and damping.
-void Simulation::compute_forces() {
+// thread sums the shares over its range of particles and adds gravity and damping, and with
+// `kick` gives its particles the second half-kick of velocity Verlet while their forces are in
+// cache (before, a parallel region of its own).
+void Simulation::compute_forces(bool kick) {
   auto& p = particles_;
   const std::size_t n = p.size();
   auto& ws = *workspace_;
@@ -316,6 +317,7 @@ void Simulation::compute_forces() {
   const int team = team_for(n + pairs + m);
   ws.prepare(team, n, walls_.size(), neighbours_->history_stride());
   const bool gravity = !gravity_.isZero();
+  const double h = 0.5 * dt_;
   int used = 1;
 #pragma omp parallel num_threads(team)
   {
@@ -361,6 +363,10 @@ void Simulation::compute_forces() {
           p.force[k][c] -= global_damping_ * std::abs(p.force[k][c]) * sign_of(p.velocity[k][c]);
           p.torque[k][c] -= global_damping_ * std::abs(p.torque[k][c]) * sign_of(p.omega[k][c]);
         }
+      }
+      if (kick && !(p.flags[k] & (kFixed | kPrescribed))) {
+        p.velocity[k] += h * p.force[k] / p.mass[k];
+        p.omega[k] += h * p.torque[k] / p.inertia[k];
       }
     }
   }
