@@ -120,6 +120,9 @@ struct ContactWorkspace {
   // The largest squared displacement since the neighbour build, found by the last drift; < 0
   // when not known (before the first step), and then the rebuild check finds it itself.
   double drift_moved2 = -1;
+  // The drift has zeroed the particles' force and torque (after its kick read them), so the force
+  // pass needs no zero fill and no barrier after it.
+  bool forces_zeroed = false;
 
   void prepare_drift(std::size_t n) {
     turn_angle.resize(n);
@@ -280,8 +283,11 @@ void Simulation::integrate_first_half() {
     }
     turn(lanes, r.begin, r.end, angle, rotation);
     if (list) moved2 = std::max(moved2, list->max_displacement2(p, r.begin, r.end));
+    std::fill(p.force.begin() + static_cast<std::ptrdiff_t>(r.begin), p.force.begin() + static_cast<std::ptrdiff_t>(r.end), Vec3::Zero());
+    std::fill(p.torque.begin() + static_cast<std::ptrdiff_t>(r.begin), p.torque.begin() + static_cast<std::ptrdiff_t>(r.end), Vec3::Zero());
   }
   ws.drift_moved2 = list ? moved2 : -1;
+  ws.forces_zeroed = true;
   const double t_next = time_ + dt_;  // the time step() reaches
   for (auto& w : walls_) move_wall(w, t_next, dt_);
 }
@@ -318,14 +324,17 @@ void Simulation::compute_forces(bool kick) {
   ws.prepare(team, n, walls_.size(), neighbours_->history_stride());
   const bool gravity = !gravity_.isZero();
   const double h = 0.5 * dt_;
+  const bool zero_fill = !std::exchange(ws.forces_zeroed, false);
   int used = 1;
 #pragma omp parallel num_threads(team)
   {
     const int t = omp_get_thread_num(), nt = omp_get_num_threads();
     ThreadShare& share = ws.threads[static_cast<std::size_t>(t)];
     const Range own = range_of(n, t, nt);
-    std::fill(p.force.begin() + static_cast<std::ptrdiff_t>(own.begin), p.force.begin() + static_cast<std::ptrdiff_t>(own.end), Vec3::Zero());
-    std::fill(p.torque.begin() + static_cast<std::ptrdiff_t>(own.begin), p.torque.begin() + static_cast<std::ptrdiff_t>(own.end), Vec3::Zero());
+    if (zero_fill) {
+      std::fill(p.force.begin() + static_cast<std::ptrdiff_t>(own.begin), p.force.begin() + static_cast<std::ptrdiff_t>(own.end), Vec3::Zero());
+      std::fill(p.torque.begin() + static_cast<std::ptrdiff_t>(own.begin), p.torque.begin() + static_cast<std::ptrdiff_t>(own.end), Vec3::Zero());
+    }
     std::fill(share.wall_force.begin(), share.wall_force.end(), Vec3::Zero());
     std::fill(share.wall_torque.begin(), share.wall_torque.end(), Vec3::Zero());
     std::fill(share.wall_stored.begin(), share.wall_stored.end(), 0.0);
@@ -336,7 +345,10 @@ void Simulation::compute_forces(bool kick) {
     share.bond_broke = false;
     share.bond_energy = 0;
     if (t == 0) used = nt;
+    // Thread 0 adds into the particles' arrays, which every thread zeroes over its own range.
+    if (zero_fill) {
 #pragma omp barrier
+    }
     Vec3* force = t == 0 ? p.force.data() : share.force.data();
     Vec3* torque = t == 0 ? p.torque.data() : share.torque.data();
     if (contact_) {
