@@ -35,15 +35,30 @@ bool NeighbourList::update(const Particles& particles, const std::vector<Wall>& 
 
 bool NeighbourList::needs_rebuild(const Particles& particles, const std::vector<Wall>& walls) const {
   const std::size_t n = particles.size();
+  double moved2 = 0;  // max is order-independent: the same answer on any thread count
+#pragma omp parallel reduction(max : moved2) num_threads(team_for(n))
+  {
+    const Range r = range_of(n, omp_get_thread_num(), omp_get_num_threads());
+    moved2 = std::max(moved2, max_displacement2(particles, r.begin, r.end));
+  }
+  return needs_rebuild(particles, walls, moved2);
+}
+
+double NeighbourList::max_displacement2(const Particles& particles, std::size_t begin, std::size_t end) const {
+  if (position_at_build_.size() != particles.size()) return 0;  // needs_rebuild says yes anyway
+  double moved2 = 0;
+  const Vec3* x = particles.position.data();
+  const Vec3* x0 = position_at_build_.data();
+  for (std::size_t k = begin; k < end; ++k) moved2 = std::max(moved2, (x[k] - x0[k]).squaredNorm());
+  return moved2;
+}
+
+bool NeighbourList::needs_rebuild(const Particles& particles, const std::vector<Wall>& walls, double moved2) const {
+  const std::size_t n = particles.size();
   if (position_at_build_.size() != n || wall_displacement_at_build_.size() != walls.size() ||
       wall_angle_at_build_.size() != walls.size())
     return true;
-  double max_particle = 0;  // max is order-independent: the same answer on any thread count
-  const Vec3* x = particles.position.data();
-  const Vec3* x0 = position_at_build_.data();
-#pragma omp parallel for schedule(static) reduction(max : max_particle) num_threads(team_for(n))
-  for (std::size_t k = 0; k < n; ++k) max_particle = std::max(max_particle, (x[k] - x0[k]).squaredNorm());
-  max_particle = std::sqrt(max_particle);
+  const double max_particle = std::sqrt(moved2);
   double max_wall = 0;
   for (std::size_t w = 0; w < walls.size(); ++w) {
     double moved = (walls[w].displacement - wall_displacement_at_build_[w]).norm();

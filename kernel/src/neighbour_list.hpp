@@ -24,6 +24,11 @@ class NeighbourList {
   // Rebuilds when needed; returns true if it did.
   bool update(const Particles& particles, const std::vector<Wall>& walls);
   bool needs_rebuild(const Particles& particles, const std::vector<Wall>& walls) const;
+  // The same with the particles' part known: `moved2` the largest squared displacement since the
+  // build over all particles, gathered by the caller from max_displacement2 over its ranges (the
+  // drift does, while the positions are in cache and without a parallel region of its own).
+  bool needs_rebuild(const Particles& particles, const std::vector<Wall>& walls, double moved2) const;
+  double max_displacement2(const Particles& particles, std::size_t begin, std::size_t end) const;
   void rebuild(const Particles& particles, const std::vector<Wall>& walls);
   // The particles were renumbered: old index k is now new_index[k]. Pairs and history follow;
   // call rebuild() next (the build positions are stale).

@@ -7,6 +7,7 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 
 #include "drift_lanes.hpp"
 #include "neighbour_list.hpp"
@@ -119,6 +120,14 @@ void add_body_forces(Particles& p, std::size_t k, bool gravity, const Vec3& g, d
   }
 }
 
+// The second half-kick of velocity Verlet on particle k once its force is complete; held
+// particles get none.
+void kick_particle(Particles& p, std::size_t k, double h) {
+  if (p.flags[k] & (kFixed | kPrescribed)) return;
+  p.velocity[k] += h * p.force[k] / p.mass[k];
+  p.omega[k] += h * p.torque[k] / p.inertia[k];
+}
+
 // Below this many particles everything fits in cache and renumbering would only cost time (and
 // move particles that small hand-built scenes address by index).
 constexpr std::size_t kReorderMinParticles = 10000;
@@ -131,6 +140,12 @@ struct ContactWorkspace {
   double order_cell = 1;  // m: the Morton grid, one neighbour-search cell
   // The first half-step's turn per particle: angle, unit axis, rotation quaternion (x, y, z, w).
   std::vector<double> turn_angle, turn_axis, turn_rotation;
+  // The largest squared displacement since the neighbour build, found by the last drift; < 0
+  // when not known (before the first step), and then the rebuild check finds it itself.
+  double drift_moved2 = -1;
+  // The drift has zeroed the particles' force and torque (after its kick read them), so the force
+  // pass needs no zero fill and no barrier after it.
+  bool forces_zeroed = false;
 
   void prepare_drift(std::size_t n) {
     turn_angle.resize(n);
@@ -278,8 +293,7 @@ void Simulation::step() {
   time_ += dt_;
   ++step_;
   if (exchange_) exchange_->refresh_ghosts(particles_);
-  compute_forces();
-  integrate_second_half();
+  compute_forces(true);
 }
 
 void Simulation::run(std::int64_t steps) {
@@ -289,6 +303,9 @@ void Simulation::run(std::int64_t steps) {
 // Spheres have isotropic inertia: the lab-frame angular velocity is constant over the drift, so the
 // exact rotation is one turn of |omega| dt about omega. The kick and drift and the turn run in
 // SIMD lanes (drift_lanes.hpp); only the turn's sin and cos, from libm, one particle at a time.
+// Each thread also takes its particles' largest displacement for the neighbour list's rebuild
+// check while they are in cache: every parallel region costs the waking of the team (~10-15 us
+// with OMP_WAIT_POLICY=passive on a virtual machine), several times a step.
 void Simulation::integrate_first_half() {
   const std::size_t n = particles_.size();
   const double h = 0.5 * dt_;
@@ -301,7 +318,9 @@ void Simulation::integrate_first_half() {
   double* angle = ws.turn_angle.data();
   double* axis = ws.turn_axis.data();
   double* rotation = ws.turn_rotation.data();
-#pragma omp parallel num_threads(team_for(n))
+  const NeighbourList* list = contact_ ? neighbours_.get() : nullptr;
+  double moved2 = 0;
+#pragma omp parallel num_threads(team_for(n)) reduction(max : moved2)
   {
     const Range r = range_of(n, omp_get_thread_num(), omp_get_num_threads());
     kick_and_drift(lanes, r.begin, r.end, h, dt_, angle, axis);
@@ -311,26 +330,20 @@ void Simulation::integrate_first_half() {
       std::copy_n(turn.coeffs().data(), 4, rotation + 4 * k);
     }
     turn(lanes, r.begin, r.end, angle, rotation);
+    if (list) moved2 = std::max(moved2, list->max_displacement2(p, r.begin, r.end));
+    std::fill(p.force.begin() + static_cast<std::ptrdiff_t>(r.begin), p.force.begin() + static_cast<std::ptrdiff_t>(r.end), Vec3::Zero());
+    std::fill(p.torque.begin() + static_cast<std::ptrdiff_t>(r.begin), p.torque.begin() + static_cast<std::ptrdiff_t>(r.end), Vec3::Zero());
   }
+  ws.drift_moved2 = list ? moved2 : -1;
+  ws.forces_zeroed = true;
   const double t_next = time_ + dt_;  // the time step() reaches
   for (auto& w : walls_) move_wall(w, t_next, dt_);
 }
 
-void Simulation::integrate_second_half() {
-  const std::size_t n = particles_.size();
-  const double h = 0.5 * dt_;
-  auto& p = particles_;
-#pragma omp parallel for schedule(static) num_threads(team_for(n))
-  for (std::size_t k = 0; k < n; ++k) {
-    if (p.flags[k] & (kFixed | kPrescribed)) continue;
-    p.velocity[k] += h * p.force[k] / p.mass[k];
-    p.omega[k] += h * p.torque[k] / p.inertia[k];
-  }
-}
-
 void Simulation::update_neighbours() {
   NeighbourList& list = *neighbours_;
-  if (!list.needs_rebuild(particles_, walls_)) return;
+  const double moved2 = std::exchange(workspace_->drift_moved2, -1.0);
+  if (!(moved2 >= 0 ? list.needs_rebuild(particles_, walls_, moved2) : list.needs_rebuild(particles_, walls_))) return;
   // Renumber along the Morton curve while the list is rebuilt anyway.
   SpatialOrder& order = workspace_->order;
   if (particles_.size() >= kReorderMinParticles && order.compute(particles_, workspace_->order_cell)) {
@@ -342,8 +355,10 @@ void Simulation::update_neighbours() {
 
 // One pass over all forces: each thread takes its range of contact pairs and of bonds, computes
 // them with one batch call each, and adds the results to its share (see ThreadShare); then each
-// thread sums the shares over its range of particles and adds gravity and damping.
-void Simulation::compute_forces() {
+// thread sums the shares over its range of particles and adds gravity and damping, and with
+// `kick` gives its particles the second half-kick of velocity Verlet while their forces are in
+// cache (before, a parallel region of its own).
+void Simulation::compute_forces(bool kick) {
   auto& p = particles_;
   const std::size_t n = p.size();
   auto& ws = *workspace_;
@@ -356,14 +371,20 @@ void Simulation::compute_forces() {
   const int team = team_for(n + pairs + m);
   ws.prepare(team, n, walls_.size(), neighbours_->history_stride());
   const bool gravity = !gravity_.isZero();
+  const double h = 0.5 * dt_;
+  // A sub-domain's arrays change at ghost refresh and migration after the drift zeroed them.
+  const bool zeroed_by_drift = std::exchange(ws.forces_zeroed, false);
+  const bool zero_fill = !zeroed_by_drift || exchange_ != nullptr;
   int used = 1;
 #pragma omp parallel num_threads(team)
   {
     const int t = omp_get_thread_num(), nt = omp_get_num_threads();
     ThreadShare& share = ws.threads[static_cast<std::size_t>(t)];
     const Range own = range_of(n, t, nt);
-    std::fill(p.force.begin() + static_cast<std::ptrdiff_t>(own.begin), p.force.begin() + static_cast<std::ptrdiff_t>(own.end), Vec3::Zero());
-    std::fill(p.torque.begin() + static_cast<std::ptrdiff_t>(own.begin), p.torque.begin() + static_cast<std::ptrdiff_t>(own.end), Vec3::Zero());
+    if (zero_fill) {
+      std::fill(p.force.begin() + static_cast<std::ptrdiff_t>(own.begin), p.force.begin() + static_cast<std::ptrdiff_t>(own.end), Vec3::Zero());
+      std::fill(p.torque.begin() + static_cast<std::ptrdiff_t>(own.begin), p.torque.begin() + static_cast<std::ptrdiff_t>(own.end), Vec3::Zero());
+    }
     std::fill(share.wall_force.begin(), share.wall_force.end(), Vec3::Zero());
     std::fill(share.wall_torque.begin(), share.wall_torque.end(), Vec3::Zero());
     std::fill(share.wall_stored.begin(), share.wall_stored.end(), 0.0);
@@ -375,7 +396,10 @@ void Simulation::compute_forces() {
     share.bond_broke = false;
     share.bond_energy = 0;
     if (t == 0) used = nt;
+    // Thread 0 adds into the particles' arrays, which every thread zeroes over its own range.
+    if (zero_fill) {
 #pragma omp barrier
+    }
     Vec3* force = t == 0 ? p.force.data() : share.force.data();
     Vec3* torque = t == 0 ? p.torque.data() : share.torque.data();
     if (contact_) {
@@ -395,12 +419,18 @@ void Simulation::compute_forces() {
         other.force[k].setZero();
         other.torque[k].setZero();
       }
-      if (!exchange_) add_body_forces(p, k, gravity, gravity_, global_damping_);
+      if (!exchange_) {
+        add_body_forces(p, k, gravity, gravity_, global_damping_);
+        if (kick) kick_particle(p, k, h);
+      }
     }
   }
   if (exchange_) {  // a sub-domain: the reactions computed on other ranks first
     exchange_->return_reactions(p);
-    for (std::size_t k = 0; k < n; ++k) add_body_forces(p, k, gravity, gravity_, global_damping_);
+    for (std::size_t k = 0; k < n; ++k) {
+      add_body_forces(p, k, gravity, gravity_, global_damping_);
+      if (kick) kick_particle(p, k, h);
+    }
   }
   double energy = 0, bond_energy = 0;
   std::size_t contacts = 0;

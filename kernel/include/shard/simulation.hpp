@@ -94,9 +94,9 @@ class Simulation {
   void import_state(const SimulationState& state);
 
  private:
-  void compute_forces();
+  // With `kick`, the second half-kick of the step is made in the same pass (a parallel region less).
+  void compute_forces(bool kick = false);
   void integrate_first_half();
-  void integrate_second_half();
   void update_neighbours();
   // Thread `thread`'s part of the force pass (simulation.cpp): pairs or bonds [begin, end),
   // results added to force and torque.
