@@ -203,7 +203,7 @@ int fragments_command(const FragmentsOptions& options, std::ostream& out, std::o
         ro.speed_bins = options.speed_bins;
         ro.speed_edges = options.speed_edges;
         ro.command = options.command_line;
-        write_run_breakage_report(file, {k, frame.time, analysis.fragments, report}, options.intact_fraction, ro,
+        write_run_breakage_report(file, {static_cast<std::int64_t>(k), frame.time, analysis.fragments, report}, options.intact_fraction, ro,
                                   out);
       }
     }

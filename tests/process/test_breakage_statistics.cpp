@@ -156,7 +156,7 @@ TEST_CASE("plate outcomes carry each body's own fragments") {
   const ParticleSample sample{id, x, v, r, m, body};
   const FragmentAnalysis a = analyse_fragments(sample, {bi, bj});
   BodyReport report = body_statistics(sample, a.fragments, 0.9, 0);
-  attach_impacts(report, {{true, 0.01, 1.5, 10, 0}, {false, 0, 0, 0, -1}});
+  attach_impacts(report, {BodyImpact{true, 1, 0.01, Vec3(0, 0, -1.5), Vec3(0, 0, 1), 0}, BodyImpact{}});
   const auto plates = plate_outcomes(report, a.fragments, "run", 2.5, 3);
   REQUIRE(plates.size() == 2);
   CHECK(plates[0].fragment_d.size() == 2);
