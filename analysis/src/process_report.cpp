@@ -110,7 +110,7 @@ void write_run_breakage_report(RunFile& file, const RunBodies& bodies, double in
   write_csv(plate_table(plates), options.dir / "plates.csv");
   write_csv(speed_table, options.dir / "breakage_vs_speed.csv");
   const std::string group = fmt::format("/breakage/{}/by_impact_speed", frame_name(static_cast<std::size_t>(bodies.frame)));
-  write_hdf5_table(file.path(), group, speed_table);  // beside the run file's own tables
+  file.write_table(group, to_run_table(speed_table));
 
   const fs::path image = options.dir / "breakage_vs_speed.png";
   bool pictured = true;

@@ -38,15 +38,20 @@ struct FrameData {
   std::optional<std::vector<Index>> fragment;  // present when fragments were analysed
 };
 
-// A table stored under one group of a run file: a dataset per column (all of one length) and the
-// table's figures as attributes, in the order given.
+// A table stored under one group of an HDF5 file (a run file's, or a standalone one such as a
+// sweep's): a dataset per column (all of one length; text as variable-length UTF-8) and the table's
+// figures as attributes, in the order given.
 struct RunTable {
   using Column = std::variant<std::vector<std::int32_t>, std::vector<std::int64_t>, std::vector<double>,
-                              std::vector<Vec3>>;
-  using Figure = std::variant<std::int64_t, double>;
+                              std::vector<Vec3>, std::vector<std::string>>;
+  using Figure = std::variant<std::int64_t, double, std::string>;
   std::vector<std::pair<std::string, Column>> columns;
   std::vector<std::pair<std::string, Figure>> figures;
 };
+
+// Replaces `group` ("a/b" or "/a/b", parents created) of the HDF5 file `file` with the table; creates
+// the file when it is absent. Throws OutputError naming the file.
+void write_table_file(const std::filesystem::path& file, const std::string& group, const RunTable& table);
 
 // "000012": the name of frame 12 under /frames.
 std::string frame_name(std::size_t k);

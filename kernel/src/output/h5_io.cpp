@@ -198,6 +198,13 @@ void write_dataset(hid_t parent, const std::string& name, hid_t file_type, hid_t
         "writing dataset '" + name + "'");
 }
 
+void write_string_dataset(hid_t parent, const std::string& name, const std::vector<std::string>& values) {
+  Handle type = utf8_string_type();
+  std::vector<const char*> text(values.size());
+  for (std::size_t r = 0; r < values.size(); ++r) text[r] = values[r].c_str();
+  write_dataset(parent, name, type.get(), type.get(), text.data(), text.size(), 0);
+}
+
 Shape dataset_shape(hid_t parent, const std::string& path) {
   Handle dataset = dataset_handle(H5Dopen2(parent, path.c_str(), H5P_DEFAULT),
                                   "opening dataset '" + path + "'");

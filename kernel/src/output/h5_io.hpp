@@ -77,6 +77,9 @@ void remove_link(hid_t parent, const std::string& name);
 void write_dataset(hid_t parent, const std::string& name, hid_t file_type, hid_t memory_type,
                    const void* data, std::size_t rows, std::size_t cols);
 
+// One row per string, variable-length UTF-8 like the string attributes.
+void write_string_dataset(hid_t parent, const std::string& name, const std::vector<std::string>& values);
+
 template <class T>
 void write_dataset(hid_t parent, const std::string& name, const T* data, std::size_t rows,
                    std::size_t cols = 0) {

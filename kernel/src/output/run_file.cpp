@@ -535,10 +535,26 @@ void write_column(hid_t group, const std::string& name, const RunTable::Column& 
         using Value = typename std::decay_t<decltype(values)>::value_type;
         if constexpr (std::is_same_v<Value, Vec3>)
           h5::write_dataset(group, name, values.empty() ? nullptr : values.front().data(), values.size(), 3);
+        else if constexpr (std::is_same_v<Value, std::string>)
+          h5::write_string_dataset(group, name, values);
         else
           h5::write_dataset(group, name, values.data(), values.size());
       },
       column);
+}
+
+// Replaces `group` below the open file f with the table, parents first (HDF5 creates one level at a
+// time), then flushes so a crash after it leaves the table readable.
+void write_table_into(hid_t f, const std::string& path, std::string group, const RunTable& table) {
+  if (group.starts_with('/')) group.erase(0, 1);
+  for (std::size_t slash = group.find('/'); slash != std::string::npos; slash = group.find('/', slash + 1))
+    if (!h5::path_exists(f, group.substr(0, slash))) h5::create_group(f, group.substr(0, slash));
+  h5::remove_link(f, group);
+  h5::Handle g = h5::create_group(f, group);
+  for (const auto& [name, column] : table.columns) write_column(g.get(), name, column);
+  for (const auto& [name, figure] : table.figures)
+    std::visit([&](const auto& value) { h5::write_attribute(g.get(), name, value); }, figure);
+  h5::check(H5Fflush(f, H5F_SCOPE_GLOBAL), "flushing '" + path + "'");
 }
 
 }  // namespace
@@ -560,16 +576,20 @@ void RunFile::write_fragment_labels(std::size_t k, const std::vector<Index>& lab
 void RunFile::write_table(const std::string& group, const RunTable& table) {
   impl_->require_writable();
   const h5::QuietErrors quiet;
-  const hid_t f = impl_->id();
-  // Parents first (HDF5 creates one level at a time), then the table's group afresh.
-  for (std::size_t slash = group.find('/'); slash != std::string::npos; slash = group.find('/', slash + 1))
-    if (!h5::path_exists(f, group.substr(0, slash))) h5::create_group(f, group.substr(0, slash));
-  h5::remove_link(f, group);
-  h5::Handle g = h5::create_group(f, group);
-  for (const auto& [name, column] : table.columns) write_column(g.get(), name, column);
-  for (const auto& [name, figure] : table.figures)
-    std::visit([&](auto value) { h5::write_attribute(g.get(), name, value); }, figure);
-  h5::check(H5Fflush(f, H5F_SCOPE_GLOBAL), "flushing '" + impl_->path.string() + "'");
+  write_table_into(impl_->id(), impl_->path.string(), group, table);
+}
+
+void write_table_file(const std::filesystem::path& file, const std::string& group, const RunTable& table) {
+  const h5::QuietErrors quiet;
+  std::error_code absent;
+  const bool exists = std::filesystem::exists(file, absent);
+  const hid_t id = exists ? H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT)
+                          : H5Fcreate(file.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, H5P_DEFAULT);
+  if (id < 0)
+    throw OutputError(fmt::format("cannot {} '{}' for a table: check the folder exists and is writable",
+                                  exists ? "open" : "create", file.string()));
+  const h5::Handle handle(id, H5Fclose);
+  write_table_into(id, file.string(), group, table);
 }
 
 }  // namespace shard

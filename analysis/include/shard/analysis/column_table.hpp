@@ -9,6 +9,8 @@
 #include <variant>
 #include <vector>
 
+#include "shard/run_file.hpp"
+
 namespace shard::analysis {
 
 struct Column {
@@ -33,9 +35,13 @@ struct ColumnTable {
 // holds a comma, a quote or a line break. Throws std::runtime_error when the file cannot be written.
 void write_csv(const ColumnTable& table, const std::filesystem::path& file);
 
+// The table as the kernel's table writer takes it (shard/run_file.hpp): a dataset per column
+// (text as variable-length UTF-8), the row count as the attribute `rows`, the notes as string
+// attributes.
+RunTable to_run_table(const ColumnTable& table);
+
 // Replaces the group `group` ("/a/b": parents are created) of the HDF5 file `file` (created when
-// absent) with the table: float64 / int64 / variable-length string datasets [rows], the notes as
-// string attributes. Throws std::runtime_error naming the file and group.
+// absent) with to_run_table(table). Throws OutputError naming the file.
 void write_hdf5_table(const std::filesystem::path& file, const std::string& group, const ColumnTable& table);
 
 }  // namespace shard::analysis
