@@ -7,7 +7,7 @@
 #include <ostream>
 
 #include "shard/driver/checkpoint_writer.hpp"
-#include "shard/driver/fragment_labeller.hpp"
+#include "shard/driver/scene_rules.hpp"
 #include "shard/driver/progress_printer.hpp"
 #include "shard/driver/run_driver.hpp"
 #include "shard/driver/run_report.hpp"
@@ -56,15 +56,14 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
 
   // The order is the order of the hooks: a stop rule ends the run before the progress line of
   // its row, the labels are in each frame before a checkpoint follows it.
-  driver::LoadDropStop load_drop;
-  driver::MaxDisplacementStop max_displacement;
-  driver::FragmentLabeller labeller;
+  driver::SceneRules scene_rules;
   driver::CheckpointWriter checkpoints(options.checkpoint_every);
   driver::InterruptStop interrupt(options.interrupt_at_step);
   driver::ProgressPrinter progress(log_stream);
   driver::RunReport report(line);
   driver::CurveCsvWriter curve(line);
-  std::vector<driver::RunObserver*> observers{&load_drop, &max_displacement, &labeller, &checkpoints, &interrupt};
+  std::vector<driver::RunObserver*> observers = scene_rules.observers();
+  observers.insert(observers.end(), {&checkpoints, &interrupt});
   if (!options.quiet) observers.push_back(&progress);
   observers.insert(observers.end(), {&report, &curve});
   return driver::run(spec, host, observers, log);

@@ -13,9 +13,8 @@
 #include "byte_record.hpp"
 #include "shard/app/run_command.hpp"
 #include "shard/bending/bending_run.hpp"
-#include "shard/driver/fragment_labeller.hpp"
+#include "shard/driver/scene_rules.hpp"
 #include "shard/driver/run_driver.hpp"
-#include "shard/driver/stop_rules.hpp"
 #include "shard/plugin_host.hpp"
 
 namespace shard {
@@ -116,10 +115,8 @@ RunOutcome execute_run_job(const RunJob& job, const PluginHost& host) {
   spec.threads = 1;
   std::error_code ignored;
   fs::remove_all(spec.out_dir, ignored);  // a killed earlier attempt's leftovers
-  driver::LoadDropStop load_drop;
-  driver::MaxDisplacementStop max_displacement;
-  driver::FragmentLabeller labeller;  // the frames carry fragment labels, as `shard run` writes them
-  const driver::RunResult r = driver::run(spec, host, {&load_drop, &max_displacement, &labeller});
+  driver::SceneRules scene_rules;
+  const driver::RunResult r = driver::run(spec, host, scene_rules.observers());
   RunOutcome out;
   out.time = r.curve.time;
   out.displacement = r.curve.displacement;

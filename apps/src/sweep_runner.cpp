@@ -15,10 +15,9 @@
 #include "shard/run_file.hpp"
 #include "shard/app/run_command.hpp"
 #include "shard/app/sweep_command.hpp"
-#include "shard/driver/fragment_labeller.hpp"
+#include "shard/driver/scene_rules.hpp"
 #include "shard/driver/parallel_runs.hpp"
 #include "shard/driver/run_driver.hpp"
-#include "shard/driver/stop_rules.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
 #include "sweep_outputs.hpp"
@@ -104,11 +103,9 @@ SweepResult run_sweep(const SweepOptions& options, std::ostream& log) {
     spec.threads = 1;
     std::error_code ignored;
     fs::remove_all(spec.out_dir, ignored);  // an earlier sweep's run of this label
-    driver::LoadDropStop load_drop;
-    driver::MaxDisplacementStop max_displacement;
-    driver::FragmentLabeller labeller;  // frames carry fragment labels for ParaView, as `shard run` writes them
+    driver::SceneRules scene_rules;
     const driver::RunLog run_log{{}, warn};
-    const driver::RunResult rr = driver::run(spec, host, {&load_drop, &max_displacement, &labeller}, run_log);
+    const driver::RunResult rr = driver::run(spec, host, scene_rules.observers(), run_log);
     outputs[i] = rr.output;
     walls[i] = rr.wall_seconds;
   };
