@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "../common/beam_hertz_models.hpp"
 #include "shard/mpi/distributed_simulation.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
@@ -39,17 +40,7 @@ constexpr double kD = 1e-3;       // m, diameter and lattice spacing
 constexpr double kSpeed = 1.0;    // m/s, each slab
 constexpr std::int64_t kSteps = 900;
 
-struct Models {
-  PluginHost host;  // first: the libraries outlive the models
-  std::unique_ptr<ContactModel> contact;
-  std::unique_ptr<BondModel> bond;
-  Models() {
-    host.load_file(SHARD_BUILD_DIR "/plugins/shard_hertz_mindlin.so");
-    host.load_file(SHARD_BUILD_DIR "/plugins/shard_beam_bond.so");
-    contact = host.make_contact("hertz_mindlin", host.params(PluginKind::Contact, "hertz_mindlin", {}));
-    bond = host.make_bond("beam_bond", host.params(PluginKind::Bond, "beam_bond", {}));
-  }
-};
+using Models = testing::BeamHertzModels;
 
 // Lattice of kNx x kNy x kNz spheres (jittered), neighbours along the axes bonded, ids shuffled so
 // that id order is not storage order; the two end layers at each x end are pulled apart.

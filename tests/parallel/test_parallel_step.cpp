@@ -11,6 +11,7 @@
 #include <random>
 #include <vector>
 
+#include "../common/beam_hertz_models.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/simulation.hpp"
 
@@ -23,17 +24,7 @@ constexpr double kD = 1e-3;        // m, diameter and lattice spacing
 constexpr double kSpeed = 0.2;     // m/s, each slab
 constexpr std::int64_t kSteps = 250;
 
-struct Models {
-  PluginHost host;  // first: the libraries outlive the models
-  std::unique_ptr<ContactModel> contact;
-  std::unique_ptr<BondModel> bond;
-  Models() {
-    host.load_file(SHARD_BUILD_DIR "/plugins/shard_hertz_mindlin.so");
-    host.load_file(SHARD_BUILD_DIR "/plugins/shard_beam_bond.so");
-    contact = host.make_contact("hertz_mindlin", host.params(PluginKind::Contact, "hertz_mindlin", {}));
-    bond = host.make_bond("beam_bond", host.params(PluginKind::Bond, "beam_bond", {}));
-  }
-};
+using Models = testing::BeamHertzModels;
 
 Models& models() {
   static Models m;
