@@ -35,12 +35,12 @@ TEST_CASE("hertz_mindlin declares its parameters with SI units, defaults and ran
   const PluginInfo& info = plugins.info("hertz_mindlin");
   CHECK(info.kind == PluginKind::Contact);
   // The law's four, then `effects` and its policies' parameters (docs/effects.md).
-  REQUIRE(info.params.size() == 7);
-  const std::array<const char*, 6> names{"shear_modulus", "poisson_ratio",   "friction",
-                                         "restitution",   "cohesion_stress", "support_friction_ratio"};
-  const std::array<const char*, 6> units{"Pa", "1", "1", "1", "Pa", "1"};
-  const std::array<double, 6> defaults{10e6, 0.25, 0.67, 0.5, 0.0, 1.0};
-  for (std::size_t k = 0; k < 6; ++k) {
+  REQUIRE(info.params.size() == 8);
+  const std::array<const char*, 7> names{"shear_modulus",   "poisson_ratio",          "friction",        "restitution",
+                                         "cohesion_stress", "support_friction_ratio", "rolling_friction"};
+  const std::array<const char*, 7> units{"Pa", "1", "1", "1", "Pa", "1", "1"};
+  const std::array<double, 7> defaults{10e6, 0.25, 0.67, 0.5, 0.0, 1.0, 0.0};
+  for (std::size_t k = 0; k < 7; ++k) {
     const ParamSpec& spec = info.params[k < 4 ? k : k + 1];
     CHECK(spec.name == names[k]);
     CHECK(spec.unit == units[k]);
@@ -49,7 +49,10 @@ TEST_CASE("hertz_mindlin declares its parameters with SI units, defaults and ran
   CHECK(info.params[4].name == "effects");
   CHECK(info.params[5].neutral == 0.0);
   CHECK(info.params[6].neutral == 1.0);
+  CHECK(info.params[7].neutral == 0.0);
+  CHECK(info.params[7].scope == ParamScope::Pair);
   CHECK_THROWS_AS(plugins.make("hertz_mindlin", {{"cohesion_stress", -1.0}}), PluginError);
+  CHECK_THROWS_AS(plugins.make("hertz_mindlin", {{"rolling_friction", -0.1}}), PluginError);
   CHECK_THROWS_AS(plugins.make("hertz_mindlin", {{"restitution", 0.0}}), PluginError);
   CHECK_THROWS_AS(plugins.make("hertz_mindlin", {{"shear_modulus", 0.0}}), PluginError);
   CHECK_THROWS_AS(plugins.make("hertz_mindlin", {{"poisson_ratio", 0.6}}), PluginError);

@@ -32,10 +32,12 @@ TEST_CASE("linear_spring declares its parameters and refuses out-of-range values
   const PluginInfo& info = plugins.info("linear_spring");
   CHECK(info.kind == PluginKind::Contact);
   // The law's four, then `effects` and its policy's parameter (docs/effects.md).
-  REQUIRE(info.params.size() == 6);
+  REQUIRE(info.params.size() == 7);
   CHECK(info.params[4].name == "effects");
   CHECK(info.params[5].name == "support_friction_ratio");
   CHECK(info.params[5].neutral == 1.0);
+  CHECK(info.params[6].name == "rolling_friction");
+  CHECK(info.params[6].neutral == 0.0);
   CHECK(info.params[0].name == "normal_stiffness");
   CHECK(info.params[0].unit == "N/m");
   CHECK(info.params[1].name == "tangential_stiffness_ratio");

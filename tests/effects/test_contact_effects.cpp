@@ -8,45 +8,13 @@
 #include <numbers>
 
 #include "contact_batch.hpp"
+#include "sphere_on_plane.hpp"
 #include "hertz_mindlin_model.hpp"
 #include "linear_spring_model.hpp"
 #include "shard/simulation.hpp"
 
 namespace shard::effects_test {
 namespace {
-
-// A sphere launched along x without spin on a horizontal plane, resting at its Hertz equilibrium
-// overlap under gravity. Returns its x velocity after `time`.
-struct SlidingSphere {
-  static constexpr double radius = 1e-3, density = 3720, g = 9.81, v0 = 0.05;
-  double mass = 0;
-  std::unique_ptr<Simulation> sim;
-
-  explicit SlidingSphere(const ContactModel& model, double e_star) {
-    Particles p;
-    p.add(Vec3::Zero(), radius, density);
-    mass = p.mass[0];
-    // 4/3 E* sqrt(r) delta^1.5 = m g
-    const double delta = std::pow(3 * mass * g / (4 * e_star * std::sqrt(radius)), 2.0 / 3.0);
-    p.position[0] = Vec3(0, 0, radius - delta);
-    p.velocity[0] = Vec3(v0, 0, 0);
-    SimulationSetup s;
-    s.particles = std::move(p);
-    s.contact = &model;
-    Wall floor;
-    floor.name = "floor";
-    floor.shape = WallShape::Plane;
-    floor.point = Vec3::Zero();
-    floor.axis = Vec3::UnitZ();
-    s.walls.push_back(floor);
-    s.gravity = Vec3(0, 0, -g);
-    sim = std::make_unique<Simulation>(std::move(s));
-  }
-  double velocity_at(double time) {
-    sim->run(static_cast<std::int64_t>(std::llround((time - sim->time()) / sim->dt())));
-    return sim->particles().velocity[0].x();
-  }
-};
 
 HertzMindlin hertz(double friction, double support_ratio, double cohesion_stress) {
   HertzMindlinMaterial m;
@@ -66,17 +34,17 @@ TEST_CASE("a sphere sliding on a wall decelerates at mu_wall g, independent of t
     CHECK(model.effects_on().support_friction == (ratio != 1.0));
     const double mu = ratio * friction;
     const double mu_wall = mu;
-    SlidingSphere s(model, model.effective_young_modulus());
+    SphereOnPlane s(model, model.effective_young_modulus());
     // Sliding lasts until v = 5/7 v0 at t = 2 v0 / (7 mu g): 7.3 ms for mu = 0.2, 2.2 ms for 0.67.
-    const double t_roll = 2 * SlidingSphere::v0 / (7 * mu * SlidingSphere::g);
+    const double t_roll = 2 * SphereOnPlane::v0 / (7 * mu * SphereOnPlane::g);
     const double t1 = 0.1 * t_roll, t2 = 0.8 * t_roll;
     const double v1 = s.velocity_at(t1), v2 = s.velocity_at(t2);
     const double deceleration = (v1 - v2) / (t2 - t1);
-    MESSAGE("mu_wall ", mu_wall, ": deceleration ", deceleration, " m/s^2 vs mu g = ", mu * SlidingSphere::g);
+    MESSAGE("mu_wall ", mu_wall, ": deceleration ", deceleration, " m/s^2 vs mu g = ", mu * SphereOnPlane::g);
     // The normal force rings around m g from the start (restitution 0.5 damps it); 1 % covers it.
-    CHECK(deceleration == doctest::Approx(mu * SlidingSphere::g).epsilon(0.01));
+    CHECK(deceleration == doctest::Approx(mu * SphereOnPlane::g).epsilon(0.01));
     // And after rolling sets in: v = 5/7 v0 (rolling without slip; rolling friction absent).
-    CHECK(s.velocity_at(1.5 * t_roll) == doctest::Approx(5.0 / 7 * SlidingSphere::v0).epsilon(0.01));
+    CHECK(s.velocity_at(1.5 * t_roll) == doctest::Approx(5.0 / 7 * SphereOnPlane::v0).epsilon(0.01));
   }
 }
 

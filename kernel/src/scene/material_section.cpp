@@ -20,6 +20,12 @@ const char* scope_section(ParamScope scope) {
   return "[contact]";
 }
 
+// An effect's parameter whose default is its neutral value: leaving it out keeps the effect off.
+bool off_by_default(const ParamSpec& spec) {
+  const double* value = std::get_if<double>(&spec.default_value);
+  return value && spec.neutral && *value == *spec.neutral;
+}
+
 std::vector<const ParamSpec*> specs_of(const LoadedPlugin* law, ParamScope scope) {
   std::vector<const ParamSpec*> out;
   if (law)
@@ -264,7 +270,9 @@ void read_materials(const toml::table& root, const std::string& file, const Plug
   }
 
   // Each pair's parameters: its row, else the default row; a pair that can meet must have them
-  // all; one that cannot keeps the law's defaults (never read).
+  // all, except an effect's parameter whose default is its neutral value (e.g. rolling_friction
+  // 0): given by no row, the effect stays off for that pair. A pair that cannot meet keeps the
+  // law's defaults (never read).
   scene.material_pairs.assign(count * count, ParamSet{});
   for (std::size_t a = 0; a < count; ++a)
     for (std::size_t b = 0; b < count; ++b) {
@@ -274,7 +282,7 @@ void read_materials(const toml::table& root, const std::string& file, const Plug
           scene.material_pairs[k].set(spec->name, rows[k]->values.all().at(spec->name));
         } else if (fallback && fallback->values.has(spec->name)) {
           scene.material_pairs[k].set(spec->name, fallback->values.all().at(spec->name));
-        } else if (needs[k]) {
+        } else if (needs[k] && !off_by_default(*spec)) {
           const std::string &na = scene.materials[a].name, &nb = scene.materials[b].name;
           throw SceneError(fmt::format(
               "{}: no [[material_pair]] gives {} [{}] for materials '{}' and '{}', which meet ({}); add a row "

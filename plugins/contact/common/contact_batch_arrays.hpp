@@ -11,7 +11,8 @@ inline ContactArrays arrays_of(ContactBatch& b) {
   static_assert(sizeof(Vec3) == 3 * sizeof(double));
   if (b.count == 0) return {};
   return {b.count, b.dt, b.j, b.normal->data(), b.velocity->data(), b.overlap, b.r_eff, b.m_eff, b.history,
-          b.force->data(), b.energy, b.material_pair};
+          b.force->data(), b.energy, b.material_pair, b.omega_rel ? b.omega_rel->data() : nullptr,
+          b.couple ? b.couple->data() : nullptr};
 }
 
 }  // namespace shard::contact

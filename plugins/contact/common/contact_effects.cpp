@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 namespace shard::contact {
 namespace {
 
-ParamSpec number(const char* name, const char* unit, const char* doc, double value, double neutral) {
-  return {.name = name, .unit = unit, .doc = doc, .default_value = value, .min = 0.0, .neutral = neutral};
+ParamSpec number(const char* name, const char* unit, const char* doc, double value, double neutral,
+                 ParamScope scope = ParamScope::Model) {
+  return {.name = name, .unit = unit, .doc = doc, .default_value = value, .min = 0.0, .neutral = neutral, .scope = scope};
 }
 
 std::string valid_names(bool with_cohesion) {
@@ -34,6 +36,12 @@ std::vector<ContactEffectPolicy> contact_effect_policies(bool with_cohesion) {
                         "Coulomb friction at particle-wall contacts (supports, pins) over the particles' friction; "
                         "1 = the same",
                         1.0, 1.0)});
+  out.push_back({"rolling_resistance",
+                 "a couple against relative rolling, elastic-plastic, capped at mu_r R* F_n (Ai et al. 2011, model C)",
+                 number("rolling_friction", "1",
+                        "coefficient of rolling friction mu_r: the rolling couple's cap over R* F_n (a sphere rolling on a "
+                        "plane decelerates at 5/7 mu_r g); 0 = none",
+                        0.0, 0.0, ParamScope::Pair)});
   return out;
 }
 
@@ -59,6 +67,7 @@ ContactEffects ContactEffects::from(const ParamSet& p, const char* law, bool wit
   ContactEffects e;
   if (with_cohesion) e.cohesion_stress = p.number("cohesion_stress");
   e.support_friction_ratio = p.number("support_friction_ratio");
+  e.rolling_friction = p.number("rolling_friction");
   const auto policies = contact_effect_policies(with_cohesion);
   for (const auto& name : p.names("effects")) {
     if (std::none_of(policies.begin(), policies.end(), [&](const ContactEffectPolicy& q) { return q.name == name; })) {
@@ -75,18 +84,49 @@ ContactEffects ContactEffects::from(const ParamSet& p, const char* law, bool wit
   if (!(e.cohesion_stress >= 0.0)) throw std::invalid_argument(std::string(law) + ": cohesion_stress must be >= 0 Pa");
   if (!(e.support_friction_ratio >= 0.0))
     throw std::invalid_argument(std::string(law) + ": support_friction_ratio must be >= 0");
+  if (!(e.rolling_friction >= 0.0)) throw std::invalid_argument(std::string(law) + ": rolling_friction must be >= 0");
   return e;
+}
+
+bool ContactEffects::rolling_on(const std::vector<double>& mu_r_per_pair) const {
+  const bool named_here = std::find(named.begin(), named.end(), "rolling_resistance") != named.end();
+  return named_here || std::any_of(mu_r_per_pair.begin(), mu_r_per_pair.end(), [](double mu_r) { return mu_r != 0.0; });
 }
 
 EffectSwitches ContactEffects::switches() const {
   EffectSwitches on;
   for (const auto& policy : contact_effect_policies(true)) {
+    if (policy.name == "rolling_resistance") continue;  // per pair of materials: rolling_on
     const bool cohesion = policy.name == "cohesion";
     const double value = cohesion ? cohesion_stress : support_friction_ratio;
     const bool named_here = std::find(named.begin(), named.end(), policy.name) != named.end();
     (cohesion ? on.cohesion : on.support_friction) = named_here || value != *policy.param.neutral;
   }
   return on;
+}
+
+ComposedEffects::ComposedEffects(const ContactEffects& effects)
+    : given(effects), on(effects.switches()), rolling_friction{effects.rolling_friction} {
+  on.rolling_resistance = given.rolling_on(rolling_friction);
+}
+
+void ComposedEffects::set_pairs(const std::vector<ParamSet>& pairs) {
+  std::vector<double> mu_r;
+  mu_r.reserve(pairs.size());
+  for (const ParamSet& pair : pairs) {
+    // A table made in code may leave the effect out: off, its neutral value.
+    const double value = pair.has("rolling_friction") ? pair.number("rolling_friction") : 0.0;
+    if (!(value >= 0.0)) throw std::invalid_argument("rolling_friction must be >= 0");
+    mu_r.push_back(value);
+  }
+  rolling_friction = std::move(mu_r);
+  on.rolling_resistance = given.rolling_on(rolling_friction);
+}
+
+EffectSizes ComposedEffects::sizes() const {
+  EffectSizes s = given.sizes();
+  s.rolling_friction = rolling_friction.data();
+  return s;
 }
 
 }  // namespace shard::contact

@@ -40,16 +40,15 @@ HertzMindlin::HertzMindlin(const HertzMindlinMaterial& material, const contact::
       materials_{material},
       names_{""},
       laws_{hertz::HertzLaw::of(e_star_, g_star_, damping_, material.friction)},
-      on_(effects.switches()),
-      sizes_(effects.sizes()),
-      kernel_(hertz::hertz_kernel(contact::best_lane_set(), on_)) {}
+      effects_(effects),
+      kernel_(hertz::hertz_kernel(contact::best_lane_set(), effects_.on)) {}
 
 HertzMindlin HertzMindlin::from(const ParamSet& params) {
   return HertzMindlin(HertzMindlinMaterial::from(params),
                       contact::ContactEffects::from(params, "hertz_mindlin", /*with_cohesion=*/true));
 }
 
-std::size_t HertzMindlin::history_size() const { return contact::kTangentialHistorySize; }
+std::size_t HertzMindlin::history_size() const { return effects_.history_size(); }
 
 TimeStepLimit HertzMindlin::time_step_limit(double min_radius, double density) const {
   // The first material's (the only one, unless set_materials gave a table of one).
@@ -93,6 +92,8 @@ void HertzMindlin::set_materials(const ContactMaterials& m) {
   materials_ = std::move(materials);
   names_ = m.names;
   laws_ = std::move(laws);
+  effects_.set_pairs(m.pair);
+  kernel_ = hertz::hertz_kernel(contact::best_lane_set(), effects_.on);
 }
 
 TimeStepLimit HertzMindlin::time_step_limit(const std::vector<MaterialExtent>& per_material) const {
@@ -110,13 +111,13 @@ TimeStepLimit HertzMindlin::time_step_limit(const std::vector<MaterialExtent>& p
   return out;
 }
 
-void HertzMindlin::compute(ContactBatch& batch) const { kernel_(contact::arrays_of(batch), laws_.data(), sizes_); }
+void HertzMindlin::compute(ContactBatch& batch) const { kernel_(contact::arrays_of(batch), laws_.data(), effects_.sizes()); }
 
 void HertzMindlin::compute_with(contact::LaneSet set, ContactBatch& batch) const {
   if (!contact::lane_set_available(set))
     throw std::invalid_argument(std::string("hertz_mindlin: this machine cannot run the ") +
                                 std::string(contact::lane_set_name(set)) + " lanes");
-  hertz::hertz_kernel(set, on_)(contact::arrays_of(batch), laws_.data(), sizes_);
+  hertz::hertz_kernel(set, effects_.on)(contact::arrays_of(batch), laws_.data(), effects_.sizes());
 }
 
 }  // namespace shard

@@ -43,7 +43,7 @@ class HertzMindlin final : public ContactModel {
   double effective_shear_modulus() const { return g_star_; }
   // Dimensionless c of the dashpot c sqrt(S m*), solved from the restitution.
   double damping() const { return damping_; }
-  contact::EffectSwitches effects_on() const { return on_; }
+  contact::EffectSwitches effects_on() const { return effects_.on; }
   // The law of the pair of materials a, b (0, 0 with one material).
   const hertz::HertzLaw& law(std::size_t a, std::size_t b) const { return laws_[a * materials_.size() + b]; }
 
@@ -57,8 +57,7 @@ class HertzMindlin final : public ContactModel {
   std::vector<HertzMindlinMaterial> materials_;
   std::vector<std::string> names_;
   std::vector<hertz::HertzLaw> laws_;
-  contact::EffectSwitches on_;
-  contact::EffectSizes sizes_;
+  contact::ComposedEffects effects_;
   contact::LawKernel<hertz::HertzLaw> kernel_;
 };
 

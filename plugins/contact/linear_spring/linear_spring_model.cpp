@@ -39,16 +39,15 @@ LinearSpring::LinearSpring(const LinearSpringParameters& parameters, const conta
       friction_(parameters.friction),
       zeta_(linear::damping_ratio_for_restitution(parameters.restitution)),
       laws_{linear::LinearLaw{{k_n_, k_t_, 2.0 * zeta_, friction_}}},
-      on_(effects.switches()),
-      sizes_(effects.sizes()),
-      kernel_(linear::linear_kernel(contact::best_lane_set(), on_)) {}
+      effects_(effects),
+      kernel_(linear::linear_kernel(contact::best_lane_set(), effects_.on)) {}
 
 LinearSpring LinearSpring::from(const ParamSet& params) {
   return LinearSpring(LinearSpringParameters::from(params),
                       contact::ContactEffects::from(params, "linear_spring", /*with_cohesion=*/false));
 }
 
-std::size_t LinearSpring::history_size() const { return contact::kTangentialHistorySize; }
+std::size_t LinearSpring::history_size() const { return effects_.history_size(); }
 
 // The shortest contact in a scene is between the two lightest particles (m* = m/2), and the
 // stiffer of the normal and rolling-tangential oscillators sets its pace. The step is t_c / 20
@@ -85,6 +84,8 @@ void LinearSpring::set_materials(const ContactMaterials& m) {
   count_ = n;
   names_ = m.names;
   laws_ = std::move(laws);
+  effects_.set_pairs(m.pair);
+  kernel_ = linear::linear_kernel(contact::best_lane_set(), effects_.on);
 }
 
 // Each pair on its lightest particles: m* of the two lightest (m/2 for one material), or the
@@ -116,13 +117,13 @@ TimeStepLimit LinearSpring::time_step_limit(const std::vector<MaterialExtent>& p
   return out;
 }
 
-void LinearSpring::compute(ContactBatch& batch) const { kernel_(contact::arrays_of(batch), laws_.data(), sizes_); }
+void LinearSpring::compute(ContactBatch& batch) const { kernel_(contact::arrays_of(batch), laws_.data(), effects_.sizes()); }
 
 void LinearSpring::compute_with(contact::LaneSet set, ContactBatch& batch) const {
   if (!contact::lane_set_available(set))
     throw std::invalid_argument(std::string("linear_spring: this machine cannot run the ") +
                                 std::string(contact::lane_set_name(set)) + " lanes");
-  linear::linear_kernel(set, on_)(contact::arrays_of(batch), laws_.data(), sizes_);
+  linear::linear_kernel(set, effects_.on)(contact::arrays_of(batch), laws_.data(), effects_.sizes());
 }
 
 }  // namespace shard

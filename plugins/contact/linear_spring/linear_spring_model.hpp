@@ -43,7 +43,7 @@ class LinearSpring final : public ContactModel {
   double tangential_stiffness() const { return k_t_; }
   // Damping ratio zeta of both dashpots, solved from the restitution.
   double damping_ratio() const { return zeta_; }
-  contact::EffectSwitches effects_on() const { return on_; }
+  contact::EffectSwitches effects_on() const { return effects_.on; }
   // The law of the pair of materials a, b (0, 0 with one material).
   const linear::LinearLaw& law(std::size_t a, std::size_t b) const { return laws_[a * count_ + b]; }
 
@@ -56,8 +56,7 @@ class LinearSpring final : public ContactModel {
   std::size_t count_ = 1;
   std::vector<std::string> names_{""};
   std::vector<linear::LinearLaw> laws_;
-  contact::EffectSwitches on_;
-  contact::EffectSizes sizes_;
+  contact::ComposedEffects effects_;
   contact::LawKernel<linear::LinearLaw> kernel_;
 };
 
