@@ -1,6 +1,8 @@
 // The decomposed step loop (docs/scaling-out.md, "Figures" and "Cost model"). Modes:
 //   mpirun -np N bench_mpi [--barriers] [--serial] [block] [particles=20000] [steps=300] [pull_speed=0.2]
 //       bench_kernel's bonded block on N ranks
+//   mpirun -np N bench_mpi [--barriers] [--serial] pack [particles=100000] [steps=100]
+//       bench_kernel's dense unbonded Hertz-Mindlin pack (contacts only: the per-particle cost)
 //   mpirun -np N bench_mpi [--barriers] [--serial] scene FILE [steps=50] [section.key=value ...]
 //       a scene file through the kernel's scene loader and generator plugins (the seed beam)
 //   bench_mpi partition block N P1 P2 ... | partition scene FILE P1 P2 ...
@@ -16,9 +18,11 @@
 #include <mpi.h>
 #include <omp.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -61,7 +65,8 @@ Options parse(int argc, char** argv) {
     else o.args.push_back(a);
   }
   // The first form of the benchmark: `bench_mpi 20000 300`.
-  if (o.args.empty() || (o.args[0] != "scene" && o.args[0] != "partition" && o.args[0] != "pingpong" && o.args[0] != "block"))
+  if (o.args.empty() || (o.args[0] != "scene" && o.args[0] != "partition" && o.args[0] != "pingpong" && o.args[0] != "block" &&
+                          o.args[0] != "pack"))
     o.args.insert(o.args.begin(), "block");
   return o;
 }
@@ -70,11 +75,21 @@ std::string arg(const std::vector<std::string>& a, std::size_t k, const std::str
   return a.size() > k ? a[k] : fallback;
 }
 
-// One rank's figures of a timed run, per step.
+// One rank's figures of a timed run, per step: means over the run, and the fastest and median
+// step (on a shared machine the fastest step is the one both ranks ran without waiting for a
+// core: the nearest to an idle figure a loaded machine gives).
 struct RankFigures {
-  double owned, ghosts, neighbours, cpu_ms, pack_ms, exchange_ms, unpack_ms, barrier_ms, reduction_ms, partition_ms,
+  double pid, owned, ghosts, neighbours, cpu_ms, pack_ms, exchange_ms, unpack_ms, barrier_ms, reduction_ms, partition_ms,
       compute_ms;
+  double step_min_ms, step_median_ms, compute_min_ms, compute_median_ms, halo_min_ms, halo_median_ms, reduction_min_ms;
 };
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0 : v[v.size() / 2];
+}
+
+double smallest(const std::vector<double>& v) { return v.empty() ? 0 : *std::min_element(v.begin(), v.end()); }
 
 void timed_distributed(const char* label, mpi::DistributedSimulation& sim, long steps, long warmup, bool barriers,
                        double setup_seconds) {
@@ -83,9 +98,23 @@ void timed_distributed(const char* label, mpi::DistributedSimulation& sim, long 
   const auto p0 = sim.phase_seconds();
   const long repartitions0 = sim.repartitions();
   const double load_before = load1();
+  const auto n = static_cast<std::size_t>(steps);
+  std::vector<double> step_ms(n), compute_ms(n), halo_ms(n), reduction_ms(n);
   MPI_Barrier(MPI_COMM_WORLD);
   const double start = MPI_Wtime(), cpu_start = cpu_seconds();
-  sim.run(steps);
+  for (std::size_t s = 0; s < n; ++s) {
+    const auto a = sim.phase_seconds();
+    const double t = MPI_Wtime();
+    sim.step();
+    const double wall = MPI_Wtime() - t;
+    const auto b = sim.phase_seconds();
+    const double halo = (b.pack - a.pack) + (b.exchange - a.exchange) + (b.unpack - a.unpack);
+    const double other = (b.barrier - a.barrier) + (b.reduction - a.reduction) + (b.partition - a.partition);
+    step_ms[s] = 1e3 * wall;
+    halo_ms[s] = 1e3 * halo;
+    reduction_ms[s] = 1e3 * (b.reduction - a.reduction);
+    compute_ms[s] = 1e3 * (wall - halo - other);
+  }
   const double cpu = cpu_seconds() - cpu_start;
   const double mine = MPI_Wtime() - start;  // this rank's wall time, before waiting for the others
   MPI_Barrier(MPI_COMM_WORLD);
@@ -93,6 +122,7 @@ void timed_distributed(const char* label, mpi::DistributedSimulation& sim, long 
   const auto p1 = sim.phase_seconds();
   const double per = 1e3 / static_cast<double>(steps);
   RankFigures f{};
+  f.pid = static_cast<double>(getpid());  // names the rank's callgrind file (callgrind_split.sh)
   f.owned = static_cast<double>(sim.owned());
   f.ghosts = static_cast<double>(sim.ghosts());
   f.neighbours = static_cast<double>(sim.halo_neighbours());
@@ -104,6 +134,13 @@ void timed_distributed(const char* label, mpi::DistributedSimulation& sim, long 
   f.reduction_ms = per * (p1.reduction - p0.reduction);
   f.partition_ms = per * (p1.partition - p0.partition);
   f.compute_ms = per * mine - (f.pack_ms + f.exchange_ms + f.unpack_ms + f.barrier_ms + f.reduction_ms + f.partition_ms);
+  f.step_min_ms = smallest(step_ms);
+  f.step_median_ms = median(step_ms);
+  f.compute_min_ms = smallest(compute_ms);
+  f.compute_median_ms = median(compute_ms);
+  f.halo_min_ms = smallest(halo_ms);
+  f.halo_median_ms = median(halo_ms);
+  f.reduction_min_ms = smallest(reduction_ms);
   std::vector<RankFigures> all(static_cast<std::size_t>(sim.ranks()));
   MPI_Gather(&f, sizeof f, MPI_BYTE, all.data(), sizeof f, MPI_BYTE, 0, MPI_COMM_WORLD);
   const std::size_t bonds = sim.bond_count();
@@ -111,7 +148,9 @@ void timed_distributed(const char* label, mpi::DistributedSimulation& sim, long 
   if (sim.rank() != 0) return;
   RankFigures m{};  // largest over the ranks
   double ghosts = 0, halo_share = 0;
+  std::size_t particles = 0;
   for (const RankFigures& r : all) {
+    particles += static_cast<std::size_t>(r.owned);
     ghosts += r.ghosts;
     m.cpu_ms = std::max(m.cpu_ms, r.cpu_ms);
     m.compute_ms = std::max(m.compute_ms, r.compute_ms);
@@ -121,24 +160,33 @@ void timed_distributed(const char* label, mpi::DistributedSimulation& sim, long 
     m.barrier_ms = std::max(m.barrier_ms, r.barrier_ms);
     m.reduction_ms = std::max(m.reduction_ms, r.reduction_ms);
     m.partition_ms = std::max(m.partition_ms, r.partition_ms);
+    m.step_min_ms = std::max(m.step_min_ms, r.step_min_ms);
+    m.step_median_ms = std::max(m.step_median_ms, r.step_median_ms);
+    m.compute_min_ms = std::max(m.compute_min_ms, r.compute_min_ms);
+    m.compute_median_ms = std::max(m.compute_median_ms, r.compute_median_ms);
+    m.halo_min_ms = std::max(m.halo_min_ms, r.halo_min_ms);
+    m.halo_median_ms = std::max(m.halo_median_ms, r.halo_median_ms);
+    m.reduction_min_ms = std::max(m.reduction_min_ms, r.reduction_min_ms);
     halo_share = std::max(halo_share, (r.pack_ms + r.exchange_ms + r.unpack_ms) / (per * seconds));
   }
-  std::size_t particles = 0;
-  for (const RankFigures& r : all) particles += static_cast<std::size_t>(r.owned);
   std::printf("bench_mpi %s ranks=%d threads=%d barriers=%d particles=%zu bonds=%zu contacts=%zu ghosts=%.0f steps=%ld "
               "load_before=%.2f load_after=%.2f setup_s=%.1f ms_per_step=%.3f cpu_ms_per_step_max_rank=%.3f "
               "compute_ms_max=%.3f pack_ms_max=%.4f exchange_ms_max=%.4f unpack_ms_max=%.4f barrier_ms_max=%.4f "
-              "reduction_ms_max=%.4f partition_ms_max=%.4f halo_share=%.3f repartitions=%ld\n",
+              "reduction_ms_max=%.4f partition_ms_max=%.4f halo_share=%.3f repartitions=%ld step_min_ms=%.3f "
+              "step_median_ms=%.3f compute_min_ms=%.3f compute_median_ms=%.3f halo_min_ms=%.4f halo_median_ms=%.4f "
+              "reduction_min_ms=%.4f\n",
               label, sim.ranks(), omp_get_max_threads(), barriers ? 1 : 0, particles, bonds, contacts, ghosts, steps,
               load_before, load1(), setup_seconds, per * seconds, m.cpu_ms, m.compute_ms, m.pack_ms, m.exchange_ms,
               m.unpack_ms, m.barrier_ms, m.reduction_ms, m.partition_ms, halo_share,
-              static_cast<long>(sim.repartitions() - repartitions0));
+              static_cast<long>(sim.repartitions() - repartitions0), m.step_min_ms, m.step_median_ms, m.compute_min_ms,
+              m.compute_median_ms, m.halo_min_ms, m.halo_median_ms, m.reduction_min_ms);
   for (std::size_t r = 0; r < all.size(); ++r) {
     const RankFigures& x = all[r];
-    std::printf("bench_mpi_rank %s rank=%zu owned=%.0f ghosts=%.0f neighbours=%.0f cpu_ms=%.3f compute_ms=%.3f pack_ms=%.4f "
-                "exchange_ms=%.4f unpack_ms=%.4f barrier_ms=%.4f reduction_ms=%.4f partition_ms=%.4f\n",
-                label, r, x.owned, x.ghosts, x.neighbours, x.cpu_ms, x.compute_ms, x.pack_ms, x.exchange_ms, x.unpack_ms,
-                x.barrier_ms, x.reduction_ms, x.partition_ms);
+    std::printf("bench_mpi_rank %s rank=%zu pid=%.0f owned=%.0f ghosts=%.0f neighbours=%.0f cpu_ms=%.3f compute_ms=%.3f pack_ms=%.4f "
+                "exchange_ms=%.4f unpack_ms=%.4f barrier_ms=%.4f reduction_ms=%.4f partition_ms=%.4f step_min_ms=%.3f "
+                "compute_min_ms=%.3f halo_min_ms=%.4f\n",
+                label, r, x.pid, x.owned, x.ghosts, x.neighbours, x.cpu_ms, x.compute_ms, x.pack_ms, x.exchange_ms, x.unpack_ms,
+                x.barrier_ms, x.reduction_ms, x.partition_ms, x.step_min_ms, x.compute_min_ms, x.halo_min_ms);
   }
   std::fflush(stdout);
 }
@@ -147,14 +195,20 @@ void timed_distributed(const char* label, mpi::DistributedSimulation& sim, long 
 void timed_serial(const char* label, Simulation& sim, long steps, long warmup, double setup_seconds) {
   sim.run(warmup);
   const double load_before = load1();
+  std::vector<double> step_ms(static_cast<std::size_t>(steps));
   const double start = MPI_Wtime(), cpu_start = cpu_seconds();
-  sim.run(steps);
+  for (double& ms : step_ms) {
+    const double t = MPI_Wtime();
+    sim.step();
+    ms = 1e3 * (MPI_Wtime() - t);
+  }
   const double cpu = cpu_seconds() - cpu_start, seconds = MPI_Wtime() - start;
   const double per = 1e3 / static_cast<double>(steps);
   std::printf("bench_mpi %s serial threads=%d particles=%zu bonds=%zu contacts=%zu steps=%ld load_before=%.2f load_after=%.2f "
-              "setup_s=%.1f ms_per_step=%.3f cpu_ms_per_step=%.3f\n",
+              "setup_s=%.1f ms_per_step=%.3f cpu_ms_per_step=%.3f step_min_ms=%.3f step_median_ms=%.3f rebuilds=%lld\n",
               label, omp_get_max_threads(), sim.particles().size(), sim.bonds().size(), sim.contact_count(), steps,
-              load_before, load1(), setup_seconds, per * seconds, per * cpu);
+              load_before, load1(), setup_seconds, per * seconds, per * cpu, smallest(step_ms), median(step_ms),
+              static_cast<long long>(sim.neighbour_rebuilds()));
   std::fflush(stdout);
 }
 
@@ -172,6 +226,22 @@ int block(const Options& o, int ranks) {
   }
   mpi::DistributedSimulation sim(MPI_COMM_WORLD, bench::bonded_block(target, speed, models));
   timed_distributed("bonded", sim, steps, 5, o.barriers, MPI_Wtime() - t0);
+  return 0;
+}
+
+int pack(const Options& o, int ranks) {
+  const std::size_t target = std::stoul(arg(o.args, 1, "100000"));
+  const long steps = std::stol(arg(o.args, 2, "100"));
+  const double t0 = MPI_Wtime();
+  const bench::Models models = bench::default_models();
+  if (o.serial) {
+    if (ranks != 1) throw std::invalid_argument("--serial runs on one rank");
+    Simulation sim(bench::dense_pack(target, models));
+    timed_serial("pack", sim, steps, 5, MPI_Wtime() - t0);
+    return 0;
+  }
+  mpi::DistributedSimulation sim(MPI_COMM_WORLD, bench::dense_pack(target, models));
+  timed_distributed("pack", sim, steps, 5, o.barriers, MPI_Wtime() - t0);
   return 0;
 }
 
@@ -201,10 +271,11 @@ int partition(const Options& o, int rank) {
   if (rank != 0) return 0;
   if (o.args[1] == "block") {
     const bench::Models models = bench::default_models();
-    bench::print_partitions(bench::bonded_block(std::stoul(o.args[2]), 0.2, models), counts, stdout);
+    const std::string label = "block" + o.args[2];
+    bench::print_partitions(label.c_str(), bench::bonded_block(std::stoul(o.args[2]), 0.2, models), counts, stdout);
   } else {
     const bench::LoadedScene loaded(o.args[2], {});
-    bench::print_partitions(loaded.setup(), counts, stdout);
+    bench::print_partitions(std::filesystem::path(o.args[2]).stem().c_str(), loaded.setup(), counts, stdout);
   }
   return 0;
 }
@@ -246,6 +317,7 @@ int main(int argc, char** argv) {
   try {
     const Options o = parse(argc, argv);
     if (o.args[0] == "block") code = block(o, ranks);
+    else if (o.args[0] == "pack") code = pack(o, ranks);
     else if (o.args[0] == "scene") code = scene(o, ranks);
     else if (o.args[0] == "partition") code = partition(o, rank);
     else code = pingpong(rank, ranks);

@@ -11,7 +11,7 @@
 
 namespace shard::bench {
 
-void print_partitions(const SimulationSetup& setup, const std::vector<int>& rank_counts, std::FILE* out) {
+void print_partitions(const char* label, const SimulationSetup& setup, const std::vector<int>& rank_counts, std::FILE* out) {
   const Particles& p = setup.particles;
   double r_max = 0, longest = 0;
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
@@ -38,7 +38,7 @@ void print_partitions(const SimulationSetup& setup, const std::vector<int>& rank
   }
   std::vector<mpi::CellCost> listed;
   for (const auto& [key, c] : cells) listed.push_back({key, c.first});
-  std::fprintf(out, "partition_setup particles=%zu bonds=%zu cell_m=%.4g cells=%zu particles_per_cell=%.3f\n", p.size(),
+  std::fprintf(out, "partition_setup %s particles=%zu bonds=%zu cell_m=%.4g cells=%zu particles_per_cell=%.3f\n", label, p.size(),
                setup.bonds.size(), grid.cell, cells.size(), static_cast<double>(p.size()) / static_cast<double>(cells.size()));
   for (const int ranks : rank_counts) {
     const mpi::Partition part = mpi::Partition::balance(listed, ranks, grid.cell);
@@ -73,9 +73,9 @@ void print_partitions(const SimulationSetup& setup, const std::vector<int>& rank
     }
     const double n = static_cast<double>(ranks);
     std::fprintf(out,
-                 "partition ranks=%d owned_mean=%.1f owned_max=%.0f cost_imbalance=%.4f ghosts_mean=%.1f ghosts_max=%.0f "
+                 "partition %s ranks=%d owned_mean=%.1f owned_max=%.0f cost_imbalance=%.4f ghosts_mean=%.1f ghosts_max=%.0f "
                  "ghosts_busiest=%.0f ghost_ratio_mean=%.4f neighbours_mean=%.2f neighbours_max=%.0f\n",
-                 ranks, static_cast<double>(p.size()) / n, owned_max, cost_max / (cost_sum / n), ghost_sum / n, ghost_max,
+                 label, ranks, static_cast<double>(p.size()) / n, owned_max, cost_max / (cost_sum / n), ghost_sum / n, ghost_max,
                  ghosts[busiest], ghost_sum / static_cast<double>(p.size()), link_sum / n, link_max);
   }
 }

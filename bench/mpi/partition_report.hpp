@@ -13,6 +13,6 @@ namespace shard::bench {
 
 // One summary line per rank count to `out`. Costs as the decomposition's first partition counts
 // them: 1 per particle + 1 per bond (contacts are not counted: none is carried at the start).
-void print_partitions(const SimulationSetup& setup, const std::vector<int>& rank_counts, std::FILE* out);
+void print_partitions(const char* label, const SimulationSetup& setup, const std::vector<int>& rank_counts, std::FILE* out);
 
 }  // namespace shard::bench
