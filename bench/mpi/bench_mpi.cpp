@@ -1,4 +1,4 @@
-// The decomposed step loop (docs/scaling-out.md, "Figures" and "Cost model"). Modes:
+// The decomposed step loop (docs/scaling-out.md, "Strong scaling 1 -> 2 ranks" and "Cost model"). Modes:
 //   mpirun -np N bench_mpi [--barriers] [--serial] [block] [particles=20000] [steps=300] [pull_speed=0.2]
 //       bench_kernel's bonded block on N ranks
 //   mpirun -np N bench_mpi [--barriers] [--serial] pack [particles=100000] [steps=100]
@@ -24,6 +24,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
