@@ -4,12 +4,13 @@
 #   python3 bench/mpi/cost_model.py $OUT
 # prints the calibrated constants and the projection table. Run from the source tree, with a
 # SHARD_WITH_MPI build in $BUILD (default build/mpi). REPS runs of each timing (best of them is
-# what the model takes). WHAT: a space list of block pack seed partition pingpong (default all).
+# what the model takes). WHAT: a space list of block pack seed partition pingpong callgrind (default
+# all; callgrind: the work split of the block on 1 and 2 ranks under valgrind, a few minutes).
 set -eu
 BUILD=${BUILD:-build/mpi}
 OUT=${OUT:-bench/mpi/measured/$(hostname)-$(date -u +%Y%m%dT%H%M).txt}
 REPS=${REPS:-3}
-WHAT=${WHAT:-"block pack seed partition pingpong"}
+WHAT=${WHAT:-"block pack seed partition pingpong callgrind"}
 SEED=scenes/four_point_bending_seed.toml
 SEED_STEPS=${SEED_STEPS:-50}
 B=$BUILD/bench/mpi/bench_mpi
@@ -45,5 +46,11 @@ if has partition; then
 fi
 if has pingpong; then
   run env OMP_NUM_THREADS=1 mpirun --allow-run-as-root --bind-to none -np 2 $B pingpong
+fi
+if has callgrind; then
+  for np in 1 2; do
+    echo "# bench/mpi/callgrind_split.sh $np 20000 20" >>"$OUT"
+    BUILD=$BUILD "$(dirname "$0")/callgrind_split.sh" "$np" 20000 20 | tee -a "$OUT"
+  done
 fi
 echo "wrote $OUT"
