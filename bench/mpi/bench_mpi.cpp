@@ -1,59 +1,331 @@
-// The decomposed step loop (docs/scaling-out.md): `mpirun -np N bench_mpi [particles=20000]
-// [steps=300] [pull_speed=0.2]` steps bench_kernel's bonded block on N ranks and prints, on rank 0,
-// the wall time per step, the largest rank's CPU time per step, and the shares of the wall time
-// spent in the halo exchange (waits included) and in re-partitioning (largest over the ranks).
+// The decomposed step loop (docs/scaling-out.md, "Strong scaling 1 -> 2 ranks" and "Cost model"). Modes:
+//   mpirun -np N bench_mpi [--barriers] [--serial] [block] [particles=20000] [steps=300] [pull_speed=0.2]
+//       bench_kernel's bonded block on N ranks
+//   mpirun -np N bench_mpi [--barriers] [--serial] pack [particles=100000] [steps=100]
+//       bench_kernel's dense unbonded Hertz-Mindlin pack (contacts only: the per-particle cost)
+//   mpirun -np N bench_mpi [--barriers] [--serial] scene FILE [steps=50] [section.key=value ...]
+//       a scene file through the kernel's scene loader and generator plugins (the seed beam)
+//   bench_mpi partition block N P1 P2 ... | partition scene FILE P1 P2 ...
+//       the decomposition's partition on P ranks computed in one process: owned, ghosts, neighbours
+//   mpirun -np 2 bench_mpi pingpong
+//       point-to-point latency and bandwidth between two ranks (the halo's message cost)
+// --serial: the serial Simulation of the same problem on one rank, threads from OMP_NUM_THREADS (the
+// OpenMP comparison on the same binary). --barriers: a barrier before each exchange and the
+// per-step reduction, timed apart, so the exchange time is the transfer without the waiting for
+// the slowest rank. Rank 0 prints one summary line, then one line per rank; times are wall
+// (MPI_Wtime) unless named cpu (getrusage: user + system of the whole process, OpenMP threads and
+// MPI's polling included). The one-line commands of the figures: bench/mpi/measure.sh.
 #include <mpi.h>
+#include <omp.h>
+#include <sys/resource.h>
+#include <unistd.h>
 
-#include <ctime>
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "../kernel/bench_scenes.hpp"
+#include "partition_report.hpp"
+#include "scene_setup.hpp"
 #include "shard/mpi/distributed_simulation.hpp"
 
 using namespace shard;
 
 namespace {
-// This process's CPU time, s: on a shared, oversubscribed machine the wall time also counts the
-// time a rank waits for the core its neighbour holds.
+
 double cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  const auto s = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+  return s(u.ru_utime) + s(u.ru_stime);
 }
+
+// The one-minute load average: every figure states the load it was taken at.
+double load1() {
+  std::ifstream f("/proc/loadavg");
+  double l = -1;
+  f >> l;
+  return l;
+}
+
+struct Options {
+  bool barriers = false, serial = false;
+  std::vector<std::string> args;  // the rest, mode first
+};
+
+Options parse(int argc, char** argv) {
+  Options o;
+  for (int k = 1; k < argc; ++k) {
+    const std::string a = argv[k];
+    if (a == "--barriers") o.barriers = true;
+    else if (a == "--serial") o.serial = true;
+    else o.args.push_back(a);
+  }
+  // The first form of the benchmark: `bench_mpi 20000 300`.
+  if (o.args.empty() || (o.args[0] != "scene" && o.args[0] != "partition" && o.args[0] != "pingpong" && o.args[0] != "block" &&
+                          o.args[0] != "pack"))
+    o.args.insert(o.args.begin(), "block");
+  return o;
+}
+
+std::string arg(const std::vector<std::string>& a, std::size_t k, const std::string& fallback) {
+  return a.size() > k ? a[k] : fallback;
+}
+
+// One rank's figures of a timed run, per step: means over the run, and the fastest and median
+// step (on a shared machine the fastest step is the one both ranks ran without waiting for a
+// core: the nearest to an idle figure a loaded machine gives).
+struct RankFigures {
+  double pid, owned, ghosts, neighbours, cpu_ms, pack_ms, exchange_ms, unpack_ms, barrier_ms, reduction_ms, partition_ms,
+      compute_ms;
+  double step_min_ms, step_median_ms, compute_min_ms, compute_median_ms, halo_min_ms, halo_median_ms, reduction_min_ms;
+};
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0 : v[v.size() / 2];
+}
+
+double smallest(const std::vector<double>& v) { return v.empty() ? 0 : *std::min_element(v.begin(), v.end()); }
+
+void timed_distributed(const char* label, mpi::DistributedSimulation& sim, long steps, long warmup, bool barriers,
+                       double setup_seconds) {
+  sim.set_timing_barriers(barriers);
+  sim.run(warmup);  // buffers sized, first exchanges made
+  const auto p0 = sim.phase_seconds();
+  const long repartitions0 = sim.repartitions();
+  const double load_before = load1();
+  const auto n = static_cast<std::size_t>(steps);
+  std::vector<double> step_ms(n), compute_ms(n), halo_ms(n), reduction_ms(n);
+  MPI_Barrier(MPI_COMM_WORLD);
+  const double start = MPI_Wtime(), cpu_start = cpu_seconds();
+  for (std::size_t s = 0; s < n; ++s) {
+    const auto a = sim.phase_seconds();
+    const double t = MPI_Wtime();
+    sim.step();
+    const double wall = MPI_Wtime() - t;
+    const auto b = sim.phase_seconds();
+    const double halo = (b.pack - a.pack) + (b.exchange - a.exchange) + (b.unpack - a.unpack);
+    const double other = (b.barrier - a.barrier) + (b.reduction - a.reduction) + (b.partition - a.partition);
+    step_ms[s] = 1e3 * wall;
+    halo_ms[s] = 1e3 * halo;
+    reduction_ms[s] = 1e3 * (b.reduction - a.reduction);
+    compute_ms[s] = 1e3 * (wall - halo - other);
+  }
+  const double cpu = cpu_seconds() - cpu_start;
+  const double mine = MPI_Wtime() - start;  // this rank's wall time, before waiting for the others
+  MPI_Barrier(MPI_COMM_WORLD);
+  const double seconds = MPI_Wtime() - start;
+  const auto p1 = sim.phase_seconds();
+  const double per = 1e3 / static_cast<double>(steps);
+  RankFigures f{};
+  f.pid = static_cast<double>(getpid());  // names the rank's callgrind file (callgrind_split.sh)
+  f.owned = static_cast<double>(sim.owned());
+  f.ghosts = static_cast<double>(sim.ghosts());
+  f.neighbours = static_cast<double>(sim.halo_neighbours());
+  f.cpu_ms = per * cpu;
+  f.pack_ms = per * (p1.pack - p0.pack);
+  f.exchange_ms = per * (p1.exchange - p0.exchange);
+  f.unpack_ms = per * (p1.unpack - p0.unpack);
+  f.barrier_ms = per * (p1.barrier - p0.barrier);
+  f.reduction_ms = per * (p1.reduction - p0.reduction);
+  f.partition_ms = per * (p1.partition - p0.partition);
+  f.compute_ms = per * mine - (f.pack_ms + f.exchange_ms + f.unpack_ms + f.barrier_ms + f.reduction_ms + f.partition_ms);
+  f.step_min_ms = smallest(step_ms);
+  f.step_median_ms = median(step_ms);
+  f.compute_min_ms = smallest(compute_ms);
+  f.compute_median_ms = median(compute_ms);
+  f.halo_min_ms = smallest(halo_ms);
+  f.halo_median_ms = median(halo_ms);
+  f.reduction_min_ms = smallest(reduction_ms);
+  std::vector<RankFigures> all(static_cast<std::size_t>(sim.ranks()));
+  MPI_Gather(&f, sizeof f, MPI_BYTE, all.data(), sizeof f, MPI_BYTE, 0, MPI_COMM_WORLD);
+  const std::size_t bonds = sim.bond_count();
+  const std::size_t contacts = sim.contact_count();
+  if (sim.rank() != 0) return;
+  RankFigures m{};  // largest over the ranks
+  double ghosts = 0, halo_share = 0;
+  std::size_t particles = 0;
+  for (const RankFigures& r : all) {
+    particles += static_cast<std::size_t>(r.owned);
+    ghosts += r.ghosts;
+    m.cpu_ms = std::max(m.cpu_ms, r.cpu_ms);
+    m.compute_ms = std::max(m.compute_ms, r.compute_ms);
+    m.pack_ms = std::max(m.pack_ms, r.pack_ms);
+    m.exchange_ms = std::max(m.exchange_ms, r.exchange_ms);
+    m.unpack_ms = std::max(m.unpack_ms, r.unpack_ms);
+    m.barrier_ms = std::max(m.barrier_ms, r.barrier_ms);
+    m.reduction_ms = std::max(m.reduction_ms, r.reduction_ms);
+    m.partition_ms = std::max(m.partition_ms, r.partition_ms);
+    m.step_min_ms = std::max(m.step_min_ms, r.step_min_ms);
+    m.step_median_ms = std::max(m.step_median_ms, r.step_median_ms);
+    m.compute_min_ms = std::max(m.compute_min_ms, r.compute_min_ms);
+    m.compute_median_ms = std::max(m.compute_median_ms, r.compute_median_ms);
+    m.halo_min_ms = std::max(m.halo_min_ms, r.halo_min_ms);
+    m.halo_median_ms = std::max(m.halo_median_ms, r.halo_median_ms);
+    m.reduction_min_ms = std::max(m.reduction_min_ms, r.reduction_min_ms);
+    halo_share = std::max(halo_share, (r.pack_ms + r.exchange_ms + r.unpack_ms) / (per * seconds));
+  }
+  std::printf("bench_mpi %s ranks=%d threads=%d barriers=%d particles=%zu bonds=%zu contacts=%zu ghosts=%.0f steps=%ld "
+              "load_before=%.2f load_after=%.2f setup_s=%.1f ms_per_step=%.3f cpu_ms_per_step_max_rank=%.3f "
+              "compute_ms_max=%.3f pack_ms_max=%.4f exchange_ms_max=%.4f unpack_ms_max=%.4f barrier_ms_max=%.4f "
+              "reduction_ms_max=%.4f partition_ms_max=%.4f halo_share=%.3f repartitions=%ld step_min_ms=%.3f "
+              "step_median_ms=%.3f compute_min_ms=%.3f compute_median_ms=%.3f halo_min_ms=%.4f halo_median_ms=%.4f "
+              "reduction_min_ms=%.4f\n",
+              label, sim.ranks(), omp_get_max_threads(), barriers ? 1 : 0, particles, bonds, contacts, ghosts, steps,
+              load_before, load1(), setup_seconds, per * seconds, m.cpu_ms, m.compute_ms, m.pack_ms, m.exchange_ms,
+              m.unpack_ms, m.barrier_ms, m.reduction_ms, m.partition_ms, halo_share,
+              static_cast<long>(sim.repartitions() - repartitions0), m.step_min_ms, m.step_median_ms, m.compute_min_ms,
+              m.compute_median_ms, m.halo_min_ms, m.halo_median_ms, m.reduction_min_ms);
+  for (std::size_t r = 0; r < all.size(); ++r) {
+    const RankFigures& x = all[r];
+    std::printf("bench_mpi_rank %s rank=%zu pid=%.0f owned=%.0f ghosts=%.0f neighbours=%.0f cpu_ms=%.3f compute_ms=%.3f pack_ms=%.4f "
+                "exchange_ms=%.4f unpack_ms=%.4f barrier_ms=%.4f reduction_ms=%.4f partition_ms=%.4f step_min_ms=%.3f "
+                "compute_min_ms=%.3f halo_min_ms=%.4f\n",
+                label, r, x.pid, x.owned, x.ghosts, x.neighbours, x.cpu_ms, x.compute_ms, x.pack_ms, x.exchange_ms, x.unpack_ms,
+                x.barrier_ms, x.reduction_ms, x.partition_ms, x.step_min_ms, x.compute_min_ms, x.halo_min_ms);
+  }
+  std::fflush(stdout);
+}
+
+// The serial Simulation on this process's OpenMP team, measured alike (one rank only).
+void timed_serial(const char* label, Simulation& sim, long steps, long warmup, double setup_seconds) {
+  sim.run(warmup);
+  const double load_before = load1();
+  std::vector<double> step_ms(static_cast<std::size_t>(steps));
+  const double start = MPI_Wtime(), cpu_start = cpu_seconds();
+  for (double& ms : step_ms) {
+    const double t = MPI_Wtime();
+    sim.step();
+    ms = 1e3 * (MPI_Wtime() - t);
+  }
+  const double cpu = cpu_seconds() - cpu_start, seconds = MPI_Wtime() - start;
+  const double per = 1e3 / static_cast<double>(steps);
+  std::printf("bench_mpi %s serial threads=%d particles=%zu bonds=%zu contacts=%zu steps=%ld load_before=%.2f load_after=%.2f "
+              "setup_s=%.1f ms_per_step=%.3f cpu_ms_per_step=%.3f step_min_ms=%.3f step_median_ms=%.3f rebuilds=%lld\n",
+              label, omp_get_max_threads(), sim.particles().size(), sim.bonds().size(), sim.contact_count(), steps,
+              load_before, load1(), setup_seconds, per * seconds, per * cpu, smallest(step_ms), median(step_ms),
+              static_cast<long long>(sim.neighbour_rebuilds()));
+  std::fflush(stdout);
+}
+
+int block(const Options& o, int ranks) {
+  const std::size_t target = std::stoul(arg(o.args, 1, "20000"));
+  const long steps = std::stol(arg(o.args, 2, "300"));
+  const double speed = std::stod(arg(o.args, 3, "0.2"));
+  const double t0 = MPI_Wtime();
+  const bench::Models models = bench::default_models();
+  if (o.serial) {
+    if (ranks != 1) throw std::invalid_argument("--serial runs on one rank");
+    Simulation sim(bench::bonded_block(target, speed, models));
+    timed_serial("bonded", sim, steps, 5, MPI_Wtime() - t0);
+    return 0;
+  }
+  mpi::DistributedSimulation sim(MPI_COMM_WORLD, bench::bonded_block(target, speed, models));
+  timed_distributed("bonded", sim, steps, 5, o.barriers, MPI_Wtime() - t0);
+  return 0;
+}
+
+int pack(const Options& o, int ranks) {
+  const std::size_t target = std::stoul(arg(o.args, 1, "100000"));
+  const long steps = std::stol(arg(o.args, 2, "100"));
+  const double t0 = MPI_Wtime();
+  const bench::Models models = bench::default_models();
+  if (o.serial) {
+    if (ranks != 1) throw std::invalid_argument("--serial runs on one rank");
+    Simulation sim(bench::dense_pack(target, models));
+    timed_serial("pack", sim, steps, 5, MPI_Wtime() - t0);
+    return 0;
+  }
+  mpi::DistributedSimulation sim(MPI_COMM_WORLD, bench::dense_pack(target, models));
+  timed_distributed("pack", sim, steps, 5, o.barriers, MPI_Wtime() - t0);
+  return 0;
+}
+
+int scene(const Options& o, int ranks) {
+  if (o.args.size() < 2) throw std::invalid_argument("bench_mpi scene FILE [steps=50] [section.key=value ...]");
+  const long steps = std::stol(arg(o.args, 2, "50"));
+  const std::vector<std::string> overrides(o.args.begin() + std::min<std::ptrdiff_t>(3, static_cast<std::ptrdiff_t>(o.args.size())),
+                                           o.args.end());
+  const double t0 = MPI_Wtime();
+  bench::LoadedScene loaded(o.args[1], overrides);
+  if (o.serial) {
+    if (ranks != 1) throw std::invalid_argument("--serial runs on one rank");
+    timed_serial("scene", *loaded.instance.simulation, steps, 2, MPI_Wtime() - t0);
+    return 0;
+  }
+  SimulationSetup setup = loaded.setup();
+  loaded.instance.simulation.reset();  // the serial copy is not stepped: free its memory
+  mpi::DistributedSimulation sim(MPI_COMM_WORLD, std::move(setup));
+  timed_distributed("scene", sim, steps, 2, o.barriers, MPI_Wtime() - t0);
+  return 0;
+}
+
+int partition(const Options& o, int rank) {
+  if (o.args.size() < 4) throw std::invalid_argument("bench_mpi partition block N P... | partition scene FILE P...");
+  std::vector<int> counts;
+  for (std::size_t k = 3; k < o.args.size(); ++k) counts.push_back(std::stoi(o.args[k]));
+  if (rank != 0) return 0;
+  if (o.args[1] == "block") {
+    const bench::Models models = bench::default_models();
+    const std::string label = "block" + o.args[2];
+    bench::print_partitions(label.c_str(), bench::bonded_block(std::stoul(o.args[2]), 0.2, models), counts, stdout);
+  } else {
+    const bench::LoadedScene loaded(o.args[2], {});
+    bench::print_partitions(std::filesystem::path(o.args[2]).stem().c_str(), loaded.setup(), counts, stdout);
+  }
+  return 0;
+}
+
+// Half the round trip of a message of n bytes between ranks 0 and 1, best and median of many.
+int pingpong(int rank, int ranks) {
+  if (ranks != 2) throw std::invalid_argument("pingpong runs on exactly 2 ranks");
+  for (const std::size_t bytes : {8ul, 512ul, 4096ul, 32768ul, 262144ul, 1048576ul, 4194304ul}) {
+    std::vector<char> buffer(bytes);
+    const int reps = bytes > 100000 ? 50 : 500;
+    std::vector<double> times;
+    for (int k = 0; k < reps; ++k) {
+      MPI_Barrier(MPI_COMM_WORLD);
+      const double t = MPI_Wtime();
+      if (rank == 0) {
+        MPI_Send(buffer.data(), static_cast<int>(bytes), MPI_BYTE, 1, 5, MPI_COMM_WORLD);
+        MPI_Recv(buffer.data(), static_cast<int>(bytes), MPI_BYTE, 1, 5, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      } else {
+        MPI_Recv(buffer.data(), static_cast<int>(bytes), MPI_BYTE, 0, 5, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        MPI_Send(buffer.data(), static_cast<int>(bytes), MPI_BYTE, 0, 5, MPI_COMM_WORLD);
+      }
+      times.push_back(0.5 * (MPI_Wtime() - t));
+    }
+    std::sort(times.begin(), times.end());
+    if (rank == 0)
+      std::printf("pingpong bytes=%zu reps=%d load=%.2f best_us=%.2f median_us=%.2f best_MB_per_s=%.1f\n", bytes, reps, load1(),
+                  1e6 * times.front(), 1e6 * times[times.size() / 2], 1e-6 * static_cast<double>(bytes) / times.front());
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   MPI_Init(&argc, &argv);
-  {
-    const std::size_t target = argc > 1 ? std::stoul(argv[1]) : 20000;
-    const long steps = argc > 2 ? std::stol(argv[2]) : 300;
-    const double speed = argc > 3 ? std::stod(argv[3]) : 0.2;
-    const bench::Models models = bench::default_models();
-    mpi::DistributedSimulation sim(MPI_COMM_WORLD, bench::bonded_block(target, speed, models));
-    sim.run(5);  // warm-up: buffers sized, first exchanges made
-    const double halo0 = sim.halo_seconds(), part0 = sim.partition_seconds();
-    MPI_Barrier(MPI_COMM_WORLD);
-    const double start = MPI_Wtime(), cpu_start = cpu_seconds();
-    sim.run(steps);
-    const double cpu = cpu_seconds() - cpu_start;
-    MPI_Barrier(MPI_COMM_WORLD);
-    const double seconds = MPI_Wtime() - start;
-    const double halo = sim.halo_seconds() - halo0, part = sim.partition_seconds() - part0;
-    double halo_max = 0, part_max = 0, cpu_max = 0;
-    MPI_Reduce(&cpu, &cpu_max, 1, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
-    MPI_Reduce(&halo, &halo_max, 1, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
-    MPI_Reduce(&part, &part_max, 1, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
-    const std::size_t bonds = sim.bond_count();
-    unsigned long ghosts = sim.ghosts(), ghosts_total = 0;
-    MPI_Reduce(&ghosts, &ghosts_total, 1, MPI_UNSIGNED_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
-    if (sim.rank() == 0)
-      std::printf("bench_mpi bonded ranks=%d particles=%zu bonds=%zu ghosts=%lu steps=%ld ms_per_step=%.3f "
-                  "cpu_ms_per_step_max_rank=%.3f halo_share=%.3f repartition_share=%.3f repartitions=%lld\n",
-                  sim.ranks(), target, bonds, ghosts_total, steps, 1e3 * seconds / static_cast<double>(steps),
-                  1e3 * cpu_max / static_cast<double>(steps),
-                  halo_max / seconds, part_max / seconds, static_cast<long long>(sim.repartitions()));
+  int rank = 0, ranks = 1, code = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  try {
+    const Options o = parse(argc, argv);
+    if (o.args[0] == "block") code = block(o, ranks);
+    else if (o.args[0] == "pack") code = pack(o, ranks);
+    else if (o.args[0] == "scene") code = scene(o, ranks);
+    else if (o.args[0] == "partition") code = partition(o, rank);
+    else code = pingpong(rank, ranks);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_mpi (rank %d): %s\n", rank, e.what());
+    MPI_Abort(MPI_COMM_WORLD, 1);
   }
   MPI_Finalize();
-  return 0;
+  return code;
 }

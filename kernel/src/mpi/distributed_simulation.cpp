@@ -388,7 +388,15 @@ void DistributedSimulation::finish_step() {
     mine.insert(mine.end(), w.torque.data(), w.torque.data() + 3);
     mine.push_back(w.stored_energy);
   }
+  double reduction_start = MPI_Wtime();
+  if (timing_barriers_) {
+    MPI_Barrier(comm_);
+    const double after = MPI_Wtime();
+    reduction_barrier_seconds_ += after - reduction_start;
+    reduction_start = after;
+  }
   const std::vector<double> all = all_gather(mine, comm_);
+  reduction_seconds_ += MPI_Wtime() - reduction_start;
   const std::size_t per = mine.size();
   double events = 0, max_moved = 0;
   for (auto& w : walls) {
@@ -437,6 +445,18 @@ void DistributedSimulation::finish_step() {
 
 std::size_t DistributedSimulation::ghosts() const { return halo_->ghosts(); }
 double DistributedSimulation::halo_seconds() const { return halo_->seconds(); }
+
+DistributedSimulation::PhaseSeconds DistributedSimulation::phase_seconds() const {
+  const Halo::Times& h = halo_->times();
+  return {h.pack, h.exchange, h.unpack, h.barrier + reduction_barrier_seconds_, reduction_seconds_, partition_seconds_};
+}
+
+void DistributedSimulation::set_timing_barriers(bool on) {
+  timing_barriers_ = on;
+  halo_->set_barriers(on);
+}
+
+std::size_t DistributedSimulation::halo_neighbours() const { return halo_->links().size(); }
 
 Energies DistributedSimulation::energies() const {
   const Particles& p = local_->particles();

@@ -60,6 +60,13 @@ void Halo::locate(const Particles& p) {
 
 // forward: owners -> ghosts (send lists out); otherwise ghosts -> owners (recv lists out).
 void Halo::exchange(std::size_t per_recv, bool forward) {
+  double t = MPI_Wtime();
+  if (barriers_) {
+    MPI_Barrier(comm_);
+    const double after = MPI_Wtime();
+    times_.barrier += after - t;
+    t = after;
+  }
   requests_.clear();
   const int tag = forward ? kTagState : kTagLoad;
   for (std::size_t l = 0; l < links_.size(); ++l) {
@@ -74,6 +81,7 @@ void Halo::exchange(std::size_t per_recv, bool forward) {
               &requests_.back());
   }
   MPI_Waitall(static_cast<int>(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
+  times_.exchange += MPI_Wtime() - t;
 }
 
 void Halo::refresh_ghosts(Particles& p) {
@@ -90,7 +98,10 @@ void Halo::refresh_ghosts(Particles& p) {
       out = std::copy_n(p.omega[k].data(), 3, out);
     }
   }
+  const double packed = MPI_Wtime();
+  times_.pack += packed - start;
   exchange(kStateDoubles, true);
+  const double received = MPI_Wtime();
   for (std::size_t l = 0; l < links_.size(); ++l) {
     const double* in = recv_buffer_[l].data();
     for (std::size_t k : recv_index_[l]) {
@@ -101,7 +112,9 @@ void Halo::refresh_ghosts(Particles& p) {
       in += kStateDoubles;
     }
   }
-  seconds_ += MPI_Wtime() - start;
+  const double end = MPI_Wtime();
+  times_.unpack += end - received;
+  seconds_ += end - start;
 }
 
 void Halo::return_reactions(Particles& p) {
@@ -118,7 +131,10 @@ void Halo::return_reactions(Particles& p) {
       p.torque[k].setZero();
     }
   }
+  const double packed = MPI_Wtime();
+  times_.pack += packed - start;
   exchange(kLoadDoubles, false);
+  const double received = MPI_Wtime();
   // Links are in ascending rank: each owned particle's reactions are added in rank order.
   for (std::size_t l = 0; l < links_.size(); ++l) {
     const double* in = recv_buffer_[l].data();
@@ -128,7 +144,9 @@ void Halo::return_reactions(Particles& p) {
       in += kLoadDoubles;
     }
   }
-  seconds_ += MPI_Wtime() - start;
+  const double end = MPI_Wtime();
+  times_.unpack += end - received;
+  seconds_ += end - start;
 }
 
 }  // namespace shard::mpi

@@ -28,6 +28,14 @@ class Halo final : public DomainExchange {
   void return_reactions(Particles& particles) override;
 
   double seconds() const { return seconds_; }  // wall time spent in both exchanges so far
+  // The same split by phase (bench_mpi's cost model, docs/scaling-out.md): copying into the send
+  // buffers, the messages (post to Waitall), copying out; with `set_barriers(true)` a barrier
+  // before each exchange takes the waiting for the slowest rank out of `exchange` into `barrier`.
+  struct Times {
+    double pack = 0, exchange = 0, unpack = 0, barrier = 0;
+  };
+  const Times& times() const { return times_; }
+  void set_barriers(bool on) { barriers_ = on; }
   std::size_t ghosts() const;
   const std::vector<HaloLink>& links() const { return links_; }
 
@@ -43,6 +51,8 @@ class Halo final : public DomainExchange {
   std::vector<std::vector<double>> send_buffer_, recv_buffer_;
   std::vector<MPI_Request> requests_;
   double seconds_ = 0;
+  Times times_;
+  bool barriers_ = false;
 };
 
 }  // namespace shard::mpi

@@ -57,6 +57,17 @@ class DistributedSimulation {
   std::size_t ghosts() const;
   double halo_seconds() const;      // wall time in the per-step ghost and reaction exchanges
   double partition_seconds() const { return partition_seconds_; }  // in re-partitions and migration
+  // Wall time by phase so far (bench_mpi's cost model, docs/scaling-out.md): the halo's packing
+  // (and locating by id), messages (post to Waitall) and unpacking, the per-step reduction
+  // (all-gather), re-partitions; `barrier` is the time in a barrier put before each exchange and
+  // the reduction when `set_timing_barriers(true)`, which separates waiting for the slowest rank
+  // from the transfer itself (a measurement aid: it adds synchronisation).
+  struct PhaseSeconds {
+    double pack = 0, exchange = 0, unpack = 0, barrier = 0, reduction = 0, partition = 0;
+  };
+  PhaseSeconds phase_seconds() const;
+  void set_timing_barriers(bool on);
+  std::size_t halo_neighbours() const;  // ranks this one exchanges with each step
 
   // Collective.
   Energies energies() const;
@@ -89,6 +100,8 @@ class DistributedSimulation {
   std::vector<BondBreakEvent> events_;
   std::int64_t repartitions_ = 0;
   double partition_seconds_ = 0;
+  double reduction_seconds_ = 0, reduction_barrier_seconds_ = 0;
+  bool timing_barriers_ = false;
 };
 
 }  // namespace shard::mpi
