@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 
 #include "beam_batch.hpp"
 #include "beam_law.hpp"
@@ -75,12 +76,36 @@ template <class A, bool breakage, bool viscous, bool effects, bool arm>
     // In the batch's orientation: force and torque_i on batch.i (a selection: which end a batch
     // lists first is close to random, a branch would be mispredicted).
     const auto sw = L::load(swapped + base) != 0.0;
+    T force[3], torque_i[3], torque_j[3];
     for (int d = 0; d < 3; ++d) {
-      L::scatter(out.force + d, k3, select(sw, -r.force[d], r.force[d]));
-      L::scatter(out.torque_i + d, k3, select(sw, r.torque_second[d], r.torque_first[d]));
-      L::scatter(out.torque_j + d, k3, select(sw, r.torque_first[d], r.torque_second[d]));
+      force[d] = select(sw, -r.force[d], r.force[d]);
+      torque_i[d] = select(sw, r.torque_second[d], r.torque_first[d]);
+      torque_j[d] = select(sw, r.torque_first[d], r.torque_second[d]);
     }
-    L::scatter(out.energy, k, r.energy);
+    if (base + W <= n) {
+      // A whole group writes W consecutive slots. AVX-512 interleaves the three components in
+      // registers (lanes::store3); its scatter instruction is slower. Narrower sets keep the
+      // scatter, which xsimd writes as the same single stores.
+      if constexpr (std::is_same_v<A, xsimd::avx512f>) {
+        lanes::store3(out.force + 3 * base, force[0], force[1], force[2]);
+        lanes::store3(out.torque_i + 3 * base, torque_i[0], torque_i[1], torque_i[2]);
+        lanes::store3(out.torque_j + 3 * base, torque_j[0], torque_j[1], torque_j[2]);
+      } else {
+        for (int d = 0; d < 3; ++d) {
+          L::scatter(out.force + d, k3, force[d]);
+          L::scatter(out.torque_i + d, k3, torque_i[d]);
+          L::scatter(out.torque_j + d, k3, torque_j[d]);
+        }
+      }
+      L::store(out.energy + base, r.energy);
+    } else {  // the last group's lanes past n write bond n - 1's slots again
+      for (int d = 0; d < 3; ++d) {
+        L::scatter(out.force + d, k3, force[d]);
+        L::scatter(out.torque_i + d, k3, torque_i[d]);
+        L::scatter(out.torque_j + d, k3, torque_j[d]);
+      }
+      L::scatter(out.energy, k, r.energy);
+    }
     for (std::size_t l = 0; l < W; ++l) out.fallback[base + l] = L::lane(r.fallback, l);
     if constexpr (arm)  // a fallback lane keeps its state for its own width-1 step
       for (std::size_t s = 0; s < 12; ++s)

@@ -57,6 +57,39 @@ xsimd::batch<double, A> negate(const xsimd::batch<double, A>& x) {
 // transposition goes through a small aligned buffer, which GCC turns into loads and permutes; the
 // gather and scatter instructions are slower here (AVX-512: 16.4 against 13.5 ns per contact-step
 // with SSE2's two lanes, bench_contact).
+#if defined(__AVX512F__)
+// With AVX-512 the 8 vectors' 24 doubles are three loads or stores and each component two
+// two-table permutes (vpermt2pd), no trip through memory: bench_kernel bonded, docs/performance.md.
+namespace detail {
+inline __m512i permute_index(const std::int64_t (&i)[8]) { return _mm512_loadu_si512(i); }
+}  // namespace detail
+
+inline void load3(const double* p, xsimd::batch<double, xsimd::avx512f>& x, xsimd::batch<double, xsimd::avx512f>& y,
+                  xsimd::batch<double, xsimd::avx512f>& z) {
+  // in0 = x0 y0 z0 x1 y1 z1 x2 y2, in1 = z2 x3 y3 z3 x4 y4 z4 x5, in2 = y5 z5 x6 y6 z6 x7 y7 z7
+  static constexpr std::int64_t tx[8] = {0, 3, 6, 9, 12, 15, 0, 0}, ux[8] = {0, 1, 2, 3, 4, 5, 10, 13};
+  static constexpr std::int64_t ty[8] = {1, 4, 7, 10, 13, 0, 0, 0}, uy[8] = {0, 1, 2, 3, 4, 8, 11, 14};
+  static constexpr std::int64_t tz[8] = {2, 5, 8, 11, 14, 0, 0, 0}, uz[8] = {0, 1, 2, 3, 4, 9, 12, 15};
+  const __m512d in0 = _mm512_loadu_pd(p), in1 = _mm512_loadu_pd(p + 8), in2 = _mm512_loadu_pd(p + 16);
+  using detail::permute_index;
+  x = _mm512_permutex2var_pd(_mm512_permutex2var_pd(in0, permute_index(tx), in1), permute_index(ux), in2);
+  y = _mm512_permutex2var_pd(_mm512_permutex2var_pd(in0, permute_index(ty), in1), permute_index(uy), in2);
+  z = _mm512_permutex2var_pd(_mm512_permutex2var_pd(in0, permute_index(tz), in1), permute_index(uz), in2);
+}
+
+inline void store3(double* p, const xsimd::batch<double, xsimd::avx512f>& x, const xsimd::batch<double, xsimd::avx512f>& y,
+                   const xsimd::batch<double, xsimd::avx512f>& z) {
+  // x and y into their places (z's left open), then z.
+  static constexpr std::int64_t t0[8] = {0, 8, 0, 1, 9, 0, 2, 10}, u0[8] = {0, 1, 8, 3, 4, 9, 6, 7};
+  static constexpr std::int64_t t1[8] = {0, 3, 11, 0, 4, 12, 0, 5}, u1[8] = {10, 1, 2, 11, 4, 5, 12, 7};
+  static constexpr std::int64_t t2[8] = {13, 0, 6, 14, 0, 7, 15, 0}, u2[8] = {0, 13, 2, 3, 14, 5, 6, 15};
+  using detail::permute_index;
+  _mm512_storeu_pd(p, _mm512_permutex2var_pd(_mm512_permutex2var_pd(x, permute_index(t0), y), permute_index(u0), z));
+  _mm512_storeu_pd(p + 8, _mm512_permutex2var_pd(_mm512_permutex2var_pd(x, permute_index(t1), y), permute_index(u1), z));
+  _mm512_storeu_pd(p + 16, _mm512_permutex2var_pd(_mm512_permutex2var_pd(x, permute_index(t2), y), permute_index(u2), z));
+}
+#endif
+
 template <class A>
 void load3(const double* p, xsimd::batch<double, A>& x, xsimd::batch<double, A>& y, xsimd::batch<double, A>& z) {
   using T = xsimd::batch<double, A>;
