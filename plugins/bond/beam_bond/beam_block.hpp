@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 
 #include "beam_batch.hpp"
 #include "beam_law.hpp"
@@ -39,28 +40,25 @@ template <class A, bool breakage, bool viscous, bool effects, bool arm>
   }
   for (std::size_t base = 0; base < padded; base += W) {
     // The state streams from memory (9 to 23 doubles a bond, megabytes a batch) and the lanes'
-    // gathers wait on each miss: the lines of the group after next (in this block or the next,
+    // loads wait on each miss: the lines of the group after next (in this block or the next,
     // which follows it in the batch) are requested now. A prefetch past the array is harmless.
     const char* ahead = reinterpret_cast<const char*>(in.state + (base + 2 * W) * stride);
     for (std::size_t byte = 0; byte < W * stride * sizeof(double); byte += 64) __builtin_prefetch(ahead + byte);
     const Idx a = L::load_index(first[0] + base), b = L::load_index(second[0] + base);
-    const Idx a3 = L::load_index(first[1] + base), b3 = L::load_index(second[1] + base);
-    const Idx a4 = L::load_index(first[2] + base), b4 = L::load_index(second[2] + base);
     BondLanes<T> bond;
-    // Quat is stored x, y, z, w (Eigen's order).
-    bond.q1 = {L::gather(in.orientation + 3, a4), L::gather(in.orientation, a4), L::gather(in.orientation + 1, a4),
-               L::gather(in.orientation + 2, a4)};
-    bond.q2 = {L::gather(in.orientation + 3, b4), L::gather(in.orientation, b4), L::gather(in.orientation + 1, b4),
-               L::gather(in.orientation + 2, b4)};
-    for (int d = 0; d < 3; ++d) {
-      bond.x1[d] = L::gather(in.position + d, a3);
-      bond.x2[d] = L::gather(in.position + d, b3);
-      bond.w1[d] = L::gather(in.omega + d, a3);
-      bond.w2[d] = L::gather(in.omega + d, b3);
-      if constexpr (viscous) {
-        bond.v1[d] = L::gather(in.velocity + d, a3);
-        bond.v2[d] = L::gather(in.velocity + d, b3);
-      }
+    // Each lane's rows: Quat stored x, y, z, w (Eigen's order), Vec3 x, y, z, the state.
+    T q1[4], q2[4];
+    L::template load_rows<4>(in.orientation, first[2] + base, q1);
+    L::template load_rows<4>(in.orientation, second[2] + base, q2);
+    bond.q1 = {q1[3], q1[0], q1[1], q1[2]};
+    bond.q2 = {q2[3], q2[0], q2[1], q2[2]};
+    L::template load_rows<3>(in.position, first[1] + base, bond.x1);
+    L::template load_rows<3>(in.position, second[1] + base, bond.x2);
+    L::template load_rows<3>(in.omega, first[1] + base, bond.w1);
+    L::template load_rows<3>(in.omega, second[1] + base, bond.w2);
+    if constexpr (viscous) {
+      L::template load_rows<3>(in.velocity, first[1] + base, bond.v1);
+      L::template load_rows<3>(in.velocity, second[1] + base, bond.v2);
     }
     bond.r1 = L::gather(in.radius, a);
     bond.r2 = L::gather(in.radius, b);
@@ -68,19 +66,43 @@ template <class A, bool breakage, bool viscous, bool effects, bool arm>
     bond.i2 = L::gather(in.inertia, b);
     const Idx k = L::load_index(slot[0] + base), k3 = L::load_index(slot[1] + base);
     const Idx ks = L::load_index(slot[2] + base);
-    for (std::size_t s = 0; s < stride; ++s) bond.state[s] = L::gather(in.state + s, ks);
+    L::template load_rows<stride>(in.state, slot[2] + base, bond.state);
 
     const BondLoads<T> r = beam_law<T, false, breakage, viscous, effects, arm>(bond, c, NoExtraCriterion{});
 
     // In the batch's orientation: force and torque_i on batch.i (a selection: which end a batch
     // lists first is close to random, a branch would be mispredicted).
     const auto sw = L::load(swapped + base) != 0.0;
+    T force[3], torque_i[3], torque_j[3];
     for (int d = 0; d < 3; ++d) {
-      L::scatter(out.force + d, k3, select(sw, -r.force[d], r.force[d]));
-      L::scatter(out.torque_i + d, k3, select(sw, r.torque_second[d], r.torque_first[d]));
-      L::scatter(out.torque_j + d, k3, select(sw, r.torque_first[d], r.torque_second[d]));
+      force[d] = select(sw, -r.force[d], r.force[d]);
+      torque_i[d] = select(sw, r.torque_second[d], r.torque_first[d]);
+      torque_j[d] = select(sw, r.torque_first[d], r.torque_second[d]);
     }
-    L::scatter(out.energy, k, r.energy);
+    if (base + W <= n) {
+      // A whole group writes W consecutive slots. AVX-512 interleaves the three components in
+      // registers (lanes::store3); its scatter instruction is slower. Narrower sets keep the
+      // scatter, which xsimd writes as the same single stores.
+      if constexpr (std::is_same_v<A, xsimd::avx512f>) {
+        lanes::store3(out.force + 3 * base, force[0], force[1], force[2]);
+        lanes::store3(out.torque_i + 3 * base, torque_i[0], torque_i[1], torque_i[2]);
+        lanes::store3(out.torque_j + 3 * base, torque_j[0], torque_j[1], torque_j[2]);
+      } else {
+        for (int d = 0; d < 3; ++d) {
+          L::scatter(out.force + d, k3, force[d]);
+          L::scatter(out.torque_i + d, k3, torque_i[d]);
+          L::scatter(out.torque_j + d, k3, torque_j[d]);
+        }
+      }
+      L::store(out.energy + base, r.energy);
+    } else {  // the last group's lanes past n write bond n - 1's slots again
+      for (int d = 0; d < 3; ++d) {
+        L::scatter(out.force + d, k3, force[d]);
+        L::scatter(out.torque_i + d, k3, torque_i[d]);
+        L::scatter(out.torque_j + d, k3, torque_j[d]);
+      }
+      L::scatter(out.energy, k, r.energy);
+    }
     for (std::size_t l = 0; l < W; ++l) out.fallback[base + l] = L::lane(r.fallback, l);
     if constexpr (arm)  // a fallback lane keeps its state for its own width-1 step
       for (std::size_t s = 0; s < 12; ++s)

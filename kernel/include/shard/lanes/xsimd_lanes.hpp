@@ -10,9 +10,11 @@
 #include <type_traits>
 #include <xsimd/xsimd.hpp>
 
+#include "shard/lanes/avx512_rows.hpp"
 #include "shard/lanes/lanes.hpp"
 
 namespace shard::lanes {
+
 
 template <class A>
 struct Lanes<xsimd::batch<double, A>> {
@@ -39,6 +41,33 @@ struct Lanes<xsimd::batch<double, A>> {
 #endif
     v.scatter(base, i);
   }
+  // out[c] lane l = base[offset[l] + c] for c < C: each lane's row of C contiguous doubles (a
+  // particle's Vec3 or Quat, a bond's state). AVX-512 loads the rows and transposes them in
+  // registers, three times faster than C gather instructions on the AMD EPYC host
+  // (docs/performance.md); the narrower sets gather.
+  template <std::size_t C>
+  [[gnu::always_inline]] static void load_rows(const double* base, const std::int64_t* offset, type* out) {
+#if defined(__AVX512F__)
+    if constexpr (std::is_same_v<A, xsimd::avx512f>) {
+      __m512d v[C];
+      if constexpr (C <= 4) {
+        detail::load_rows4<C>(base, offset, v);
+      } else {
+        constexpr std::size_t head = C < 8 ? C : 8;
+        detail::load_rows8<head>(base, offset, v);
+        if constexpr (C > 8) {
+          type rest[C - 8];
+          load_rows<C - 8>(base + 8, offset, rest);
+          for (std::size_t c = 8; c < C; ++c) v[c] = rest[c - 8];
+        }
+      }
+      for (std::size_t c = 0; c < C; ++c) out[c] = v[c];
+      return;
+    }
+#endif
+    const index i = load_index(offset);
+    for (std::size_t c = 0; c < C; ++c) out[c] = gather(base + c, i);
+  }
   [[gnu::always_inline]] static type load(const double* p) { return type::load_unaligned(p); }
   [[gnu::always_inline]] static void store(double* p, const type& v) { v.store_unaligned(p); }
   [[gnu::always_inline]] static index load_index(const std::int64_t* p) { return index::load_unaligned(p); }
@@ -57,6 +86,36 @@ xsimd::batch<double, A> negate(const xsimd::batch<double, A>& x) {
 // transposition goes through a small aligned buffer, which GCC turns into loads and permutes; the
 // gather and scatter instructions are slower here (AVX-512: 16.4 against 13.5 ns per contact-step
 // with SSE2's two lanes, bench_contact).
+#if defined(__AVX512F__)
+// With AVX-512 the 8 vectors' 24 doubles are three loads or stores and each component two
+// two-table permutes (vpermt2pd), no trip through memory: bench_kernel bonded, docs/performance.md.
+
+inline void load3(const double* p, xsimd::batch<double, xsimd::avx512f>& x, xsimd::batch<double, xsimd::avx512f>& y,
+                  xsimd::batch<double, xsimd::avx512f>& z) {
+  // in0 = x0 y0 z0 x1 y1 z1 x2 y2, in1 = z2 x3 y3 z3 x4 y4 z4 x5, in2 = y5 z5 x6 y6 z6 x7 y7 z7
+  static constexpr std::int64_t tx[8] = {0, 3, 6, 9, 12, 15, 0, 0}, ux[8] = {0, 1, 2, 3, 4, 5, 10, 13};
+  static constexpr std::int64_t ty[8] = {1, 4, 7, 10, 13, 0, 0, 0}, uy[8] = {0, 1, 2, 3, 4, 8, 11, 14};
+  static constexpr std::int64_t tz[8] = {2, 5, 8, 11, 14, 0, 0, 0}, uz[8] = {0, 1, 2, 3, 4, 9, 12, 15};
+  const __m512d in0 = _mm512_loadu_pd(p), in1 = _mm512_loadu_pd(p + 8), in2 = _mm512_loadu_pd(p + 16);
+  using detail::permute_index;
+  x = _mm512_permutex2var_pd(_mm512_permutex2var_pd(in0, permute_index(tx), in1), permute_index(ux), in2);
+  y = _mm512_permutex2var_pd(_mm512_permutex2var_pd(in0, permute_index(ty), in1), permute_index(uy), in2);
+  z = _mm512_permutex2var_pd(_mm512_permutex2var_pd(in0, permute_index(tz), in1), permute_index(uz), in2);
+}
+
+inline void store3(double* p, const xsimd::batch<double, xsimd::avx512f>& x, const xsimd::batch<double, xsimd::avx512f>& y,
+                   const xsimd::batch<double, xsimd::avx512f>& z) {
+  // x and y into their places (z's left open), then z.
+  static constexpr std::int64_t t0[8] = {0, 8, 0, 1, 9, 0, 2, 10}, u0[8] = {0, 1, 8, 3, 4, 9, 6, 7};
+  static constexpr std::int64_t t1[8] = {0, 3, 11, 0, 4, 12, 0, 5}, u1[8] = {10, 1, 2, 11, 4, 5, 12, 7};
+  static constexpr std::int64_t t2[8] = {13, 0, 6, 14, 0, 7, 15, 0}, u2[8] = {0, 13, 2, 3, 14, 5, 6, 15};
+  using detail::permute_index;
+  _mm512_storeu_pd(p, _mm512_permutex2var_pd(_mm512_permutex2var_pd(x, permute_index(t0), y), permute_index(u0), z));
+  _mm512_storeu_pd(p + 8, _mm512_permutex2var_pd(_mm512_permutex2var_pd(x, permute_index(t1), y), permute_index(u1), z));
+  _mm512_storeu_pd(p + 16, _mm512_permutex2var_pd(_mm512_permutex2var_pd(x, permute_index(t2), y), permute_index(u2), z));
+}
+#endif
+
 template <class A>
 void load3(const double* p, xsimd::batch<double, A>& x, xsimd::batch<double, A>& y, xsimd::batch<double, A>& z) {
   using T = xsimd::batch<double, A>;
