@@ -150,7 +150,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
                   "effects a stepwise diagnosis may add one after the other (1: a single effect)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--refit-iterations", o->refit_iterations,
-                  "secant iterations of each refit on its simulated run (0: the linear refit only)")
+                  "secant iterations of each effect refit on its simulated run (0: the linear refit only)")
       ->check(number_from(0, false, "0 (the linear refit only) or a number of iterations"));
   cmd->add_option("--scoring", o->scoring,
                   "how models are scored: own (each model's band; a refit whose NRMSE rises is not named), frozen "
@@ -226,12 +226,15 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
           }
       run_confirmations(simulator, measured, set.metadata, o->model, keys, band, scoring, s.confirmations, m);
       // The linear refit stops short where an effect's response bends (a size several trial steps
-      // from neutral, a kept effect re-sized with a new one): each refit, the base refit too, is
-      // corrected by its own run (secant_refit) and simulated again; the better run stands.
+      // from neutral, a kept effect re-sized with a new one): each effect refit is corrected by its
+      // own run (secant_refit) and simulated again; the better run stands. The base refit stays the
+      // linear one, the reference of the decision (its excess, the NRMSE rule): iterated, on the
+      // hidden-compliance data it traded the features for the curve (chi^2 71 -> 56, NRMSE 11.7 ->
+      // 4.7 %) and the NRMSE rule then refused the right effect (chi^2 11.4, NRMSE 5.5 %).
       for (int it = 0; it < o->refit_iterations; ++it) {
-        std::vector<Confirmation> next;
-        std::vector<std::size_t> of;
-        for (std::size_t k = 0; k < s.confirmations.size(); ++k) {
+        std::vector<Confirmation> next{s.confirmations.front()};  // its run is cached: no new run
+        std::vector<std::size_t> of{0};
+        for (std::size_t k = 1; k < s.confirmations.size(); ++k) {
           const Confirmation& c = s.confirmations[k];
           if (!c.failure.empty()) continue;
           const auto lr = secant_refit(s.lin.base, s.lin.jacobian, c.signature,
@@ -240,11 +243,10 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
           Confirmation n = c;
           n.plan = refit_plan(keys, model, *lr, c.effect);
           if (c.effect) n.effect_value = n.plan.model.kept.back().second;
-          if (k == 0 && !next.empty()) throw std::logic_error("diagnose: the base refit must come first");
           next.push_back(std::move(n));
           of.push_back(k);
         }
-        if (next.empty() || of.front() != 0) break;  // run_confirmations needs the base refit first
+        if (next.size() == 1) break;
         try {
           run_confirmations(simulator, measured, set.metadata, o->model, keys, band, scoring, next, m);
         } catch (const std::exception& e) {  // the iterated base refit did not run: the linear refits stand
@@ -252,7 +254,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
           break;
         }
         bool improved = false;
-        for (std::size_t j = 0; j < next.size(); ++j)
+        for (std::size_t j = 1; j < next.size(); ++j)
           if (next[j].failure.empty() && next[j].chi_square < s.confirmations[of[j]].chi_square) {
             next[j].secant_steps = s.confirmations[of[j]].secant_steps + 1;
             s.confirmations[of[j]] = std::move(next[j]);
