@@ -38,7 +38,8 @@ struct Confirmation {
   std::string name;  // "base refit" or the effect
   RefitPlan plan;
   const CandidateEffect* effect = nullptr;     // the effect added (none for the base refit)
-  const EffectSignature* signature = nullptr;  // its signature in the step's linearisation
+  // Its signature in the step's linearisation: read during the step only (`steps` grows after it).
+  const EffectSignature* signature = nullptr;
   int secant_steps = 0;                        // secant iterations that improved on the linear refit
   double effect_value = 0;
   double chi_square = 0, nrmse = 0, delta_aic = 0, delta_bic = 0;
