@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "shard/measure/effect_scaling.hpp"
@@ -54,6 +55,20 @@ double model_score(const RateComparison& c, const RateComparison& reference, Sco
   for (std::size_t k = 0; k < c.at.size() && k < reference.at.size(); ++k)
     log_det += log_variance_ratio(c.at[k], reference.at[k]);
   return c.chi_square() + log_det;
+}
+
+double failure_point_chi_square(const RateComparison& c) {
+  double sum = 0;
+  for (const auto& at : c.at) {
+    bool found = false;
+    for (const auto& f : at.features)
+      if (f.feature == Feature::FailureDisplacement && std::isfinite(f.score)) {
+        found = true;
+        if (!f.judged) sum += f.score * f.score;
+      }
+    if (!found) return std::numeric_limits<double>::quiet_NaN();
+  }
+  return sum;
 }
 
 RateComparison with_band(const RateComparison& c, const RateComparison& reference) {
@@ -165,6 +180,45 @@ RefitPlan refit_plan(const std::vector<std::string>& keys, const StepModel& star
   }
   if (added) r.model.kept.emplace_back(added, place(*added, lr.effect_scale.front()));
   return r;
+}
+
+std::vector<double> refit_step(const std::vector<std::string>& keys, const StepModel& start, const StepModel& refit,
+                               const CandidateEffect* added) {
+  std::vector<double> step;
+  for (std::size_t i = 0; i < keys.size(); ++i) step.push_back(refit.parameters[i] / start.parameters[i] - 1);
+  for (std::size_t j = 0; j < start.kept.size(); ++j) {
+    const CandidateEffect& e = *start.kept[j].first;
+    step.push_back(effect_scale(e, refit.kept[j].second) - effect_scale(e, start.kept[j].second));
+  }
+  if (added) step.push_back(effect_scale(*added, refit.kept.back().second));
+  return step;
+}
+
+std::optional<LinearRefit> secant_refit(const ResidualVector& r0, const std::vector<std::vector<double>>& jacobian,
+                                        const EffectSignature* added, const std::vector<double>& step,
+                                        const ResidualVector& simulated) {
+  if (simulated.names != r0.names) return std::nullopt;
+  std::vector<std::vector<double>> columns = jacobian;
+  if (added) columns.push_back(added->signature);
+  if (columns.size() != step.size()) throw std::logic_error("secant_refit: the step does not match the linearisation");
+  double norm2 = 0;
+  for (double x : step) norm2 += x * x;
+  if (!(norm2 > 1e-12)) return std::nullopt;
+  const std::size_t m = r0.values.size();
+  // What the linearisation missed at the refit: simulated - (r0 + B step).
+  std::vector<double> miss(m);
+  for (std::size_t i = 0; i < m; ++i) {
+    double predicted = r0.values[i];
+    for (std::size_t c = 0; c < columns.size(); ++c) predicted += columns[c][i] * step[c];
+    miss[i] = simulated.values[i] - predicted;
+  }
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    for (std::size_t i = 0; i < m; ++i) columns[c][i] += miss[i] * step[c] / norm2;
+  if (!added) return linear_refit(r0.values, columns, {});
+  EffectSignature updated = *added;
+  updated.signature = columns.back();
+  columns.pop_back();
+  return linear_refit(r0.values, columns, {updated});
 }
 
 }  // namespace shard

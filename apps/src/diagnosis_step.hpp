@@ -8,6 +8,7 @@
 // profile them out, so a second effect is judged on what the first leaves, with the first
 // re-sized along.
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -41,6 +42,13 @@ double effect_scale(const measure::CandidateEffect& e, double value);
 
 // `c` with every rate's simulated band replaced by `reference`'s (with_simulated_band).
 RateComparison with_band(const RateComparison& c, const RateComparison& reference);
+// The failure point as a component of its own: the squared score of failure_displacement (the
+// pins' displacement where the force has fallen to half of F_max after the peak), summed over the
+// rates. Not in the residual vector by default (the comparison grid ends at the shortest measured
+// curve, so the model's failure shows there only as far as the data reach); 0 when it is judged
+// already (--judge-fracture), NaN when a rate's curves lack it. ConfirmationRule: it tells apart
+// refits that all leave noise on the judged components.
+double failure_point_chi_square(const RateComparison& c);
 // The score a decision compares (a chi^2 for the frozen band; -2 ln L up to a constant).
 double model_score(const RateComparison& c, const RateComparison& reference, Scoring scoring);
 
@@ -82,5 +90,23 @@ struct RefitPlan {
 // lr: base steps (relative) then kept effects' steps (trial sizes), as the step's Jacobian.
 RefitPlan refit_plan(const std::vector<std::string>& keys, const StepModel& start, const measure::LinearRefit& lr,
                      const measure::CandidateEffect* added);
+
+// The step a refit's model took from the step's start, in the linearisation's units: relative
+// changes of the base parameters, then trial sizes of the kept effects, then (with `added`) the
+// added effect's trial sizes from neutral.
+std::vector<double> refit_step(const std::vector<std::string>& keys, const StepModel& start, const StepModel& refit,
+                               const measure::CandidateEffect* added);
+
+// One secant iteration of a refit (Broyden's rank-one update): the linearisation [J | s] is
+// corrected along the step `step` so that it reproduces the refit's simulated residual
+// `simulated` there, and the least-squares refit from the step's residual r0 is solved again. An
+// effect's response is not linear in its size (a softening ratio 2.4 trial sizes from neutral
+// bends the curve less than 2.4 times the trial does), so the first linear refit of a
+// several-effect model can stop short, and the kept effect's size with it. nullopt when the step
+// is empty or the simulated components differ from the linearisation's.
+std::optional<measure::LinearRefit> secant_refit(const measure::ResidualVector& r0,
+                                                 const std::vector<std::vector<double>>& jacobian,
+                                                 const measure::EffectSignature* added, const std::vector<double>& step,
+                                                 const measure::ResidualVector& simulated);
 
 }  // namespace shard

@@ -37,8 +37,15 @@ using namespace measure;
 struct Confirmation {
   std::string name;  // "base refit" or the effect
   RefitPlan plan;
+  const CandidateEffect* effect = nullptr;     // the effect added (none for the base refit)
+  // Its signature in the step's linearisation: read during the step only (`steps` grows after it).
+  const EffectSignature* signature = nullptr;
+  int secant_steps = 0;                        // secant iterations that improved on the linear refit
   double effect_value = 0;
   double chi_square = 0, nrmse = 0, delta_aic = 0, delta_bic = 0;
+  // The failure point's score (failure_displacement, every rate), NaN when a curve lacks it.
+  double failure_chi_square = std::numeric_limits<double>::quiet_NaN();
+  ResidualVector residual;  // as scored (the decision's components)
   std::string failure;  // the refit's run failed: its first error line
 };
 
@@ -99,6 +106,8 @@ void run_confirmations(Simulator& simulator, const RateGroups& measured, const M
     }
     conf[k].chi_square = model_score(sims[k], band, scoring);
     conf[k].nrmse = sims[k].nrmse();
+    conf[k].residual = (scoring == Scoring::FrozenBand ? with_band(sims[k], band) : sims[k]).residual_vector();
+    conf[k].failure_chi_square = failure_point_chi_square(scoring == Scoring::FrozenBand ? with_band(sims[k], band) : sims[k]);
     const double extra = k == 0 ? 0 : 1;
     conf[k].delta_aic = conf[k].chi_square - conf[0].chi_square + 2 * extra;
     conf[k].delta_bic = conf[k].chi_square - conf[0].chi_square + extra * std::log(static_cast<double>(components));
@@ -123,6 +132,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
     std::vector<std::string> only;
     int refit = 2;
     int max_effects = 2;
+    int refit_iterations = 0;
     std::string scoring = "own";
   };
   auto o = std::make_shared<Options>();
@@ -140,6 +150,9 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
   cmd->add_option("--max-effects", o->max_effects,
                   "effects a stepwise diagnosis may add one after the other (1: a single effect)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--refit-iterations", o->refit_iterations,
+                  "secant iterations of each effect refit on its simulated run (default 0: the linear refits only)")
+      ->check(number_from(0, false, "0 (the linear refit only) or a number of iterations"));
   cmd->add_option("--scoring", o->scoring,
                   "how models are scored: own (each model's band; a refit whose NRMSE rises is not named), frozen "
                   "(the base model's band for every run) or likelihood (own band plus the Gaussian log-variance term)");
@@ -193,7 +206,12 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
         Confirmation c;
         c.name = effect ? effect->name : "base refit";
         c.plan = refit_plan(keys, model, linear_refit(s.lin.base.values, s.lin.jacobian, sig), effect);
-        if (effect) c.effect_value = c.plan.model.kept.back().second;
+        c.effect = effect;
+        if (effect) {
+          c.effect_value = c.plan.model.kept.back().second;
+          for (const auto& g : s.lin.signatures)
+            if (g.name == effect->name) c.signature = &g;
+        }
         s.confirmations.push_back(std::move(c));
       };
       add_refit({}, nullptr);
@@ -208,6 +226,50 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
             if (s.lin.signatures[e].identifiable) ++nameable;
           }
       run_confirmations(simulator, measured, set.metadata, o->model, keys, band, scoring, s.confirmations, m);
+      // --refit-iterations (default 0, off): each effect refit corrected by its own run
+      // (secant_refit) and simulated again; the better run stands. The base refit stays the linear
+      // one, the decision's reference: iterated, it traded the features for the curve on the
+      // hidden-compliance data (chi^2 71 -> 56, NRMSE 11.7 -> 4.7 %) and the NRMSE rule then
+      // refused the right effect. Off by default: iterated, a single effect's refit fits a seating
+      // toe outside the library by self_weight (chi^2 47.7 -> 8.5, p after 0.29, a false name
+      // where the linear refit ends unexplained), docs/measurements.md.
+      for (int it = 0; it < o->refit_iterations; ++it) {
+        std::vector<Confirmation> next{s.confirmations.front()};  // its run is cached: no new run
+        std::vector<std::size_t> of{0};
+        for (std::size_t k = 1; k < s.confirmations.size(); ++k) {
+          const Confirmation& c = s.confirmations[k];
+          if (!c.failure.empty()) continue;
+          const auto lr = secant_refit(s.lin.base, s.lin.jacobian, c.signature,
+                                       refit_step(keys, model, c.plan.model, c.effect), c.residual);
+          if (!lr) continue;
+          Confirmation n = c;
+          n.plan = refit_plan(keys, model, *lr, c.effect);
+          if (c.effect) n.effect_value = n.plan.model.kept.back().second;
+          next.push_back(std::move(n));
+          of.push_back(k);
+        }
+        if (next.size() == 1) break;
+        try {
+          run_confirmations(simulator, measured, set.metadata, o->model, keys, band, scoring, next, m);
+        } catch (const std::exception& e) {  // the iterated base refit did not run: the linear refits stand
+          fmt::print(stderr, "diagnose: secant iteration left out: {}\n", e.what());
+          break;
+        }
+        bool improved = false;
+        for (std::size_t j = 1; j < next.size(); ++j)
+          if (next[j].failure.empty() && next[j].chi_square < s.confirmations[of[j]].chi_square) {
+            next[j].secant_steps = s.confirmations[of[j]].secant_steps + 1;
+            s.confirmations[of[j]] = std::move(next[j]);
+            improved = true;
+          }
+        if (!improved) break;
+      }
+      for (auto& c : s.confirmations) {  // the information criteria against the refit that stands
+        if (!c.failure.empty()) continue;
+        const double extra = c.effect ? 1 : 0;
+        c.delta_aic = c.chi_square - s.confirmations.front().chi_square + 2 * extra;
+        c.delta_bic = c.chi_square - s.confirmations.front().chi_square + extra * std::log(static_cast<double>(m));
+      }
       std::vector<RefitOutcome> refits;
       for (std::size_t k = 1; k < s.confirmations.size(); ++k)
         refits.push_back({s.confirmations[k].name, s.confirmations[k].chi_square, s.confirmations[k].nrmse,
@@ -380,20 +442,24 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
       }
       if (!s.confirmations.empty()) {
         md += fmt::format("\nConfirmation runs (simulated, not predicted; excess chi^2 of the base refit over its {} "
-                          "degrees of freedom: {:.1f}):\n\n| model | chi^2 | NRMSE | dAIC vs base refit | dBIC | share of "
-                          "excess | p after | p of the drop | values |\n|---|---|---|---|---|---|---|---|---|\n",
+                          "degrees of freedom: {:.1f}; failure point: the failure displacement's squared score, not "
+                          "judged):\n\n| model | chi^2 | NRMSE | failure point | dAIC vs base refit | dBIC | share of "
+                          "excess | p after | p of the drop | values |\n|---|---|---|---|---|---|---|---|---|---|\n",
                           s.lin.base.values.size() - s.lin.jacobian.size(), s.decision.excess);
         for (std::size_t c = 0; c < s.confirmations.size(); ++c) {
           const auto& cf = s.confirmations[c];
           const ConfirmedEffect* ce = c > 0 && c - 1 < s.decision.effects.size() ? &s.decision.effects[c - 1] : nullptr;
           const std::string v = values_text(keys, cf.plan.model);
           if (!cf.failure.empty()) {
-            md += fmt::format("| {} | run failed | - | - | - | - | - | - | {} |\n", cf.name, v);
+            md += fmt::format("| {} | run failed | - | - | - | - | - | - | - | {} |\n", cf.name, v);
             continue;
           }
-          md += fmt::format("| {}{} | {:.1f} | {:.1f} %{} | {:+.1f} | {:+.1f} | {} | {} | {} | {} |\n", cf.name,
-                            ce && !ce->identifiable ? " (not nameable at these rates)" : "", cf.chi_square,
-                            100 * cf.nrmse, ce && ce->nrmse_rose ? " (rose)" : "", cf.delta_aic, cf.delta_bic,
+          md += fmt::format("| {}{}{} | {:.1f} | {:.1f} %{} | {} | {:+.1f} | {:+.1f} | {} | {} | {} | {} |\n", cf.name,
+                            ce && !ce->identifiable ? " (not nameable at these rates)" : "",
+                            cf.secant_steps > 0 ? fmt::format(" (secant {})", cf.secant_steps) : "", cf.chi_square,
+                            100 * cf.nrmse, ce && ce->nrmse_rose ? " (rose)" : "",
+                            std::isfinite(cf.failure_chi_square) ? fmt::format("{:.1f}", cf.failure_chi_square) : "-",
+                            cf.delta_aic, cf.delta_bic,
                             ce ? fmt::format("{:.0f} %", 100 * ce->share_explained) : "-",
                             ce ? fmt::format("{:.2g}", ce->p_after) : fmt::format("{:.2g}", s.decision.base_p),
                             ce ? fmt::format("{:.2g}", ce->p_drop) : "-", v);
@@ -477,12 +543,19 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
         const auto& cf = s.confirmations[c];
         json += fmt::format("{}{{\"name\": \"{}\", \"chi_square\": {}, \"nrmse\": {}, \"delta_aic\": {}, "
                             "\"delta_bic\": {}, \"share_explained\": {}, \"p_after\": {}, \"p_drop\": {}, \"value\": {:.9g}, "
-                            "\"failure\": \"{}\", \"step\": {}, \"at_bound\": \"{}\", \"nrmse_rose\": {}}}",
+                            "\"failure\": \"{}\", \"step\": {}, \"at_bound\": \"{}\", \"nrmse_rose\": {}, "
+                            "\"failure_point_chi_square\": {}, \"secant_steps\": {}, \"residual\": {{{}}}}}",
                             sep, json_escape(cf.name), number(cf.chi_square), number(cf.nrmse), number(cf.delta_aic),
                             number(cf.delta_bic), number(ce ? ce->share_explained : 0.0),
                             number(ce ? ce->p_after : s.decision.base_p), number(ce ? ce->p_drop : 1.0), cf.effect_value,
                             json_escape(cf.failure), k + 1, json_escape(join(cf.plan.at_bound, "; ")),
-                            ce && ce->nrmse_rose);
+                            ce && ce->nrmse_rose, number(cf.failure_chi_square), cf.secant_steps, [&] {
+                              std::string r;
+                              for (std::size_t i = 0; i < cf.residual.values.size(); ++i)
+                                r += fmt::format("{}\"{}\": {}", i ? ", " : "", json_escape(cf.residual.names[i]),
+                                                 number(cf.residual.values[i]));
+                              return r;
+                            }());
         sep = ", ";
       }
     }

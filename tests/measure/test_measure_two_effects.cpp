@@ -9,9 +9,11 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <string>
 
+#include "../../apps/src/diagnosis_step.hpp"
 #include "shard_cli.hpp"
 
 namespace fs = std::filesystem;
@@ -21,18 +23,52 @@ namespace {
 const fs::path kWork = fs::current_path() / "measure_two_effects_work";
 const std::string kScene = std::string(SHARD_SOURCE_DIR) + "/scenes/measurements/tiny_bending.toml";
 
-void shard(const std::string& args) { shard_test::run_shard(args, kWork); }
+void run_shard(const std::string& args) { shard_test::run_shard(args, kWork); }
 using shard_test::number_after;
 using shard_test::read_text;
 
 }  // namespace
 
+TEST_CASE("a secant iteration takes a refit on where an effect's bent response stopped the linear one short") {
+  // A residual model whose effect saturates with its size, r(d, a) = r0 + J d + t a^0.7 (a softening
+  // ratio far beyond its trial bends the curve less than proportionally), with its exact fit at
+  // d = 0.1, a = 2.4. The linear refit from the trial signature (a = 1: t) stops short; one secant
+  // correction through its own "run" must land closer and leave a smaller chi^2.
+  using namespace shard::measure;
+  const std::vector<double> j{1, 1, 0, 0}, t{0, 1, 2, 1};
+  auto model = [&](double d, double a) {
+    ResidualVector r;
+    r.names = {"regime:elastic", "regime:peak", "feature:post_peak_work", "feature:nonlinearity"};
+    for (std::size_t i = 0; i < 4; ++i) r.values.push_back(-(0.1 * j[i] + std::pow(2.4, 0.7) * t[i]) + j[i] * d + t[i] * std::pow(a, 0.7));
+    return r;
+  };
+  auto chi2 = [](const ResidualVector& r) {
+    double x = 0;
+    for (double v : r.values) x += v * v;
+    return x;
+  };
+  const ResidualVector r0 = model(0, 0);
+  EffectSignature sig{"saturating", 1.0, t};
+  const LinearRefit linear = linear_refit(r0.values, {j}, {sig});
+  const double a1 = linear.effect_scale.front(), d1 = linear.base_step.front();
+  CHECK(a1 < 2.0);  // short of 2.4
+  const auto secant = shard::secant_refit(r0, {j}, &sig, {d1, a1}, model(d1, a1));
+  REQUIRE(secant.has_value());
+  const double a2 = secant->effect_scale.front(), d2 = secant->base_step.front();
+  CHECK(std::abs(a2 - 2.4) < 0.5 * std::abs(a1 - 2.4));
+  CHECK(chi2(model(d2, a2)) < 0.5 * chi2(model(d1, a1)));
+  // A run whose components differ from the linearisation's (a regime vanished) is not iterated.
+  ResidualVector other = model(d1, a1);
+  other.names[0] = "regime:toe";
+  CHECK_FALSE(shard::secant_refit(r0, {j}, &sig, {d1, a1}, other).has_value());
+}
+
 TEST_CASE("machine compliance and bond softening hidden at once: both named, one after the other") {
   const fs::path meas = kWork / "meas", out = kWork / "diag";
-  shard("synth --scene " + kScene + " --work " + kWork.string() + " --out " + meas.string() +
+  run_shard("synth --scene " + kScene + " --work " + kWork.string() + " --out " + meas.string() +
         " --scatter 0.02 --force-noise 0.01 --force-offset 0.005 --displacement-step 1e-6 --machine-compliance 1e-4"
         " --set bond.softening_ratio=3");
-  shard("diagnose " + meas.string() + " --scene " + kScene + " --work " + kWork.string() +
+  run_shard("diagnose " + meas.string() + " --scene " + kScene + " --work " + kWork.string() +
         " --param bond.youngs_modulus --param bond.critical_stress --only "
         "machine_compliance,bond_softening,compression_asymmetry,weibull_strength --refit 2 --max-effects 2 --out " +
         out.string());
