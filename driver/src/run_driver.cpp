@@ -207,7 +207,8 @@ RunResult run(const RunSpec& spec, const PluginHost& host, const std::vector<Run
   try {
     writer_slot.emplace(result.output, meta, wall_names);
     if (restarting) {
-      const auto copied = copy_run_prefix(moved_aside, *writer_slot, *restart_point, {series_every, frame_every});
+      const auto copied = copy_run_prefix(moved_aside, *writer_slot, *restart_point, {series_every, frame_every},
+                                           wall_names);
       writer_slot->flush();
       info(fmt::format("restart: continuing {} from step {} (t = {:.6g} s); {} frames and the series up to it kept",
                        result.output.string(), sim.step_count(), sim.time(), copied));

@@ -179,6 +179,21 @@ int main(int argc, char** argv) {
                 static_cast<long long>(r.bonds_broken), r.stop_reason.c_str());
     return r.bonds_broken > 0 ? 0 : 1;
   }
+  if (mode == "serial_restart" && argc > 4) {
+    // The serial driver continues a decomposed run's checkpoint (the checkpoint is gathered in the
+    // serial layout): a copy of the interrupted 4-rank run, to its end.
+    fs::remove_all(out);
+    fs::create_directories(out);
+    for (const char* name : {"run.h5", "run.checkpoint.h5"}) fs::copy_file(fs::path(argv[3]) / name, out / name);
+    PluginHost host;
+    load_plugins(host);
+    Observers o;
+    driver::RunSpec spec = spec_for(out);
+    spec.restart = out / "run.h5";
+    driver::run(spec, host, o.list());
+    compare(out / "run.h5", fs::path(argv[4]) / "run.h5", "serial build continuing 4 ranks");
+    return failures > 0 ? 1 : 0;
+  }
   const driver::MpiSession mpi;
   rank_ = mpi.rank();
   const std::string who = fmt::format("{} ranks", mpi.size());
@@ -200,6 +215,12 @@ int main(int argc, char** argv) {
         const Checkpoint c = read_checkpoint(out / "run.checkpoint.h5");
         check(c.simulation.step == std::stoll(argv[3]), fmt::format("{}: the checkpoint holds step {}", who, argv[3]));
         check(c.simulation.particles.size() == 582, who + ": the checkpoint holds every particle");
+        // A copy for the serial build to continue (test_mpi_run_serial_restart): the 2-rank restart
+        // continues this folder in place.
+        const fs::path copy = out.parent_path() / "restart_copy";
+        fs::remove_all(copy);
+        fs::create_directories(copy);
+        for (const char* name : {"run.h5", "run.checkpoint.h5"}) fs::copy_file(out / name, copy / name);
       }
     } else if (mode == "restart" && argc > 3) {
       Observers o;

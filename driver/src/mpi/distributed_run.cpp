@@ -281,7 +281,7 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
     std::filesystem::rename(spec.restart, moved_aside);
     try {
       writer.emplace(result.output, meta, wall_names);
-      const auto copied = copy_run_prefix(moved_aside, *writer, *restart_point, {series_every, frame_every});
+      const auto copied = copy_run_prefix(moved_aside, *writer, *restart_point, {series_every, frame_every}, wall_names);
       writer->flush();
       info(fmt::format("restart: continuing {} from step {} (t = {:.6g} s) on {} ranks; {} frames and the series up "
                        "to it kept",

@@ -372,8 +372,8 @@ void DistributedSimulation::distribute(Owned owned, double longest_bond, const S
 
   if (initial) {
     SimulationSetup s;
-    s.particles = std::move(local);
-    s.bonds = std::move(bond_ends);
+    s.particles = resumed ? local : std::move(local);  // a resumed run imports them again below
+    s.bonds = resumed ? bond_ends : std::move(bond_ends);
     s.contact = initial->contact;
     s.bond = initial->bond;
     s.breakage = initial->breakage;
