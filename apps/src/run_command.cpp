@@ -69,7 +69,7 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
   observers.insert(observers.end(), {&checkpoints, &interrupt});
 #if SHARD_MPI_RUN
   // Under mpirun the run is decomposed over the ranks; rank 0 prints and writes for it.
-  if (driver::launched_by_mpi()) {
+  if (options.decompose_under_mpirun && driver::launched_by_mpi()) {
     const driver::MpiSession mpi;
     if (mpi.rank() == 0) {
       if (!options.quiet) observers.push_back(&progress);
