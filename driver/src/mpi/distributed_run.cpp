@@ -298,7 +298,11 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
 
   std::size_t events_written = restart_point ? restart_point->simulation.events_taken : 0;
   const LoadSensor sensor(scene, sim);
+  const Particles no_particles;
+  const Bonds no_bonds;
   RunState::Whole whole;
+  whole.frame_particles = &no_particles;
+  whole.frame_bonds = &no_bonds;
   whole.bonds_broken = dist.bonds_broken();
   whole.bonds_intact = dist.bond_count();
   RunState state(scene, sim, result, sensor, [&] {
@@ -328,8 +332,6 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
                              "again from the scene (a restart continues with the same settings)",
                              result.checkpoint.string(), result.checkpoint_step);
   };
-  const Particles no_particles;
-  const Bonds no_bonds;
   auto write_frame = [&] {
     const SimulationState frame = dist.gather_state(0, false);
     whole.frame_particles = rank == 0 ? &frame.particles : &no_particles;
@@ -339,8 +341,8 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
     on_root([&] {
       writer->write_frame(dist.step_count(), dist.time(), frame.particles, frame.bonds, state.frame_labels);
     });
-    whole.frame_particles = nullptr;
-    whole.frame_bonds = nullptr;
+    whole.frame_particles = &no_particles;  // the gathered frame goes out of scope here
+    whole.frame_bonds = &no_bonds;
     ++state.frames_written;
   };
   auto series_row = [&] {

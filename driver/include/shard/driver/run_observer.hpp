@@ -40,8 +40,8 @@ class RunState {
   struct Whole {
     std::int64_t bonds_broken = 0;
     std::size_t bonds_intact = 0;
-    // The next frame's particles (ascending id) and bonds, on the rank that writes it; empty on
-    // the others. Valid in before_frame.
+    // In before_frame: the next frame's particles (ascending id) and bonds on the rank that
+    // writes it; empty on the others and outside before_frame.
     const Particles* frame_particles = nullptr;
     const Bonds* frame_bonds = nullptr;
   };
