@@ -54,6 +54,7 @@ void add_run_command(CLI::App& app, CommandContext& ctx) {
   cmd->callback([options, assignments, &ctx] {
     options->plugin_dirs = ctx.plugin_dirs;
     options->overrides = parse_overrides(*assignments);
+    options->decompose_under_mpirun = true;
     if (options->scene.empty() == options->restart.empty())
       throw std::invalid_argument("shard run needs a scene file, or --restart run.h5 (not both)");
     const RunSummary summary = run_scene(*options, std::cerr);

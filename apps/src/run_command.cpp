@@ -7,6 +7,9 @@
 #include <ostream>
 
 #include "shard/driver/checkpoint_writer.hpp"
+#if SHARD_MPI_RUN
+#include "shard/driver/distributed_run.hpp"
+#endif
 #include "shard/driver/scene_rules.hpp"
 #include "shard/driver/progress_printer.hpp"
 #include "shard/driver/run_driver.hpp"
@@ -64,6 +67,21 @@ RunSummary run_scene(const RunOptions& options, std::ostream& log_stream) {
   driver::CurveCsvWriter curve(line);
   std::vector<driver::RunObserver*> observers = scene_rules.observers();
   observers.insert(observers.end(), {&checkpoints, &interrupt});
+#if SHARD_MPI_RUN
+  // Under mpirun the run is decomposed over the ranks; rank 0 prints and writes for it.
+  if (options.decompose_under_mpirun && driver::launched_by_mpi()) {
+    const driver::MpiSession mpi;
+    if (mpi.rank() == 0) {
+      if (!options.quiet) observers.push_back(&progress);
+      observers.insert(observers.end(), {&report, &curve});
+    }
+    try {
+      return driver::run_distributed(spec, host, observers, log);
+    } catch (const std::exception& e) {
+      driver::abort_job(e.what());  // a rank left alone in a collective call would wait forever
+    }
+  }
+#endif
   if (!options.quiet) observers.push_back(&progress);
   observers.insert(observers.end(), {&report, &curve});
   return driver::run(spec, host, observers, log);

@@ -8,9 +8,10 @@ namespace shard::driver {
 void FragmentLabeller::before_frame(RunState& run) {
   const int every = run.scene.fragments_every;
   if (every <= 0 || run.frames_written % every != 0) return;
-  const auto& b = run.sim.bonds();
-  count_ = labeller_.label(run.sim.particles().size(), {b.i, b.j}, labels_);
-  analysis::canonicalise_labels(labels_, count_, run.sim.particles().mass, run.sim.particles().id);
+  const Particles& p = run.frame_particles();
+  const Bonds& b = run.frame_bonds();
+  count_ = labeller_.label(p.size(), {b.i, b.j}, labels_);
+  analysis::canonicalise_labels(labels_, count_, p.mass, p.id);
   run.frame_labels = &labels_;
   labelled_ = true;
 }

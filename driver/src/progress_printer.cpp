@@ -34,8 +34,8 @@ void ProgressPrinter::on_series(RunState& run, const Energies& e) {
   const double elapsed = std::chrono::duration<double>(now - run.wall_start).count();
   const double rate = static_cast<double>(s - run.start_step) / std::max(1e-9, elapsed);
   fmt::print(out_, "step {:>9} t={:.4e}s KE={:.3e}J load={:.4g}N bonds {}/{} broken {} {:.0f} steps/s ETA {}{}", s,
-             sim.time(), e.kinetic, run.sensor.load(sim), sim.bonds().size(), run.result.bonds_initial,
-             sim.bonds_broken(), rate, seconds_text(static_cast<double>(run.total_steps - s) / rate),
+             sim.time(), e.kinetic, run.sensor.load(sim), run.bonds_intact(), run.result.bonds_initial,
+             run.bonds_broken(), rate, seconds_text(static_cast<double>(run.total_steps - s) / rate),
              tty_ ? "\r" : "\n");
   out_.flush();
 }

@@ -11,6 +11,7 @@
 #include <span>
 #include <sstream>
 
+#include "run_loop_parts.hpp"
 #include "run_restart.hpp"
 #include "shard/bending/deformation_kinetic.hpp"
 #include "shard/bending/quasi_static.hpp"
@@ -24,10 +25,11 @@
 #include "shard/scene.hpp"
 
 namespace shard::driver {
-namespace {
+// Shared with the decomposed run (mpi/distributed_run.cpp): run_loop_parts.hpp.
+namespace detail {
 
 // The run loop's own state that a checkpoint must carry besides the simulation's.
-void save_loop_state(Checkpoint& c, const RunResult& r, int frames_written, const NumericalHealth& health) {
+void save_loop_state(Checkpoint& c, const RunResult& r, int frames_written, const std::vector<double>& health) {
   c.numbers = {{"frames_written", frames_written},
                {"peak_load", r.peak_load},
                {"displacement_at_peak", r.displacement_at_peak},
@@ -37,10 +39,10 @@ void save_loop_state(Checkpoint& c, const RunResult& r, int frames_written, cons
               {"time_series", r.curve.time},
               {"kinetic_before_break", r.kinetic_before_break},
               {"elastic_before_break", r.elastic_before_break},
-              {"health", health.state()}};
+              {"health", health}};
 }
 
-void restore_loop_state(const Checkpoint& c, RunResult& r, int& frames_written, NumericalHealth& health) {
+void restore_loop_state(const Checkpoint& c, RunResult& r, int& frames_written) {
   frames_written = static_cast<int>(c.number("frames_written"));
   r.peak_load = c.number("peak_load");
   r.displacement_at_peak = c.number("displacement_at_peak");
@@ -50,7 +52,6 @@ void restore_loop_state(const Checkpoint& c, RunResult& r, int& frames_written, 
   r.curve.time = c.array("time_series");
   r.kinetic_before_break = c.array("kinetic_before_break");
   r.elastic_before_break = c.array("elastic_before_break");
-  health.restore(c.array("health"));
 }
 
 // True when a line of the scene reads `breakage = true` (blanks allowed around the words).
@@ -120,7 +121,8 @@ double kinetic_to_elastic_up_to_peak(const RunResult& r) {
                                          std::span(r.elastic_before_break).first(rows), r.peak_load);
 }
 
-}  // namespace
+}  // namespace detail
+using namespace detail;
 
 RunResult run(const RunSpec& spec, const PluginHost& host, const std::vector<RunObserver*>& observers,
               const RunLog& log) {
@@ -205,7 +207,8 @@ RunResult run(const RunSpec& spec, const PluginHost& host, const std::vector<Run
   try {
     writer_slot.emplace(result.output, meta, wall_names);
     if (restarting) {
-      const auto copied = copy_run_prefix(moved_aside, *writer_slot, *restart_point, {series_every, frame_every});
+      const auto copied = copy_run_prefix(moved_aside, *writer_slot, *restart_point, {series_every, frame_every},
+                                           wall_names);
       writer_slot->flush();
       info(fmt::format("restart: continuing {} from step {} (t = {:.6g} s); {} frames and the series up to it kept",
                        result.output.string(), sim.step_count(), sim.time(), copied));
@@ -226,7 +229,7 @@ RunResult run(const RunSpec& spec, const PluginHost& host, const std::vector<Run
   RunState state(scene, sim, result, sensor, [&] {
     Checkpoint c;
     c.simulation = sim.export_state();
-    save_loop_state(c, result, state.frames_written, health);
+    save_loop_state(c, result, state.frames_written, health.state());
     c.arrays.emplace_back("body_impacts", impacts.state());
     write_checkpoint(checkpoint_file, c);
     result.checkpoint = checkpoint_file;
@@ -235,7 +238,8 @@ RunResult run(const RunSpec& spec, const PluginHost& host, const std::vector<Run
   state.wall_start = wall_start;
   state.restarted = restarting;
   if (restart_point) {
-    restore_loop_state(*restart_point, result, state.frames_written, health);
+    restore_loop_state(*restart_point, result, state.frames_written);
+    health.restore(restart_point->array("health"));
     impacts.restore(restart_point->array("body_impacts"));
     result.restarted_from = sim.step_count();
   }

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "shard/run_file.hpp"
 
 namespace shard {
@@ -9,7 +11,8 @@ namespace {
 
 bool on_cadence(std::int64_t step, std::int64_t every) { return step % every == 0; }
 
-void copy_series(const RunFile& old, RunWriter& writer, std::int64_t last_step, std::int64_t every) {
+void copy_series(const RunFile& old, RunWriter& writer, std::int64_t last_step, std::int64_t every,
+                 const std::vector<std::string>& walls) {
   const auto step = old.read_integer_series("step");
   const auto time = old.read_series("time");
   const auto kinetic = old.read_series("kinetic_energy");
@@ -18,7 +21,13 @@ void copy_series(const RunFile& old, RunWriter& writer, std::int64_t last_step, 
   const auto intact = old.read_integer_series("bonds_intact");
   const auto broken = old.read_integer_series("bonds_broken");
   const auto contacts = old.read_integer_series("contacts");
-  const auto walls = old.wall_names();
+  // In the writer's order (the scene's): the file lists its wall groups by name.
+  const std::vector<std::string> in_file = old.wall_names();
+  for (const auto& w : walls)
+    if (std::find(in_file.begin(), in_file.end(), w) == in_file.end())
+      throw OutputError(fmt::format("the interrupted run file has no series of the wall '{}'; restart with the run "
+                                    "file the checkpoint belongs to",
+                                    w));
   std::vector<std::vector<Vec3>> force, torque, displacement;
   std::vector<std::vector<double>> impact_energy;
   std::vector<std::vector<std::int64_t>> impacts;
@@ -64,10 +73,10 @@ void copy_series(const RunFile& old, RunWriter& writer, std::int64_t last_step, 
 }  // namespace
 
 std::int64_t copy_run_prefix(const std::filesystem::path& old_file, RunWriter& writer, const Checkpoint& checkpoint,
-                             const RestartCadence& cadence) {
+                             const RestartCadence& cadence, const std::vector<std::string>& walls) {
   const RunFile old(old_file);
   const SimulationState& s = checkpoint.simulation;
-  copy_series(old, writer, s.step, cadence.series_every);
+  copy_series(old, writer, s.step, cadence.series_every, walls);
   writer.append_break_events(std::vector<BondBreakEvent>(
       s.events.begin(), s.events.begin() + static_cast<std::ptrdiff_t>(s.events_taken)));
   std::int64_t copied = 0;

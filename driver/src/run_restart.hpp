@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "shard/checkpoint.hpp"
 #include "shard/output.hpp"
@@ -20,7 +22,8 @@ struct RestartCadence {
 // Copies from `old_file` into `writer` every frame and series row with step <= the checkpoint's
 // that lies on the cadence, and the checkpoint's already-written break events. Returns the
 // number of frames copied.
+// `walls` are the writer's wall names in its order (the scene's).
 std::int64_t copy_run_prefix(const std::filesystem::path& old_file, RunWriter& writer, const Checkpoint& checkpoint,
-                             const RestartCadence& cadence);
+                             const RestartCadence& cadence, const std::vector<std::string>& walls);
 
 }  // namespace shard

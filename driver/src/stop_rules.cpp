@@ -15,7 +15,7 @@ extern "C" void on_interrupt(int) { g_interrupted = 1; }
 
 void LoadDropStop::on_series(RunState& run, const Energies&) {
   const double fraction = run.scene.stop.after_peak_fraction;
-  if (fraction > 0 && run.sim.bonds_broken() > 0 && run.sensor.load(run.sim) < fraction * run.result.peak_load)
+  if (fraction > 0 && run.bonds_broken() > 0 && run.sensor.load(run.sim) < fraction * run.result.peak_load)
     run.request_stop(StopReason::LoadDrop,
                      fmt::format("load fell below {:.0f} % of its peak after breakage", 100 * fraction));
 }

@@ -73,6 +73,35 @@ std::vector<T> all_gather(const std::vector<T>& mine, MPI_Comm comm) {
   return all;
 }
 
+// Every rank's `mine`, concatenated in rank order, on `root` only (empty elsewhere): what a
+// writer on one rank needs, without every rank holding the whole run.
+template <class T>
+std::vector<T> gather_to(const std::vector<T>& mine, int root, MPI_Comm comm) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  const int n = size_of(comm);
+  const int bytes = byte_count(mine.size() * sizeof(T));
+  std::vector<int> count(static_cast<std::size_t>(n)), at(static_cast<std::size_t>(n));
+  MPI_Gather(&bytes, 1, MPI_INT, count.data(), 1, MPI_INT, root, comm);
+  std::size_t total = 0;
+  if (rank_of(comm) == root)
+    for (int r = 0; r < n; ++r) {
+      at[static_cast<std::size_t>(r)] = byte_count(total);
+      total += static_cast<std::size_t>(count[static_cast<std::size_t>(r)]);
+    }
+  std::vector<T> all(total / sizeof(T));
+  MPI_Gatherv(mine.data(), bytes, MPI_BYTE, all.data(), count.data(), at.data(), MPI_BYTE, root, comm);
+  return all;
+}
+
+// Element-wise sums over ranks of equally long vectors, added in rank order.
+inline std::vector<double> sum_in_rank_order(const std::vector<double>& mine, MPI_Comm comm) {
+  const std::vector<double> all = all_gather(mine, comm);
+  std::vector<double> total(mine.size(), 0.0);
+  for (std::size_t r = 0; r * mine.size() < all.size(); ++r)
+    for (std::size_t k = 0; k < mine.size(); ++k) total[k] += all[r * mine.size() + k];
+  return total;
+}
+
 // The sum over ranks of one value per rank, added in rank order (MPI_Allreduce may add in any
 // order, and a different order rounds differently).
 inline double sum_in_rank_order(double mine, MPI_Comm comm) {

@@ -81,6 +81,33 @@ bool event_order(const EventRecord& a, const EventRecord& b) {
 
 bool by_id(const ParticleRecord& a, const ParticleRecord& b) { return a.id < b.id; }
 
+// The touching pairs of a rank's list as records (first id, second id or -1 - wall, history):
+// a pair's history travels with it, matched again by ids wherever it lands.
+void append_touching(const SimulationState& s, std::vector<double>& out) {
+  const Particles& p = s.particles;
+  const NeighbourState& list = s.neighbours;
+  for (std::size_t k = 0; k < list.first.size(); ++k) {
+    if (!list.touching[k]) continue;  // a pair that does not touch has no history to carry
+    const Index b = list.second[k];
+    out.push_back(static_cast<double>(p.id[static_cast<std::size_t>(list.first[k])]));
+    out.push_back(b < 0 ? static_cast<double>(b) : static_cast<double>(p.id[static_cast<std::size_t>(b)]));
+    out.insert(out.end(), list.history.begin() + static_cast<std::ptrdiff_t>(k * list.history_stride),
+               list.history.begin() + static_cast<std::ptrdiff_t>((k + 1) * list.history_stride));
+  }
+}
+
+// Record k of a flat array of records of `width` doubles, ordered by their first two numbers.
+std::vector<std::size_t> record_order(const std::vector<double>& flat, std::size_t width) {
+  std::vector<std::size_t> order(width > 0 ? flat.size() / width : 0);
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const double* x = flat.data() + a * width;
+    const double* y = flat.data() + b * width;
+    return x[0] != y[0] ? x[0] < y[0] : x[1] < y[1];
+  });
+  return order;
+}
+
 // Re-partition before some particle can have moved half the skin since the last partition by the
 // end of the next step (its travel so far plus twice the largest |v| dt, a margin for the next
 // drift). Two particles that touch before then were at most 2 r_max + skin apart at the partition,
@@ -98,17 +125,22 @@ struct DistributedSimulation::Owned {
   std::vector<double> contacts;  // first id, second id (or -1 - wall), history (history_stride)
 };
 
+// What both constructors share: the rank, the largest radius and the skin of `p`, the halo.
+void DistributedSimulation::start(const SimulationSetup& setup) {
+  rank_ = rank_of(comm_);
+  ranks_ = size_of(comm_);
+  skin_ = setup.skin > 0 ? setup.skin : 0.2 * std::max(r_max_, 1e-12);  // Simulation's default
+  gravity_ = setup.gravity;
+  halo_ = std::make_unique<Halo>(comm_);
+}
+
 DistributedSimulation::DistributedSimulation(MPI_Comm comm, SimulationSetup setup)
     : comm_(comm), contact_(setup.contact), bond_(setup.bond) {
-  rank_ = rank_of(comm);
-  ranks_ = size_of(comm);
   const Particles& p = setup.particles;
   const std::size_t n = p.size();
   if (n == 0) throw std::invalid_argument("a decomposed run needs particles");
   for (std::size_t k = 0; k < n; ++k) r_max_ = std::max(r_max_, p.radius[k]);
-  skin_ = setup.skin > 0 ? setup.skin : 0.2 * std::max(r_max_, 1e-12);  // Simulation's default
-  gravity_ = setup.gravity;
-  halo_ = std::make_unique<Halo>(comm);
+  start(setup);
   // Before the first partition every rank takes an equal slice of the scene's listing.
   Owned owned;
   owned.bond_stride = bond_ ? bond_->state_size() : 0;
@@ -137,11 +169,76 @@ DistributedSimulation::DistributedSimulation(MPI_Comm comm, SimulationSetup setu
   distribute(std::move(owned), longest, &setup);
 }
 
+DistributedSimulation::DistributedSimulation(MPI_Comm comm, SimulationSetup setup, const SimulationState& from)
+    : comm_(comm), contact_(setup.contact), bond_(setup.bond) {
+  const Particles& p = from.particles;
+  const std::size_t n = p.size();
+  if (n == 0) throw std::invalid_argument("the state to continue from holds no particles");
+  if (p.id.size() != n) throw std::invalid_argument("the state to continue from holds no particle ids");
+  {
+    std::vector<Index> ids = p.id;
+    std::sort(ids.begin(), ids.end());
+    const auto twice = std::adjacent_find(ids.begin(), ids.end());
+    if (twice != ids.end())
+      throw std::invalid_argument(fmt::format("the state to continue from names particle id {} twice: the ranks "
+                                              "place particles by id, which must be unique",
+                                              *twice));
+  }
+  for (std::size_t k = 0; k < n; ++k) r_max_ = std::max(r_max_, p.radius[k]);
+  start(setup);
+  Owned owned;
+  owned.bond_stride = bond_ ? bond_->state_size() : 0;
+  owned.history_stride = contact_ ? contact_->history_size() : 0;
+  if (from.bonds.size() > 0 && from.bonds.stride != owned.bond_stride)
+    throw std::invalid_argument(fmt::format("the state holds {} values per bond, the bond model {}: continue with "
+                                            "the bond model the run was started with",
+                                            from.bonds.stride, owned.bond_stride));
+  if (!from.neighbours.first.empty() && from.neighbours.history_stride != owned.history_stride)
+    throw std::invalid_argument(fmt::format("the state holds {} history values per contact, the contact model {}: "
+                                            "continue with the contact model the run was started with",
+                                            from.neighbours.history_stride, owned.history_stride));
+  // Every rank keeps an equal slice of the state's listing; the first partition then places it.
+  const std::size_t begin = n * static_cast<std::size_t>(rank_) / static_cast<std::size_t>(ranks_);
+  const std::size_t end = n * static_cast<std::size_t>(rank_ + 1) / static_cast<std::size_t>(ranks_);
+  const auto in_slice = [&](std::size_t k) { return k >= begin && k < end; };
+  for (std::size_t k = begin; k < end; ++k) owned.particles.push_back(record_of(p, k));
+  double longest = 0;
+  for (std::size_t b = 0; b < from.bonds.size(); ++b) {
+    const auto i = static_cast<std::size_t>(from.bonds.i[b]), j = static_cast<std::size_t>(from.bonds.j[b]);
+    if (i >= n || j >= n || i == j)
+      throw std::invalid_argument(fmt::format("the state's bond {} names a particle that does not exist", b));
+    longest = std::max(longest, (p.position[i] - p.position[j]).norm());
+    if (!in_slice(p.id[i] < p.id[j] ? i : j)) continue;
+    owned.bonds.push_back(static_cast<double>(std::min(p.id[i], p.id[j])));
+    owned.bonds.push_back(static_cast<double>(std::max(p.id[i], p.id[j])));
+    owned.bonds.insert(owned.bonds.end(), from.bonds.state.begin() + static_cast<std::ptrdiff_t>(b * from.bonds.stride),
+                       from.bonds.state.begin() + static_cast<std::ptrdiff_t>((b + 1) * from.bonds.stride));
+  }
+  const NeighbourState& list = from.neighbours;
+  const bool flags_kept = list.touching.size() == list.first.size();
+  for (std::size_t k = 0; k < list.first.size(); ++k) {
+    const auto a = static_cast<std::size_t>(list.first[k]);
+    bool touching = flags_kept && list.touching[k];
+    if (!flags_kept)  // checkpoints before the flags were kept: a pair with a history has touched
+      for (std::size_t q = 0; q < list.history_stride; ++q) touching = touching || list.history[k * list.history_stride + q] != 0.0;
+    if (!touching || a >= n || !in_slice(a)) continue;
+    const Index b = list.second[k];
+    if (b >= 0 && static_cast<std::size_t>(b) >= n) continue;
+    owned.contacts.push_back(static_cast<double>(p.id[a]));
+    owned.contacts.push_back(b < 0 ? static_cast<double>(b) : static_cast<double>(p.id[static_cast<std::size_t>(b)]));
+    owned.contacts.insert(owned.contacts.end(), list.history.begin() + static_cast<std::ptrdiff_t>(k * list.history_stride),
+                          list.history.begin() + static_cast<std::ptrdiff_t>((k + 1) * list.history_stride));
+  }
+  events_ = from.events;
+  distribute(std::move(owned), max_over_ranks(longest, comm_), &setup, &from);
+}
+
 DistributedSimulation::~DistributedSimulation() = default;
 
 // Cuts the grid anew, sends every particle, bond and touching contact to its new owner and the
 // ghost copies to the ranks next to it, then builds (initial) or replaces this rank's Simulation.
-void DistributedSimulation::distribute(Owned owned, double longest_bond, const SimulationSetup* initial) {
+void DistributedSimulation::distribute(Owned owned, double longest_bond, const SimulationSetup* initial,
+                                       const SimulationState* resumed) {
   const double start = MPI_Wtime();
   std::sort(owned.particles.begin(), owned.particles.end(), by_id);
   const std::size_t bond_record = 2 + owned.bond_stride, contact_record = 2 + owned.history_stride;
@@ -275,8 +372,8 @@ void DistributedSimulation::distribute(Owned owned, double longest_bond, const S
 
   if (initial) {
     SimulationSetup s;
-    s.particles = std::move(local);
-    s.bonds = std::move(bond_ends);
+    s.particles = resumed ? local : std::move(local);  // a resumed run imports them again below
+    s.bonds = resumed ? bond_ends : std::move(bond_ends);
     s.contact = initial->contact;
     s.bond = initial->bond;
     s.breakage = initial->breakage;
@@ -284,7 +381,7 @@ void DistributedSimulation::distribute(Owned owned, double longest_bond, const S
     s.gravity = initial->gravity;
     s.skin = skin_;
     s.global_damping = initial->global_damping;
-    s.dt = initial->dt;
+    s.dt = resumed ? resumed->dt : initial->dt;
     if (!(s.dt > 0)) {
       // "auto": every rank's models state their limits over its particles and bonds (a probe
       // without the halo); the smallest over the ranks is the serial run's.
@@ -293,11 +390,12 @@ void DistributedSimulation::distribute(Owned owned, double longest_bond, const S
     }
     s.exchange = halo_.get();
     local_ = std::make_unique<Simulation>(std::move(s));
-  } else {
+  }
+  if (!initial || resumed) {
     SimulationState s;
-    s.step = local_->step_count();
-    s.time = local_->time();
-    s.dt = local_->dt();
+    s.step = resumed ? resumed->step : local_->step_count();
+    s.time = resumed ? resumed->time : local_->time();
+    s.dt = resumed ? resumed->dt : local_->dt();
     s.particles = std::move(local);
     s.bonds.stride = bond_stride;
     s.bonds.resize(bond_ends.size());
@@ -306,16 +404,28 @@ void DistributedSimulation::distribute(Owned owned, double longest_bond, const S
       s.bonds.j[b] = std::max(bond_ends[b].first, bond_ends[b].second);
       std::copy_n(bonds_in.data() + b * (2 + bond_stride) + 2, bond_stride, s.bonds.state.data() + b * bond_stride);
     }
-    for (const Wall& w : local_->walls())
-      s.walls.push_back({w.velocity, w.displacement, w.force, w.torque, w.contact_work, w.stored_energy, w.impacts});
-    touching.rebuilds = local_->neighbour_rebuilds();
+    if (resumed) {
+      // The loads are the run's (the same on every rank, as walls() promises); the work and the
+      // impacts a rank counts from here on are its own, summed when gathered: rank 0 keeps the past.
+      for (WallState w : resumed->walls) {
+        if (rank_ != 0) {
+          w.contact_work = 0;
+          w.impacts = 0;
+        }
+        s.walls.push_back(w);
+      }
+    } else {
+      for (const Wall& w : local_->walls())
+        s.walls.push_back({w.velocity, w.displacement, w.force, w.torque, w.contact_work, w.stored_energy, w.impacts});
+    }
+    touching.rebuilds = resumed ? resumed->neighbours.rebuilds : local_->neighbour_rebuilds();
     s.neighbours = std::move(touching);  // no build positions: the next force pass rebuilds the list
     local_->import_state(s);
   }
   position_at_partition_ = local_->particles().position;
   partition_id_ = local_->particles().id;
   partition_seconds_ += MPI_Wtime() - start;
-  if (initial) finish_step();  // the first force pass's wall loads and breaks
+  if (initial && !resumed) finish_step();  // the first force pass's wall loads and breaks
 }
 
 void DistributedSimulation::repartition() {
@@ -335,15 +445,7 @@ void DistributedSimulation::repartition() {
                        s.bonds.state.begin() + static_cast<std::ptrdiff_t>((b + 1) * s.bonds.stride));
     longest = std::max(longest, (p.position[i] - p.position[j]).norm());
   }
-  const NeighbourState& list = s.neighbours;
-  for (std::size_t k = 0; k < list.first.size(); ++k) {
-    if (!list.touching[k]) continue;  // a pair that does not touch has no history to carry
-    const Index b = list.second[k];
-    owned.contacts.push_back(p.id[static_cast<std::size_t>(list.first[k])]);
-    owned.contacts.push_back(b < 0 ? b : p.id[static_cast<std::size_t>(b)]);
-    owned.contacts.insert(owned.contacts.end(), list.history.begin() + static_cast<std::ptrdiff_t>(k * list.history_stride),
-                          list.history.begin() + static_cast<std::ptrdiff_t>((k + 1) * list.history_stride));
-  }
+  append_touching(s, owned.contacts);
   ++repartitions_;
   distribute(std::move(owned), longest, nullptr);
 }
@@ -514,6 +616,97 @@ GatheredParticles DistributedSimulation::gather(int root) const {
     g.orientation.push_back(q);
   }
   return g;
+}
+
+std::vector<double> DistributedSimulation::sum_over_ranks(const std::vector<double>& mine) const {
+  return sum_in_rank_order(mine, comm_);
+}
+
+bool DistributedSimulation::any_rank(bool mine) const { return max_over_ranks(mine ? 1.0 : 0.0, comm_) > 0; }
+
+SimulationState DistributedSimulation::gather_state(int root, bool contacts) const {
+  const Simulation& sim = *local_;
+  std::vector<ParticleRecord> mine;
+  std::vector<double> bonds, touching;
+  const std::size_t bond_stride = sim.bonds().stride;
+  const std::size_t history_stride = contact_ ? contact_->history_size() : 0;
+  {
+    const Particles& p = sim.particles();
+    for (std::size_t k = 0; k < p.size(); ++k)
+      if (!(p.flags[k] & kGhost)) mine.push_back(record_of(p, k));
+    // A rank holds the bonds it owns only (owner-computes): each bond is gathered once.
+    const Bonds& b = sim.bonds();
+    for (std::size_t k = 0; k < b.size(); ++k) {
+      const Index a = p.id[static_cast<std::size_t>(b.i[k])], c = p.id[static_cast<std::size_t>(b.j[k])];
+      bonds.push_back(static_cast<double>(std::min(a, c)));
+      bonds.push_back(static_cast<double>(std::max(a, c)));
+      bonds.insert(bonds.end(), b.state.begin() + static_cast<std::ptrdiff_t>(k * bond_stride),
+                   b.state.begin() + static_cast<std::ptrdiff_t>((k + 1) * bond_stride));
+    }
+  }
+  if (contacts) append_touching(sim.export_state(), touching);
+  // The run's totals of what each rank counts for itself.
+  const Energies own = sim.energies();
+  std::vector<double> counts{static_cast<double>(sim.contact_count()), own.contact, own.bond};
+  for (const Wall& w : sim.walls()) {
+    counts.push_back(w.contact_work);
+    counts.push_back(static_cast<double>(w.impacts));
+  }
+  const std::vector<double> total = sum_in_rank_order(counts, comm_);
+  std::vector<ParticleRecord> all = gather_to(mine, root, comm_);
+  const std::vector<double> all_bonds = gather_to(bonds, root, comm_);
+  const std::vector<double> all_touching = gather_to(touching, root, comm_);
+  SimulationState s;
+  if (rank_ != root) return s;
+
+  s.step = sim.step_count();
+  s.time = sim.time();
+  s.dt = sim.dt();
+  std::sort(all.begin(), all.end(), by_id);
+  s.particles.reserve(all.size());
+  for (const ParticleRecord& r : all) append(s.particles, r, false);
+  const auto index_of = [&](double id) {
+    const auto it = std::lower_bound(all.begin(), all.end(), static_cast<Index>(id),
+                                     [](const ParticleRecord& r, Index v) { return r.id < v; });
+    if (it == all.end() || it->id != static_cast<Index>(id))
+      throw std::logic_error(fmt::format("gather: particle id {} is held by no rank", static_cast<Index>(id)));
+    return static_cast<Index>(it - all.begin());
+  };
+  const std::size_t bond_width = 2 + bond_stride;
+  const std::vector<std::size_t> bond_order = record_order(all_bonds, bond_width);
+  s.bonds.stride = bond_stride;
+  s.bonds.keeps_loads = false;
+  s.bonds.resize(bond_order.size());
+  for (std::size_t k = 0; k < bond_order.size(); ++k) {
+    const double* rec = all_bonds.data() + bond_order[k] * bond_width;
+    s.bonds.i[k] = index_of(rec[0]);
+    s.bonds.j[k] = index_of(rec[1]);
+    std::copy_n(rec + 2, bond_stride, s.bonds.state.data() + k * bond_stride);
+  }
+  s.events = events_;
+  s.bonds_broken = bonds_broken();
+  s.contacts = static_cast<std::size_t>(total[0]);
+  s.contact_energy = total[1];
+  s.bond_energy = total[2];
+  const std::vector<Wall>& walls = sim.walls();
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    const Wall& x = walls[w];
+    s.walls.push_back({x.velocity, x.displacement, x.force, x.torque, total[3 + 2 * w], x.stored_energy,
+                       static_cast<std::int64_t>(total[4 + 2 * w])});
+  }
+  NeighbourState& list = s.neighbours;
+  list.skin = skin_;
+  list.history_stride = history_stride;
+  list.rebuilds = sim.neighbour_rebuilds();
+  const std::size_t contact_width = 2 + history_stride;
+  for (std::size_t k : record_order(all_touching, contact_width)) {
+    const double* rec = all_touching.data() + k * contact_width;
+    list.first.push_back(index_of(rec[0]));
+    list.second.push_back(rec[1] < 0 ? static_cast<Index>(rec[1]) : index_of(rec[1]));
+    list.history.insert(list.history.end(), rec + 2, rec + contact_width);
+    list.touching.push_back(1);
+  }
+  return s;
 }
 
 }  // namespace shard::mpi

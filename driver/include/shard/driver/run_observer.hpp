@@ -35,6 +35,22 @@ class RunState {
   // Set by a before_frame hook: the per-particle fragment labels the next frame stores.
   const std::vector<Index>* frame_labels = nullptr;
 
+  // A run decomposed over MPI ranks (driver/distributed_run.hpp) sets this: `sim` is then one
+  // rank's share (its step, time, dt and walls are the run's), and these are the whole run's.
+  struct Whole {
+    std::int64_t bonds_broken = 0;
+    std::size_t bonds_intact = 0;
+    // In before_frame: the next frame's particles (ascending id) and bonds on the rank that
+    // writes it; empty on the others and outside before_frame.
+    const Particles* frame_particles = nullptr;
+    const Bonds* frame_bonds = nullptr;
+  };
+  const Whole* whole = nullptr;
+  std::int64_t bonds_broken() const { return whole ? whole->bonds_broken : sim.bonds_broken(); }
+  std::size_t bonds_intact() const { return whole ? whole->bonds_intact : sim.bonds().size(); }
+  const Particles& frame_particles() const { return whole ? *whole->frame_particles : sim.particles(); }
+  const Bonds& frame_bonds() const { return whole ? *whole->frame_bonds : sim.bonds(); }
+
   // Ends the loop after the current hook round; the first request wins.
   void request_stop(StopReason reason, std::string words) {
     if (stop_requested_) return;

@@ -14,6 +14,7 @@
 #include <memory>
 #include <vector>
 
+#include "shard/checkpoint.hpp"
 #include "shard/simulation.hpp"
 
 namespace shard::mpi {
@@ -32,6 +33,10 @@ class DistributedSimulation {
   // `setup` is the whole scene, the same on every rank (each keeps its part). Throws
   // std::invalid_argument, on every rank alike, when the rank count cannot hold the partition.
   DistributedSimulation(MPI_Comm comm, SimulationSetup setup);
+  // Continues a run from its whole state `from` (a checkpoint, written on any rank count or by the
+  // serial build: particles, bonds and contacts are matched by stable id), the same on every rank.
+  // `setup` is the scene's (models, walls, damping); its particles and bonds are not used.
+  DistributedSimulation(MPI_Comm comm, SimulationSetup setup, const SimulationState& from);
   ~DistributedSimulation();
   DistributedSimulation(const DistributedSimulation&) = delete;
   DistributedSimulation& operator=(const DistributedSimulation&) = delete;
@@ -53,6 +58,10 @@ class DistributedSimulation {
 
   // Local, this rank's share.
   const Simulation& local() const { return *local_; }
+  // For a run loop's observers, which read it (stepping it alone would break the decomposition).
+  Simulation& local() { return *local_; }
+  // Whether the particle at `k` of local().particles() is this rank's own (not a ghost copy).
+  bool owns(std::size_t k) const { return !(local_->particles().flags[k] & kGhost); }
   std::size_t owned() const { return owned_; }
   std::size_t ghosts() const;
   double halo_seconds() const;      // wall time in the per-step ghost and reaction exchanges
@@ -77,11 +86,23 @@ class DistributedSimulation {
   void check_finite() const;
   // All particles on `root` (empty elsewhere).
   GatheredParticles gather(int root = 0) const;
+  // The whole run's state on `root` (empty elsewhere), as one serial Simulation would export it:
+  // particles in ascending stable id, bonds (with model state) as index pairs into them, the
+  // break log, the walls (impacts and dissipated work summed over the ranks), and with
+  // `contacts` the touching pairs' history (no list build positions: the importer rebuilds).
+  // What a frame and a checkpoint hold; a checkpoint of it restarts on any rank count.
+  SimulationState gather_state(int root = 0, bool contacts = true) const;
+  // Element-wise sums over the ranks, added in rank order (the same on every rank).
+  std::vector<double> sum_over_ranks(const std::vector<double>& mine) const;
+  // True when any rank passes true (one MPI_Allreduce).
+  bool any_rank(bool mine) const;
 
  private:
   struct Owned;
   void repartition();
-  void distribute(Owned owned, double longest_bond, const SimulationSetup* initial);
+  void distribute(Owned owned, double longest_bond, const SimulationSetup* initial,
+                  const SimulationState* resumed = nullptr);
+  void start(const SimulationSetup& setup);
   void finish_step();
 
   MPI_Comm comm_;

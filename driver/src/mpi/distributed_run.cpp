@@ -1,0 +1,452 @@
+// The run loop of run_driver.cpp over a DistributedSimulation: the same observers, series rows,
+// frames, checkpoints and restart, with every figure of the whole run reduced over the ranks in
+// rank order and the frames and checkpoints gathered to rank 0, which alone writes files.
+#include "shard/driver/distributed_run.hpp"
+
+#include <fmt/format.h>
+#include <hdf5.h>
+#include <mpi.h>
+#include <omp.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+
+#include "../run_loop_parts.hpp"
+#include "../run_restart.hpp"
+#include "distributed_health.hpp"
+#include "shard/body_impacts.hpp"
+#include "shard/checkpoint.hpp"
+#include "shard/driver/load_sensor.hpp"
+#include "shard/driver/numerical_health.hpp"
+#include "shard/driver/output_folder.hpp"
+#include "shard/mpi/distributed_simulation.hpp"
+#include "shard/output.hpp"
+#include "shard/plugin_host.hpp"
+#include "shard/run_file.hpp"
+#include "shard/scene.hpp"
+
+namespace shard::driver {
+namespace {
+
+using namespace detail;
+
+int world_rank() {
+  int r = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+
+// Runs `work` on rank 0 only, then every rank learns whether it failed: a failure is thrown on
+// every rank as an OutputError with rank 0's message (the others would otherwise wait for rank 0
+// in the next collective call forever).
+template <class F>
+void on_root(F&& work) {
+  std::string error;
+  if (world_rank() == 0) {
+    try {
+      work();
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }
+  int size = static_cast<int>(error.size());
+  MPI_Bcast(&size, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  if (size == 0) return;
+  error.resize(static_cast<std::size_t>(size));
+  MPI_Bcast(error.data(), size, MPI_CHAR, 0, MPI_COMM_WORLD);
+  throw OutputError(error);
+}
+
+// The scene's setup as the serial Simulation got it (scene_instance.cpp), taken from it: the
+// particles with their grips, the bonds, the models; dt the serial run's, so no rank probes again.
+SimulationSetup setup_of(const Scene& scene, const SceneInstance& inst) {
+  const Simulation& sim = *inst.simulation;
+  SimulationSetup s;
+  s.particles = sim.particles();
+  for (std::size_t k = 0; k < sim.bonds().size(); ++k) s.bonds.emplace_back(sim.bonds().i[k], sim.bonds().j[k]);
+  s.contact = inst.contact.get();
+  s.bond = inst.bond.get();
+  s.materials = scene.material_table ? scene.materials.size() : 1;
+  s.breakage = scene.breakage;
+  s.walls = scene.walls;
+  s.gravity = scene.gravity;
+  s.dt = sim.dt();
+  s.skin = scene.skin;
+  s.global_damping = scene.global_damping;
+  return s;
+}
+
+// bending::deformation_kinetic_energy over every rank's particles: the kinetic energy less that
+// of the rigid-body motion, from moments summed in rank order (about the origin, moved to the
+// centre of mass here) instead of a pass over all particles on one rank.
+double deformation_kinetic_energy(const mpi::DistributedSimulation& sim) {
+  const Particles& p = sim.local().particles();
+  std::vector<double> m(20, 0.0);  // mass, m x, m v, kinetic, m x × v + I w, inertia about the origin
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    if (!sim.owns(k)) continue;
+    const double mk = p.mass[k];
+    const Vec3& x = p.position[k];
+    const Vec3& v = p.velocity[k];
+    const Vec3 l = mk * x.cross(v) + p.inertia[k] * p.omega[k];
+    const Mat3 j = mk * (x.squaredNorm() * Mat3::Identity() - x * x.transpose()) + p.inertia[k] * Mat3::Identity();
+    m[0] += mk;
+    for (int a = 0; a < 3; ++a) {
+      m[1 + static_cast<std::size_t>(a)] += mk * x[a];
+      m[4 + static_cast<std::size_t>(a)] += mk * v[a];
+      m[8 + static_cast<std::size_t>(a)] += l[a];
+      for (int b = 0; b < 3; ++b) m[11 + static_cast<std::size_t>(3 * a + b)] += j(a, b);
+    }
+    m[7] += 0.5 * (mk * v.squaredNorm() + p.inertia[k] * p.omega[k].squaredNorm());
+  }
+  const std::vector<double> s = sim.sum_over_ranks(m);
+  const double mass = s[0];
+  if (!(mass > 0)) return 0;
+  const Vec3 centre = Vec3(s[1], s[2], s[3]) / mass;
+  const Vec3 v_centre = Vec3(s[4], s[5], s[6]) / mass;
+  // About the centre of mass: L_c = L_0 - M c × v_c; J_c = J_0 - M (|c|^2 1 - c c^T).
+  const Vec3 angular = Vec3(s[8], s[9], s[10]) - mass * centre.cross(v_centre);
+  Mat3 inertia;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) inertia(a, b) = s[11 + static_cast<std::size_t>(3 * a + b)];
+  inertia -= mass * (centre.squaredNorm() * Mat3::Identity() - centre * centre.transpose());
+  const Vec3 omega = inertia.ldlt().solve(angular);
+  const double rigid = 0.5 * mass * v_centre.squaredNorm() + 0.5 * omega.dot(angular);
+  return std::max(0.0, s[7] - rigid);
+}
+
+// A checkpoint this build can continue from on any rank count: particles named by unique ids.
+void require_ids(const Checkpoint& c, const std::filesystem::path& file) {
+  const Particles& p = c.simulation.particles;
+  std::vector<Index> ids = p.id;
+  std::sort(ids.begin(), ids.end());
+  const bool unique = std::adjacent_find(ids.begin(), ids.end()) == ids.end();
+  if (p.id.size() != p.size() || !unique)
+    throw CheckpointError(fmt::format(
+        "{}: the checkpoint's particles carry no unique ids (/particles/id), which a decomposed run needs to place "
+        "them on the ranks: continue it with the serial build (shard run --restart without mpirun), or start the "
+        "run again from its scene",
+        file.string()));
+}
+
+// Before read_checkpoint: a checkpoint without /particles/id is refused with what to do, not
+// with the HDF5 library's missing-dataset error.
+void require_id_dataset(const std::filesystem::path& file) {
+  if (!std::filesystem::is_regular_file(file)) return;  // read_checkpoint names a missing file
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) return;  // read_checkpoint names an unreadable file
+  const bool has = H5Lexists(f, "particles", H5P_DEFAULT) > 0 && H5Lexists(f, "particles/id", H5P_DEFAULT) > 0;
+  H5Fclose(f);
+  if (!has)
+    throw CheckpointError(fmt::format(
+        "{}: the checkpoint holds no particle ids (/particles/id), which a decomposed run needs to place the "
+        "particles on the ranks: continue it with the build that wrote it (without mpirun), or start the run again "
+        "from its scene",
+        file.string()));
+}
+
+}  // namespace
+
+bool launched_by_mpi() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE", "PMI_RANK"})
+    if (std::getenv(name)) return true;
+  return false;
+}
+
+MpiSession::MpiSession() {
+  int initialised = 0;
+  MPI_Initialized(&initialised);
+  if (!initialised) {
+    int provided = 0;
+    // Funneled: only the main thread calls MPI; a rank's OpenMP threads never do.
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+    initialised_here_ = true;
+  }
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+}
+
+MpiSession::~MpiSession() {
+  int finalised = 0;
+  MPI_Finalized(&finalised);
+  if (initialised_here_ && !finalised) MPI_Finalize();
+}
+
+void abort_job(const std::string& message) {
+  int initialised = 0;
+  MPI_Initialized(&initialised);
+  const int rank = initialised ? world_rank() : 0;
+  std::fprintf(stderr, "shard: error%s: %s\n", rank == 0 ? "" : fmt::format(" (rank {})", rank).c_str(),
+               message.c_str());
+  std::fflush(stderr);
+  if (initialised) MPI_Abort(MPI_COMM_WORLD, 1);
+  std::exit(1);
+}
+
+RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std::vector<RunObserver*>& observers,
+                          const RunLog& log_all) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  if (spec.threads > 0) omp_set_num_threads(spec.threads);
+  H5dont_atexit();  // as run_driver.cpp: every file is closed through RAII
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  // Rank 0 speaks for the run.
+  const RunLog log = rank == 0 ? log_all : RunLog{};
+  auto info = [&](const std::string& line) {
+    if (log.info) log.info(line);
+  };
+
+  // Every rank reads the restart's files (read-only), so a bad one is refused alike everywhere.
+  const bool restarting = !spec.restart.empty();
+  std::optional<Checkpoint> restart_point;
+  RunMetadata old_meta;
+  if (restarting) {
+    if (!std::filesystem::is_regular_file(spec.restart))
+      throw OutputError(fmt::format("--restart {}: no such run file; give the run.h5 of the run to continue",
+                                    spec.restart.string()));
+    const auto checkpoint = checkpoint_path_for(spec.restart);
+    require_id_dataset(checkpoint);
+    restart_point = read_checkpoint(checkpoint);
+    require_ids(*restart_point, checkpoint);
+    old_meta = RunFile(spec.restart).metadata();
+  }
+  if (!restarting && std::filesystem::is_directory(spec.scene))
+    throw SceneError(fmt::format("{}: is a folder, not a scene file; give the .toml file (scenes/ has examples)",
+                                 spec.scene.string()));
+  const Scene scene = restarting ? load_scene_text(old_meta.scene_text, old_meta.scene_file, host)
+                                 : load_scene(spec.scene, host, spec.overrides);
+  if (scene.breakage && !scene.bond && explicitly_sets_breakage(scene.resolved_text) && log.warning)
+    log.warning("breakage = true but the scene has no [bond] section: nothing can break. Add [bond] "
+                "(plugin = \"beam_bond\") or remove breakage");
+  if (!restarting)
+    on_root([&] {
+      prepare_output_folder(spec.out_dir, "--out");
+      const auto run_file = spec.out_dir / scene.output_file;
+      if (std::filesystem::is_directory(run_file))
+        throw OutputError(fmt::format("the run file '{}' is a folder; remove it or choose another folder with --out",
+                                      run_file.string()));
+    });
+  // The whole scene on every rank (the generator's packing is not distributed yet): each keeps
+  // its part when the DistributedSimulation places it.
+  SceneInstance inst = instantiate(scene, host, info);
+  std::optional<mpi::DistributedSimulation> dist_slot;
+  try {
+    if (restart_point)
+      dist_slot.emplace(MPI_COMM_WORLD, setup_of(scene, inst), restart_point->simulation);
+    else
+      dist_slot.emplace(MPI_COMM_WORLD, setup_of(scene, inst));
+  } catch (const std::invalid_argument& e) {
+    if (restarting)
+      throw CheckpointError(fmt::format("cannot continue from {}: {}", checkpoint_path_for(spec.restart).string(),
+                                        e.what()));
+    throw SceneError(fmt::format("{}: {}", scene.file.string(), e.what()));
+  }
+  mpi::DistributedSimulation& dist = *dist_slot;
+  Simulation& sim = dist.local();  // this rank's share: the run's step, time, dt and walls
+  DistributedHealth health(*inst.simulation, scene.gravity);
+  // Body impacts are not recorded by a decomposed run yet: its checkpoints carry "never hit".
+  const BodyImpactRecorder no_impacts(inst.simulation->particles());
+
+  RunResult result;
+  result.particles = restart_point ? restart_point->simulation.particles.size() : inst.simulation->particles().size();
+  result.bonds_initial = dist.bond_count() + static_cast<std::size_t>(dist.bonds_broken());
+  result.dt = dist.dt();
+  info(fmt::format("scene {}: {} particles, {} bonds, {} walls, over {} MPI ranks", scene.file.string(),
+                   result.particles, result.bonds_initial, sim.walls().size(), ranks));
+  RunMetadata meta = run_metadata(scene, inst, host, log);
+  meta.notes.emplace_back("mpi_ranks", fmt::format("{}", ranks));
+  inst.simulation.reset();  // the whole scene was needed for the baseline and the metadata only
+
+  std::vector<std::string> wall_names;
+  for (const auto& w : sim.walls()) wall_names.push_back(w.name);
+  const auto series_every = std::max<std::int64_t>(1, std::llround(scene.series_interval / dist.dt()));
+  const auto frame_every = std::max<std::int64_t>(1, std::llround(scene.frame_interval / dist.dt()));
+  result.output = restarting ? spec.restart : spec.out_dir / scene.output_file;
+  const std::filesystem::path checkpoint_file = checkpoint_path_for(result.output);
+  std::optional<RunWriter> writer;  // rank 0's
+  if (restarting) {
+    meta = old_meta;
+    meta.notes.emplace_back("mpi_ranks_after_restart", fmt::format("{} from step {}", ranks, dist.step_count()));
+  }
+  on_root([&] {
+    if (!restarting) {
+      writer.emplace(result.output, meta, wall_names);
+      return;
+    }
+    std::filesystem::path moved_aside = spec.restart;
+    moved_aside.replace_extension(".interrupted.h5");
+    std::filesystem::rename(spec.restart, moved_aside);
+    try {
+      writer.emplace(result.output, meta, wall_names);
+      const auto copied = copy_run_prefix(moved_aside, *writer, *restart_point, {series_every, frame_every}, wall_names);
+      writer->flush();
+      info(fmt::format("restart: continuing {} from step {} (t = {:.6g} s) on {} ranks; {} frames and the series up "
+                       "to it kept",
+                       result.output.string(), dist.step_count(), dist.time(), ranks, copied));
+    } catch (...) {
+      // Put the interrupted run back as it was: a failed restart must not cost the user the run.
+      writer.reset();
+      std::error_code ignored;
+      std::filesystem::rename(moved_aside, spec.restart, ignored);
+      throw;
+    }
+    std::filesystem::remove(moved_aside);
+  });
+
+  std::size_t events_written = restart_point ? restart_point->simulation.events_taken : 0;
+  const LoadSensor sensor(scene, sim);
+  const Particles no_particles;
+  const Bonds no_bonds;
+  RunState::Whole whole;
+  whole.frame_particles = &no_particles;
+  whole.frame_bonds = &no_bonds;
+  whole.bonds_broken = dist.bonds_broken();
+  whole.bonds_intact = dist.bond_count();
+  RunState state(scene, sim, result, sensor, [&] {
+    Checkpoint c;
+    c.simulation = dist.gather_state(0, true);
+    c.simulation.events_taken = events_written;
+    save_loop_state(c, result, state.frames_written, health.state(dist));
+    on_root([&] {
+      c.arrays.emplace_back("body_impacts", no_impacts.state());
+      write_checkpoint(checkpoint_file, c);
+    });
+    result.checkpoint = checkpoint_file;
+    result.checkpoint_step = dist.step_count();
+  });
+  state.whole = &whole;
+  state.wall_start = wall_start;
+  state.restarted = restarting;
+  if (restart_point) {
+    restore_loop_state(*restart_point, result, state.frames_written);
+    health.restore(restart_point->array("health"), rank);
+    result.restarted_from = dist.step_count();
+  }
+  auto last_good = [&] {
+    return result.checkpoint_step < 0
+               ? std::string("No checkpoint was written before it.")
+               : fmt::format("The last good state is the checkpoint {} (step {}); after fixing the cause, start "
+                             "again from the scene (a restart continues with the same settings)",
+                             result.checkpoint.string(), result.checkpoint_step);
+  };
+  auto write_frame = [&] {
+    const SimulationState frame = dist.gather_state(0, false);
+    whole.frame_particles = rank == 0 ? &frame.particles : &no_particles;
+    whole.frame_bonds = rank == 0 ? &frame.bonds : &no_bonds;
+    state.frame_labels = nullptr;
+    for (auto* o : observers) o->before_frame(state);
+    on_root([&] {
+      writer->write_frame(dist.step_count(), dist.time(), frame.particles, frame.bonds, state.frame_labels);
+    });
+    whole.frame_particles = &no_particles;  // the gathered frame goes out of scope here
+    whole.frame_bonds = &no_bonds;
+    ++state.frames_written;
+  };
+  auto series_row = [&] {
+    SeriesRow row;
+    row.step = dist.step_count();
+    row.time = dist.time();
+    const Energies e = dist.energies();
+    row.kinetic_energy = e.kinetic;
+    row.bond_energy = e.bond;
+    row.contact_energy = e.contact;
+    whole.bonds_intact = dist.bond_count();
+    whole.bonds_broken = dist.bonds_broken();
+    row.bonds_intact = static_cast<std::int64_t>(whole.bonds_intact);
+    row.bonds_broken = whole.bonds_broken;
+    row.contacts = static_cast<std::int64_t>(dist.contact_count());
+    // A wall's dissipated work and impacts are counted by each rank for its own contacts.
+    std::vector<double> own;
+    for (const Wall& w : sim.walls()) own.insert(own.end(), {w.contact_work, static_cast<double>(w.impacts)});
+    const std::vector<double> total = dist.sum_over_ranks(own);
+    for (std::size_t w = 0; w < sim.walls().size(); ++w) {
+      Wall summed = sim.walls()[w];
+      summed.contact_work = total[2 * w];
+      summed.impacts = static_cast<std::int64_t>(total[2 * w + 1]);
+      row.add_wall(summed);
+    }
+    const auto& events = dist.break_events();
+    on_root([&] {
+      writer->append_series(row);
+      writer->append_break_events(std::vector<BondBreakEvent>(events.begin() + static_cast<std::ptrdiff_t>(events_written),
+                                                              events.end()));
+    });
+    events_written = events.size();
+    if (!std::isfinite(e.kinetic)) health.check(dist, last_good());
+    const double load = sensor.load(sim);
+    const double disp = sensor.displacement(sim);
+    result.curve.load.push_back(load);
+    result.curve.displacement.push_back(disp);
+    result.curve.time.push_back(dist.time());
+    if (load > result.peak_load) {
+      result.peak_load = load;
+      result.displacement_at_peak = disp;
+    }
+    if (dist.bonds_broken() == 0) {
+      result.kinetic_before_break.push_back(deformation_kinetic_energy(dist));
+      result.elastic_before_break.push_back(e.bond + e.contact);
+    }
+    return e;
+  };
+
+  state.total_steps = static_cast<std::int64_t>(std::ceil(scene.duration / dist.dt() - 1e-9));
+  if (!restarting) {
+    health.check(dist, last_good());
+    write_frame();
+    series_row();
+  }
+  state.start_step = dist.step_count();
+  for (auto* o : observers) o->on_start(state);
+  const std::int64_t health_every = std::max(1, spec.health_every);
+  auto notify = [&](auto&& hook) {
+    for (auto* o : observers) {
+      hook(*o);
+      if (state.stop_requested()) return;
+    }
+  };
+  while (dist.step_count() < state.total_steps && !state.stop_requested()) {
+    dist.step();
+    health.after_step(dist);
+    whole.bonds_broken = dist.bonds_broken();
+    const std::int64_t s = dist.step_count();
+    if (s % health_every == 0 || s % frame_every == 0) health.check(dist, last_good());
+    // The stop rules read the run's walls and counts, the same on every rank: they stop alike.
+    if (s % series_every == 0) {
+      const Energies e = series_row();
+      notify([&](RunObserver& o) { o.on_series(state, e); });
+      if (state.stop_requested()) break;
+    }
+    if (s % frame_every == 0) {
+      write_frame();
+      notify([&](RunObserver& o) { o.on_frame(state); });
+      if (state.stop_requested()) break;
+    }
+    notify([&](RunObserver& o) { o.on_step(state); });
+    // SIGINT reaches the ranks one by one: a stop asked on one stops all at this step.
+    if (dist.any_rank(state.stop_requested()) && !state.stop_requested())
+      state.request_stop(StopReason::Interrupted,
+                         fmt::format("interrupted (SIGINT) at step {}: checkpoint written; continue with shard run "
+                                     "--restart {}",
+                                     s, result.output.string()));
+  }
+  if (!state.stop_requested()) state.request_stop(StopReason::Duration, "reached the scene's duration");
+  for (auto* o : observers) o->on_stop(state);
+  if (dist.step_count() % series_every != 0) series_row();
+  if (dist.step_count() % frame_every != 0) write_frame();
+  for (auto* o : observers) o->on_closed(state);
+  on_root([&] { writer->flush(); });
+
+  result.steps = dist.step_count();
+  result.time = dist.time();
+  result.bonds_broken = dist.bonds_broken();
+  result.final_displacement = sensor.displacement(sim);
+  if (!sensor.empty()) result.max_kinetic_to_elastic = kinetic_to_elastic_up_to_peak(result);
+  result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  for (auto* o : observers) o->on_finish(state);
+  return result;
+}
+
+}  // namespace shard::driver

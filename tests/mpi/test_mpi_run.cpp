@@ -1,0 +1,268 @@
+// `shard run` decomposed over MPI ranks (driver::run_distributed) against the serial driver, on
+// scenes/four_point_bending_ci.toml made short: damping off (as test_mpi_beam: Cundall's damping
+// amplifies round-off), pins at 0.1 m/s and a bond strength of 0.05 MPa, so the first bonds break
+// after ~500 steps and the load-drop rule ends the run ~200 steps later. Fragment labels in every
+// frame. Modes (the run files are read back with the serial RunFile reader):
+//   serial OUT               the reference: driver::run, no MPI
+//   decomposed OUT REF       mpirun -np N: the same run decomposed; rank 0 compares OUT with REF:
+//                            up to the first break, the load curve and every frame's positions
+//                            within 1e-9 of the displacement scale (the pins' travel at the first
+//                            break); over the whole run the same breaks (step, ids) in order, the
+//                            same stop step, the same ids and fragment labels in every frame
+//   interrupt OUT STEP       mpirun -np N: the run stopped at STEP (checkpoint written)
+//   restart OUT REF          mpirun -np M: continues OUT (written on another rank count) to its end
+//                            and compares with REF as `decomposed` does
+//   no_ids DIR REF           mpirun -np N: a copy of REF whose checkpoint lacks /particles/id is
+//                            refused on every rank with a CheckpointError naming the fix
+// Exit code 0 on success; each check prints one line on rank 0.
+#include <fmt/format.h>
+#include <hdf5.h>
+#include <mpi.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "shard/checkpoint.hpp"
+#include "shard/driver/checkpoint_writer.hpp"
+#include "shard/driver/distributed_run.hpp"
+#include "shard/driver/run_driver.hpp"
+#include "shard/driver/scene_rules.hpp"
+#include "shard/driver/stop_rules.hpp"
+#include "shard/plugin_host.hpp"
+#include "shard/run_file.hpp"
+
+using namespace shard;
+namespace fs = std::filesystem;
+
+namespace {
+
+int failures = 0;
+int rank_ = 0;
+void check(bool ok, const std::string& what) {
+  if (!ok) ++failures;
+  if (rank_ == 0) std::printf("%s: %s\n", ok ? "ok  " : "FAIL", what.c_str());
+}
+
+driver::RunSpec spec_for(const fs::path& out) {
+  driver::RunSpec spec;
+  spec.scene = fs::path(SHARD_SOURCE_DIR) / "scenes" / "four_point_bending_ci.toml";
+  spec.overrides = parse_overrides({"simulation.global_damping=0", "wall.pin_left.velocity=[0,0,-0.1]",
+                                    "wall.pin_right.velocity=[0,0,-0.1]", "bond.critical_stress=0.05e6",
+                                    "simulation.duration=0.02", "output.frame_interval=0.0005",
+                                    "output.series_interval=0.0001", "analysis.fragments_every=1"});
+  spec.out_dir = out;
+  spec.threads = 1;
+  return spec;
+}
+
+void load_plugins(PluginHost& host) { host.load_directories({fs::path(SHARD_BUILD_DIR) / "plugins"}); }
+
+// The run's observers as `shard run` composes them (less the printing ones).
+struct Observers {
+  driver::SceneRules rules;
+  driver::CheckpointWriter checkpoints{0};
+  driver::InterruptStop interrupt;
+  explicit Observers(std::int64_t at_step = -1) : interrupt(at_step) {}
+  std::vector<driver::RunObserver*> list() {
+    auto l = rules.observers();
+    l.insert(l.end(), {&checkpoints, &interrupt});
+    return l;
+  }
+};
+
+// The load on the pins (the scene's load sensor: -z force of both) per series row.
+std::vector<double> pin_load(const RunFile& f) {
+  const auto l = f.read_wall_series("pin_left", "force"), r = f.read_wall_series("pin_right", "force");
+  std::vector<double> out;
+  for (std::size_t k = 0; k < l.size(); ++k) out.push_back(-(l[k].z() + r[k].z()));
+  return out;
+}
+
+std::map<Index, std::size_t> rows_by_id(const FrameData& f) {
+  std::map<Index, std::size_t> m;
+  for (std::size_t k = 0; k < f.id.size(); ++k) m[f.id[k]] = k;
+  return m;
+}
+
+// What a decomposed run file must share with the serial one (see the header).
+void compare(const fs::path& file, const fs::path& reference, const std::string& who) {
+  const RunFile a(file), b(reference);
+  const auto ea = a.read_break_events(), eb = b.read_break_events();
+  check(!eb.empty(), "the reference run breaks bonds");
+  if (eb.empty()) return;
+  const std::int64_t first_break = eb.front().step;
+  bool same_breaks = ea.size() == eb.size();
+  for (std::size_t k = 0; same_breaks && k < ea.size(); ++k)
+    same_breaks = ea[k].step == eb[k].step && ea[k].id_i == eb[k].id_i && ea[k].id_j == eb[k].id_j;
+  if (rank_ == 0) std::printf("%s: %zu breaks (reference %zu), the first at step %lld\n", who.c_str(), ea.size(), eb.size(),
+                              static_cast<long long>(first_break));
+  check(same_breaks, who + ": the same bonds break at the same steps in the same order");
+
+  const auto sa = a.read_integer_series("step"), sb = b.read_integer_series("step");
+  check(sa == sb, who + ": the same series rows (steps), the run stops at the same step");
+  const auto da = a.read_wall_series("pin_left", "displacement"), db = b.read_wall_series("pin_left", "displacement");
+  const auto la = pin_load(a), lb = pin_load(b);
+  double scale = 0, peak = 0, worst_d = 0, worst_l = 0;
+  for (std::size_t k = 0; k < std::min(sa.size(), sb.size()) && sb[k] <= first_break; ++k) {
+    scale = std::max(scale, std::abs(db[k].z()));
+    peak = std::max(peak, std::abs(lb[k]));
+    worst_d = std::max(worst_d, (da[k] - db[k]).norm());
+    worst_l = std::max(worst_l, std::abs(la[k] - lb[k]));
+  }
+  if (rank_ == 0)
+    std::printf("%s up to the first break: pin travel %.3g m, |d displacement| %.3g m, peak load %.4g N, |d load| %.3g N\n",
+                who.c_str(), scale, worst_d, peak, worst_l);
+  check(scale > 0 && peak > 0, who + ": the pins move and carry load before the first break");
+  check(worst_d <= 1e-9 * scale && worst_l <= 1e-9 * peak,
+        who + ": the load curve agrees within 1e-9 of the displacement and load scales up to the first break");
+
+  check(a.frame_count() == b.frame_count(), who + ": the same number of frames");
+  double worst_x = 0, worst_after = 0;
+  bool same_ids = true, same_labels = true, same_bonds = true;
+  for (std::size_t k = 0; k < std::min(a.frame_count(), b.frame_count()); ++k) {
+    const FrameData fa = a.read_frame(a.frames()[k]), fb = b.read_frame(b.frames()[k]);
+    const auto ra = rows_by_id(fa);
+    std::vector<Index> ia = fa.id, ib = fb.id;
+    std::sort(ia.begin(), ia.end());
+    std::sort(ib.begin(), ib.end());
+    same_ids = same_ids && ia == ib && fa.step == fb.step;
+    same_bonds = same_bonds && fa.bond_i.size() == fb.bond_i.size();
+    same_labels = same_labels && fa.fragment && fb.fragment;
+    if (ia != ib) continue;
+    for (std::size_t q = 0; q < fb.id.size(); ++q) {
+      const std::size_t p = ra.at(fb.id[q]);
+      const double dx = (fa.position[p] - fb.position[q]).norm();
+      double& worst = fb.step <= first_break ? worst_x : worst_after;
+      worst = std::max(worst, dx);
+      if (fa.fragment && fb.fragment) same_labels = same_labels && (*fa.fragment)[p] == (*fb.fragment)[q];
+    }
+  }
+  if (rank_ == 0)
+    std::printf("%s frames: max |dx| %.3g m up to the first break (%.3g of the pin travel), %.3g m after it\n",
+                who.c_str(), worst_x, worst_x / std::max(scale, 1e-300), worst_after);
+  check(same_ids, who + ": every frame holds the same steps and particle ids");
+  check(same_bonds, who + ": every frame holds as many bonds");
+  check(worst_x <= 1e-9 * scale, who + ": positions agree within 1e-9 of the pin travel up to the first break");
+  check(same_labels, who + ": every particle's fragment label is the same in every frame");
+}
+
+int run_decomposed(const driver::RunSpec& spec, Observers& o) {
+  PluginHost host;
+  load_plugins(host);
+  driver::run_distributed(spec, host, o.list());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  H5dont_atexit();
+  if (argc < 3) {
+    std::fprintf(stderr, "usage: test_mpi_run serial|decomposed|interrupt|restart|no_ids ARGS\n");
+    return 2;
+  }
+  const std::string mode = argv[1];
+  const fs::path out = argv[2];
+  if (mode == "serial") {
+    PluginHost host;
+    load_plugins(host);
+    Observers o;
+    fs::remove_all(out);
+    const driver::RunResult r = driver::run(spec_for(out), host, o.list());
+    std::printf("serial: %lld steps, %lld bonds broken, %s\n", static_cast<long long>(r.steps),
+                static_cast<long long>(r.bonds_broken), r.stop_reason.c_str());
+    return r.bonds_broken > 0 ? 0 : 1;
+  }
+  if (mode == "serial_restart" && argc > 4) {
+    // The serial driver continues a decomposed run's checkpoint (the checkpoint is gathered in the
+    // serial layout): a copy of the interrupted 4-rank run, to its end.
+    fs::remove_all(out);
+    fs::create_directories(out);
+    for (const char* name : {"run.h5", "run.checkpoint.h5"}) fs::copy_file(fs::path(argv[3]) / name, out / name);
+    PluginHost host;
+    load_plugins(host);
+    Observers o;
+    driver::RunSpec spec = spec_for(out);
+    spec.restart = out / "run.h5";
+    driver::run(spec, host, o.list());
+    compare(out / "run.h5", fs::path(argv[4]) / "run.h5", "serial build continuing 4 ranks");
+    return failures > 0 ? 1 : 0;
+  }
+  const driver::MpiSession mpi;
+  rank_ = mpi.rank();
+  const std::string who = fmt::format("{} ranks", mpi.size());
+  try {
+    if (mode == "decomposed" && argc > 3) {
+      if (rank_ == 0) fs::remove_all(out);
+      MPI_Barrier(MPI_COMM_WORLD);
+      Observers o;
+      const double t0 = MPI_Wtime();
+      run_decomposed(spec_for(out), o);
+      if (rank_ == 0) std::printf("%s: the run took %.2f s\n", who.c_str(), MPI_Wtime() - t0);
+      if (rank_ == 0) compare(out / "run.h5", fs::path(argv[3]) / "run.h5", who);
+    } else if (mode == "interrupt" && argc > 3) {
+      if (rank_ == 0) fs::remove_all(out);
+      MPI_Barrier(MPI_COMM_WORLD);
+      Observers o(std::stoll(argv[3]));
+      run_decomposed(spec_for(out), o);
+      if (rank_ == 0) {
+        const Checkpoint c = read_checkpoint(out / "run.checkpoint.h5");
+        check(c.simulation.step == std::stoll(argv[3]), fmt::format("{}: the checkpoint holds step {}", who, argv[3]));
+        check(c.simulation.particles.size() == 582, who + ": the checkpoint holds every particle");
+        // A copy for the serial build to continue (test_mpi_run_serial_restart): the 2-rank restart
+        // continues this folder in place.
+        const fs::path copy = out.parent_path() / "restart_copy";
+        fs::remove_all(copy);
+        fs::create_directories(copy);
+        for (const char* name : {"run.h5", "run.checkpoint.h5"}) fs::copy_file(out / name, copy / name);
+      }
+    } else if (mode == "restart" && argc > 3) {
+      Observers o;
+      driver::RunSpec spec = spec_for(out);
+      spec.restart = out / "run.h5";
+      run_decomposed(spec, o);
+      if (rank_ == 0) compare(out / "run.h5", fs::path(argv[3]) / "run.h5", who + " (restarted)");
+    } else if (mode == "no_ids" && argc > 3) {
+      if (rank_ == 0) {
+        fs::remove_all(out);
+        fs::create_directories(out);
+        fs::copy_file(fs::path(argv[3]) / "run.h5", out / "run.h5");
+        fs::copy_file(fs::path(argv[3]) / "run.checkpoint.h5", out / "run.checkpoint.h5");
+        const hid_t f = H5Fopen((out / "run.checkpoint.h5").c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+        check(f >= 0 && H5Ldelete(f, "particles/id", H5P_DEFAULT) >= 0, "the copy's /particles/id removed");
+        H5Fclose(f);
+      }
+      MPI_Barrier(MPI_COMM_WORLD);
+      Observers o;
+      driver::RunSpec spec = spec_for(out);
+      spec.restart = out / "run.h5";
+      std::string message;
+      try {
+        run_decomposed(spec, o);
+      } catch (const CheckpointError& e) {
+        message = e.what();
+      }
+      std::printf("rank %d: %s\n", rank_, message.c_str());
+      const bool named = message.find("no particle ids") != std::string::npos &&
+                         message.find("run.checkpoint.h5") != std::string::npos;
+      int mine = named ? 1 : 0, all = 0;
+      MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+      check(all, who + ": every rank refuses the checkpoint without ids, naming the file and the fix");
+    } else {
+      std::fprintf(stderr, "unknown mode %s\n", mode.c_str());
+      return 2;
+    }
+  } catch (const std::exception& e) {
+    std::printf("rank %d: FAIL: %s\n", rank_, e.what());
+    MPI_Abort(MPI_COMM_WORLD, 1);
+  }
+  int any = failures;
+  MPI_Allreduce(&failures, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  return any > 0 ? 1 : 0;
+}
