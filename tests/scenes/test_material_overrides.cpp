@@ -226,6 +226,9 @@ TEST_CASE("bad material overrides are refused naming the override and the valid 
   CHECK(contains(error_of({"material_pair.cake.steel.fricton=0.3"}),
                  "unknown key 'fricton' for [[material_pair]] ['cake', 'steel'] (did you mean 'friction'?); valid "
                  "keys: friction, restitution"));
+  CHECK(contains(error_of({"material.cake.frction=0.3"}),
+                 "unknown key 'frction' for [[material]] 'cake' (did you mean 'material_pair.A.B.friction'?); valid "
+                 "keys: density, shear_modulus, poisson_ratio"));
   CHECK(contains(error_of({"material.cake.friction=0.3"}),
                  "--set 'material.cake.friction=0.3': hertz_mindlin takes friction per pair of materials "
                  "(docs/materials.md): set it with --set material_pair.A.B.friction=..."));

@@ -145,7 +145,18 @@ void check_material_overrides(const SceneOverrides& overrides, const PluginHost&
                                                                              : "per material"),
                                        form));
         }
-    const std::string hint = closest_match(key, valid);
+    std::string hint = closest_match(key, valid);
+    if (hint.empty() && law) {
+      // A misspelt parameter of the other table: name it with the override that reaches it.
+      std::vector<std::string> others;
+      for (const auto& spec : law->info.params) others.push_back(spec.name);
+      const std::string other = closest_match(key, others);
+      for (const auto& spec : law->info.params)
+        if (!other.empty() && spec.name == other)
+          hint = spec.scope == ParamScope::Pair    ? fmt::format("material_pair.A.B.{}", other)
+                 : spec.scope == ParamScope::Model ? fmt::format("contact.{}", other)
+                                                   : fmt::format("material.NAME.{}", other);
+    }
     throw SceneError(fmt::format("--set '{}': unknown key '{}' for {} {}{}; valid keys: {}", o.text(), key,
                                  material ? "[[material]]" : "[[material_pair]]", names,
                                  hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint),
