@@ -26,6 +26,44 @@ void MaxDisplacementStop::on_series(RunState& run, const Energies&) {
     run.request_stop(StopReason::MaxDisplacement, "the loading walls reached max_displacement");
 }
 
+namespace {
+
+// Whether every particle is slower than `speed` (m/s); stops at the first that is not. A run
+// decomposed over MPI ranks would take this over its own particles and combine the ranks' answers
+// with a logical and (MPI_LAND, or max_over_ranks of the largest speed): the same decision on every
+// rank, independent of the order.
+bool all_slower_than(const Particles& p, double speed) {
+  const double limit2 = speed * speed;
+  for (std::size_t k = 0; k < p.size(); ++k)
+    if (p.velocity[k].squaredNorm() >= limit2) return false;
+  return true;
+}
+
+}  // namespace
+
+void RestStop::on_start(RunState& run) {
+  still_since_ = -1;
+  look(run);
+}
+
+void RestStop::on_step(RunState& run) { look(run); }
+
+void RestStop::look(RunState& run) {
+  const double speed = run.scene.stop.rest_speed;
+  if (!(speed > 0)) return;
+  if (!all_slower_than(run.sim.particles(), speed)) {
+    still_since_ = -1;
+    return;
+  }
+  const double now = run.sim.time();
+  if (still_since_ < 0) still_since_ = now;
+  // Half a step of slack: the times are sums of dt, and rest_time is rarely a whole number of them.
+  if (now - still_since_ >= run.scene.stop.rest_time - 0.5 * run.sim.dt())
+    run.request_stop(StopReason::Rest,
+                     fmt::format("at rest: every particle slower than {} m/s since t = {:.6g} s ({} s)", speed,
+                                 still_since_, run.scene.stop.rest_time));
+}
+
 InterruptStop::InterruptStop(std::int64_t at_step) : at_step_(at_step), previous_(std::signal(SIGINT, on_interrupt)) {
   g_interrupted = 0;
 }

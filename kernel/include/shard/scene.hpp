@@ -30,12 +30,15 @@ struct PluginChoice {
 };
 
 // When to stop: at `duration`, or once the load on `load_walls` fell to `after_peak_fraction`
-// of its peak after the first bond broke, or once the load walls moved `max_displacement`.
+// of its peak after the first bond broke, or once the load walls moved `max_displacement`, or
+// once every particle's speed stayed below `rest_speed` for `rest_time` (at rest).
 struct StopRule {
   std::vector<std::string> load_walls;
   Vec3 load_direction = -Vec3::UnitZ();  // the loading walls move along this
   double after_peak_fraction = 0;        // 0: off
   double max_displacement = 0;           // m; 0: off
+  double rest_speed = 0;                 // m/s; 0: off
+  double rest_time = 0;                  // s; given with rest_speed
 };
 
 // Particles whose centres lie in the box move at a held velocity: the clamps of a tensile test,

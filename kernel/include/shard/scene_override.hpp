@@ -17,7 +17,9 @@ struct SceneOverride {
                              std::vector<std::string>>;
   // Both always: a lone "section.key=value" string is no key (parse it).
   SceneOverride(std::string key_, Value value_) : key(std::move(key_)), value(std::move(value_)) {}
-  std::string key;  // "section.key" or "wall.NAME.key"
+  // "section.key", "wall.NAME.key", "body.NAME[.generator|.stream].key", "material.NAME.key" or
+  // "material_pair.A.B.key" (A = B = "*": the default row); docs/materials.md, "Overrides".
+  std::string key;
   Value value;
 
   // "section.key=value" as --set takes it; throws SceneError naming the assignment when malformed.

@@ -121,6 +121,56 @@ struct Need {
 
 }  // namespace
 
+void check_material_overrides(const SceneOverrides& overrides, const PluginHost& host, const Scene& scene) {
+  const LoadedPlugin* law = scene.contact ? &host.find(PluginKind::Contact, scene.contact->name) : nullptr;
+  for (const SceneOverride& o : overrides) {
+    const bool material = o.key.rfind("material.", 0) == 0 && std::count(o.key.begin(), o.key.end(), '.') == 2;
+    const bool pair = o.key.rfind("material_pair.", 0) == 0 && std::count(o.key.begin(), o.key.end(), '.') == 3;
+    if (!material && !pair) continue;
+    const std::string key = o.key.substr(o.key.rfind('.') + 1);
+    const ParamScope scope = material ? ParamScope::Material : ParamScope::Pair;
+    std::vector<std::string> valid;
+    if (material) valid.push_back("density");
+    for (const ParamSpec* spec : specs_of(law, scope)) valid.push_back(spec->name);
+    if (std::find(valid.begin(), valid.end(), key) != valid.end()) continue;
+    std::string names = o.key.substr(o.key.find('.') + 1, o.key.rfind('.') - o.key.find('.') - 1);
+    if (pair) names = fmt::format("['{}']", names.replace(names.find('.'), 1, "', '"));
+    else names = fmt::format("'{}'", names);
+    if (law)
+      for (const auto& spec : law->info.params)
+        if (spec.name == key) {
+          const std::string form = spec.scope == ParamScope::Model
+                                       ? fmt::format("contact.{}", key)
+                                       : (spec.scope == ParamScope::Pair ? fmt::format("material_pair.A.B.{}", key)
+                                                                         : fmt::format("material.NAME.{}", key));
+          throw SceneError(fmt::format("--set '{}': {} takes {} {} (docs/materials.md): set it with --set {}=...",
+                                       o.text(), law->info.name, key,
+                                       spec.scope == ParamScope::Model
+                                           ? "once, in [contact]"
+                                           : (spec.scope == ParamScope::Pair ? "per pair of materials"
+                                                                             : "per material"),
+                                       form));
+        }
+    std::string hint = closest_match(key, valid);
+    if (hint.empty() && law) {
+      // A misspelt parameter of the other table: name it with the override that reaches it.
+      std::vector<std::string> others;
+      for (const auto& spec : law->info.params) others.push_back(spec.name);
+      const std::string other = closest_match(key, others);
+      for (const auto& spec : law->info.params)
+        if (!other.empty() && spec.name == other)
+          hint = spec.scope == ParamScope::Pair    ? fmt::format("material_pair.A.B.{}", other)
+                 : spec.scope == ParamScope::Model ? fmt::format("contact.{}", other)
+                                                   : fmt::format("material.NAME.{}", other);
+    }
+    throw SceneError(fmt::format("--set '{}': unknown key '{}' for {} {}{}; valid keys: {}", o.text(), key,
+                                 material ? "[[material]]" : "[[material_pair]]", names,
+                                 hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint),
+                                 valid.empty() ? std::string("none (the scene has no [contact] law)")
+                                               : fmt::format("{}", fmt::join(valid, ", "))));
+  }
+}
+
 void read_materials(const toml::table& root, const std::string& file, const PluginHost& host,
                     const std::vector<WallMaterial>& walls, Scene& scene) {
   const toml::node* node = root.get("material");

@@ -9,6 +9,7 @@
 #include <toml++/toml.h>
 
 #include "shard/scene.hpp"
+#include "shard/scene_override.hpp"
 
 namespace shard::scene_detail {
 
@@ -23,5 +24,11 @@ struct WallMaterial {
 // scene.bodies and scene.walls read. Throws SceneError with file:line:column, key and fix.
 void read_materials(const toml::table& root, const std::string& file, const PluginHost& host,
                     const std::vector<WallMaterial>& walls, Scene& scene);
+
+// The keys of the --set material.NAME.key and material_pair.A.B.key overrides against the
+// contact law's parameters of each table (its names were checked when the override was applied):
+// an unknown key, or one of the law's parameters in the wrong table, is refused naming the
+// override, the valid keys and where the parameter goes. Needs scene.contact read.
+void check_material_overrides(const SceneOverrides& overrides, const PluginHost& host, const Scene& scene);
 
 }  // namespace shard::scene_detail

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <numbers>
 #include <sstream>
 #include <toml++/toml.h>
@@ -187,6 +189,35 @@ Wall read_wall(const toml::table& t, const std::string& file, const std::filesys
   read_wall_belt(s, t, w);
   s.finish();
   return w;
+}
+
+// [stop] rest_speed and rest_time: the run ends once every particle's speed stayed below
+// rest_speed for rest_time (driver/src/stop_rules.cpp, RestStop). Both or neither.
+void read_rest_rule(Section& stop, Scene& scene) {
+  const double absent = std::numeric_limits<double>::quiet_NaN();
+  const double speed = stop.number("rest_speed", absent, -1e300, 1e300, "m/s");
+  const double time = stop.number("rest_time", absent, -1e300, 1e300, "s");
+  if (std::isnan(speed) && std::isnan(time)) return;
+  if (std::isnan(speed))
+    stop.fail("rest_time", "needs rest_speed too: the speed [m/s] every particle must stay below for rest_time, "
+                           "e.g. rest_speed = 0.01");
+  if (!(speed > 0))
+    stop.fail("rest_speed", fmt::format("= {} must be positive: the speed [m/s] below which a particle counts as at "
+                                        "rest, e.g. 0.01 (leave rest_speed and rest_time out to run to duration)",
+                                        speed));
+  if (std::isnan(time))
+    stop.fail("rest_speed", "needs rest_time too: how long [s] every particle must stay below it before the run "
+                            "ends, e.g. rest_time = 0.05");
+  if (!(time > 0))
+    stop.fail("rest_time", fmt::format("= {} must be positive: how long [s] every particle must stay below "
+                                       "rest_speed, e.g. 0.05",
+                                       time));
+  if (time >= scene.duration)
+    stop.fail("rest_time", fmt::format("= {} s is not shorter than [simulation] duration = {} s: the run could never "
+                                       "come to rest before it ends; lower rest_time or raise duration",
+                                       time, scene.duration));
+  scene.stop.rest_speed = speed;
+  scene.stop.rest_time = time;
 }
 
 }  // namespace
@@ -473,6 +504,7 @@ Scene load_scene_text(const std::string& text, const std::filesystem::path& file
                                  where(file, root["grip"].node()->source())));
   }
 
+  scene_detail::check_material_overrides(overrides, host, scene);
   scene_detail::read_materials(root, file, host, wall_materials, scene);
 
   Section stop(root["stop"].as_table(), file, "stop");
@@ -482,6 +514,7 @@ Scene load_scene_text(const std::string& text, const std::filesystem::path& file
   scene.stop.load_direction.normalize();
   scene.stop.after_peak_fraction = stop.number("after_peak_fraction", 0, 0, 1);
   scene.stop.max_displacement = stop.number("max_displacement", 0, 0, 1e300, "m");
+  read_rest_rule(stop, scene);
   stop.finish();
   for (const auto& name : scene.stop.load_walls) {
     bool found = false;

@@ -3,9 +3,11 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <sstream>
 
 #include "scene_override_toml.hpp"
+#include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
 
 namespace shard {
@@ -67,6 +69,98 @@ std::vector<std::string> key_parts(const std::string& key) {
   std::stringstream ss(key);
   for (std::string part; std::getline(ss, part, '.');) parts.push_back(part);
   return parts;
+}
+
+// The names of the [[material]] entries, quoted, for messages.
+std::string material_names(const toml::array& materials) {
+  std::string out;
+  for (const auto& m : materials)
+    if (const auto* t = m.as_table())
+      out += fmt::format("{}'{}'", out.empty() ? "" : ", ", (*t)["name"].value_or(std::string()));
+  return out;
+}
+
+// The [[material]] entries an override names, or a SceneError saying how the scene's materials are
+// written instead.
+toml::array& material_entries(toml::table& root, const SceneOverride& o) {
+  if (auto* materials = root["material"].as_array()) return *materials;
+  if (root["material"].as_table())
+    throw SceneError(fmt::format("--set '{}': the scene has one [material] section, not [[material]] entries: set "
+                                 "its density with material.density=..., its contact parameters with contact.KEY=... "
+                                 "(docs/materials.md)",
+                                 o.text()));
+  throw SceneError(fmt::format("--set '{}': the scene has no [[material]] entries (docs/materials.md)", o.text()));
+}
+
+// A material's name and a pair's materials are how bodies, walls and rows find each other.
+void refuse_identity_key(const SceneOverride& o, const std::string& key) {
+  if (key == "name" || key == "materials")
+    throw SceneError(fmt::format("--set '{}': '{}' names what the other entries refer to and cannot be set from the "
+                                 "command line; edit the scene file",
+                                 o.text(), key));
+}
+
+// material.NAME.key: a value of the [[material]] entry named NAME.
+void apply_material(toml::table& root, const SceneOverride& o, const std::vector<std::string>& parts) {
+  toml::array& materials = material_entries(root, o);
+  refuse_identity_key(o, parts[2]);
+  std::vector<std::string> names;
+  for (auto& m : materials)
+    if (auto* t = m.as_table()) {
+      names.push_back((*t)["name"].value_or(std::string()));
+      if (names.back() == parts[1]) {
+        insert(*t, parts[2], o.value);
+        return;
+      }
+    }
+  const std::string hint = closest_match(parts[1], names);
+  throw SceneError(fmt::format("--set '{}': no [[material]] named '{}'{}; the scene's materials: {}", o.text(),
+                               parts[1], hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint),
+                               material_names(materials)));
+}
+
+// material_pair.A.B.key: a value of the [[material_pair]] row of materials A and B (either order),
+// or of the default row with A = B = "*". A pair without its own row gets one holding just this
+// key (its other parameters still come from the default row, key by key).
+void apply_material_pair(toml::table& root, const SceneOverride& o, const std::vector<std::string>& parts) {
+  toml::array& materials = material_entries(root, o);
+  refuse_identity_key(o, parts[3]);
+  const std::string &a = parts[1], &b = parts[2];
+  if ((a == "*") != (b == "*"))
+    throw SceneError(fmt::format("--set '{}': name two materials, e.g. material_pair.cake.steel.friction=0.3, or "
+                                 "write material_pair.*.*.KEY for the default row",
+                                 o.text()));
+  if (a != "*") {
+    std::vector<std::string> names;
+    for (const auto& m : materials)
+      if (const auto* t = m.as_table()) names.push_back((*t)["name"].value_or(std::string()));
+    for (const std::string& name : {a, b})
+      if (std::find(names.begin(), names.end(), name) == names.end()) {
+        const std::string hint = closest_match(name, names);
+        throw SceneError(fmt::format("--set '{}': no [[material]] named '{}'{}; the scene's materials: {}", o.text(),
+                                     name, hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint),
+                                     material_names(materials)));
+      }
+  }
+  if (!root["material_pair"].as_array()) {
+    if (root.contains("material_pair")) return;  // not an array of tables: the loader says so with its line
+    root.insert("material_pair", toml::array{});
+  }
+  toml::array& rows = *root["material_pair"].as_array();
+  for (auto& row : rows) {
+    auto* t = row.as_table();
+    const auto* pair = t ? (*t)["materials"].as_array() : nullptr;
+    if (!pair || pair->size() != 2) continue;
+    const auto x = (*pair)[0].value<std::string>(), y = (*pair)[1].value<std::string>();
+    if ((x == a && y == b) || (x == b && y == a)) {
+      insert(*t, parts[3], o.value);
+      return;
+    }
+  }
+  toml::table row;
+  row.insert("materials", toml::array{a, b});
+  insert(row, parts[3], o.value);
+  rows.push_back(std::move(row));
 }
 
 }  // namespace
@@ -140,11 +234,30 @@ void apply_override(toml::table& root, const SceneOverride& o) {
     }
     throw SceneError(fmt::format("--set '{}': no [[body]] named '{}'", o.text(), parts[1]));
   }
+  if (parts.size() == 3 && parts[0] == "material" && root["material"].as_array()) {
+    apply_material(root, o, parts);
+    return;
+  }
+  if (parts.size() == 4 && parts[0] == "material_pair") {
+    apply_material_pair(root, o, parts);
+    return;
+  }
+  if (parts.size() == 3 && parts[0] == "material") material_entries(root, o);  // says how to set [material]
   if (parts.size() != 2 || parts[0].empty() || parts[1].empty())
     throw SceneError(fmt::format(
         "--set '{}': expected section.key=value (or wall.NAME.key=value, body.NAME.key=value, "
-        "body.NAME.generator.key=value, body.NAME.stream.key=value)",
+        "body.NAME.generator.key=value, body.NAME.stream.key=value, material.NAME.key=value, "
+        "material_pair.NAME.NAME.key=value)",
         o.text()));
+  // An array of entries ([[wall]], [[material]], ...) has no key of its own: name an entry.
+  if (const auto* entries = root[parts[0]].as_array()) {
+    if (parts[0] == "material")
+      throw SceneError(fmt::format("--set '{}': the scene has [[material]] entries; name one: material.NAME.{}=... "
+                                   "(the scene's materials: {})",
+                                   o.text(), parts[1], material_names(*entries)));
+    throw SceneError(fmt::format("--set '{}': [[{}]] is a list of entries; name one, e.g. {}.NAME.{}=...", o.text(),
+                                 parts[0], parts[0], parts[1]));
+  }
   auto* section = root[parts[0]].as_table();
   if (!section) {
     root.insert(parts[0], toml::table{});

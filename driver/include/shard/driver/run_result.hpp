@@ -14,6 +14,7 @@ enum class StopReason {
   MaxDisplacement,  // [stop] max_displacement: the loading walls travelled that far
   Interrupted,      // SIGINT (or a test's interrupt step): a checkpoint was written
   Observer,         // another observer asked the run to stop
+  Rest,             // [stop] rest_speed, rest_time: every particle stayed slower than rest_speed for rest_time
 };
 
 // The load sensor's record: the [stop] load walls' force against their motion and their mean

@@ -12,6 +12,7 @@ namespace shard::driver {
 struct SceneRules {
   LoadDropStop load_drop;
   MaxDisplacementStop max_displacement;
+  RestStop rest;
   FragmentLabeller labeller;
 
   SceneRules() = default;
@@ -19,7 +20,7 @@ struct SceneRules {
   SceneRules& operator=(const SceneRules&) = delete;
 
   // In hook order: a stop rule ends the run before the labels of its row are written.
-  std::vector<RunObserver*> observers() { return {&load_drop, &max_displacement, &labeller}; }
+  std::vector<RunObserver*> observers() { return {&load_drop, &max_displacement, &rest, &labeller}; }
 };
 
 }  // namespace shard::driver

@@ -19,6 +19,21 @@ class MaxDisplacementStop : public RunObserver {
   void on_series(RunState& run, const Energies& energies) override;
 };
 
+// [stop] rest_speed, rest_time: the run is at rest once the largest particle speed, taken after
+// every step, stayed below rest_speed at every step spanning rest_time (the first such step ends
+// it). The clock starts at the loop's first step (or its start, when every particle is slower
+// then); a restart starts it anew, so a restarted run may end up to rest_time later. Cost: one
+// pass over the velocities per step, left at the first particle that is too fast.
+class RestStop : public RunObserver {
+ public:
+  void on_start(RunState& run) override;
+  void on_step(RunState& run) override;
+
+ private:
+  void look(RunState& run);
+  double still_since_ = -1;  // s: the time since which every particle is slower; < 0: one is not
+};
+
 // SIGINT, caught while this object lives (the previous handler comes back after), or reaching
 // `at_step` (>= 0), stops the run with StopReason::Interrupted. A CheckpointWriter composed with it
 // writes the state to continue from. One may live at a time: a signal reaches the process, not a run.
