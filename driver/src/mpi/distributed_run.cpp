@@ -218,6 +218,13 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
                                  spec.scene.string()));
   const Scene scene = restarting ? load_scene_text(old_meta.scene_text, old_meta.scene_file, host)
                                  : load_scene(spec.scene, host, spec.overrides);
+  // RestStop reads the particles it holds: on one rank of several it would stop that rank alone and
+  // leave the others waiting in the next exchange. Until its maximum speed is reduced over the ranks
+  // (max_over_ranks), the rule is refused here, alike on every rank.
+  if (scene.stop.rest_speed > 0)
+    throw SceneError(fmt::format("{}: [stop] rest_speed is not available in a run decomposed over MPI ranks yet; "
+                                 "run the scene without mpirun, or replace the rule by [simulation] duration",
+                                 restarting ? old_meta.scene_file : spec.scene.string()));
   if (scene.breakage && !scene.bond && explicitly_sets_breakage(scene.resolved_text) && log.warning)
     log.warning("breakage = true but the scene has no [bond] section: nothing can break. Add [bond] "
                 "(plugin = \"beam_bond\") or remove breakage");
