@@ -271,62 +271,24 @@ RunResult run(const RunSpec& spec, const PluginHost& host, const std::vector<Run
     writer.append_series(row);
     writer.append_break_events(sim.take_new_break_events());
     if (!std::isfinite(e.kinetic)) health.check(sim, last_good());
-    const double load = sensor.load(sim);
-    const double disp = sensor.displacement(sim);
-    result.curve.load.push_back(load);
-    result.curve.displacement.push_back(disp);
-    result.curve.time.push_back(sim.time());
-    if (load > result.peak_load) {
-      result.peak_load = load;
-      result.displacement_at_peak = disp;
-    }
-    if (sim.bonds_broken() == 0) {
-      // Less the rigid-body motion: a beam sliding on its rollers strains nothing.
-      result.kinetic_before_break.push_back(bending::deformation_kinetic_energy(sim.particles()));
-      result.elastic_before_break.push_back(e.bond + e.contact);
-    }
+    // Less the rigid-body motion: a beam sliding on its rollers strains nothing.
+    record_curve_point(result, sim.time(), sensor.load(sim), sensor.displacement(sim), sim.bonds_broken() == 0,
+                       e.bond + e.contact, [&] { return bending::deformation_kinetic_energy(sim.particles()); });
     return e;
   };
 
-  state.total_steps = static_cast<std::int64_t>(std::ceil(scene.duration / sim.dt() - 1e-9));
-  if (!restarting) {
-    health.check(sim, last_good());
-    write_frame();
-    series_row();
-  }
-  state.start_step = sim.step_count();
-  for (auto* o : observers) o->on_start(state);
-  const std::int64_t health_every = std::max(1, spec.health_every);
-  // Calls `hook` on every observer in order until one asks the run to stop.
-  auto notify = [&](auto&& hook) {
-    for (auto* o : observers) {
-      hook(*o);
-      if (state.stop_requested()) return;
-    }
-  };
-  while (sim.step_count() < state.total_steps && !state.stop_requested()) {
-    sim.step();
-    health.after_step(sim);
-    impacts.update(sim);
-    const std::int64_t s = sim.step_count();
-    if (s % health_every == 0 || s % frame_every == 0) health.check(sim, last_good());
-    if (s % series_every == 0) {
-      const Energies e = series_row();
-      notify([&](RunObserver& o) { o.on_series(state, e); });
-      if (state.stop_requested()) break;
-    }
-    if (s % frame_every == 0) {
-      write_frame();
-      notify([&](RunObserver& o) { o.on_frame(state); });
-      if (state.stop_requested()) break;
-    }
-    notify([&](RunObserver& o) { o.on_step(state); });
-  }
-  if (!state.stop_requested()) state.request_stop(StopReason::Duration, "reached the scene's duration");
-  for (auto* o : observers) o->on_stop(state);
-  if (sim.step_count() % series_every != 0) series_row();
-  if (sim.step_count() % frame_every != 0) write_frame();
-  for (auto* o : observers) o->on_closed(state);
+  LoopHooks loop{[&] { return sim.step_count(); },
+                 [&] {
+                   sim.step();
+                   health.after_step(sim);
+                   impacts.update(sim);
+                 },
+                 [&] { health.check(sim, last_good()); },
+                 series_row,
+                 write_frame,
+                 [](std::int64_t) {}};
+  run_observed_steps(state, observers, scene.duration, sim.dt(), restarting,
+                     {series_every, frame_every, spec.health_every}, loop);
   writer.write_body_impacts(impacts.impacts());
   writer.flush();
 

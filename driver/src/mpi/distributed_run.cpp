@@ -383,67 +383,31 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
     });
     events_written = events.size();
     if (!std::isfinite(e.kinetic)) health.check(dist, last_good());
-    const double load = sensor.load(sim);
-    const double disp = sensor.displacement(sim);
-    result.curve.load.push_back(load);
-    result.curve.displacement.push_back(disp);
-    result.curve.time.push_back(dist.time());
-    if (load > result.peak_load) {
-      result.peak_load = load;
-      result.displacement_at_peak = disp;
-    }
-    if (dist.bonds_broken() == 0) {
-      result.kinetic_before_break.push_back(deformation_kinetic_energy(dist));
-      result.elastic_before_break.push_back(e.bond + e.contact);
-    }
+    record_curve_point(result, dist.time(), sensor.load(sim), sensor.displacement(sim), dist.bonds_broken() == 0,
+                       e.bond + e.contact, [&] { return deformation_kinetic_energy(dist); });
     return e;
   };
 
-  state.total_steps = static_cast<std::int64_t>(std::ceil(scene.duration / dist.dt() - 1e-9));
-  if (!restarting) {
-    health.check(dist, last_good());
-    write_frame();
-    series_row();
-  }
-  state.start_step = dist.step_count();
-  for (auto* o : observers) o->on_start(state);
-  const std::int64_t health_every = std::max(1, spec.health_every);
-  auto notify = [&](auto&& hook) {
-    for (auto* o : observers) {
-      hook(*o);
-      if (state.stop_requested()) return;
-    }
-  };
-  while (dist.step_count() < state.total_steps && !state.stop_requested()) {
-    dist.step();
-    health.after_step(dist);
-    whole.bonds_broken = dist.bonds_broken();
-    const std::int64_t s = dist.step_count();
-    if (s % health_every == 0 || s % frame_every == 0) health.check(dist, last_good());
-    // The stop rules read the run's walls and counts, the same on every rank: they stop alike.
-    if (s % series_every == 0) {
-      const Energies e = series_row();
-      notify([&](RunObserver& o) { o.on_series(state, e); });
-      if (state.stop_requested()) break;
-    }
-    if (s % frame_every == 0) {
-      write_frame();
-      notify([&](RunObserver& o) { o.on_frame(state); });
-      if (state.stop_requested()) break;
-    }
-    notify([&](RunObserver& o) { o.on_step(state); });
-    // SIGINT reaches the ranks one by one: a stop asked on one stops all at this step.
-    if (dist.any_rank(state.stop_requested()) && !state.stop_requested())
-      state.request_stop(StopReason::Interrupted,
-                         fmt::format("interrupted (SIGINT) at step {}: checkpoint written; continue with shard run "
-                                     "--restart {}",
-                                     s, result.output.string()));
-  }
-  if (!state.stop_requested()) state.request_stop(StopReason::Duration, "reached the scene's duration");
-  for (auto* o : observers) o->on_stop(state);
-  if (dist.step_count() % series_every != 0) series_row();
-  if (dist.step_count() % frame_every != 0) write_frame();
-  for (auto* o : observers) o->on_closed(state);
+  LoopHooks loop{[&] { return dist.step_count(); },
+                 [&] {
+                   dist.step();
+                   health.after_step(dist);
+                   whole.bonds_broken = dist.bonds_broken();
+                 },
+                 [&] { health.check(dist, last_good()); },
+                 series_row,
+                 write_frame,
+                 // The stop rules read the run's walls and counts, the same on every rank: they stop
+                 // alike. SIGINT reaches the ranks one by one: a stop asked on one stops all here.
+                 [&](std::int64_t s) {
+                   if (dist.any_rank(state.stop_requested()) && !state.stop_requested())
+                     state.request_stop(StopReason::Interrupted,
+                                        fmt::format("interrupted (SIGINT) at step {}: checkpoint written; continue "
+                                                    "with shard run --restart {}",
+                                                    s, result.output.string()));
+                 }};
+  run_observed_steps(state, observers, scene.duration, dist.dt(), restarting,
+                     {series_every, frame_every, spec.health_every}, loop);
   on_root([&] { writer->flush(); });
 
   result.steps = dist.step_count();
