@@ -9,10 +9,8 @@
 namespace shard {
 namespace {
 
-// A particle moving this fraction of its radius per step has left the regime where a contact
-// can be resolved: an overlap can jump from zero to a radius in two steps.
-constexpr double kMaxStepOverRadius = 0.5;
-constexpr double kMaxTurnPerStep = 0.5;  // rad
+constexpr double kMaxStepOverRadius = NumericalHealth::kMaxStepOverRadius;
+constexpr double kMaxTurnPerStep = NumericalHealth::kMaxTurnPerStep;
 constexpr std::size_t kNamed = 5;        // particles named in a message
 
 bool finite(const Vec3& v) { return v.allFinite(); }
@@ -45,16 +43,17 @@ NumericalHealth::NumericalHealth(const Simulation& reference)
   const Energies e = reference.energies();
   energy0_ = e.kinetic + e.bond + e.contact;
   potential0_ = e.gravity;
-  // Floor: a body at rest holds only round-off energy (1e-30 J), whose growth is no blow-up. The
-  // kinetic energy of every particle moving 1e-6 of its radius per step is negligible physics, and
-  // a real instability passes it within a few steps.
+  scale_ = initial_scale(reference, energy0_);
+}
+
+double NumericalHealth::initial_scale(const Simulation& reference, double energy0) {
   double round_off_floor = 0;
   const Particles& p = reference.particles();
   for (std::size_t k = 0; k < p.size(); ++k) {
     const double v = 1e-6 * p.radius[k] / reference.dt();
     round_off_floor += 0.5 * p.mass[k] * v * v;
   }
-  scale_ = std::max(std::abs(energy0_), round_off_floor);
+  return std::max(std::abs(energy0), round_off_floor);
 }
 
 void NumericalHealth::after_step(const Simulation& sim) {

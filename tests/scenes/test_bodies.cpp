@@ -16,6 +16,7 @@
 #include "shard/analysis/run_tables.hpp"
 #include "shard/app/run_command.hpp"
 #include "shard/checkpoint.hpp"
+#include "../common/installed_plugins.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/run_file.hpp"
 #include "shard/scene.hpp"
@@ -26,12 +27,7 @@ using namespace shard;
 
 namespace {
 
-const PluginHost& plugins() {
-  static PluginHost host;  // loaded once per test binary
-  static const bool loaded = (host.load_directories(PluginHost::default_search_path()), true);
-  (void)loaded;
-  return host;
-}
+using testing::plugins;
 
 // Two bonded bars of 10 x 2 x 2 spheres (4 mm, cubic lattice: identical packings), side by side
 // 62.5 mm apart in y, tilted 20 degrees about y and dropped at 3 m/s onto a floor: the lower end

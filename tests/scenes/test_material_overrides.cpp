@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "sweep_plan.hpp"
+#include "../common/installed_plugins.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
 
@@ -20,12 +21,7 @@ using namespace shard;
 
 namespace {
 
-const PluginHost& plugins() {
-  static PluginHost host;  // loaded once per test binary
-  static const bool loaded = (host.load_directories(PluginHost::default_search_path()), true);
-  (void)loaded;
-  return host;
-}
+using testing::plugins;
 
 constexpr double kRadius = 0.002, kDensity = 3720, kG = 9.81;  // m, kg/m^3, m/s^2
 

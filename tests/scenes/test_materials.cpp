@@ -16,6 +16,7 @@
 
 #include "shard/app/run_command.hpp"
 #include "shard/checkpoint.hpp"
+#include "../common/installed_plugins.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/run_file.hpp"
 #include "shard/scene.hpp"
@@ -24,12 +25,7 @@ using namespace shard;
 
 namespace {
 
-const PluginHost& plugins() {
-  static PluginHost host;  // loaded once per test binary
-  static const bool loaded = (host.load_directories(PluginHost::default_search_path()), true);
-  (void)loaded;
-  return host;
-}
+using testing::plugins;
 
 constexpr double kRadius = 0.002;  // m: every test body is one 4 mm sphere
 constexpr double kDensity = 3720;  // kg/m^3, filter cake

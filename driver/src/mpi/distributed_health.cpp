@@ -11,9 +11,8 @@
 namespace shard::driver {
 namespace {
 
-// NumericalHealth's limits (numerical_health.cpp): beyond them contacts cannot be resolved.
-constexpr double kMaxStepOverRadius = 0.5;
-constexpr double kMaxTurnPerStep = 0.5;
+constexpr double kMaxStepOverRadius = NumericalHealth::kMaxStepOverRadius;
+constexpr double kMaxTurnPerStep = NumericalHealth::kMaxTurnPerStep;
 
 }  // namespace
 
@@ -21,14 +20,7 @@ DistributedHealth::DistributedHealth(const Simulation& whole, const Vec3& gravit
   const Energies e = whole.energies();
   energy0_ = e.kinetic + e.bond + e.contact;
   potential0_ = e.gravity;
-  // As NumericalHealth: every particle moving 1e-6 of its radius per step is round-off's floor.
-  double round_off_floor = 0;
-  const Particles& p = whole.particles();
-  for (std::size_t k = 0; k < p.size(); ++k) {
-    const double v = 1e-6 * p.radius[k] / whole.dt();
-    round_off_floor += 0.5 * p.mass[k] * v * v;
-  }
-  scale_ = std::max(std::abs(energy0_), round_off_floor);
+  scale_ = NumericalHealth::initial_scale(whole, energy0_);
 }
 
 void DistributedHealth::after_step(const mpi::DistributedSimulation& sim) {

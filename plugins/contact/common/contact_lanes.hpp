@@ -5,14 +5,11 @@
 // policies (contact_effects.hpp), switched on at compile time so that a law without effects
 // carries no trace of them.
 //
-// Tangential spring: its extension xi (3 history doubles) is turned onto the current tangent
-// plane keeping its length (removing the normal part alone would shrink the spring and leak
-// elastic energy on every rotation), stretched by v_t dt, and F_t = -S_t xi - c_t v_t is capped
-// at mu F_n; a sliding contact's spring is reset to hold the capped force, -F_t / S_t, so sticking
-// resumes from the cap without a jump and the stored energy matches the force it transmits.
+// Tangential spring: its extension xi (3 history doubles) is a capped spring-dashpot
+// (capped_spring, turn_onto_plane below) stretched by v_t dt, F_t = -S_t xi - c_t v_t, |F_t| <= mu F_n.
 //
-// Rolling resistance (policy rolling_resistance, docs/effects.md): the same spring-dashpot with a
-// cap acts on the relative rolling rotation, k_r = S_t R*^2 and c_r = c_t R*^2 (the tangential
+// Rolling resistance (policy rolling_resistance, docs/effects.md): the same capped spring-dashpot
+// acts on the relative rolling rotation, k_r = S_t R*^2 and c_r = c_t R*^2 (the tangential
 // element seen at the lever R*, so both have one damping ratio), capped at mu_r R* F_n (the
 // elastic-plastic spring-dashpot model, "model C" of Ai et al., Powder Technol. 206, 2011). Its
 // angle is 3 more history doubles, after the tangential spring's.

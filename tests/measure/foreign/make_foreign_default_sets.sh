@@ -3,7 +3,7 @@
 # at the default resolution", issue 15 items 8 and 10): `shard synth` on
 # tests/measure/foreign/foreign_default_beam.toml (foreign_spring_bond on an hcp lattice of
 # 4.4-4.8 mm spheres, 180 x 30 x 35 mm, 20 mm/s), to be diagnosed with scenes/four_point_bending.toml.
-# The sets of make_foreign_sets.sh, sizes scaled to this beam where they have a unit.
+# The sets of make_foreign_sets.sh (which makes them), sizes scaled to this beam where they have a unit.
 #
 #   make_foreign_default_sets.sh SHARD PLUGIN_DIR OUT WORK [WORKERS]
 #
@@ -25,31 +25,11 @@ if [[ $# -lt 4 || $# -gt 5 ]]; then
   echo "usage: $0 SHARD PLUGIN_DIR OUT WORK [WORKERS]" >&2
   exit 2
 fi
-shard=$1 plugins=$2 out=$3 work=$4 workers=${5:-2}
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-scene=$here/foreign_default_beam.toml
-if [[ ! -f $plugins/shard_foreign_spring_bond.so ]]; then
-  echo "$0: $plugins/shard_foreign_spring_bond.so not found. Fix: build the target foreign_spring_bond" \
-       "and pass <build>/tests/measure/foreign/plugins" >&2
-  exit 2
-fi
-mkdir -p "$out" "$work"
-
-sensor=(--scatter 0.02 --force-noise 0.05 --force-offset 0.02 --displacement-step 1e-6 --seeds 4
-        --ramp 1-cos --ramp-time 0.025 --seating-preload 0.5 --zero-offset 0.05 --workers "$workers")
-
-synth() {  # name first_seed noise_seed [extra synth options...]
-  local name=$1 first=$2 noise=$3
-  shift 3
-  rm -rf "${out:?}/$name"
-  "$shard" --plugin-dir "$plugins" synth --scene "$scene" --work "$work" --out "$out/$name" \
-    --name "foreign default beam $name" --first-seed "$first" --noise-seed "$noise" "${sensor[@]}" "$@"
-}
-
-synth reference 1001 1
-synth null 1101 2
-synth compliance 1201 3 --machine-compliance 6e-5
-synth weibull 1301 4 --set bond.weibull_modulus=2
-synth softening 1401 5 --set bond.softening_ratio=1.5
-synth asymmetry 1501 6 --set bond.compression_ratio=3
-synth toe 1601 7 --seating-gap 2.5e-3 --seating-half-force 15
+FOREIGN_SCENE=$here/foreign_default_beam.toml \
+FOREIGN_LABEL="foreign default beam" \
+FOREIGN_SENSOR="--scatter 0.02 --force-noise 0.05 --force-offset 0.02 --displacement-step 1e-6 --seeds 4 \
+--ramp 1-cos --ramp-time 0.025 --seating-preload 0.5 --zero-offset 0.05 --workers ${5:-2}" \
+FOREIGN_COMPLIANCE=6e-5 \
+FOREIGN_TOE="--seating-gap 2.5e-3 --seating-half-force 15" \
+  exec bash "$here/make_foreign_sets.sh" "$1" "$2" "$3" "$4"

@@ -22,6 +22,9 @@
 # displacement steps. Lab conditions for all, recorded in metadata.toml [test]: the pins reach
 # 0.02 m/s along a 1-cos ramp over 25 ms (20 mm/s in 25 ms, 0.25 mm of travel); each curve starts
 # at a seating preload of 0.1 N (t = 0, d = 0 there); the load cell reads 0.02 N at zero load.
+# Another beam (make_foreign_default_sets.sh) changes what has a unit through the environment:
+# FOREIGN_SCENE, FOREIGN_LABEL, FOREIGN_SENSOR (the sensor and lab options), FOREIGN_COMPLIANCE [m/N],
+# FOREIGN_TOE (the toe's synth options).
 set -euo pipefail
 if [[ $# -ne 4 ]]; then
   echo "usage: $0 SHARD PLUGIN_DIR OUT WORK" >&2
@@ -29,7 +32,8 @@ if [[ $# -ne 4 ]]; then
 fi
 shard=$1 plugins=$2 out=$3 work=$4
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-scene=$here/foreign_beam.toml
+scene=${FOREIGN_SCENE:-$here/foreign_beam.toml}
+label=${FOREIGN_LABEL:-foreign}
 if [[ ! -f $plugins/shard_foreign_spring_bond.so ]]; then
   echo "$0: $plugins/shard_foreign_spring_bond.so not found. Fix: build the target foreign_spring_bond" \
        "and pass <build>/tests/measure/foreign/plugins" >&2
@@ -37,21 +41,21 @@ if [[ ! -f $plugins/shard_foreign_spring_bond.so ]]; then
 fi
 mkdir -p "$out" "$work"
 
-sensor=(--scatter 0.02 --force-noise 0.01 --force-offset 0.005 --displacement-step 1e-6 --seeds 4
-        --ramp 1-cos --ramp-time 0.025 --seating-preload 0.1 --zero-offset 0.02)
+read -r -a sensor <<<"${FOREIGN_SENSOR:---scatter 0.02 --force-noise 0.01 --force-offset 0.005 --displacement-step 1e-6 --seeds 4 --ramp 1-cos --ramp-time 0.025 --seating-preload 0.1 --zero-offset 0.02}"
+read -r -a toe <<<"${FOREIGN_TOE:---seating-gap 5e-4 --seating-half-force 0.5}"
 
 synth() {  # name first_seed noise_seed [extra synth options...]
   local name=$1 first=$2 noise=$3
   shift 3
   rm -rf "${out:?}/$name"
   "$shard" --plugin-dir "$plugins" synth --scene "$scene" --work "$work" --out "$out/$name" \
-    --name "foreign $name" --first-seed "$first" --noise-seed "$noise" "${sensor[@]}" "$@"
+    --name "$label $name" --first-seed "$first" --noise-seed "$noise" "${sensor[@]}" "$@"
 }
 
 synth reference 1001 1
 synth null 1101 2
-synth compliance 1201 3 --machine-compliance 2e-4
+synth compliance 1201 3 --machine-compliance "${FOREIGN_COMPLIANCE:-2e-4}"
 synth weibull 1301 4 --set bond.weibull_modulus=2
 synth softening 1401 5 --set bond.softening_ratio=1.5
 synth asymmetry 1501 6 --set bond.compression_ratio=3
-synth toe 1601 7 --seating-gap 5e-4 --seating-half-force 0.5
+synth toe 1601 7 "${toe[@]}"

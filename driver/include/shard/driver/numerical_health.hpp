@@ -24,6 +24,17 @@ class NumericalError : public std::runtime_error {
 
 class NumericalHealth {
  public:
+  // A particle moving this fraction of its radius, or turning this angle, in one step has left the
+  // regime where a contact can be resolved: an overlap can jump from zero to a radius in two steps.
+  static constexpr double kMaxStepOverRadius = 0.5;
+  static constexpr double kMaxTurnPerStep = 0.5;  // rad
+
+  // The energy scale a gain is judged against at the start: the larger of |energy0| and the
+  // round-off floor. A body at rest holds only round-off energy (1e-30 J), whose growth is no
+  // blow-up; the kinetic energy of every particle moving 1e-6 of its radius per step is negligible
+  // physics, and a real instability passes it within a few steps.
+  static double initial_scale(const Simulation& reference, double energy0);
+
   // `reference` is the state the run started from (the initial packing, or a restart's checkpoint).
   explicit NumericalHealth(const Simulation& reference);
 
