@@ -67,6 +67,39 @@ bool explicitly_sets_breakage(const std::string& scene_text) {
   return false;
 }
 
+RunStart read_run_start(const RunSpec& spec, const PluginHost& host, const RunLog& log,
+                        const std::function<Checkpoint(const std::filesystem::path&)>& read) {
+  RunStart start;
+  start.restarting = !spec.restart.empty();
+  if (start.restarting) {
+    if (!std::filesystem::is_regular_file(spec.restart))
+      throw OutputError(fmt::format("--restart {}: no such run file; give the run.h5 of the run to continue",
+                                    spec.restart.string()));
+    start.restart_point = read(checkpoint_path_for(spec.restart));
+    start.old_meta = RunFile(spec.restart).metadata();
+  }
+  if (!start.restarting && std::filesystem::is_directory(spec.scene))
+    throw SceneError(fmt::format("{}: is a folder, not a scene file; give the .toml file (scenes/ has examples)",
+                                 spec.scene.string()));
+  start.scene = start.restarting ? load_scene_text(start.old_meta.scene_text, start.old_meta.scene_file, host)
+                                 : load_scene(spec.scene, host, spec.overrides);
+  // Breakage without a bond model is not an error (the default is on, and a contact-only scene
+  // is legitimate), but asking for it explicitly means a [bond] section was forgotten.
+  if (start.scene.breakage && !start.scene.bond && explicitly_sets_breakage(start.scene.resolved_text) &&
+      log.warning)
+    log.warning("breakage = true but the scene has no [bond] section: nothing can break. Add [bond] "
+                "(plugin = \"beam_bond\") or remove breakage");
+  return start;
+}
+
+void prepare_run_output(const RunSpec& spec, const Scene& scene) {
+  prepare_output_folder(spec.out_dir, "--out");
+  const auto run_file = spec.out_dir / scene.output_file;
+  if (std::filesystem::is_directory(run_file))
+    throw OutputError(fmt::format("the run file '{}' is a folder; remove it or choose another folder with --out",
+                                  run_file.string()));
+}
+
 RunMetadata run_metadata(const Scene& scene, const SceneInstance& inst, const PluginHost& host,
                          const RunLog& log) {
   const Simulation& sim = *inst.simulation;
@@ -136,35 +169,12 @@ RunResult run(const RunSpec& spec, const PluginHost& host, const std::vector<Run
   auto info = [&](const std::string& line) {
     if (log.info) log.info(line);
   };
-  const bool restarting = !spec.restart.empty();
-  std::optional<Checkpoint> restart_point;
-  RunMetadata old_meta;
-  if (restarting) {
-    // Both are read before anything is built, so a missing checkpoint fails at once.
-    if (!std::filesystem::is_regular_file(spec.restart))
-      throw OutputError(fmt::format("--restart {}: no such run file; give the run.h5 of the run to continue",
-                                    spec.restart.string()));
-    restart_point = read_checkpoint(checkpoint_path_for(spec.restart));
-    old_meta = RunFile(spec.restart).metadata();
-  }
-  if (!restarting && std::filesystem::is_directory(spec.scene))
-    throw SceneError(fmt::format("{}: is a folder, not a scene file; give the .toml file (scenes/ has examples)",
-                                 spec.scene.string()));
-  const Scene scene = restarting ? load_scene_text(old_meta.scene_text, old_meta.scene_file, host)
-                                 : load_scene(spec.scene, host, spec.overrides);
-  // Breakage without a bond model is not an error (the default is on, and a contact-only scene
-  // is legitimate), but asking for it explicitly means a [bond] section was forgotten.
-  if (scene.breakage && !scene.bond && explicitly_sets_breakage(scene.resolved_text) && log.warning)
-    log.warning("breakage = true but the scene has no [bond] section: nothing can break. Add [bond] "
-                "(plugin = \"beam_bond\") or remove breakage");
-  // The output folder before the generator: an unusable --out must not cost the packing's time.
-  if (!restarting) {
-    prepare_output_folder(spec.out_dir, "--out");
-    const auto run_file = spec.out_dir / scene.output_file;
-    if (std::filesystem::is_directory(run_file))
-      throw OutputError(fmt::format("the run file '{}' is a folder; remove it or choose another folder with --out",
-                                    run_file.string()));
-  }
+  RunStart start = read_run_start(spec, host, log, read_checkpoint);
+  const bool restarting = start.restarting;
+  const std::optional<Checkpoint>& restart_point = start.restart_point;
+  const RunMetadata& old_meta = start.old_meta;
+  const Scene& scene = start.scene;
+  if (!restarting) prepare_run_output(spec, scene);
   SceneInstance inst = instantiate(scene, host, info);
   Simulation& sim = *inst.simulation;
   NumericalHealth health(sim);

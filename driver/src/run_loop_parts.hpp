@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +24,22 @@ namespace shard::driver::detail {
 void save_loop_state(Checkpoint& c, const RunResult& r, int frames_written, const std::vector<double>& health);
 void restore_loop_state(const Checkpoint& c, RunResult& r, int& frames_written);
 bool explicitly_sets_breakage(const std::string& scene_text);
+
+// What a run starts from: the scene file with its overrides, or on --restart the interrupted
+// run's own scene and its checkpoint, read by `read` (the decomposed run also checks the ids);
+// both files are read before anything is built, so a bad one fails at once. Warns when a scene
+// asks for breakage without a bond model.
+struct RunStart {
+  bool restarting = false;
+  std::optional<Checkpoint> restart_point;
+  RunMetadata old_meta;
+  Scene scene;
+};
+RunStart read_run_start(const RunSpec& spec, const PluginHost& host, const RunLog& log,
+                        const std::function<Checkpoint(const std::filesystem::path&)>& read);
+// The output folder of a new run, before the generator: an unusable --out must not cost the
+// packing's time.
+void prepare_run_output(const RunSpec& spec, const Scene& scene);
 RunMetadata run_metadata(const Scene& scene, const SceneInstance& inst, const PluginHost& host, const RunLog& log);
 double kinetic_to_elastic_up_to_peak(const RunResult& r);
 

@@ -259,24 +259,6 @@ int too_many(int rank, int ranks) {
   return failures == 0 ? 0 : 1;
 }
 
-// The scene's setup as the serial run got it, taken from the constructed serial Simulation (its
-// particles, ids, flags and bonds), so both runs start from the same state.
-SimulationSetup setup_of(const Scene& scene, const SceneInstance& inst) {
-  const Simulation& sim = *inst.simulation;
-  SimulationSetup s;
-  s.particles = sim.particles();
-  for (std::size_t b = 0; b < sim.bonds().size(); ++b) s.bonds.emplace_back(sim.bonds().i[b], sim.bonds().j[b]);
-  s.contact = inst.contact.get();
-  s.bond = inst.bond.get();
-  s.breakage = scene.breakage;
-  s.walls = scene.walls;
-  s.gravity = scene.gravity;
-  s.dt = sim.dt();
-  s.skin = scene.skin;
-  s.global_damping = scene.global_damping;
-  return s;
-}
-
 int scene_run(int rank, int ranks, const std::string& file, std::int64_t steps, const std::vector<std::string>& overrides) {
   PluginHost host;
   host.load_directories(PluginHost::default_search_path());

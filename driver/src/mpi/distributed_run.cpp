@@ -60,25 +60,6 @@ void on_root(F&& work) {
   throw OutputError(error);
 }
 
-// The scene's setup as the serial Simulation got it (scene_instance.cpp), taken from it: the
-// particles with their grips, the bonds, the models; dt the serial run's, so no rank probes again.
-SimulationSetup setup_of(const Scene& scene, const SceneInstance& inst) {
-  const Simulation& sim = *inst.simulation;
-  SimulationSetup s;
-  s.particles = sim.particles();
-  for (std::size_t k = 0; k < sim.bonds().size(); ++k) s.bonds.emplace_back(sim.bonds().i[k], sim.bonds().j[k]);
-  s.contact = inst.contact.get();
-  s.bond = inst.bond.get();
-  s.materials = scene.material_table ? scene.materials.size() : 1;
-  s.breakage = scene.breakage;
-  s.walls = scene.walls;
-  s.gravity = scene.gravity;
-  s.dt = sim.dt();
-  s.skin = scene.skin;
-  s.global_damping = scene.global_damping;
-  return s;
-}
-
 // bending::deformation_kinetic_energy over every rank's particles: the kinetic energy less that
 // of the rigid-body motion, from moments summed in rank order (about the origin, moved to the
 // centre of mass here) instead of a pass over all particles on one rank.
@@ -200,24 +181,16 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
   };
 
   // Every rank reads the restart's files (read-only), so a bad one is refused alike everywhere.
-  const bool restarting = !spec.restart.empty();
-  std::optional<Checkpoint> restart_point;
-  RunMetadata old_meta;
-  if (restarting) {
-    if (!std::filesystem::is_regular_file(spec.restart))
-      throw OutputError(fmt::format("--restart {}: no such run file; give the run.h5 of the run to continue",
-                                    spec.restart.string()));
-    const auto checkpoint = checkpoint_path_for(spec.restart);
+  RunStart start = read_run_start(spec, host, log, [](const std::filesystem::path& checkpoint) {
     require_id_dataset(checkpoint);
-    restart_point = read_checkpoint(checkpoint);
-    require_ids(*restart_point, checkpoint);
-    old_meta = RunFile(spec.restart).metadata();
-  }
-  if (!restarting && std::filesystem::is_directory(spec.scene))
-    throw SceneError(fmt::format("{}: is a folder, not a scene file; give the .toml file (scenes/ has examples)",
-                                 spec.scene.string()));
-  const Scene scene = restarting ? load_scene_text(old_meta.scene_text, old_meta.scene_file, host)
-                                 : load_scene(spec.scene, host, spec.overrides);
+    Checkpoint c = read_checkpoint(checkpoint);
+    require_ids(c, checkpoint);
+    return c;
+  });
+  const bool restarting = start.restarting;
+  const std::optional<Checkpoint>& restart_point = start.restart_point;
+  const RunMetadata& old_meta = start.old_meta;
+  const Scene& scene = start.scene;
   // RestStop reads the particles it holds: on one rank of several it would stop that rank alone and
   // leave the others waiting in the next exchange. Until its maximum speed is reduced over the ranks
   // (max_over_ranks), the rule is refused here, alike on every rank.
@@ -225,17 +198,7 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
     throw SceneError(fmt::format("{}: [stop] rest_speed is not available in a run decomposed over MPI ranks yet; "
                                  "run the scene without mpirun, or replace the rule by [simulation] duration",
                                  restarting ? old_meta.scene_file : spec.scene.string()));
-  if (scene.breakage && !scene.bond && explicitly_sets_breakage(scene.resolved_text) && log.warning)
-    log.warning("breakage = true but the scene has no [bond] section: nothing can break. Add [bond] "
-                "(plugin = \"beam_bond\") or remove breakage");
-  if (!restarting)
-    on_root([&] {
-      prepare_output_folder(spec.out_dir, "--out");
-      const auto run_file = spec.out_dir / scene.output_file;
-      if (std::filesystem::is_directory(run_file))
-        throw OutputError(fmt::format("the run file '{}' is a folder; remove it or choose another folder with --out",
-                                      run_file.string()));
-    });
+  if (!restarting) on_root([&] { prepare_run_output(spec, scene); });
   // The whole scene on every rank (the generator's packing is not distributed yet): each keeps
   // its part when the DistributedSimulation places it.
   SceneInstance inst = instantiate(scene, host, info);

@@ -162,6 +162,11 @@ struct SceneInstance {
 SceneInstance instantiate(const Scene& scene, const PluginHost& host,
                           const std::function<void(const std::string&)>& log);
 
+// The setup the instance's Simulation was built from, taken back from it (particles with their
+// ids and grips, bonds, the models, the scene's walls and settings, dt as the Simulation chose
+// it): what another simulation of the same scene starts from, e.g. one decomposed over MPI ranks.
+SimulationSetup setup_of(const Scene& scene, const SceneInstance& inst);
+
 // "name=value; name=value" for the output's plugin records.
 std::string describe(const ParamSet& params);
 

@@ -41,6 +41,18 @@ GeneratedBody generate(const BodySpec& spec, const Scene& scene, const PluginHos
   return body;
 }
 
+// What a Simulation takes from the scene and its models, beside particles, bonds and dt.
+void set_scene_fields(SimulationSetup& setup, const Scene& scene, const SceneInstance& inst) {
+  setup.contact = inst.contact.get();
+  setup.bond = inst.bond.get();
+  setup.materials = scene.material_table ? scene.materials.size() : 1;
+  setup.breakage = scene.breakage;
+  setup.walls = scene.walls;
+  setup.gravity = scene.gravity;
+  setup.skin = scene.skin;
+  setup.global_damping = scene.global_damping;
+}
+
 }  // namespace
 
 SceneInstance instantiate(const Scene& scene, const PluginHost& host,
@@ -121,21 +133,24 @@ SceneInstance instantiate(const Scene& scene, const PluginHost& host,
                              grip.velocity.y(), grip.velocity.z()));
   }
   setup.bonds = out.body.bonds;
-  setup.contact = out.contact.get();
-  setup.bond = out.bond.get();
-  setup.materials = scene.material_table ? scene.materials.size() : 1;
-  setup.breakage = scene.breakage;
-  setup.walls = scene.walls;
-  setup.gravity = scene.gravity;
+  set_scene_fields(setup, scene, out);
   setup.dt = scene.dt;
-  setup.skin = scene.skin;
-  setup.global_damping = scene.global_damping;
   try {
     out.simulation = std::make_unique<Simulation>(std::move(setup));
   } catch (const std::invalid_argument& e) {
     throw SceneError(fmt::format("{}: {}", scene.file.string(), e.what()));
   }
   return out;
+}
+
+SimulationSetup setup_of(const Scene& scene, const SceneInstance& inst) {
+  const Simulation& sim = *inst.simulation;
+  SimulationSetup s;
+  s.particles = sim.particles();
+  for (std::size_t k = 0; k < sim.bonds().size(); ++k) s.bonds.emplace_back(sim.bonds().i[k], sim.bonds().j[k]);
+  set_scene_fields(s, scene, inst);
+  s.dt = sim.dt();
+  return s;
 }
 
 }  // namespace shard
