@@ -92,6 +92,14 @@ RunStart read_run_start(const RunSpec& spec, const PluginHost& host, const RunLo
   return start;
 }
 
+std::string last_good_state(const RunResult& r) {
+  return r.checkpoint_step < 0
+             ? std::string("No checkpoint was written before it.")
+             : fmt::format("The last good state is the checkpoint {} (step {}); after fixing the cause, start "
+                           "again from the scene (a restart continues with the same settings)",
+                           r.checkpoint.string(), r.checkpoint_step);
+}
+
 void prepare_run_output(const RunSpec& spec, const Scene& scene) {
   prepare_output_folder(spec.out_dir, "--out");
   const auto run_file = spec.out_dir / scene.output_file;
@@ -253,13 +261,7 @@ RunResult run(const RunSpec& spec, const PluginHost& host, const std::vector<Run
     impacts.restore(restart_point->array("body_impacts"));
     result.restarted_from = sim.step_count();
   }
-  auto last_good = [&] {
-    return result.checkpoint_step < 0
-               ? std::string("No checkpoint was written before it.")
-               : fmt::format("The last good state is the checkpoint {} (step {}); after fixing the cause, start "
-                             "again from the scene (a restart continues with the same settings)",
-                             result.checkpoint.string(), result.checkpoint_step);
-  };
+  auto last_good = [&] { return last_good_state(result); };
   auto write_frame = [&] {
     state.frame_labels = nullptr;
     for (auto* o : observers) o->before_frame(state);

@@ -42,6 +42,8 @@ RunStart read_run_start(const RunSpec& spec, const PluginHost& host, const RunLo
 void prepare_run_output(const RunSpec& spec, const Scene& scene);
 RunMetadata run_metadata(const Scene& scene, const SceneInstance& inst, const PluginHost& host, const RunLog& log);
 double kinetic_to_elastic_up_to_peak(const RunResult& r);
+// Where a numerical error's message sends the user: the last checkpoint, if any.
+std::string last_good_state(const RunResult& r);
 
 // A point of the load-displacement curve and the running peak; while no bond has broken, the
 // deformation kinetic energy (`kinetic()`, less the rigid-body motion) beside the elastic one for

@@ -295,13 +295,7 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
     health.restore(restart_point->array("health"), rank);
     result.restarted_from = dist.step_count();
   }
-  auto last_good = [&] {
-    return result.checkpoint_step < 0
-               ? std::string("No checkpoint was written before it.")
-               : fmt::format("The last good state is the checkpoint {} (step {}); after fixing the cause, start "
-                             "again from the scene (a restart continues with the same settings)",
-                             result.checkpoint.string(), result.checkpoint_step);
-  };
+  auto last_good = [&] { return last_good_state(result); };
   auto write_frame = [&] {
     const SimulationState frame = dist.gather_state(0, false);
     whole.frame_particles = rank == 0 ? &frame.particles : &no_particles;
