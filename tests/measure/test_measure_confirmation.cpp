@@ -139,12 +139,33 @@ TEST_CASE("a refit that explains most of the excess but leaves structure is kept
   CHECK_FALSE(d.effects[1].qualifies);
 }
 
-TEST_CASE("ConfirmationRule::earlier_refits widens the Bonferroni share to a whole path (not used by diagnose: per step)") {
+TEST_CASE("ConfirmationRule::earlier_refits widens the Bonferroni share to a whole path (diagnose: every refit tried so far)") {
   // 19.4 -> 12.3 drops 7.1, p_drop = 0.0077: below 0.05 / 2, not below 0.05 / (2 + 5) = 0.0071.
   CHECK(decide_from_refits(19.4, {{"asymmetry", 12.3}, {"other", 25.0}}, 11, 2).verdict == "asymmetry");
   ConfirmationRule later;
   later.earlier_refits = 5;
   CHECK(decide_from_refits(19.4, {{"asymmetry", 12.3}, {"other", 25.0}}, 11, 2, later).verdict == kUnexplained);
+}
+
+TEST_CASE("a later step's converged refits: a real second effect passes the path's level, a fit to noise does not") {
+  // Step 2 of two stepwise diagnoses (10 components, 3 nuisance parameters: E_b, sigma_crit and
+  // the kept effect), each after a first step that tried 2 nameable refits; converged refits
+  // (docs/measurements.md "Several effects at once").
+  ConfirmationRule path;
+  path.earlier_refits = 2;
+  // Hidden compliance + softening: softening 14.877 -> 2.040 (p_drop 3.4e-4 < 0.05 / 4), Weibull
+  // 3.240, within 2 of it: a rival the data cannot tell apart.
+  const auto two = decide_from_refits(14.877, {{"weibull_strength", 3.240}, {"bond_softening", 2.040}}, 10, 3, path);
+  CHECK(two.verdict == "bond_softening");
+  CHECK(two.rivals == std::vector<std::string>{"weibull_strength"});
+  // A seating toe after support friction was kept: the base refit is noise already (7.149 on 7
+  // degrees of freedom, p 0.41); converged compliance drops it to 2.112, p_drop 0.0248: below the
+  // step's own level 0.05 / 2, above the path's 0.05 / 4. Nothing to name: the remainder is noise.
+  const auto toe = decide_from_refits(7.149, {{"self_weight", 6.752}, {"machine_compliance", 2.112}}, 10, 3, path);
+  CHECK(toe.effects[1].p_drop == doctest::Approx(0.0248).epsilon(0.01));
+  CHECK(toe.verdict == kAdequate);
+  CHECK(decide_from_refits(7.149, {{"self_weight", 6.752}, {"machine_compliance", 2.112}}, 10, 3).verdict ==
+        "machine_compliance");
 }
 
 TEST_CASE("a calibration's gain is credited to the base parameters unless the effect earns its own") {

@@ -63,6 +63,47 @@ TEST_CASE("a secant iteration takes a refit on where an effect's bent response s
   CHECK_FALSE(shard::secant_refit(r0, {j}, &sig, {d1, a1}, other).has_value());
 }
 
+TEST_CASE("iterated to convergence, a refit no longer depends on the trial size its signature was taken at") {
+  // A kept effect whose response is not linear in its size (a compliance C moves the curve's
+  // regimes and features as (C / C0)^0.7 here), its exact fit at C = 2.4e-4 with a base step
+  // d = 0.1. Signatures taken at two trial sizes, 1e-4 and 1.14e-4 (the library's fixed size and
+  // the scene rule's on the tiny beam), give linear refits that land at different sizes; secant
+  // iterations (what diagnose runs on a kept effect and on every refit of a later step, at most
+  // --refit-iterations of them) carry both to the same size.
+  using namespace shard::measure;
+  const std::vector<double> j{1, 1, 0, 0}, t{0, 1, 2, 1};
+  const double truth = 2.4e-4, c0 = 1e-4;
+  auto response = [&](double c) { return std::pow(c / c0, 0.7); };
+  auto model = [&](double d, double c) {
+    ResidualVector r;
+    r.names = {"regime:elastic", "regime:peak", "feature:post_peak_work", "feature:nonlinearity"};
+    for (std::size_t i = 0; i < 4; ++i) r.values.push_back(-(0.1 * j[i] + response(truth) * t[i]) + j[i] * d + t[i] * response(c));
+    return r;
+  };
+  const ResidualVector r0 = model(0, 0);
+  auto refit_at = [&](double trial, int iterations) {
+    EffectSignature sig{"compliance", trial, {}};
+    for (double x : t) sig.signature.push_back(x * response(trial));
+    LinearRefit lr = linear_refit(r0.values, {j}, {sig});
+    for (int k = 0; k < iterations; ++k) {
+      const double d = lr.base_step.front(), a = lr.effect_scale.front();
+      const auto next = shard::secant_refit(r0, {j}, &sig, {d, a}, model(d, a * trial));
+      REQUIRE(next.has_value());
+      lr = *next;
+    }
+    return lr.effect_scale.front() * trial;
+  };
+  const double linear_1 = refit_at(1e-4, 0), linear_2 = refit_at(1.14e-4, 0);
+  // One step solves a f(T) = f(truth): C = truth^0.7 T^0.3, 23 % and 20 % short, 4 % apart.
+  CHECK(linear_1 == doctest::Approx(std::pow(truth, 0.7) * std::pow(1e-4, 0.3)));
+  CHECK(linear_2 / linear_1 == doctest::Approx(std::pow(1.14, 0.3)));
+  const double iterated_1 = refit_at(1e-4, 4), iterated_2 = refit_at(1.14e-4, 4);
+  // Each secant step through the origin shrinks the log error by the response's 0.3 (= 1 - 0.7).
+  CHECK(iterated_1 == doctest::Approx(truth).epsilon(0.01));
+  CHECK(iterated_2 == doctest::Approx(truth).epsilon(0.01));
+  CHECK(std::abs(iterated_1 - iterated_2) < 0.1 * std::abs(linear_1 - linear_2));
+}
+
 TEST_CASE("machine compliance and bond softening hidden at once: both named, one after the other") {
   const fs::path meas = kWork / "meas", out = kWork / "diag";
   run_shard("synth --scene " + kScene + " --work " + kWork.string() + " --out " + meas.string() +
