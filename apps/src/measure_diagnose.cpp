@@ -62,7 +62,7 @@ struct StepRecord {
   Diagnosis diagnosis;
   std::vector<Confirmation> confirmations;
   ConfirmationDecision decision;
-  // The kept effect's refit carried by secant iterations to its minimum (the next step's model).
+  // The kept effect's refit carried by secant iterations towards its minimum (the next step's model).
   std::optional<Confirmation> kept_converged;
 };
 
@@ -341,7 +341,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
         record(confirmation_of(d.kept), false);  // a partial explanation, the last word
         break;
       }
-      // The kept effect becomes the next step's model: carried to its own minimum first.
+      // The kept effect becomes the next step's model: carried towards its own minimum first.
       std::vector<Confirmation> kept{base_refit, confirmation_of(d.kept)};
       iterate_refits(kept, o->refit_iterations);
       s.kept_converged = kept.back();
@@ -516,12 +516,17 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
               if (c.name == kc.name) return c;
             return kc;
           }();
-          md += fmt::format("\nKept: {}, carried to its minimum before the next step by {} secant step{} (at most "
-                            "--refit-iterations): {:.4g} -> {:.4g} {}, chi^2 {:.2f} -> {:.2f}, NRMSE {:.1f} -> {:.1f} %; "
-                            "{}.\n",
-                            kc.name, kc.secant_steps, kc.secant_steps == 1 ? "" : "s", linear.effect_value,
-                            kc.effect_value, kc.effect ? kc.effect->unit : "", linear.chi_square, kc.chi_square,
-                            100 * linear.nrmse, 100 * kc.nrmse, values_text(keys, kc.plan.model));
+          if (kc.secant_steps == 0)
+            md += fmt::format("\nKept: {}; no secant step lowered its refit's chi^2, so that refit is the next step's "
+                              "model.\n",
+                              kc.name);
+          else
+            md += fmt::format("\nKept: {}, carried towards its minimum before the next step by {} secant step{} (until "
+                              "a step gains less than {:g} in chi^2, at most --refit-iterations): {:.4g} -> {:.4g} {}, "
+                              "chi^2 {:.2f} -> {:.2f}, NRMSE {:.1f} -> {:.1f} %; {}.\n",
+                              kc.name, kc.secant_steps, kc.secant_steps == 1 ? "" : "s", kConvergedChiSquare,
+                              linear.effect_value, kc.effect_value, kc.effect ? kc.effect->unit : "", linear.chi_square,
+                              kc.chi_square, 100 * linear.nrmse, 100 * kc.nrmse, values_text(keys, kc.plan.model));
         }
         for (const auto& e : s.decision.effects)
           if (e.nrmse_rose && e.share_explained >= 0.5)

@@ -18,9 +18,10 @@
 //   compliance w_peak / F_max (the specimen's own); bond_viscosity: a fraction of its time to
 //   peak at the fastest rate (a relaxation time that shows within the test).
 //
-// The contrast commands (diagnose-sets, calibrate-contrast) use these; the single-set commands
-// resolve the same rules from the measured curves (test_scales), which the base run matches in
-// these four scales once the base is fitted.
+// Every command resolves them on the model's base run: the contrast commands (diagnose-sets,
+// calibrate-contrast) on the base fitted to the reference, diagnose and calibrate-effect on the
+// base at the scene's values (plausible_on_base_run, apps/src/diagnosis_step.hpp). The shipped
+// library uses both rules (scenes/measurements/effects.toml).
 #include <string>
 #include <vector>
 
