@@ -164,7 +164,7 @@ int run_decomposed(const driver::RunSpec& spec, Observers& o) {
 int main(int argc, char** argv) {
   H5dont_atexit();
   if (argc < 3) {
-    std::fprintf(stderr, "usage: test_mpi_run serial|decomposed|interrupt|restart|no_ids|rest_refused ARGS\n");
+    std::fprintf(stderr, "usage: test_mpi_run serial|decomposed|interrupt|restart|no_ids ARGS\n");
     return 2;
   }
   const std::string mode = argv[1];
@@ -254,24 +254,6 @@ int main(int argc, char** argv) {
       int mine = named ? 1 : 0, all = 0;
       MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
       check(all, who + ": every rank refuses the checkpoint without ids, naming the file and the fix");
-    } else if (mode == "rest_refused") {
-      // The run-to-rest rule reads each rank's own particles; until it is reduced over the ranks a
-      // decomposed run refuses it before anything is built, alike on every rank.
-      Observers o;
-      driver::RunSpec spec = spec_for(out);
-      for (auto& extra : parse_overrides({"stop.rest_speed=0.01", "stop.rest_time=0.001"})) spec.overrides.push_back(extra);
-      std::string message;
-      try {
-        run_decomposed(spec, o);
-      } catch (const SceneError& e) {
-        message = e.what();
-      }
-      const bool named = message.find("[stop] rest_speed is not available in a run decomposed over MPI ranks") !=
-                             std::string::npos &&
-                         message.find("four_point_bending_ci.toml") != std::string::npos;
-      int mine = named ? 1 : 0, all = 0;
-      MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
-      check(all, who + ": every rank refuses [stop] rest_speed, naming the scene and the way round it");
     } else {
       std::fprintf(stderr, "unknown mode %s\n", mode.c_str());
       return 2;

@@ -17,6 +17,7 @@
 #include "../run_loop_parts.hpp"
 #include "../run_restart.hpp"
 #include "distributed_health.hpp"
+#include "distributed_impacts.hpp"
 #include "shard/body_impacts.hpp"
 #include "shard/checkpoint.hpp"
 #include "shard/driver/load_sensor.hpp"
@@ -191,13 +192,6 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
   const std::optional<Checkpoint>& restart_point = start.restart_point;
   const RunMetadata& old_meta = start.old_meta;
   const Scene& scene = start.scene;
-  // RestStop reads the particles it holds: on one rank of several it would stop that rank alone and
-  // leave the others waiting in the next exchange. Until its maximum speed is reduced over the ranks
-  // (max_over_ranks), the rule is refused here, alike on every rank.
-  if (scene.stop.rest_speed > 0)
-    throw SceneError(fmt::format("{}: [stop] rest_speed is not available in a run decomposed over MPI ranks yet; "
-                                 "run the scene without mpirun, or replace the rule by [simulation] duration",
-                                 restarting ? old_meta.scene_file : spec.scene.string()));
   if (!restarting) on_root([&] { prepare_run_output(spec, scene); });
   // The whole scene on every rank (the generator's packing is not distributed yet): each keeps
   // its part when the DistributedSimulation places it.
@@ -217,8 +211,7 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
   mpi::DistributedSimulation& dist = *dist_slot;
   Simulation& sim = dist.local();  // this rank's share: the run's step, time, dt and walls
   DistributedHealth health(*inst.simulation, scene.gravity);
-  // Body impacts are not recorded by a decomposed run yet: its checkpoints carry "never hit".
-  const BodyImpactRecorder no_impacts(inst.simulation->particles());
+  DistributedImpacts impacts(inst.simulation->particles());  // first wall contact per body (docs/bodies.md)
 
   RunResult result;
   result.particles = restart_point ? restart_point->simulation.particles.size() : inst.simulation->particles().size();
@@ -275,13 +268,14 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
   whole.frame_bonds = &no_bonds;
   whole.bonds_broken = dist.bonds_broken();
   whole.bonds_intact = dist.bond_count();
+  whole.all_slower_than = [&dist](double speed) { return dist.all_slower_than(speed); };
   RunState state(scene, sim, result, sensor, [&] {
     Checkpoint c;
     c.simulation = dist.gather_state(0, true);
     c.simulation.events_taken = events_written;
     save_loop_state(c, result, state.frames_written, health.state(dist));
     on_root([&] {
-      c.arrays.emplace_back("body_impacts", no_impacts.state());
+      c.arrays.emplace_back("body_impacts", impacts.state());
       write_checkpoint(checkpoint_file, c);
     });
     result.checkpoint = checkpoint_file;
@@ -293,6 +287,7 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
   if (restart_point) {
     restore_loop_state(*restart_point, result, state.frames_written);
     health.restore(restart_point->array("health"), rank);
+    impacts.restore(restart_point->array("body_impacts"));
     result.restarted_from = dist.step_count();
   }
   auto last_good = [&] { return last_good_state(result); };
@@ -349,6 +344,7 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
                  [&] {
                    dist.step();
                    health.after_step(dist);
+                   impacts.update(dist);
                    whole.bonds_broken = dist.bonds_broken();
                  },
                  [&] { health.check(dist, last_good()); },
@@ -365,7 +361,10 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
                  }};
   run_observed_steps(state, observers, scene.duration, dist.dt(), restarting,
                      {series_every, frame_every, spec.health_every}, loop);
-  on_root([&] { writer->flush(); });
+  on_root([&] {
+    writer->write_body_impacts(impacts.impacts());
+    writer->flush();
+  });
 
   result.steps = dist.step_count();
   result.time = dist.time();

@@ -44,6 +44,9 @@ class RunState {
     // writes it; empty on the others and outside before_frame.
     const Particles* frame_particles = nullptr;
     const Bonds* frame_bonds = nullptr;
+    // Whether every particle of the run is slower than the speed given (m/s), decided over all
+    // ranks: collective, so every rank asks at the same hook (RestStop's on_start and on_step).
+    std::function<bool(double)> all_slower_than;
   };
   const Whole* whole = nullptr;
   std::int64_t bonds_broken() const { return whole ? whole->bonds_broken : sim.bonds_broken(); }
