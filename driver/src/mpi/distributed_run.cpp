@@ -292,7 +292,7 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
   }
   auto last_good = [&] { return last_good_state(result); };
   auto write_frame = [&] {
-    const SimulationState frame = dist.gather_state(0, false);
+    const mpi::GatheredFrame frame = dist.gather_frame(0);
     whole.frame_particles = rank == 0 ? &frame.particles : &no_particles;
     whole.frame_bonds = rank == 0 ? &frame.bonds : &no_bonds;
     state.frame_labels = nullptr;

@@ -28,6 +28,15 @@ struct GatheredParticles {
   std::vector<Quat> orientation;
 };
 
+// A frame of the run file (docs/output-format.md) on one rank: the particles in ascending stable id
+// with the fields a frame stores filled (position, velocity, omega, radius, mass, material, body,
+// id; the others empty), and the surviving bonds as index pairs into them, in ascending
+// (smaller id, larger id), without model state.
+struct GatheredFrame {
+  Particles particles;
+  Bonds bonds;
+};
+
 class DistributedSimulation {
  public:
   // `setup` is the whole scene, the same on every rank (each keeps its part). Throws
@@ -105,6 +114,10 @@ class DistributedSimulation {
   // `contacts` the touching pairs' history (no list build positions: the importer rebuilds).
   // What a frame and a checkpoint hold; a checkpoint of it restarts on any rank count.
   SimulationState gather_state(int root = 0, bool contacts = true) const;
+  // A frame's content on `root` (empty elsewhere), by MPI_Gatherv: per particle 11 doubles and 3
+  // integers, per bond two ids, against gather_state's 22 doubles, 5 integers and 2 + stride
+  // doubles (kernel/src/mpi/frame_gather.cpp).
+  GatheredFrame gather_frame(int root = 0) const;
   // Element-wise sums over the ranks, added in rank order (the same on every rank).
   std::vector<double> sum_over_ranks(const std::vector<double>& mine) const;
   // Every rank's `mine` (of any length), concatenated in rank order, on every rank.
