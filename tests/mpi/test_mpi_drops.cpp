@@ -121,6 +121,9 @@ void compare(const driver::RunResult& r, const fs::path& file, const fs::path& r
   int at_rest = r.stop == driver::StopReason::Rest ? 1 : 0, all_at_rest = 0;
   MPI_Allreduce(&at_rest, &all_at_rest, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
   check(all_at_rest == 1, who + ": every rank stops the run at rest (" + r.stop_reason + ")");
+  long long steps[2] = {static_cast<long long>(r.steps), -static_cast<long long>(r.steps)}, extremes[2] = {0, 0};
+  MPI_Allreduce(steps, extremes, 2, MPI_LONG_LONG, MPI_MAX, MPI_COMM_WORLD);
+  check(extremes[0] == -extremes[1], who + ": every rank stops at the same step");
   if (rank_ != 0) return;
   const RunFile a(file), b(reference);
   const auto sa = a.read_integer_series("step"), sb = b.read_integer_series("step");
