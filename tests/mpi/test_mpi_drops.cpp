@@ -131,6 +131,16 @@ void compare(const driver::RunResult& r, const fs::path& file, const fs::path& r
               static_cast<long long>(sb.back()));
   check(r.steps == sb.back(), who + ": the run stops at the serial run's step");
   check(sa == sb, who + ": the same series rows (steps)");
+  // The walls' own impact counters (contacts begun, the wear indicator), counted by each rank for
+  // its own spheres and summed in each series row.
+  bool same_counts = true;
+  for (const char* wall : {"side", "floor"}) {
+    const auto ca = a.read_wall_impacts(wall), cb = b.read_wall_impacts(wall);
+    same_counts = same_counts && ca == cb;
+    std::printf("%s: wall %s: %lld impacts (reference %lld)\n", who.c_str(), wall,
+                static_cast<long long>(ca.empty() ? -1 : ca.back()), static_cast<long long>(cb.empty() ? -1 : cb.back()));
+  }
+  check(same_counts, who + ": every series row counts the walls' impacts as the serial run does");
   const auto ia = a.read_body_impacts(), ib = b.read_body_impacts();
   print_impacts(ia, who);
   check(ia.size() == ib.size() && !ib.empty(), who + ": a /body_impacts record for every body");
