@@ -9,6 +9,7 @@
 #include <omp.h>
 
 #include <chrono>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -59,6 +60,45 @@ void on_root(F&& work) {
   error.resize(static_cast<std::size_t>(size));
   MPI_Bcast(error.data(), size, MPI_CHAR, 0, MPI_COMM_WORLD);
   throw OutputError(error);
+}
+
+// Runs `work` on every rank (a call of the run file's writer, which every rank makes alike), then
+// every rank learns whether one failed: a failure is thrown on every rank as an OutputError with
+// the lowest failing rank's message. An error inside one of HDF5's collective calls can still
+// leave the other ranks waiting in it (docs/scaling-out.md).
+template <class F>
+void on_all(F&& work) {
+  std::string error;
+  try {
+    work();
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  const int mine = error.empty() ? INT_MAX : world_rank();
+  int first = INT_MAX;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  if (first == INT_MAX) return;
+  int size = static_cast<int>(error.size());
+  MPI_Bcast(&size, 1, MPI_INT, first, MPI_COMM_WORLD);
+  error.resize(static_cast<std::size_t>(size));
+  MPI_Bcast(error.data(), size, MPI_CHAR, first, MPI_COMM_WORLD);
+  throw OutputError(error);
+}
+
+// The run file shared by the ranks: the MPI-IO driver, run.xmf kept by rank 0.
+RunWriterAccess shared_run_file(int rank) {
+  RunWriterAccess access;
+  access.configure = [](std::int64_t list) {
+    if (H5Pset_fapl_mpio(list, MPI_COMM_WORLD, MPI_INFO_NULL) < 0)
+      throw OutputError("cannot select HDF5's MPI-IO driver for the run file: is this build's HDF5 the parallel one?");
+  };
+  access.writes_index = rank == 0;
+  return access;
+}
+
+void collective_transfer(std::int64_t list) {
+  if (H5Pset_dxpl_mpio(list, H5FD_MPIO_COLLECTIVE) < 0)
+    throw OutputError("cannot ask HDF5 for collective MPI-IO transfers");
 }
 
 // bending::deformation_kinetic_energy over every rank's particles: the kinetic energy less that
@@ -229,35 +269,43 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
   const auto frame_every = std::max<std::int64_t>(1, std::llround(scene.frame_interval / dist.dt()));
   result.output = restarting ? spec.restart : spec.out_dir / scene.output_file;
   const std::filesystem::path checkpoint_file = checkpoint_path_for(result.output);
-  std::optional<RunWriter> writer;  // rank 0's
+  // Every rank holds the run file open through MPI-IO and makes every call of the writer alike
+  // (the series rows and break events are the same on every rank); a frame's rows are each
+  // rank's own (write_frame below).
+  std::optional<RunWriter> writer;
   if (restarting) {
     meta = old_meta;
     meta.notes.emplace_back("mpi_ranks_after_restart", fmt::format("{} from step {}", ranks, dist.step_count()));
   }
-  on_root([&] {
-    if (!restarting) {
-      writer.emplace(result.output, meta, wall_names);
-      return;
-    }
+  if (!restarting) {
+    on_all([&] { writer.emplace(result.output, meta, wall_names, shared_run_file(rank)); });
+  } else {
     std::filesystem::path moved_aside = spec.restart;
     moved_aside.replace_extension(".interrupted.h5");
-    std::filesystem::rename(spec.restart, moved_aside);
+    on_root([&] { std::filesystem::rename(spec.restart, moved_aside); });
     try {
-      writer.emplace(result.output, meta, wall_names);
-      const auto copied = copy_run_prefix(moved_aside, *writer, *restart_point, {series_every, frame_every}, wall_names);
-      writer->flush();
-      info(fmt::format("restart: continuing {} from step {} (t = {:.6g} s) on {} ranks; {} frames and the series up "
-                       "to it kept",
-                       result.output.string(), dist.step_count(), dist.time(), ranks, copied));
+      // Every rank reads the interrupted file and writes its prefix alike.
+      on_all([&] {
+        writer.emplace(result.output, meta, wall_names, shared_run_file(rank));
+        const auto copied =
+            copy_run_prefix(moved_aside, *writer, *restart_point, {series_every, frame_every}, wall_names);
+        writer->flush();
+        info(fmt::format("restart: continuing {} from step {} (t = {:.6g} s) on {} ranks; {} frames and the series "
+                         "up to it kept",
+                         result.output.string(), dist.step_count(), dist.time(), ranks, copied));
+      });
     } catch (...) {
       // Put the interrupted run back as it was: a failed restart must not cost the user the run.
       writer.reset();
-      std::error_code ignored;
-      std::filesystem::rename(moved_aside, spec.restart, ignored);
+      MPI_Barrier(MPI_COMM_WORLD);
+      if (rank == 0) {
+        std::error_code ignored;
+        std::filesystem::rename(moved_aside, spec.restart, ignored);
+      }
       throw;
     }
-    std::filesystem::remove(moved_aside);
-  });
+    on_root([&] { std::filesystem::remove(moved_aside); });
+  }
 
   std::size_t events_written = restart_point ? restart_point->simulation.events_taken : 0;
   const LoadSensor sensor(scene, sim);
@@ -291,15 +339,43 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
     result.restarted_from = dist.step_count();
   }
   auto last_good = [&] { return last_good_state(result); };
+  // A frame the fragment labeller labels (its cadence: [analysis] fragments_every) is gathered to
+  // rank 0, which labels the whole bond graph and writes every row; any other frame is written by
+  // every rank at once, each its own particles and bonds (nothing gathered: docs/scaling-out.md).
+  const std::vector<Index> no_labels;
   auto write_frame = [&] {
-    const mpi::GatheredFrame frame = dist.gather_frame(0);
+    const int every = scene.fragments_every;
+    const bool gathered = every > 0 && state.frames_written % every == 0;
+    mpi::GatheredFrame frame;
+    mpi::FrameShare share;
+    if (gathered) frame = dist.gather_frame(0);
     whole.frame_particles = rank == 0 ? &frame.particles : &no_particles;
     whole.frame_bonds = rank == 0 ? &frame.bonds : &no_bonds;
     state.frame_labels = nullptr;
     for (auto* o : observers) o->before_frame(state);
-    on_root([&] {
-      writer->write_frame(dist.step_count(), dist.time(), frame.particles, frame.bonds, state.frame_labels);
-    });
+    FramePart part;
+    part.labelled = dist.any_rank(state.frame_labels != nullptr);
+    part.fragment_labels = state.frame_labels ? state.frame_labels : &no_labels;
+    part.configure_transfer = collective_transfer;
+    std::vector<Index> rows;
+    if (gathered) {
+      unsigned long long totals[2] = {frame.particles.id.size(), frame.bonds.size()};
+      MPI_Bcast(totals, 2, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+      for (std::size_t k = 0; k < frame.bonds.size(); ++k) rows.insert(rows.end(), {frame.bonds.i[k], frame.bonds.j[k]});
+      part.particles = &frame.particles;
+      part.total_rows = totals[0];
+      part.bond_rows = &rows;
+      part.total_bonds = totals[1];
+    } else {
+      share = dist.frame_share();
+      part.particles = &share.particles;
+      part.first_row = share.first_row;
+      part.total_rows = share.total_rows;
+      part.bond_rows = &share.bond_rows;
+      part.first_bond = share.first_bond;
+      part.total_bonds = share.total_bonds;
+    }
+    on_all([&] { writer->write_frame_part(dist.step_count(), dist.time(), part); });
     whole.frame_particles = &no_particles;  // the gathered frame goes out of scope here
     whole.frame_bonds = &no_bonds;
     ++state.frames_written;
@@ -328,7 +404,7 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
       row.add_wall(summed);
     }
     const auto& events = dist.break_events();
-    on_root([&] {
+    on_all([&] {
       writer->append_series(row);
       writer->append_break_events(std::vector<BondBreakEvent>(events.begin() + static_cast<std::ptrdiff_t>(events_written),
                                                               events.end()));
@@ -361,7 +437,7 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
                  }};
   run_observed_steps(state, observers, scene.duration, dist.dt(), restarting,
                      {series_every, frame_every, spec.health_every}, loop);
-  on_root([&] {
+  on_all([&] {
     writer->write_body_impacts(impacts.impacts());
     writer->flush();
   });

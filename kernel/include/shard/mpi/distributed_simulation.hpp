@@ -37,6 +37,16 @@ struct GatheredFrame {
   Bonds bonds;
 };
 
+// This rank's rows of a frame written by every rank at once (RunWriter::write_frame_part): its own
+// particles in ascending id (the fields a frame stores) at the exclusive prefix sum of the ranks'
+// counts, and its own bonds as row pairs into the whole frame at theirs.
+struct FrameShare {
+  Particles particles;
+  std::size_t first_row = 0, total_rows = 0;
+  std::vector<Index> bond_rows;  // (row of the smaller id, row of the larger) per bond
+  std::size_t first_bond = 0, total_bonds = 0;
+};
+
 class DistributedSimulation {
  public:
   // `setup` is the whole scene, the same on every rank (each keeps its part). Throws
@@ -118,6 +128,9 @@ class DistributedSimulation {
   // integers, per bond two ids, against gather_state's 22 doubles, 5 integers and 2 + stride
   // doubles (kernel/src/mpi/frame_gather.cpp).
   GatheredFrame gather_frame(int root = 0) const;
+  // This rank's share of a frame, nothing gathered: two prefix sums, and the rows of the ghosts'
+  // owners through the halo links (one integer per ghost).
+  FrameShare frame_share() const;
   // Element-wise sums over the ranks, added in rank order (the same on every rank).
   std::vector<double> sum_over_ranks(const std::vector<double>& mine) const;
   // Every rank's `mine` (of any length), concatenated in rank order, on every rank.
