@@ -18,6 +18,7 @@
 // (MPI_Wtime) unless named cpu (getrusage: user + system of the whole process, OpenMP threads and
 // MPI's polling included). The one-line commands of the figures: bench/mpi/measure.sh.
 #include <fmt/format.h>
+#include <hdf5.h>
 #include <mpi.h>
 #include <omp.h>
 #include <sys/resource.h>
@@ -288,9 +289,11 @@ int partition(const Options& o, int rank) {
 // What a frame of `shard run` decomposed costs (docs/scaling-out.md, "Frames"): the bonded block
 // stepped a little, then `reps` gathers of a frame to rank 0 the way the run driver did before
 // session 9 (gather_state without contacts: whole particle records, bonds with model state) and
-// the way it does now (gather_frame: a frame's fields, bonds as id pairs), and rank 0 writing the
-// frame into a run file through the serial RunWriter (flushed at each frame, as in a run).
-// Medians of wall (MPI_Wtime) and of rank 0's CPU time per call.
+// the way a labelled frame is gathered now (gather_frame: a frame's fields, bonds as id pairs),
+// rank 0 writing the gathered frame through the serial RunWriter (flushed at each frame, as in a
+// run), and the parallel frame: each rank's share (frame_share) written by all ranks at once into
+// a file opened through MPI-IO (write_frame_part). Medians of wall (MPI_Wtime) and of rank 0's CPU
+// time per call (and the largest rank's CPU for the parallel write).
 int frames(const Options& o, int rank) {
   const std::size_t target = std::stoul(arg(o.args, 1, "20000"));
   const int reps = std::stoi(arg(o.args, 2, "20"));
@@ -317,7 +320,34 @@ int frames(const Options& o, int rank) {
   });
   const auto lean = timed([&] { (void)sim.gather_frame(0); });
   std::pair<double, double> write{0, 0};
-  const std::filesystem::path file = std::filesystem::temp_directory_path() / fmt::format("bench_mpi_frames_{}.h5", getpid());
+  long long pid = getpid();  // rank 0's: the file every rank shares below
+  MPI_Bcast(&pid, 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
+  const std::filesystem::path file = std::filesystem::temp_directory_path() / fmt::format("bench_mpi_frames_{}.h5", pid);
+  const std::filesystem::path shared = std::filesystem::temp_directory_path() / fmt::format("bench_mpi_parallel_{}.h5", pid);
+  // Parallel: every rank's own rows at once through MPI-IO (the driver's frames without labels).
+  const auto share = timed([&] { (void)sim.frame_share(); });
+  std::pair<double, double> parallel{0, 0};
+  double parallel_cpu_max = 0;
+  {
+    RunWriterAccess access;
+    access.configure = [](std::int64_t list) { H5Pset_fapl_mpio(list, MPI_COMM_WORLD, MPI_INFO_NULL); };
+    access.writes_index = rank == 0;
+    RunWriter writer(shared, RunMetadata{}, {}, access);
+    int k = 0;
+    parallel = timed([&] {
+      const mpi::FrameShare f = sim.frame_share();
+      FramePart part;
+      part.particles = &f.particles;
+      part.first_row = f.first_row;
+      part.total_rows = f.total_rows;
+      part.bond_rows = &f.bond_rows;
+      part.first_bond = f.first_bond;
+      part.total_bonds = f.total_bonds;
+      part.configure_transfer = [](std::int64_t list) { H5Pset_dxpl_mpio(list, H5FD_MPIO_COLLECTIVE); };
+      writer.write_frame_part(k++, 0.0, part);
+    });
+    MPI_Reduce(&parallel.second, &parallel_cpu_max, 1, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
+  }
   const mpi::GatheredFrame f = sim.gather_frame(0);  // collective: every rank takes part
   if (rank == 0) {
     RunMetadata meta;
@@ -332,16 +362,19 @@ int frames(const Options& o, int rank) {
     write = {1e3 * median(wall), 1e3 * median(cpu)};
   }
   if (rank == 0) {
-    std::filesystem::remove(file);
-    std::filesystem::path xmf = file;
-    std::filesystem::remove(xmf.replace_extension(".xmf"));
+    for (std::filesystem::path written : {file, shared}) {
+      std::filesystem::remove(written);
+      std::filesystem::remove(written.replace_extension(".xmf"));
+    }
     int ranks = 1;
     MPI_Comm_size(MPI_COMM_WORLD, &ranks);
     std::printf("frames ranks=%d particles=%zu bonds=%zu bond_stride=%zu reps=%d load=%.2f "
                 "gather_state_ms=%.3f gather_state_cpu_ms=%.3f gather_frame_ms=%.3f gather_frame_cpu_ms=%.3f "
-                "write_frame_ms=%.3f write_frame_cpu_ms=%.3f\n",
+                "write_frame_ms=%.3f write_frame_cpu_ms=%.3f frame_share_ms=%.3f frame_share_cpu_ms=%.3f "
+                "parallel_write_ms=%.3f parallel_write_cpu_ms=%.3f parallel_write_cpu_max_ms=%.3f\n",
                 ranks, particles, bonds, stride, reps, load1(), whole.first, whole.second, lean.first, lean.second,
-                write.first, write.second);
+                write.first, write.second, share.first, share.second, parallel.first, parallel.second,
+                parallel_cpu_max);
   }
   return 0;
 }

@@ -1,6 +1,8 @@
 // The run loop of run_driver.cpp over a DistributedSimulation: the same observers, series rows,
 // frames, checkpoints and restart, with every figure of the whole run reduced over the ranks in
-// rank order and the frames and checkpoints gathered to rank 0, which alone writes files.
+// rank order. Every rank writes the run file through MPI-IO (a frame without fragment labels each
+// its own rows; a labelled one gathered to rank 0); checkpoints are gathered to rank 0 and written
+// there.
 #include "shard/driver/distributed_run.hpp"
 
 #include <fmt/format.h>
