@@ -341,44 +341,46 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
     result.restarted_from = dist.step_count();
   }
   auto last_good = [&] { return last_good_state(result); };
-  // A frame the fragment labeller labels (its cadence: [analysis] fragments_every) is gathered to
-  // rank 0, which labels the whole bond graph and writes every row; any other frame is written by
-  // every rank at once, each its own particles and bonds (nothing gathered: docs/scaling-out.md).
-  const std::vector<Index> no_labels;
+  // Every frame is written by all ranks at once, each its own particles and bonds (nothing of it
+  // gathered: docs/scaling-out.md). A frame the fragment labeller labels (its cadence: [analysis]
+  // fragments_every) gathers to rank 0 what the labels need, the particles' ids and masses and the
+  // bonds' rows, in the frame's row order; rank 0 labels the whole bond graph and sends each rank
+  // the labels of its rows.
   auto write_frame = [&] {
     const int every = scene.fragments_every;
-    const bool gathered = every > 0 && state.frames_written % every == 0;
-    mpi::GatheredFrame frame;
-    mpi::FrameShare share;
-    if (gathered) frame = dist.gather_frame(0);
-    whole.frame_particles = rank == 0 ? &frame.particles : &no_particles;
-    whole.frame_bonds = rank == 0 ? &frame.bonds : &no_bonds;
+    const bool to_label = every > 0 && state.frames_written % every == 0;
+    const mpi::FrameShare share = dist.frame_share();
+    Particles label_particles;
+    Bonds label_bonds;
+    if (to_label) {
+      label_particles.id = dist.gather_to_root(share.particles.id);
+      label_particles.mass = dist.gather_to_root(share.particles.mass);
+      const std::vector<Index> rows = dist.gather_to_root(share.bond_rows);
+      for (std::size_t k = 0; k + 1 < rows.size(); k += 2) {
+        label_bonds.i.push_back(rows[k]);
+        label_bonds.j.push_back(rows[k + 1]);
+      }
+    }
+    whole.frame_particles = &label_particles;
+    whole.frame_bonds = &label_bonds;
     state.frame_labels = nullptr;
     for (auto* o : observers) o->before_frame(state);
     FramePart part;
     part.labelled = dist.any_rank(state.frame_labels != nullptr);
-    part.fragment_labels = state.frame_labels ? state.frame_labels : &no_labels;
+    std::vector<Index> labels;
+    if (part.labelled)
+      labels = dist.scatter_from_root(rank == 0 && state.frame_labels ? *state.frame_labels : std::vector<Index>{},
+                                      share.particles.id.size());
+    part.fragment_labels = &labels;
     part.configure_transfer = collective_transfer;
-    std::vector<Index> rows;
-    if (gathered) {
-      unsigned long long totals[2] = {frame.particles.id.size(), frame.bonds.size()};
-      MPI_Bcast(totals, 2, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
-      for (std::size_t k = 0; k < frame.bonds.size(); ++k) rows.insert(rows.end(), {frame.bonds.i[k], frame.bonds.j[k]});
-      part.particles = &frame.particles;
-      part.total_rows = totals[0];
-      part.bond_rows = &rows;
-      part.total_bonds = totals[1];
-    } else {
-      share = dist.frame_share();
-      part.particles = &share.particles;
-      part.first_row = share.first_row;
-      part.total_rows = share.total_rows;
-      part.bond_rows = &share.bond_rows;
-      part.first_bond = share.first_bond;
-      part.total_bonds = share.total_bonds;
-    }
+    part.particles = &share.particles;
+    part.first_row = share.first_row;
+    part.total_rows = share.total_rows;
+    part.bond_rows = &share.bond_rows;
+    part.first_bond = share.first_bond;
+    part.total_bonds = share.total_bonds;
     on_all([&] { writer->write_frame_part(dist.step_count(), dist.time(), part); });
-    whole.frame_particles = &no_particles;  // the gathered frame goes out of scope here
+    whole.frame_particles = &no_particles;  // the gathered ids and masses go out of scope here
     whole.frame_bonds = &no_bonds;
     ++state.frames_written;
   };

@@ -637,6 +637,32 @@ std::vector<double> DistributedSimulation::gather_over_ranks(const std::vector<d
   return all_gather(mine, comm_);
 }
 
+std::vector<double> DistributedSimulation::gather_to_root(const std::vector<double>& mine, int root) const {
+  return gather_to(mine, root, comm_);
+}
+
+std::vector<Index> DistributedSimulation::gather_to_root(const std::vector<Index>& mine, int root) const {
+  return gather_to(mine, root, comm_);
+}
+
+std::vector<Index> DistributedSimulation::scatter_from_root(const std::vector<Index>& all, std::size_t mine,
+                                                            int root) const {
+  const int count = byte_count(mine * sizeof(Index)) / static_cast<int>(sizeof(Index));
+  std::vector<int> counts(static_cast<std::size_t>(ranks_)), at(static_cast<std::size_t>(ranks_));
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, root, comm_);
+  int total = 0;
+  for (int r = 0; r < ranks_; ++r) {
+    at[static_cast<std::size_t>(r)] = total;
+    total += counts[static_cast<std::size_t>(r)];
+  }
+  if (rank_ == root && static_cast<std::size_t>(total) != all.size())
+    throw std::logic_error(fmt::format("scatter_from_root: {} values for {} asked", all.size(), total));
+  std::vector<Index> out(mine);
+  static_assert(sizeof(Index) == sizeof(std::int32_t));
+  MPI_Scatterv(all.data(), counts.data(), at.data(), MPI_INT32_T, out.data(), count, MPI_INT32_T, root, comm_);
+  return out;
+}
+
 bool DistributedSimulation::any_rank(bool mine) const { return max_over_ranks(mine ? 1.0 : 0.0, comm_) > 0; }
 
 bool DistributedSimulation::all_slower_than(double speed) const {

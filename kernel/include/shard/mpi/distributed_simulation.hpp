@@ -135,6 +135,11 @@ class DistributedSimulation {
   std::vector<double> sum_over_ranks(const std::vector<double>& mine) const;
   // Every rank's `mine` (of any length), concatenated in rank order, on every rank.
   std::vector<double> gather_over_ranks(const std::vector<double>& mine) const;
+  // Every rank's `mine`, concatenated in rank order, on `root` only (empty elsewhere).
+  std::vector<double> gather_to_root(const std::vector<double>& mine, int root = 0) const;
+  std::vector<Index> gather_to_root(const std::vector<Index>& mine, int root = 0) const;
+  // The inverse: `all` on `root` cut in rank order, each rank receiving its `mine` values.
+  std::vector<Index> scatter_from_root(const std::vector<Index>& all, std::size_t mine, int root = 0) const;
   // True when any rank passes true (one MPI_Allreduce).
   bool any_rank(bool mine) const;
   // Whether every particle of the run is slower than `speed` (m/s): each rank looks at its own
