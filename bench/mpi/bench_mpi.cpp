@@ -291,8 +291,9 @@ int partition(const Options& o, int rank) {
 // session 9 (gather_state without contacts: whole particle records, bonds with model state) and
 // the way a labelled frame is gathered now (gather_frame: a frame's fields, bonds as id pairs),
 // rank 0 writing the gathered frame through the serial RunWriter (flushed at each frame, as in a
-// run), and the parallel frame: each rank's share (frame_share) written by all ranks at once into
-// a file opened through MPI-IO (write_frame_part). Medians of wall (MPI_Wtime) and of rank 0's CPU
+// run), and the parallel frame the driver writes: each rank's share (frame_share) written by all
+// ranks at once into a file opened through MPI-IO (write_frame_part), plus for a labelled frame
+// the gather of ids, masses and bond rows to rank 0. Medians of wall (MPI_Wtime) and of rank 0's CPU
 // time per call (and the largest rank's CPU for the parallel write).
 int frames(const Options& o, int rank) {
   const std::size_t target = std::stoul(arg(o.args, 1, "20000"));
@@ -326,6 +327,13 @@ int frames(const Options& o, int rank) {
   const std::filesystem::path shared = std::filesystem::temp_directory_path() / fmt::format("bench_mpi_parallel_{}.h5", pid);
   // Parallel: every rank's own rows at once through MPI-IO (the driver's frames without labels).
   const auto share = timed([&] { (void)sim.frame_share(); });
+  // What a labelled frame gathers on top of its share: ids, masses and bond rows to rank 0.
+  const mpi::FrameShare one = sim.frame_share();
+  const auto label_gather = timed([&] {
+    (void)sim.gather_to_root(one.particles.id);
+    (void)sim.gather_to_root(one.particles.mass);
+    (void)sim.gather_to_root(one.bond_rows);
+  });
   std::pair<double, double> parallel{0, 0};
   double parallel_cpu_max = 0;
   {
@@ -371,10 +379,11 @@ int frames(const Options& o, int rank) {
     std::printf("frames ranks=%d particles=%zu bonds=%zu bond_stride=%zu reps=%d load=%.2f "
                 "gather_state_ms=%.3f gather_state_cpu_ms=%.3f gather_frame_ms=%.3f gather_frame_cpu_ms=%.3f "
                 "write_frame_ms=%.3f write_frame_cpu_ms=%.3f frame_share_ms=%.3f frame_share_cpu_ms=%.3f "
+                "label_gather_ms=%.3f label_gather_cpu_ms=%.3f "
                 "parallel_write_ms=%.3f parallel_write_cpu_ms=%.3f parallel_write_cpu_max_ms=%.3f\n",
                 ranks, particles, bonds, stride, reps, load1(), whole.first, whole.second, lean.first, lean.second,
-                write.first, write.second, share.first, share.second, parallel.first, parallel.second,
-                parallel_cpu_max);
+                write.first, write.second, share.first, share.second, label_gather.first, label_gather.second,
+                parallel.first, parallel.second, parallel_cpu_max);
   }
   return 0;
 }
