@@ -7,6 +7,8 @@
 //       a scene file through the kernel's scene loader and generator plugins (the seed beam)
 //   bench_mpi partition block N P1 P2 ... | partition scene FILE P1 P2 ...
 //       the decomposition's partition on P ranks computed in one process: owned, ghosts, neighbours
+//   mpirun -np N bench_mpi frames [particles=20000] [reps=20]
+//       a frame gathered to rank 0 (the old and the lean gather) and written by the serial writer
 //   mpirun -np 2 bench_mpi pingpong
 //       point-to-point latency and bandwidth between two ranks (the halo's message cost)
 // --serial: the serial Simulation of the same problem on one rank, threads from OMP_NUM_THREADS (the
@@ -15,6 +17,8 @@
 // the slowest rank. Rank 0 prints one summary line, then one line per rank; times are wall
 // (MPI_Wtime) unless named cpu (getrusage: user + system of the whole process, OpenMP threads and
 // MPI's polling included). The one-line commands of the figures: bench/mpi/measure.sh.
+#include <fmt/format.h>
+#include <hdf5.h>
 #include <mpi.h>
 #include <omp.h>
 #include <sys/resource.h>
@@ -32,6 +36,7 @@
 #include "partition_report.hpp"
 #include "scene_setup.hpp"
 #include "shard/mpi/distributed_simulation.hpp"
+#include "shard/output.hpp"
 
 using namespace shard;
 
@@ -66,7 +71,7 @@ Options parse(int argc, char** argv) {
     else o.args.push_back(a);
   }
   // The first form of the benchmark: `bench_mpi 20000 300`.
-  if (o.args.empty() || (o.args[0] != "scene" && o.args[0] != "partition" && o.args[0] != "pingpong" && o.args[0] != "block" &&
+  if (o.args.empty() || (o.args[0] != "scene" && o.args[0] != "partition" && o.args[0] != "pingpong" && o.args[0] != "block" && o.args[0] != "frames" &&
                           o.args[0] != "pack"))
     o.args.insert(o.args.begin(), "block");
   return o;
@@ -281,6 +286,108 @@ int partition(const Options& o, int rank) {
   return 0;
 }
 
+// What a frame of `shard run` decomposed costs (docs/scaling-out.md, "Frames"): the bonded block
+// stepped a little, then `reps` gathers of a frame to rank 0 the way the run driver did before
+// session 9 (gather_state without contacts: whole particle records, bonds with model state) and
+// the way a labelled frame is gathered now (gather_frame: a frame's fields, bonds as id pairs),
+// rank 0 writing the gathered frame through the serial RunWriter (flushed at each frame, as in a
+// run), and the parallel frame the driver writes: each rank's share (frame_share) written by all
+// ranks at once into a file opened through MPI-IO (write_frame_part), plus for a labelled frame
+// the gather of ids, masses and bond rows to rank 0. Medians of wall (MPI_Wtime) and of rank 0's CPU
+// time per call (and the largest rank's CPU for the parallel write).
+int frames(const Options& o, int rank) {
+  const std::size_t target = std::stoul(arg(o.args, 1, "20000"));
+  const int reps = std::stoi(arg(o.args, 2, "20"));
+  const bench::Models models = bench::default_models();
+  mpi::DistributedSimulation sim(MPI_COMM_WORLD, bench::bonded_block(target, 0.2, models));
+  sim.run(10);
+  const auto timed = [&](auto&& call) {
+    std::vector<double> wall, cpu;
+    for (int k = 0; k < reps; ++k) {
+      MPI_Barrier(MPI_COMM_WORLD);
+      const double t = MPI_Wtime(), c = cpu_seconds();
+      call();
+      cpu.push_back(cpu_seconds() - c);
+      wall.push_back(MPI_Wtime() - t);
+    }
+    return std::pair{1e3 * median(wall), 1e3 * median(cpu)};
+  };
+  std::size_t particles = 0, bonds = 0, stride = 0;
+  const auto whole = timed([&] {
+    const SimulationState s = sim.gather_state(0, false);
+    particles = s.particles.size();
+    bonds = s.bonds.size();
+    stride = s.bonds.stride;
+  });
+  const auto lean = timed([&] { (void)sim.gather_frame(0); });
+  std::pair<double, double> write{0, 0};
+  long long pid = getpid();  // rank 0's: the file every rank shares below
+  MPI_Bcast(&pid, 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
+  const std::filesystem::path file = std::filesystem::temp_directory_path() / fmt::format("bench_mpi_frames_{}.h5", pid);
+  const std::filesystem::path shared = std::filesystem::temp_directory_path() / fmt::format("bench_mpi_parallel_{}.h5", pid);
+  // Parallel: every rank's own rows at once through MPI-IO (the driver's frames without labels).
+  const auto share = timed([&] { (void)sim.frame_share(); });
+  // What a labelled frame gathers on top of its share: ids, masses and bond rows to rank 0.
+  const mpi::FrameShare one = sim.frame_share();
+  const auto label_gather = timed([&] {
+    (void)sim.gather_to_root(one.particles.id);
+    (void)sim.gather_to_root(one.particles.mass);
+    (void)sim.gather_to_root(one.bond_rows);
+  });
+  std::pair<double, double> parallel{0, 0};
+  double parallel_cpu_max = 0;
+  {
+    RunWriterAccess access;
+    access.configure = [](std::int64_t list) { H5Pset_fapl_mpio(list, MPI_COMM_WORLD, MPI_INFO_NULL); };
+    access.writes_index = rank == 0;
+    RunWriter writer(shared, RunMetadata{}, {}, access);
+    int k = 0;
+    parallel = timed([&] {
+      const mpi::FrameShare f = sim.frame_share();
+      FramePart part;
+      part.particles = &f.particles;
+      part.first_row = f.first_row;
+      part.total_rows = f.total_rows;
+      part.bond_rows = &f.bond_rows;
+      part.first_bond = f.first_bond;
+      part.total_bonds = f.total_bonds;
+      part.configure_transfer = [](std::int64_t list) { H5Pset_dxpl_mpio(list, H5FD_MPIO_COLLECTIVE); };
+      writer.write_frame_part(k++, 0.0, part);
+    });
+    MPI_Reduce(&parallel.second, &parallel_cpu_max, 1, MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
+  }
+  const mpi::GatheredFrame f = sim.gather_frame(0);  // collective: every rank takes part
+  if (rank == 0) {
+    RunMetadata meta;
+    RunWriter writer(file, meta, {});
+    std::vector<double> wall, cpu;
+    for (int k = 0; k < reps; ++k) {
+      const double t = MPI_Wtime(), c = cpu_seconds();
+      writer.write_frame(k, 0.0, f.particles, f.bonds);
+      cpu.push_back(cpu_seconds() - c);
+      wall.push_back(MPI_Wtime() - t);
+    }
+    write = {1e3 * median(wall), 1e3 * median(cpu)};
+  }
+  if (rank == 0) {
+    for (std::filesystem::path written : {file, shared}) {
+      std::filesystem::remove(written);
+      std::filesystem::remove(written.replace_extension(".xmf"));
+    }
+    int ranks = 1;
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+    std::printf("frames ranks=%d particles=%zu bonds=%zu bond_stride=%zu reps=%d load=%.2f "
+                "gather_state_ms=%.3f gather_state_cpu_ms=%.3f gather_frame_ms=%.3f gather_frame_cpu_ms=%.3f "
+                "write_frame_ms=%.3f write_frame_cpu_ms=%.3f frame_share_ms=%.3f frame_share_cpu_ms=%.3f "
+                "label_gather_ms=%.3f label_gather_cpu_ms=%.3f "
+                "parallel_write_ms=%.3f parallel_write_cpu_ms=%.3f parallel_write_cpu_max_ms=%.3f\n",
+                ranks, particles, bonds, stride, reps, load1(), whole.first, whole.second, lean.first, lean.second,
+                write.first, write.second, share.first, share.second, label_gather.first, label_gather.second,
+                parallel.first, parallel.second, parallel_cpu_max);
+  }
+  return 0;
+}
+
 // Half the round trip of a message of n bytes between ranks 0 and 1, best and median of many.
 int pingpong(int rank, int ranks) {
   if (ranks != 2) throw std::invalid_argument("pingpong runs on exactly 2 ranks");
@@ -321,6 +428,7 @@ int main(int argc, char** argv) {
     else if (o.args[0] == "pack") code = pack(o, ranks);
     else if (o.args[0] == "scene") code = scene(o, ranks);
     else if (o.args[0] == "partition") code = partition(o, rank);
+    else if (o.args[0] == "frames") code = frames(o, rank);
     else code = pingpong(rank, ranks);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_mpi (rank %d): %s\n", rank, e.what());

@@ -4,13 +4,14 @@
 #   python3 bench/mpi/cost_model.py $OUT
 # prints the calibrated constants and the projection table. Run from the source tree, with a
 # SHARD_WITH_MPI build in $BUILD (default build/mpi). REPS runs of each timing (best of them is
-# what the model takes). WHAT: a space list of block pack seed partition pingpong callgrind (default
-# all; callgrind: the work split of the block on 1 and 2 ranks under valgrind, a few minutes).
+# what the model takes). WHAT: a space list of block pack seed partition pingpong frames callgrind
+# (default all; callgrind: the work split of the block on 1 and 2 ranks under valgrind, a few
+# minutes; frames: a frame's gather and write, which the model does not read).
 set -eu
 BUILD=${BUILD:-build/mpi}
 OUT=${OUT:-bench/mpi/measured/$(hostname)-$(date -u +%Y%m%dT%H%M).txt}
 REPS=${REPS:-3}
-WHAT=${WHAT:-"block pack seed partition pingpong callgrind"}
+WHAT=${WHAT:-"block pack seed partition pingpong frames callgrind"}
 SEED=scenes/four_point_bending_seed.toml
 SEED_STEPS=${SEED_STEPS:-50}
 B=$BUILD/bench/mpi/bench_mpi
@@ -21,6 +22,9 @@ run() { echo "# $*" >>"$OUT"; "$@" | tee -a "$OUT"; }
 has() { case " $WHAT " in *" $1 "*) return 0 ;; esac; return 1; }
 echo "# $(date -u +%FT%TZ) $(git rev-parse --short HEAD 2>/dev/null || true) nproc=$(nproc) load=$(cut -d' ' -f1-3 /proc/loadavg)" >>"$OUT"
 for rep in $(seq "$REPS"); do
+  if has frames; then
+    for n in 1 2 4; do run env OMP_NUM_THREADS=1 $M -np $n $B frames 20000 20; done
+  fi
   if has block; then
     run env OMP_NUM_THREADS=1 $M -np 1 $B block 20000 300
     run env OMP_NUM_THREADS=1 $M -np 2 $B block 20000 300

@@ -10,7 +10,8 @@ void FragmentLabeller::before_frame(RunState& run) {
   if (every <= 0 || run.frames_written % every != 0) return;
   const Particles& p = run.frame_particles();
   const Bonds& b = run.frame_bonds();
-  count_ = labeller_.label(p.size(), {b.i, b.j}, labels_);
+  // By id: a decomposed run hands over only the ids and masses of the frame (RunState::Whole).
+  count_ = labeller_.label(p.id.size(), {b.i, b.j}, labels_);
   analysis::canonicalise_labels(labels_, count_, p.mass, p.id);
   run.frame_labels = &labels_;
   labelled_ = true;

@@ -29,10 +29,11 @@ void MaxDisplacementStop::on_series(RunState& run, const Energies&) {
 namespace {
 
 // Whether every particle is slower than `speed` (m/s); stops at the first that is not. A run
-// decomposed over MPI ranks would take this over its own particles and combine the ranks' answers
-// with a logical and (MPI_LAND, or max_over_ranks of the largest speed): the same decision on every
-// rank, independent of the order.
-bool all_slower_than(const Particles& p, double speed) {
+// decomposed over MPI ranks answers over all ranks (RunState::Whole::all_slower_than: each rank
+// looks at its own particles, the answers combined with a logical and), the same on every rank.
+bool all_slower_than(const RunState& run, double speed) {
+  if (run.whole && run.whole->all_slower_than) return run.whole->all_slower_than(speed);
+  const Particles& p = run.sim.particles();
   const double limit2 = speed * speed;
   for (std::size_t k = 0; k < p.size(); ++k)
     if (p.velocity[k].squaredNorm() >= limit2) return false;
@@ -51,7 +52,7 @@ void RestStop::on_step(RunState& run) { look(run); }
 void RestStop::look(RunState& run) {
   const double speed = run.scene.stop.rest_speed;
   if (!(speed > 0)) return;
-  if (!all_slower_than(run.sim.particles(), speed)) {
+  if (!all_slower_than(run, speed)) {
     still_since_ = -1;
     return;
   }

@@ -11,7 +11,37 @@
 namespace shard {
 namespace {
 constexpr std::size_t kValues = 10;  // per body in a checkpoint: hit, step, time, velocity, normal, wall
+
+// The sphere's stable id; its index when the particles carry none (a state from before ids).
+Index stable_id(const Particles& p, std::size_t k) { return p.id.size() == p.size() ? p.id[k] : static_cast<Index>(k); }
 }  // namespace
+
+std::vector<double> impacts_state(const std::vector<BodyImpact>& impacts) {
+  std::vector<double> out;
+  out.reserve(kValues * impacts.size());
+  for (const BodyImpact& i : impacts) {
+    out.insert(out.end(), {i.hit ? 1.0 : 0.0, static_cast<double>(i.step), i.time, i.velocity.x(), i.velocity.y(),
+                           i.velocity.z(), i.normal.x(), i.normal.y(), i.normal.z(), static_cast<double>(i.wall)});
+  }
+  return out;
+}
+
+std::vector<BodyImpact> impacts_from_state(const std::vector<double>& state, std::size_t bodies) {
+  if (state.size() != kValues * bodies)
+    throw std::invalid_argument("the checkpoint's body impacts do not match the scene's bodies");
+  std::vector<BodyImpact> impacts(bodies);
+  for (std::size_t b = 0; b < bodies; ++b) {
+    const double* s = state.data() + kValues * b;
+    BodyImpact& i = impacts[b];
+    i.hit = s[0] != 0;
+    i.step = static_cast<std::int64_t>(s[1]);
+    i.time = s[2];
+    i.velocity = Vec3(s[3], s[4], s[5]);
+    i.normal = Vec3(s[6], s[7], s[8]);
+    i.wall = static_cast<std::int32_t>(s[9]);
+  }
+  return impacts;
+}
 
 double BodyImpact::angle_degrees() const {
   const double v = velocity.norm();
@@ -63,7 +93,8 @@ void BodyImpactRecorder::update(const Simulation& simulation) {
     const std::vector<Wall>& walls = simulation.walls();
     for (const WallContactStart& c : simulation.wall_contacts_begun()) {
       if (carries_bodies(walls[static_cast<std::size_t>(c.wall)])) continue;
-      offer(static_cast<std::size_t>(p.body[static_cast<std::size_t>(c.particle)]), c.wall, c.particle, c.normal);
+      const auto k = static_cast<std::size_t>(c.particle);
+      offer(static_cast<std::size_t>(p.body[k]), c.wall, stable_id(p, k), c.normal);
     }
   }
   if (!pending_.empty()) record(simulation);
@@ -110,7 +141,7 @@ void BodyImpactRecorder::scan(const Simulation& simulation) {
       Vec3 normal;
       double distance = 0;
       if (!wall_contact(wall, p.position[k], p.radius[k], normal, distance) || distance >= p.radius[k]) continue;
-      offer(b, static_cast<std::int32_t>(w), static_cast<Index>(k), normal);
+      offer(b, static_cast<std::int32_t>(w), stable_id(p, k), normal);
     }
   }
 }
@@ -145,31 +176,11 @@ void BodyImpactRecorder::record(const Simulation& simulation) {
   pending_.clear();
 }
 
-std::vector<double> BodyImpactRecorder::state() const {
-  std::vector<double> out;
-  out.reserve(kValues * impacts_.size());
-  for (const BodyImpact& i : impacts_) {
-    out.insert(out.end(), {i.hit ? 1.0 : 0.0, static_cast<double>(i.step), i.time, i.velocity.x(), i.velocity.y(),
-                           i.velocity.z(), i.normal.x(), i.normal.y(), i.normal.z(), static_cast<double>(i.wall)});
-  }
-  return out;
-}
+std::vector<double> BodyImpactRecorder::state() const { return impacts_state(impacts_); }
 
 void BodyImpactRecorder::restore(const std::vector<double>& state) {
-  if (state.size() != kValues * impacts_.size())
-    throw std::invalid_argument("the checkpoint's body impacts do not match the scene's bodies");
-  remaining_ = impacts_.size();
-  for (std::size_t b = 0; b < impacts_.size(); ++b) {
-    const double* s = state.data() + kValues * b;
-    BodyImpact& i = impacts_[b];
-    i.hit = s[0] != 0;
-    i.step = static_cast<std::int64_t>(s[1]);
-    i.time = s[2];
-    i.velocity = Vec3(s[3], s[4], s[5]);
-    i.normal = Vec3(s[6], s[7], s[8]);
-    i.wall = static_cast<std::int32_t>(s[9]);
-    if (i.hit) --remaining_;
-  }
+  impacts_ = impacts_from_state(state, impacts_.size());
+  remaining_ = static_cast<std::size_t>(std::count_if(impacts_.begin(), impacts_.end(), [](const BodyImpact& i) { return !i.hit; }));
   last_step_ = -1;  // the contacts begun before the restart are not known: the next update scans
 }
 

@@ -4,11 +4,16 @@
 // after ~500 steps and the load-drop rule ends the run ~200 steps later. Fragment labels in every
 // frame. Modes (the run files are read back with the serial RunFile reader):
 //   serial OUT               the reference: driver::run, no MPI
-//   decomposed OUT REF       mpirun -np N: the same run decomposed; rank 0 compares OUT with REF:
+//   decomposed OUT REF       mpirun -np N: the same run decomposed (fragment labels in every frame:
+//                            labelled on rank 0, written by every rank); rank 0 compares OUT with REF:
 //                            up to the first break, the load curve and every frame's positions
 //                            within 1e-9 of the displacement scale (the pins' travel at the first
 //                            break); over the whole run the same breaks (step, ids) in order, the
-//                            same stop step, the same ids and fragment labels in every frame
+//                            same stop step, the same ids, bonds (as id pairs) and fragment labels
+//                            in every frame
+//   parallel_frames OUT REF  as `decomposed` without fragment labels: every rank writes its own
+//                            particles and bonds of each frame (parallel HDF5); compared alike, and
+//                            bit for bit with the same run labelled
 //   interrupt OUT STEP       mpirun -np N: the run stopped at STEP (checkpoint written)
 //   restart OUT REF          mpirun -np M: continues OUT (written on another rank count) to its end
 //                            and compares with REF as `decomposed` does
@@ -26,6 +31,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "shard/checkpoint.hpp"
@@ -90,8 +96,20 @@ std::map<Index, std::size_t> rows_by_id(const FrameData& f) {
   return m;
 }
 
-// What a decomposed run file must share with the serial one (see the header).
-void compare(const fs::path& file, const fs::path& reference, const std::string& who) {
+// A frame's bonds as (smaller id, larger id) pairs, sorted: what the rows mean whatever the order.
+std::vector<std::pair<Index, Index>> bond_ids(const FrameData& f) {
+  std::vector<std::pair<Index, Index>> out;
+  for (std::size_t k = 0; k < f.bond_i.size(); ++k) {
+    const Index a = f.id[static_cast<std::size_t>(f.bond_i[k])], b = f.id[static_cast<std::size_t>(f.bond_j[k])];
+    out.emplace_back(std::min(a, b), std::max(a, b));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// What a decomposed run file must share with the serial one (see the header); `labelled`: its
+// frames carry fragment labels (written gathered) or none (written by every rank in parallel).
+void compare(const fs::path& file, const fs::path& reference, const std::string& who, bool labelled = true) {
   const RunFile a(file), b(reference);
   const auto ea = a.read_break_events(), eb = b.read_break_events();
   check(!eb.empty(), "the reference run breaks bonds");
@@ -132,8 +150,8 @@ void compare(const fs::path& file, const fs::path& reference, const std::string&
     std::sort(ia.begin(), ia.end());
     std::sort(ib.begin(), ib.end());
     same_ids = same_ids && ia == ib && fa.step == fb.step;
-    same_bonds = same_bonds && fa.bond_i.size() == fb.bond_i.size();
-    same_labels = same_labels && fa.fragment && fb.fragment;
+    same_bonds = same_bonds && fa.bond_i.size() == fb.bond_i.size() && bond_ids(fa) == bond_ids(fb);
+    same_labels = same_labels && (labelled ? fa.fragment && fb.fragment : !fa.fragment);
     if (ia != ib) continue;
     for (std::size_t q = 0; q < fb.id.size(); ++q) {
       const std::size_t p = ra.at(fb.id[q]);
@@ -147,9 +165,39 @@ void compare(const fs::path& file, const fs::path& reference, const std::string&
     std::printf("%s frames: max |dx| %.3g m up to the first break (%.3g of the pin travel), %.3g m after it\n",
                 who.c_str(), worst_x, worst_x / std::max(scale, 1e-300), worst_after);
   check(same_ids, who + ": every frame holds the same steps and particle ids");
-  check(same_bonds, who + ": every frame holds as many bonds");
+  check(same_bonds, who + ": every frame holds the same bonds (as id pairs)");
   check(worst_x <= 1e-9 * scale, who + ": positions agree within 1e-9 of the pin travel up to the first break");
-  check(same_labels, who + ": every particle's fragment label is the same in every frame");
+  check(same_labels, labelled ? who + ": every particle's fragment label is the same in every frame"
+                               : who + ": no frame carries fragment labels");
+}
+
+// Two files of the same decomposed run (the same rank count: bit-reproducible), one without
+// fragment labels and one with (which gathers ids, masses and bond rows to rank 0 and sends the
+// labels back): every frame holds the same numbers for every particle id, bit for bit, and the
+// same bonds as id pairs; the labels are the only difference.
+void compare_bitwise(const fs::path& parallel, const fs::path& gathered, const std::string& who) {
+  const RunFile a(parallel), b(gathered);
+  bool same = a.frame_count() == b.frame_count() && a.frame_count() > 0;
+  bool reordered = false;
+  for (std::size_t k = 0; same && k < a.frame_count(); ++k) {
+    const FrameData fa = a.read_frame(a.frames()[k]), fb = b.read_frame(b.frames()[k]);
+    same = fa.step == fb.step && fa.id.size() == fb.id.size() && bond_ids(fa) == bond_ids(fb);
+    reordered = reordered || fa.id != fb.id;
+    const auto ra = rows_by_id(fa);
+    for (std::size_t q = 0; same && q < fb.id.size(); ++q) {
+      const auto it = ra.find(fb.id[q]);
+      if (it == ra.end()) {
+        same = false;
+        break;
+      }
+      const std::size_t p = it->second;
+      same = fa.position[p] == fb.position[q] && fa.velocity[p] == fb.velocity[q] && fa.omega[p] == fb.omega[q] &&
+             fa.radius[p] == fb.radius[q] && fa.mass[p] == fb.mass[q] && fa.material[p] == fb.material[q] &&
+             fa.body[p] == fb.body[q];
+    }
+  }
+  check(same && !reordered, who + ": with labels or without, every frame holds bit for bit the same particles (in "
+                                "the same rows) and bonds");
 }
 
 int run_decomposed(const driver::RunSpec& spec, Observers& o) {
@@ -164,7 +212,7 @@ int run_decomposed(const driver::RunSpec& spec, Observers& o) {
 int main(int argc, char** argv) {
   H5dont_atexit();
   if (argc < 3) {
-    std::fprintf(stderr, "usage: test_mpi_run serial|decomposed|interrupt|restart|no_ids|rest_refused ARGS\n");
+    std::fprintf(stderr, "usage: test_mpi_run serial|decomposed|parallel_frames|interrupt|restart|no_ids ARGS\n");
     return 2;
   }
   const std::string mode = argv[1];
@@ -198,14 +246,25 @@ int main(int argc, char** argv) {
   rank_ = mpi.rank();
   const std::string who = fmt::format("{} ranks", mpi.size());
   try {
-    if (mode == "decomposed" && argc > 3) {
+    if ((mode == "decomposed" || mode == "parallel_frames") && argc > 3) {
+      // parallel_frames: no fragment labels, so nothing of a frame is gathered.
+      const bool labelled = mode == "decomposed";
       if (rank_ == 0) fs::remove_all(out);
       MPI_Barrier(MPI_COMM_WORLD);
       Observers o;
+      driver::RunSpec spec = spec_for(out);
+      if (!labelled)
+        for (auto& extra : parse_overrides({"analysis.fragments_every=0"})) spec.overrides.push_back(extra);
       const double t0 = MPI_Wtime();
-      run_decomposed(spec_for(out), o);
+      run_decomposed(spec, o);
       if (rank_ == 0) std::printf("%s: the run took %.2f s\n", who.c_str(), MPI_Wtime() - t0);
-      if (rank_ == 0) compare(out / "run.h5", fs::path(argv[3]) / "run.h5", who);
+      if (rank_ == 0) compare(out / "run.h5", fs::path(argv[3]) / "run.h5", who, labelled);
+      if (!labelled) {
+        // The same run with labels: labelling must change nothing else in the file.
+        Observers again;
+        run_decomposed(spec_for(out / "gathered"), again);
+        if (rank_ == 0) compare_bitwise(out / "run.h5", out / "gathered" / "run.h5", who);
+      }
     } else if (mode == "interrupt" && argc > 3) {
       if (rank_ == 0) fs::remove_all(out);
       MPI_Barrier(MPI_COMM_WORLD);
@@ -254,24 +313,6 @@ int main(int argc, char** argv) {
       int mine = named ? 1 : 0, all = 0;
       MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
       check(all, who + ": every rank refuses the checkpoint without ids, naming the file and the fix");
-    } else if (mode == "rest_refused") {
-      // The run-to-rest rule reads each rank's own particles; until it is reduced over the ranks a
-      // decomposed run refuses it before anything is built, alike on every rank.
-      Observers o;
-      driver::RunSpec spec = spec_for(out);
-      for (auto& extra : parse_overrides({"stop.rest_speed=0.01", "stop.rest_time=0.001"})) spec.overrides.push_back(extra);
-      std::string message;
-      try {
-        run_decomposed(spec, o);
-      } catch (const SceneError& e) {
-        message = e.what();
-      }
-      const bool named = message.find("[stop] rest_speed is not available in a run decomposed over MPI ranks") !=
-                             std::string::npos &&
-                         message.find("four_point_bending_ci.toml") != std::string::npos;
-      int mine = named ? 1 : 0, all = 0;
-      MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
-      check(all, who + ": every rank refuses [stop] rest_speed, naming the scene and the way round it");
     } else {
       std::fprintf(stderr, "unknown mode %s\n", mode.c_str());
       return 2;

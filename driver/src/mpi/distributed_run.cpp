@@ -1,6 +1,8 @@
 // The run loop of run_driver.cpp over a DistributedSimulation: the same observers, series rows,
 // frames, checkpoints and restart, with every figure of the whole run reduced over the ranks in
-// rank order and the frames and checkpoints gathered to rank 0, which alone writes files.
+// rank order. Every rank writes the run file through MPI-IO (a frame without fragment labels each
+// its own rows; a labelled one gathered to rank 0); checkpoints are gathered to rank 0 and written
+// there.
 #include "shard/driver/distributed_run.hpp"
 
 #include <fmt/format.h>
@@ -9,6 +11,7 @@
 #include <omp.h>
 
 #include <chrono>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -17,6 +20,7 @@
 #include "../run_loop_parts.hpp"
 #include "../run_restart.hpp"
 #include "distributed_health.hpp"
+#include "distributed_impacts.hpp"
 #include "shard/body_impacts.hpp"
 #include "shard/checkpoint.hpp"
 #include "shard/driver/load_sensor.hpp"
@@ -58,6 +62,45 @@ void on_root(F&& work) {
   error.resize(static_cast<std::size_t>(size));
   MPI_Bcast(error.data(), size, MPI_CHAR, 0, MPI_COMM_WORLD);
   throw OutputError(error);
+}
+
+// Runs `work` on every rank (a call of the run file's writer, which every rank makes alike), then
+// every rank learns whether one failed: a failure is thrown on every rank as an OutputError with
+// the lowest failing rank's message. An error inside one of HDF5's collective calls can still
+// leave the other ranks waiting in it (docs/scaling-out.md).
+template <class F>
+void on_all(F&& work) {
+  std::string error;
+  try {
+    work();
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  const int mine = error.empty() ? INT_MAX : world_rank();
+  int first = INT_MAX;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  if (first == INT_MAX) return;
+  int size = static_cast<int>(error.size());
+  MPI_Bcast(&size, 1, MPI_INT, first, MPI_COMM_WORLD);
+  error.resize(static_cast<std::size_t>(size));
+  MPI_Bcast(error.data(), size, MPI_CHAR, first, MPI_COMM_WORLD);
+  throw OutputError(error);
+}
+
+// The run file shared by the ranks: the MPI-IO driver, run.xmf kept by rank 0.
+RunWriterAccess shared_run_file(int rank) {
+  RunWriterAccess access;
+  access.configure = [](std::int64_t list) {
+    if (H5Pset_fapl_mpio(list, MPI_COMM_WORLD, MPI_INFO_NULL) < 0)
+      throw OutputError("cannot select HDF5's MPI-IO driver for the run file: is this build's HDF5 the parallel one?");
+  };
+  access.writes_index = rank == 0;
+  return access;
+}
+
+void collective_transfer(std::int64_t list) {
+  if (H5Pset_dxpl_mpio(list, H5FD_MPIO_COLLECTIVE) < 0)
+    throw OutputError("cannot ask HDF5 for collective MPI-IO transfers");
 }
 
 // bending::deformation_kinetic_energy over every rank's particles: the kinetic energy less that
@@ -191,13 +234,6 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
   const std::optional<Checkpoint>& restart_point = start.restart_point;
   const RunMetadata& old_meta = start.old_meta;
   const Scene& scene = start.scene;
-  // RestStop reads the particles it holds: on one rank of several it would stop that rank alone and
-  // leave the others waiting in the next exchange. Until its maximum speed is reduced over the ranks
-  // (max_over_ranks), the rule is refused here, alike on every rank.
-  if (scene.stop.rest_speed > 0)
-    throw SceneError(fmt::format("{}: [stop] rest_speed is not available in a run decomposed over MPI ranks yet; "
-                                 "run the scene without mpirun, or replace the rule by [simulation] duration",
-                                 restarting ? old_meta.scene_file : spec.scene.string()));
   if (!restarting) on_root([&] { prepare_run_output(spec, scene); });
   // The whole scene on every rank (the generator's packing is not distributed yet): each keeps
   // its part when the DistributedSimulation places it.
@@ -217,8 +253,7 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
   mpi::DistributedSimulation& dist = *dist_slot;
   Simulation& sim = dist.local();  // this rank's share: the run's step, time, dt and walls
   DistributedHealth health(*inst.simulation, scene.gravity);
-  // Body impacts are not recorded by a decomposed run yet: its checkpoints carry "never hit".
-  const BodyImpactRecorder no_impacts(inst.simulation->particles());
+  DistributedImpacts impacts(inst.simulation->particles());  // first wall contact per body (docs/bodies.md)
 
   RunResult result;
   result.particles = restart_point ? restart_point->simulation.particles.size() : inst.simulation->particles().size();
@@ -236,35 +271,43 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
   const auto frame_every = std::max<std::int64_t>(1, std::llround(scene.frame_interval / dist.dt()));
   result.output = restarting ? spec.restart : spec.out_dir / scene.output_file;
   const std::filesystem::path checkpoint_file = checkpoint_path_for(result.output);
-  std::optional<RunWriter> writer;  // rank 0's
+  // Every rank holds the run file open through MPI-IO and makes every call of the writer alike
+  // (the series rows and break events are the same on every rank); a frame's rows are each
+  // rank's own (write_frame below).
+  std::optional<RunWriter> writer;
   if (restarting) {
     meta = old_meta;
     meta.notes.emplace_back("mpi_ranks_after_restart", fmt::format("{} from step {}", ranks, dist.step_count()));
   }
-  on_root([&] {
-    if (!restarting) {
-      writer.emplace(result.output, meta, wall_names);
-      return;
-    }
+  if (!restarting) {
+    on_all([&] { writer.emplace(result.output, meta, wall_names, shared_run_file(rank)); });
+  } else {
     std::filesystem::path moved_aside = spec.restart;
     moved_aside.replace_extension(".interrupted.h5");
-    std::filesystem::rename(spec.restart, moved_aside);
+    on_root([&] { std::filesystem::rename(spec.restart, moved_aside); });
     try {
-      writer.emplace(result.output, meta, wall_names);
-      const auto copied = copy_run_prefix(moved_aside, *writer, *restart_point, {series_every, frame_every}, wall_names);
-      writer->flush();
-      info(fmt::format("restart: continuing {} from step {} (t = {:.6g} s) on {} ranks; {} frames and the series up "
-                       "to it kept",
-                       result.output.string(), dist.step_count(), dist.time(), ranks, copied));
+      // Every rank reads the interrupted file and writes its prefix alike.
+      on_all([&] {
+        writer.emplace(result.output, meta, wall_names, shared_run_file(rank));
+        const auto copied =
+            copy_run_prefix(moved_aside, *writer, *restart_point, {series_every, frame_every}, wall_names);
+        writer->flush();
+        info(fmt::format("restart: continuing {} from step {} (t = {:.6g} s) on {} ranks; {} frames and the series "
+                         "up to it kept",
+                         result.output.string(), dist.step_count(), dist.time(), ranks, copied));
+      });
     } catch (...) {
       // Put the interrupted run back as it was: a failed restart must not cost the user the run.
       writer.reset();
-      std::error_code ignored;
-      std::filesystem::rename(moved_aside, spec.restart, ignored);
+      MPI_Barrier(MPI_COMM_WORLD);
+      if (rank == 0) {
+        std::error_code ignored;
+        std::filesystem::rename(moved_aside, spec.restart, ignored);
+      }
       throw;
     }
-    std::filesystem::remove(moved_aside);
-  });
+    on_root([&] { std::filesystem::remove(moved_aside); });
+  }
 
   std::size_t events_written = restart_point ? restart_point->simulation.events_taken : 0;
   const LoadSensor sensor(scene, sim);
@@ -275,13 +318,14 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
   whole.frame_bonds = &no_bonds;
   whole.bonds_broken = dist.bonds_broken();
   whole.bonds_intact = dist.bond_count();
+  whole.all_slower_than = [&dist](double speed) { return dist.all_slower_than(speed); };
   RunState state(scene, sim, result, sensor, [&] {
     Checkpoint c;
     c.simulation = dist.gather_state(0, true);
     c.simulation.events_taken = events_written;
     save_loop_state(c, result, state.frames_written, health.state(dist));
     on_root([&] {
-      c.arrays.emplace_back("body_impacts", no_impacts.state());
+      c.arrays.emplace_back("body_impacts", impacts.state());
       write_checkpoint(checkpoint_file, c);
     });
     result.checkpoint = checkpoint_file;
@@ -293,19 +337,50 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
   if (restart_point) {
     restore_loop_state(*restart_point, result, state.frames_written);
     health.restore(restart_point->array("health"), rank);
+    impacts.restore(restart_point->array("body_impacts"));
     result.restarted_from = dist.step_count();
   }
   auto last_good = [&] { return last_good_state(result); };
+  // Every frame is written by all ranks at once, each its own particles and bonds (nothing of it
+  // gathered: docs/scaling-out.md). A frame the fragment labeller labels (its cadence: [analysis]
+  // fragments_every) gathers to rank 0 what the labels need, the particles' ids and masses and the
+  // bonds' rows, in the frame's row order; rank 0 labels the whole bond graph and sends each rank
+  // the labels of its rows.
   auto write_frame = [&] {
-    const SimulationState frame = dist.gather_state(0, false);
-    whole.frame_particles = rank == 0 ? &frame.particles : &no_particles;
-    whole.frame_bonds = rank == 0 ? &frame.bonds : &no_bonds;
+    const int every = scene.fragments_every;
+    const bool to_label = every > 0 && state.frames_written % every == 0;
+    const mpi::FrameShare share = dist.frame_share();
+    Particles label_particles;
+    Bonds label_bonds;
+    if (to_label) {
+      label_particles.id = dist.gather_to_root(share.particles.id);
+      label_particles.mass = dist.gather_to_root(share.particles.mass);
+      const std::vector<Index> rows = dist.gather_to_root(share.bond_rows);
+      for (std::size_t k = 0; k + 1 < rows.size(); k += 2) {
+        label_bonds.i.push_back(rows[k]);
+        label_bonds.j.push_back(rows[k + 1]);
+      }
+    }
+    whole.frame_particles = &label_particles;
+    whole.frame_bonds = &label_bonds;
     state.frame_labels = nullptr;
     for (auto* o : observers) o->before_frame(state);
-    on_root([&] {
-      writer->write_frame(dist.step_count(), dist.time(), frame.particles, frame.bonds, state.frame_labels);
-    });
-    whole.frame_particles = &no_particles;  // the gathered frame goes out of scope here
+    FramePart part;
+    part.labelled = dist.any_rank(state.frame_labels != nullptr);
+    std::vector<Index> labels;
+    if (part.labelled)
+      labels = dist.scatter_from_root(rank == 0 && state.frame_labels ? *state.frame_labels : std::vector<Index>{},
+                                      share.particles.id.size());
+    part.fragment_labels = &labels;
+    part.configure_transfer = collective_transfer;
+    part.particles = &share.particles;
+    part.first_row = share.first_row;
+    part.total_rows = share.total_rows;
+    part.bond_rows = &share.bond_rows;
+    part.first_bond = share.first_bond;
+    part.total_bonds = share.total_bonds;
+    on_all([&] { writer->write_frame_part(dist.step_count(), dist.time(), part); });
+    whole.frame_particles = &no_particles;  // the gathered ids and masses go out of scope here
     whole.frame_bonds = &no_bonds;
     ++state.frames_written;
   };
@@ -333,7 +408,7 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
       row.add_wall(summed);
     }
     const auto& events = dist.break_events();
-    on_root([&] {
+    on_all([&] {
       writer->append_series(row);
       writer->append_break_events(std::vector<BondBreakEvent>(events.begin() + static_cast<std::ptrdiff_t>(events_written),
                                                               events.end()));
@@ -349,6 +424,7 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
                  [&] {
                    dist.step();
                    health.after_step(dist);
+                   impacts.update(dist);
                    whole.bonds_broken = dist.bonds_broken();
                  },
                  [&] { health.check(dist, last_good()); },
@@ -365,7 +441,10 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
                  }};
   run_observed_steps(state, observers, scene.duration, dist.dt(), restarting,
                      {series_every, frame_every, spec.health_every}, loop);
-  on_root([&] { writer->flush(); });
+  on_all([&] {
+    writer->write_body_impacts(impacts.impacts());
+    writer->flush();
+  });
 
   result.steps = dist.step_count();
   result.time = dist.time();

@@ -31,6 +31,12 @@ struct BodyImpact {
 // on it: touching it is not an impact, so a plate riding a belt records the wall it falls onto.
 bool carries_bodies(const Wall& wall);
 
+// A checkpoint's flat numbers of the impacts (10 per body: hit, step, time, velocity, normal,
+// wall), the same for the serial recorder and a decomposed run's; impacts_from_state throws
+// std::invalid_argument when the count does not match `bodies`.
+std::vector<double> impacts_state(const std::vector<BodyImpact>& impacts);
+std::vector<BodyImpact> impacts_from_state(const std::vector<double>& state, std::size_t bodies);
+
 class BodyImpactRecorder {
  public:
   // One record per body id 0..max(particles.body).
@@ -53,10 +59,11 @@ class BodyImpactRecorder {
 
  private:
   // The contact that makes a body's impact: of the step's touching (wall, sphere) pairs the one
-  // with the lowest wall index, then the lowest sphere index.
+  // with the lowest wall index, then the lowest sphere id (its stable id: the particles' order,
+  // renumbered at list rebuilds, or a decomposition over ranks does not change the choice).
   struct Candidate {
     std::int32_t wall = -1;
-    Index particle = -1;
+    Index particle = -1;  // the sphere's stable id
     Vec3 normal = Vec3::Zero();
   };
   void offer(std::size_t body, std::int32_t wall, Index particle, const Vec3& normal);

@@ -4,6 +4,7 @@
 // a readable file holding every frame written before the kill.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -55,11 +56,36 @@ class OutputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// How a RunWriter opens its file when several processes share it (a run decomposed over MPI
+// ranks writing its frames in parallel: docs/scaling-out.md). The defaults are the serial writer.
+struct RunWriterAccess {
+  // Given the file-access property list (an hid_t) before the file is created: the MPI build
+  // selects the MPI-IO driver here. Every call of the writer is then collective: each process
+  // makes it with the same arguments (the frame parts aside).
+  std::function<void(std::int64_t access)> configure;
+  bool writes_index = true;  // this process keeps run.xmf (exactly one of those sharing the file)
+};
+
+// One process's rows of a frame written by several processes (RunWriter::write_frame_part). The
+// fields the frame stores must be filled in `particles` (id, position, velocity, omega, radius,
+// mass, material, body); the others may be empty.
+struct FramePart {
+  const Particles* particles = nullptr;
+  std::size_t first_row = 0, total_rows = 0;  // where its rows go among all processes'
+  // Its bonds as row pairs (i0 j0 i1 j1 ...) into the whole frame, at first_bond of total_bonds.
+  const std::vector<Index>* bond_rows = nullptr;
+  std::size_t first_bond = 0, total_bonds = 0;
+  const std::vector<Index>* fragment_labels = nullptr;  // its rows' labels when `labelled`
+  bool labelled = false;                                 // the same on every process
+  // Given the dataset-transfer property list (an hid_t): the MPI build asks for collective I/O.
+  std::function<void(std::int64_t transfer)> configure_transfer;
+};
+
 class RunWriter {
  public:
   // Creates (truncates) path; throws OutputError naming the path if it cannot be written.
   RunWriter(const std::filesystem::path& path, const RunMetadata& meta,
-            const std::vector<std::string>& wall_names);
+            const std::vector<std::string>& wall_names, const RunWriterAccess& access = {});
   ~RunWriter();
   RunWriter(const RunWriter&) = delete;
   RunWriter& operator=(const RunWriter&) = delete;
@@ -70,6 +96,8 @@ class RunWriter {
   // Rewrites the .xmf index and flushes the file.
   void write_frame(std::int64_t step, double time, const Particles& particles, const Bonds& bonds,
                    const std::vector<Index>* fragment_labels = nullptr);
+  // The same frame written by several processes at once (RunWriterAccess), each its own rows.
+  void write_frame_part(std::int64_t step, double time, const FramePart& part);
   // /body_impacts (docs/output-format.md): the first wall contact of every body. Once per run,
   // at its end (a frame's objects are never rewritten: see run_writer.cpp).
   void write_body_impacts(const std::vector<BodyImpact>& impacts);

@@ -459,9 +459,10 @@ void DistributedSimulation::run(std::int64_t steps) {
   for (std::int64_t s = 0; s < steps; ++s) step();
 }
 
-// After a step: the new break events, the walls' loads summed over the ranks (a wall driven by
-// its force then moves alike everywhere), and whether to re-partition. One gather of a few
-// numbers per rank; a second only when some bond broke.
+// After a step: the new break events, the wall contacts begun (by id, and their count over the
+// ranks), the walls' loads summed over the ranks (a wall driven by its force then moves alike
+// everywhere), and whether to re-partition. One gather of a few numbers per rank; a second only
+// when some bond broke.
 void DistributedSimulation::finish_step() {
   Simulation& sim = *local_;
   std::vector<BondBreakEvent> fresh = sim.take_new_break_events();
@@ -483,8 +484,16 @@ void DistributedSimulation::finish_step() {
     moved = std::max(moved, (p.position[k] - position_at_partition_[k]).squaredNorm());
     speed = std::max(speed, p.velocity[k].squaredNorm());
   }
+  begun_.clear();
+  const bool bodies = p.body.size() == p.size();
+  for (const WallContactStart& c : sim.wall_contacts_begun()) {
+    const auto k = static_cast<std::size_t>(c.particle);
+    if (p.flags[k] & kGhost) continue;  // the neighbour list pairs walls with owned particles only
+    begun_.push_back({p.id[k], bodies ? p.body[k] : 0, c.wall, c.normal});
+  }
   std::vector<Wall>& walls = sim.walls();
-  std::vector<double> mine{static_cast<double>(fresh.size()), std::sqrt(moved) + kStepMargin * std::sqrt(speed) * sim.dt()};
+  std::vector<double> mine{static_cast<double>(fresh.size()), std::sqrt(moved) + kStepMargin * std::sqrt(speed) * sim.dt(),
+                           static_cast<double>(begun_.size())};
   for (const Wall& w : walls) {
     mine.insert(mine.end(), w.force.data(), w.force.data() + 3);
     mine.insert(mine.end(), w.torque.data(), w.torque.data() + 3);
@@ -500,7 +509,7 @@ void DistributedSimulation::finish_step() {
   const std::vector<double> all = all_gather(mine, comm_);
   reduction_seconds_ += MPI_Wtime() - reduction_start;
   const std::size_t per = mine.size();
-  double events = 0, max_moved = 0;
+  double events = 0, max_moved = 0, begun = 0;
   for (auto& w : walls) {
     w.force.setZero();
     w.torque.setZero();
@@ -510,13 +519,15 @@ void DistributedSimulation::finish_step() {
     const double* v = all.data() + static_cast<std::size_t>(r) * per;
     events += v[0];
     max_moved = std::max(max_moved, v[1]);
+    begun += v[2];
     for (std::size_t w = 0; w < walls.size(); ++w) {
-      const double* x = v + 2 + 7 * w;
+      const double* x = v + 3 + 7 * w;
       walls[w].force += Vec3(x[0], x[1], x[2]);
       walls[w].torque += Vec3(x[3], x[4], x[5]);
       walls[w].stored_energy += x[6];
     }
   }
+  wall_contacts_begun_anywhere_ = static_cast<std::int64_t>(begun);
   if (events > 0) {
     std::vector<EventRecord> records;
     for (const BondBreakEvent& e : fresh) {
@@ -622,7 +633,48 @@ std::vector<double> DistributedSimulation::sum_over_ranks(const std::vector<doub
   return sum_in_rank_order(mine, comm_);
 }
 
+std::vector<double> DistributedSimulation::gather_over_ranks(const std::vector<double>& mine) const {
+  return all_gather(mine, comm_);
+}
+
+std::vector<double> DistributedSimulation::gather_to_root(const std::vector<double>& mine, int root) const {
+  return gather_to(mine, root, comm_);
+}
+
+std::vector<Index> DistributedSimulation::gather_to_root(const std::vector<Index>& mine, int root) const {
+  return gather_to(mine, root, comm_);
+}
+
+std::vector<Index> DistributedSimulation::scatter_from_root(const std::vector<Index>& all, std::size_t mine,
+                                                            int root) const {
+  const int count = byte_count(mine * sizeof(Index)) / static_cast<int>(sizeof(Index));
+  std::vector<int> counts(static_cast<std::size_t>(ranks_)), at(static_cast<std::size_t>(ranks_));
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, root, comm_);
+  int total = 0;
+  for (int r = 0; r < ranks_; ++r) {
+    at[static_cast<std::size_t>(r)] = total;
+    total += counts[static_cast<std::size_t>(r)];
+  }
+  if (rank_ == root && static_cast<std::size_t>(total) != all.size())
+    throw std::logic_error(fmt::format("scatter_from_root: {} values for {} asked", all.size(), total));
+  std::vector<Index> out(mine);
+  static_assert(sizeof(Index) == sizeof(std::int32_t));
+  MPI_Scatterv(all.data(), counts.data(), at.data(), MPI_INT32_T, out.data(), count, MPI_INT32_T, root, comm_);
+  return out;
+}
+
 bool DistributedSimulation::any_rank(bool mine) const { return max_over_ranks(mine ? 1.0 : 0.0, comm_) > 0; }
+
+bool DistributedSimulation::all_slower_than(double speed) const {
+  const Particles& p = local_->particles();
+  const double limit2 = speed * speed;
+  int mine = 1;
+  for (std::size_t k = 0; k < p.size() && mine; ++k)
+    if (!(p.flags[k] & kGhost) && p.velocity[k].squaredNorm() >= limit2) mine = 0;
+  int all = 0;
+  MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_LAND, comm_);
+  return all != 0;
+}
 
 SimulationState DistributedSimulation::gather_state(int root, bool contacts) const {
   const Simulation& sim = *local_;

@@ -62,4 +62,34 @@ void write_frame_datasets(hid_t group, const Particles& particles, const std::ve
   if (fragment_labels != nullptr) h5::write_dataset(group, "fragment", fragment_labels->data(), n);
 }
 
+void write_frame_part_datasets(hid_t group, const FramePart& part) {
+  const Particles& p = *part.particles;
+  const std::size_t n = p.id.size();
+  require_size(p.position.size(), n, "position");
+  require_size(p.velocity.size(), n, "velocity");
+  require_size(p.omega.size(), n, "omega");
+  require_size(p.radius.size(), n, "radius");
+  require_size(p.mass.size(), n, "mass");
+  require_size(p.material.size(), n, "material");
+  require_size(p.body.size(), n, "body");
+  if (part.labelled) require_size(part.fragment_labels ? part.fragment_labels->size() : 0, n, "fragment labels");
+  const std::size_t bonds = part.bond_rows ? part.bond_rows->size() / 2 : 0;
+  h5::Handle transfer = h5::plist_handle(H5Pcreate(H5P_DATASET_XFER), "creating a transfer list");
+  if (part.configure_transfer) part.configure_transfer(transfer.get());
+  const hid_t x = transfer.get();
+  const std::size_t first = part.first_row, total = part.total_rows;
+  h5::write_dataset_part(group, "id", p.id.data(), first, n, total, 0, x);
+  h5::write_dataset_part(group, "position", flat(p.position), first, n, total, 3, x);
+  h5::write_dataset_part(group, "velocity", flat(p.velocity), first, n, total, 3, x);
+  h5::write_dataset_part(group, "omega", flat(p.omega), first, n, total, 3, x);
+  h5::write_dataset_part(group, "radius", p.radius.data(), first, n, total, 0, x);
+  h5::write_dataset_part(group, "mass", p.mass.data(), first, n, total, 0, x);
+  h5::write_dataset_part(group, "material", p.material.data(), first, n, total, 0, x);
+  h5::write_dataset_part(group, "body", p.body.data(), first, n, total, 0, x);
+  h5::write_dataset_part(group, "bonds", bonds ? part.bond_rows->data() : nullptr, part.first_bond, bonds,
+                         part.total_bonds, 2, x);
+  if (part.labelled)
+    h5::write_dataset_part(group, "fragment", part.fragment_labels->data(), first, n, total, 0, x);
+}
+
 }  // namespace shard

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "shard/bonds.hpp"
+#include "shard/output.hpp"
 #include "shard/particles.hpp"
 
 namespace shard {
@@ -20,5 +21,9 @@ void collect_frame_bonds(const Particles& particles, const Bonds& bonds,
 // Writes the datasets of one frame into `group`.
 void write_frame_datasets(hid_t group, const Particles& particles, const std::vector<Index>& pairs,
                           const std::vector<Index>* fragment_labels);
+
+// Writes this process's rows of a frame shared by several processes (FramePart): every dataset
+// has the whole frame's rows; each process writes its slab.
+void write_frame_part_datasets(hid_t group, const FramePart& part);
 
 }  // namespace shard

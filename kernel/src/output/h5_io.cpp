@@ -198,6 +198,31 @@ void write_dataset(hid_t parent, const std::string& name, hid_t file_type, hid_t
         "writing dataset '" + name + "'");
 }
 
+void write_dataset_part(hid_t parent, const std::string& name, hid_t file_type, hid_t memory_type,
+                        const void* data, std::size_t first, std::size_t rows, std::size_t total,
+                        std::size_t cols, hid_t transfer) {
+  const int rank = cols == 0 ? 1 : 2;
+  const std::array<hsize_t, 2> dims{total, cols};
+  Handle space = space_handle(H5Screate_simple(rank, dims.data(), nullptr),
+                              "creating the dataspace of '" + name + "'");
+  Handle dataset = dataset_handle(H5Dcreate2(parent, name.c_str(), file_type, space.get(),
+                                             H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                                  "creating dataset '" + name + "'");
+  // A collective write takes every process, one without rows included (an empty selection).
+  const std::array<hsize_t, 2> start{first, 0}, count{rows, cols};
+  Handle memory = space_handle(H5Screate_simple(rank, count.data(), nullptr), "the rows of '" + name + "'");
+  if (rows == 0 || data == nullptr) {
+    check(H5Sselect_none(space.get()), "selecting no rows of '" + name + "'");
+    check(H5Sselect_none(memory.get()), "selecting no rows of '" + name + "'");
+  } else {
+    check(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+          "selecting rows of '" + name + "'");
+  }
+  static const std::uint64_t nothing = 0;  // a process without rows still passes a buffer
+  check(H5Dwrite(dataset.get(), memory_type, memory.get(), space.get(), transfer, data ? data : &nothing),
+        "writing dataset '" + name + "'");
+}
+
 void write_string_dataset(hid_t parent, const std::string& name, const std::vector<std::string>& values) {
   Handle type = utf8_string_type();
   std::vector<const char*> text(values.size());

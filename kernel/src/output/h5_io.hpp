@@ -77,6 +77,20 @@ void remove_link(hid_t parent, const std::string& name);
 void write_dataset(hid_t parent, const std::string& name, hid_t file_type, hid_t memory_type,
                    const void* data, std::size_t rows, std::size_t cols);
 
+// A [total] ([total, cols]) dataset of which this process writes rows [first, first + rows): every
+// process sharing the file calls it (a process without rows too) with the same name and total.
+// `transfer` is the dataset-transfer property list (collective I/O for MPI-IO).
+void write_dataset_part(hid_t parent, const std::string& name, hid_t file_type, hid_t memory_type,
+                        const void* data, std::size_t first, std::size_t rows, std::size_t total,
+                        std::size_t cols, hid_t transfer);
+
+template <class T>
+void write_dataset_part(hid_t parent, const std::string& name, const T* data, std::size_t first,
+                        std::size_t rows, std::size_t total, std::size_t cols, hid_t transfer) {
+  write_dataset_part(parent, name, TypeOf<T>::file(), TypeOf<T>::memory(), data, first, rows, total,
+                     cols, transfer);
+}
+
 // One row per string, variable-length UTF-8 like the string attributes.
 void write_string_dataset(hid_t parent, const std::string& name, const std::vector<std::string>& values);
 

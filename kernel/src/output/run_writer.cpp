@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include <cstdio>
+#include <optional>
 #include <system_error>
 
 #include "break_event_writer.hpp"
@@ -69,8 +70,9 @@ void hold_metadata_until_flush(hid_t access) {
   h5::check(H5Pset_mdc_config(access, &config), "holding metadata until flush");
 }
 
-h5::Handle create_file(const std::filesystem::path& path) {
+h5::Handle create_file(const std::filesystem::path& path, const RunWriterAccess& shared) {
   h5::Handle access = h5::plist_handle(H5Pcreate(H5P_FILE_ACCESS), "creating file access list");
+  if (shared.configure) shared.configure(access.get());
   h5::check(H5Pset_libver_bounds(access.get(), H5F_LIBVER_V18, H5F_LIBVER_LATEST),
             "selecting the file format");
   hold_metadata_until_flush(access.get());
@@ -90,8 +92,9 @@ h5::Handle create_file(const std::filesystem::path& path) {
   return h5::Handle(id, H5Fclose);
 }
 
-h5::Handle create_run_file(const std::filesystem::path& path, const RunMetadata& meta) {
-  h5::Handle handle = create_file(path);
+h5::Handle create_run_file(const std::filesystem::path& path, const RunMetadata& meta,
+                           const RunWriterAccess& shared) {
+  h5::Handle handle = create_file(path, shared);
   const hid_t file = handle.get();
   h5::write_attribute(file, "shard_version", meta.shard_version);
   h5::write_attribute(file, "git_revision", meta.git_revision);
@@ -114,15 +117,30 @@ h5::Handle create_run_file(const std::filesystem::path& path, const RunMetadata&
 
 struct RunWriter::Impl {
   Impl(const std::filesystem::path& file_path, const RunMetadata& meta,
-       const std::vector<std::string>& wall_names)
+       const std::vector<std::string>& wall_names, const RunWriterAccess& shared)
       : path(file_path),
-        file(create_run_file(file_path, meta)),
+        file(create_run_file(file_path, meta, shared)),
         series(file.get(), wall_names, kBlockRows),
         events(file.get(), kBlockRows),
         frames(h5::create_group(file.get(), "frames")),
-        frame_index(h5::create_frame_index(file.get(), kFrameIndexCapacity)),
-        index(xmf_path_of(file_path), file_path.filename().string()) {
+        frame_index(h5::create_frame_index(file.get(), kFrameIndexCapacity)) {
+    if (shared.writes_index) index.emplace(xmf_path_of(file_path), file_path.filename().string());
     flush_file();
+  }
+
+  // After a frame's datasets: its attributes and index entry, each behind a flush (the note at
+  // the top), and its line in run.xmf.
+  void close_frame(hid_t group, const std::string& name, std::int64_t step, double time, std::size_t particles,
+                   std::size_t bonds, bool labelled) {
+    flush_file();
+    // The frame counts as written once these are on disk (see the note at the top).
+    h5::write_attribute(group, "step", step);
+    h5::write_attribute(group, "time", time);
+    if (static_cast<std::size_t>(frame_count) < kFrameIndexCapacity)
+      h5::record_frame_address(frame_index.get(), static_cast<std::size_t>(frame_count), group);
+    flush_file();
+    ++frame_count;
+    if (index) index->add({"/frames/" + name, time, particles, bonds, labelled});
   }
 
   void flush_file() {
@@ -140,19 +158,19 @@ struct RunWriter::Impl {
   BreakEventWriter events;
   h5::Handle frames;
   h5::Handle frame_index;
-  XdmfIndex index;
+  std::optional<XdmfIndex> index;  // on the one process that keeps run.xmf
   std::int64_t frame_count = 0;
   std::vector<Index> pair_scratch;
 };
 
 RunWriter::RunWriter(const std::filesystem::path& path, const RunMetadata& meta,
-                     const std::vector<std::string>& wall_names) {
+                     const std::vector<std::string>& wall_names, const RunWriterAccess& access) {
   if (path.extension() == ".xmf")
     throw OutputError("run file '" + path.string() +
                       "' ends in .xmf, the name of its XDMF index: use a .h5 name");
   make_parent_folder(path);
   const h5::QuietErrors quiet;
-  impl_ = std::make_unique<Impl>(path, meta, wall_names);
+  impl_ = std::make_unique<Impl>(path, meta, wall_names, access);
 }
 
 RunWriter::~RunWriter() {
@@ -195,17 +213,18 @@ void RunWriter::write_frame(std::int64_t step, double time, const Particles& par
   const std::string name = fmt::format("{:06d}", m.frame_count);
   h5::Handle group = h5::create_group(m.frames.get(), name);
   write_frame_datasets(group.get(), particles, m.pair_scratch, fragment_labels);
-  m.flush_file();
-  // The frame counts as written once these are on disk (see the note at the top).
-  h5::write_attribute(group.get(), "step", step);
-  h5::write_attribute(group.get(), "time", time);
-  if (static_cast<std::size_t>(m.frame_count) < kFrameIndexCapacity)
-    h5::record_frame_address(m.frame_index.get(), static_cast<std::size_t>(m.frame_count),
-                             group.get());
-  m.flush_file();
-  ++m.frame_count;
-  m.index.add({"/frames/" + name, time, particles.size(), m.pair_scratch.size() / 2,
-               fragment_labels != nullptr});
+  m.close_frame(group.get(), name, step, time, particles.size(), m.pair_scratch.size() / 2,
+                fragment_labels != nullptr);
+}
+
+void RunWriter::write_frame_part(std::int64_t step, double time, const FramePart& part) {
+  const h5::QuietErrors quiet;
+  Impl& m = *impl_;
+  m.write_blocks();
+  const std::string name = fmt::format("{:06d}", m.frame_count);
+  h5::Handle group = h5::create_group(m.frames.get(), name);
+  write_frame_part_datasets(group.get(), part);
+  m.close_frame(group.get(), name, step, time, part.total_rows, part.total_bonds, part.labelled);
 }
 
 void RunWriter::write_body_impacts(const std::vector<BodyImpact>& impacts) {

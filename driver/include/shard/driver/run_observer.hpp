@@ -40,10 +40,14 @@ class RunState {
   struct Whole {
     std::int64_t bonds_broken = 0;
     std::size_t bonds_intact = 0;
-    // In before_frame: the next frame's particles (ascending id) and bonds on the rank that
-    // writes it; empty on the others and outside before_frame.
+    // In before_frame of a frame to be labelled: the ids and masses of the next frame's particles
+    // (only those fields; in the frame's row order) and its bonds as rows into them, on rank 0;
+    // empty on the others, for other frames and outside before_frame.
     const Particles* frame_particles = nullptr;
     const Bonds* frame_bonds = nullptr;
+    // Whether every particle of the run is slower than the speed given (m/s), decided over all
+    // ranks: collective, so every rank asks at the same hook (RestStop's on_start and on_step).
+    std::function<bool(double)> all_slower_than;
   };
   const Whole* whole = nullptr;
   std::int64_t bonds_broken() const { return whole ? whole->bonds_broken : sim.bonds_broken(); }

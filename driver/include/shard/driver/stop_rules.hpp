@@ -23,7 +23,8 @@ class MaxDisplacementStop : public RunObserver {
 // every step, stayed below rest_speed at every step spanning rest_time (the first such step ends
 // it). The clock starts at the loop's first step (or its start, when every particle is slower
 // then); a restart starts it anew, so a restarted run may end up to rest_time later. Cost: one
-// pass over the velocities per step, left at the first particle that is too fast.
+// pass over the velocities per step, left at the first particle that is too fast; decomposed over
+// MPI ranks, each rank passes over its own and one MPI_Allreduce of an integer per step combines them.
 class RestStop : public RunObserver {
  public:
   void on_start(RunState& run) override;

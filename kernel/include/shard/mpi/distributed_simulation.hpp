@@ -28,6 +28,25 @@ struct GatheredParticles {
   std::vector<Quat> orientation;
 };
 
+// A frame of the run file (docs/output-format.md) on one rank: the particles in ascending stable id
+// with the fields a frame stores filled (position, velocity, omega, radius, mass, material, body,
+// id; the others empty), and the surviving bonds as index pairs into them, in ascending
+// (smaller id, larger id), without model state.
+struct GatheredFrame {
+  Particles particles;
+  Bonds bonds;
+};
+
+// This rank's rows of a frame written by every rank at once (RunWriter::write_frame_part): its own
+// particles in ascending id (the fields a frame stores) at the exclusive prefix sum of the ranks'
+// counts, and its own bonds as row pairs into the whole frame at theirs.
+struct FrameShare {
+  Particles particles;
+  std::size_t first_row = 0, total_rows = 0;
+  std::vector<Index> bond_rows;  // (row of the smaller id, row of the larger) per bond
+  std::size_t first_bond = 0, total_bonds = 0;
+};
+
 class DistributedSimulation {
  public:
   // `setup` is the whole scene, the same on every rank (each keeps its part). Throws
@@ -53,6 +72,9 @@ class DistributedSimulation {
   const std::vector<Wall>& walls() const { return local_->walls(); }  // loads summed over ranks
   // Every rank's break events of the run, sorted by (step, smaller id, larger id); id_i < id_j.
   const std::vector<BondBreakEvent>& break_events() const { return events_; }
+  // How many wall contacts began in the last step over all ranks (counted in the step's own
+  // reduction: knowing it costs no message).
+  std::int64_t wall_contacts_begun_anywhere() const { return wall_contacts_begun_anywhere_; }
   std::int64_t bonds_broken() const { return static_cast<std::int64_t>(events_.size()); }
   std::int64_t repartitions() const { return repartitions_; }
 
@@ -62,6 +84,16 @@ class DistributedSimulation {
   Simulation& local() { return *local_; }
   // Whether the particle at `k` of local().particles() is this rank's own (not a ghost copy).
   bool owns(std::size_t k) const { return !(local_->particles().flags[k] & kGhost); }
+  // The wall contacts begun in the last step on this rank's own particles, named by stable id and
+  // body: a re-partition at the end of the step renumbers the local particles, which would leave
+  // Simulation::wall_contacts_begun's indices pointing at others.
+  struct WallContactBegun {
+    Index id = 0;
+    std::int32_t body = 0;
+    std::int32_t wall = 0;
+    Vec3 normal = Vec3::Zero();  // unit, from the wall towards the particle
+  };
+  const std::vector<WallContactBegun>& wall_contacts_begun() const { return begun_; }
   std::size_t owned() const { return owned_; }
   std::size_t ghosts() const;
   double halo_seconds() const;      // wall time in the per-step ghost and reaction exchanges
@@ -92,10 +124,27 @@ class DistributedSimulation {
   // `contacts` the touching pairs' history (no list build positions: the importer rebuilds).
   // What a frame and a checkpoint hold; a checkpoint of it restarts on any rank count.
   SimulationState gather_state(int root = 0, bool contacts = true) const;
+  // A frame's content on `root` (empty elsewhere), by MPI_Gatherv: per particle 11 doubles and 3
+  // integers, per bond two ids, against gather_state's 22 doubles, 5 integers and 2 + stride
+  // doubles (kernel/src/mpi/frame_gather.cpp).
+  GatheredFrame gather_frame(int root = 0) const;
+  // This rank's share of a frame, nothing gathered: two prefix sums, and the rows of the ghosts'
+  // owners through the halo links (one integer per ghost).
+  FrameShare frame_share() const;
   // Element-wise sums over the ranks, added in rank order (the same on every rank).
   std::vector<double> sum_over_ranks(const std::vector<double>& mine) const;
+  // Every rank's `mine` (of any length), concatenated in rank order, on every rank.
+  std::vector<double> gather_over_ranks(const std::vector<double>& mine) const;
+  // Every rank's `mine`, concatenated in rank order, on `root` only (empty elsewhere).
+  std::vector<double> gather_to_root(const std::vector<double>& mine, int root = 0) const;
+  std::vector<Index> gather_to_root(const std::vector<Index>& mine, int root = 0) const;
+  // The inverse: `all` on `root` cut in rank order, each rank receiving its `mine` values.
+  std::vector<Index> scatter_from_root(const std::vector<Index>& all, std::size_t mine, int root = 0) const;
   // True when any rank passes true (one MPI_Allreduce).
   bool any_rank(bool mine) const;
+  // Whether every particle of the run is slower than `speed` (m/s): each rank looks at its own
+  // (stopping at the first too fast), one MPI_Allreduce (logical and) combines the answers.
+  bool all_slower_than(double speed) const;
 
  private:
   struct Owned;
@@ -119,6 +168,8 @@ class DistributedSimulation {
   std::vector<Vec3> position_at_partition_;
   std::vector<Index> partition_id_;
   std::vector<BondBreakEvent> events_;
+  std::vector<WallContactBegun> begun_;
+  std::int64_t wall_contacts_begun_anywhere_ = 0;
   std::int64_t repartitions_ = 0;
   double partition_seconds_ = 0;
   double reduction_seconds_ = 0, reduction_barrier_seconds_ = 0;

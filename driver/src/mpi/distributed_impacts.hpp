@@ -1,0 +1,51 @@
+#pragma once
+// BodyImpactRecorder (shard/body_impacts.hpp) for a run decomposed over MPI ranks: each rank offers
+// the wall contacts its own spheres began (DistributedSimulation::wall_contacts_begun), the offers
+// of all ranks are gathered in rank order and the serial rule picks each body's contact alike on
+// every rank (the lowest wall index, then the lowest sphere id), and the body's centre-of-mass
+// velocity is summed over the ranks in rank order. Every rank holds the same table; state() is the
+// serial recorder's, so checkpoints continue in either build.
+#include <cstdint>
+#include <vector>
+
+#include "shard/body_impacts.hpp"
+#include "shard/mpi/distributed_simulation.hpp"
+
+namespace shard::driver {
+
+class DistributedImpacts {
+ public:
+  // `whole` is the whole scene as instantiated (the same on every rank): one record per body.
+  explicit DistributedImpacts(const Particles& whole);
+
+  // Collective; call after every step. A step in which no rank began a wall contact sends nothing
+  // (the count travels with the step's own reduction); a step in which some did, one all-gather of
+  // the offers (few) and, when a body got its impact, one sum of the new impacts' momenta. The
+  // first call, and a call that does not follow the step of the last one (a restart), scans every
+  // rank's own spheres against every wall instead, since the contacts begun earlier are not known.
+  void update(const mpi::DistributedSimulation& sim);
+
+  const std::vector<BodyImpact>& impacts() const { return impacts_; }
+  std::vector<double> state() const { return impacts_state(impacts_); }
+  void restore(const std::vector<double>& state);
+
+ private:
+  void offer(std::size_t body, std::int32_t wall, Index id, const Vec3& normal);
+  void scan(const mpi::DistributedSimulation& sim, std::vector<double>& offers) const;
+  void record(const mpi::DistributedSimulation& sim);
+
+  struct Candidate {
+    std::int32_t wall = -1;
+    Index id = -1;
+    Vec3 normal = Vec3::Zero();
+  };
+  std::vector<BodyImpact> impacts_;
+  bool bodies_known_ = false;  // the particles carry body ids
+  std::size_t remaining_ = 0;
+  std::int64_t last_step_ = -1;
+  std::vector<Candidate> candidate_;
+  std::vector<std::size_t> pending_;  // bodies with a candidate this step, in the order offered
+  std::vector<std::size_t> slot_;     // per body: its place in pending_ while recording
+};
+
+}  // namespace shard::driver

@@ -1,0 +1,198 @@
+// DistributedSimulation::gather_frame: what a frame of the run file holds (docs/output-format.md),
+// gathered to one rank, and nothing more: gather_state's particle records carry orientation, force,
+// torque, inertia and flags besides (22 doubles against 11), and its bonds their model state
+// (2 + stride doubles against two 32-bit ids), which a frame drops.
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "comm.hpp"
+#include "halo.hpp"
+#include "shard/domain_exchange.hpp"
+#include "shard/mpi/distributed_simulation.hpp"
+
+namespace shard::mpi {
+namespace {
+
+constexpr int kFrameRowsTag = 7301;  // the ghosts' frame rows (the halo's own messages use others)
+
+struct FrameRecord {
+  double position[3], velocity[3], omega[3];
+  double radius, mass;
+  std::int32_t material, body;
+  Index id;
+};
+
+FrameRecord frame_record_of(const Particles& p, std::size_t k) {
+  FrameRecord r{};
+  std::copy_n(p.position[k].data(), 3, r.position);
+  std::copy_n(p.velocity[k].data(), 3, r.velocity);
+  std::copy_n(p.omega[k].data(), 3, r.omega);
+  r.radius = p.radius[k];
+  r.mass = p.mass[k];
+  r.material = p.material[k];
+  r.body = p.body.size() == p.size() ? p.body[k] : 0;
+  r.id = p.id[k];
+  return r;
+}
+
+}  // namespace
+
+GatheredFrame DistributedSimulation::gather_frame(int root) const {
+  const Simulation& sim = *local_;
+  const Particles& p = sim.particles();
+  const Bonds& b = sim.bonds();
+  std::vector<FrameRecord> mine;
+  mine.reserve(owned_);
+  for (std::size_t k = 0; k < p.size(); ++k)
+    if (!(p.flags[k] & kGhost)) mine.push_back(frame_record_of(p, k));
+  // A rank holds the bonds it owns only (owner-computes): each is gathered once. A bond flagged
+  // broken but not yet removed is not part of a frame (collect_frame_bonds).
+  const bool flags = b.broken.size() == b.size();
+  std::vector<std::array<Index, 2>> pairs;
+  pairs.reserve(b.size());
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    if (flags && b.broken[k] != 0) continue;
+    const Index x = p.id[static_cast<std::size_t>(b.i[k])], y = p.id[static_cast<std::size_t>(b.j[k])];
+    pairs.push_back({std::min(x, y), std::max(x, y)});
+  }
+  std::vector<FrameRecord> all = gather_to(mine, root, comm_);
+  std::vector<std::array<Index, 2>> all_pairs = gather_to(pairs, root, comm_);
+  GatheredFrame f;
+  if (rank_ != root) return f;
+
+  // Ascending id for the particles, ascending (smaller id, larger id) for the bonds: the file's
+  // order does not depend on the partition.
+  std::sort(all.begin(), all.end(), [](const FrameRecord& x, const FrameRecord& y) { return x.id < y.id; });
+  std::sort(all_pairs.begin(), all_pairs.end());
+  Particles& q = f.particles;
+  const std::size_t n = all.size();
+  q.position.resize(n);
+  q.velocity.resize(n);
+  q.omega.resize(n);
+  q.radius.resize(n);
+  q.mass.resize(n);
+  q.material.resize(n);
+  q.body.resize(n);
+  q.id.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const FrameRecord& r = all[k];
+    q.position[k] = Vec3(r.position[0], r.position[1], r.position[2]);
+    q.velocity[k] = Vec3(r.velocity[0], r.velocity[1], r.velocity[2]);
+    q.omega[k] = Vec3(r.omega[0], r.omega[1], r.omega[2]);
+    q.radius[k] = r.radius;
+    q.mass[k] = r.mass;
+    q.material[k] = r.material;
+    q.body[k] = r.body;
+    q.id[k] = r.id;
+  }
+  const auto row_of = [&](Index id) {
+    const auto it = std::lower_bound(q.id.begin(), q.id.end(), id);
+    if (it == q.id.end() || *it != id)
+      throw std::logic_error(fmt::format("gather_frame: particle id {} is held by no rank", id));
+    return static_cast<Index>(it - q.id.begin());
+  };
+  f.bonds.i.resize(all_pairs.size());
+  f.bonds.j.resize(all_pairs.size());
+  for (std::size_t k = 0; k < all_pairs.size(); ++k) {
+    f.bonds.i[k] = row_of(all_pairs[k][0]);
+    f.bonds.j[k] = row_of(all_pairs[k][1]);
+  }
+  return f;
+}
+
+FrameShare DistributedSimulation::frame_share() const {
+  const Simulation& sim = *local_;
+  const Particles& p = sim.particles();
+  const Bonds& b = sim.bonds();
+  std::vector<FrameRecord> mine;
+  mine.reserve(owned_);
+  for (std::size_t k = 0; k < p.size(); ++k)
+    if (!(p.flags[k] & kGhost)) mine.push_back(frame_record_of(p, k));
+  std::sort(mine.begin(), mine.end(), [](const FrameRecord& x, const FrameRecord& y) { return x.id < y.id; });
+  const bool flags = b.broken.size() == b.size();
+  unsigned long long counts[2] = {mine.size(), 0}, before[2] = {0, 0}, total[2] = {0, 0};
+  for (std::size_t k = 0; k < b.size(); ++k) counts[1] += flags && b.broken[k] != 0 ? 0 : 1;
+  MPI_Exscan(counts, before, 2, MPI_UNSIGNED_LONG_LONG, MPI_SUM, comm_);
+  if (rank_ == 0) before[0] = before[1] = 0;  // MPI_Exscan leaves rank 0's result undefined
+  MPI_Allreduce(counts, total, 2, MPI_UNSIGNED_LONG_LONG, MPI_SUM, comm_);
+
+  FrameShare f;
+  f.first_row = before[0];
+  f.total_rows = total[0];
+  f.first_bond = before[1];
+  f.total_bonds = total[1];
+  Particles& q = f.particles;
+  const std::size_t n = mine.size();
+  q.position.resize(n);
+  q.velocity.resize(n);
+  q.omega.resize(n);
+  q.radius.resize(n);
+  q.mass.resize(n);
+  q.material.resize(n);
+  q.body.resize(n);
+  q.id.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const FrameRecord& r = mine[k];
+    q.position[k] = Vec3(r.position[0], r.position[1], r.position[2]);
+    q.velocity[k] = Vec3(r.velocity[0], r.velocity[1], r.velocity[2]);
+    q.omega[k] = Vec3(r.omega[0], r.omega[1], r.omega[2]);
+    q.radius[k] = r.radius;
+    q.mass[k] = r.mass;
+    q.material[k] = r.material;
+    q.body[k] = r.body;
+    q.id[k] = r.id;
+  }
+  const auto own_row = [&](Index id) -> std::int64_t {
+    const auto it = std::lower_bound(q.id.begin(), q.id.end(), id);
+    if (it == q.id.end() || *it != id) return -1;
+    return static_cast<std::int64_t>(f.first_row) + (it - q.id.begin());
+  };
+
+  // The ghosts' rows from their owners, over the halo's links (each end lists the ids in the
+  // same ascending order).
+  const std::vector<HaloLink>& links = halo_->links();
+  std::vector<std::vector<std::int64_t>> out(links.size()), in(links.size());
+  std::vector<MPI_Request> requests;
+  requests.reserve(2 * links.size());
+  for (std::size_t l = 0; l < links.size(); ++l) {
+    for (Index id : links[l].send) out[l].push_back(own_row(id));
+    in[l].resize(links[l].recv.size());
+    requests.emplace_back();
+    MPI_Irecv(in[l].data(), static_cast<int>(in[l].size()), MPI_INT64_T, links[l].rank, kFrameRowsTag, comm_,
+              &requests.back());
+    requests.emplace_back();
+    MPI_Isend(out[l].data(), static_cast<int>(out[l].size()), MPI_INT64_T, links[l].rank, kFrameRowsTag, comm_,
+              &requests.back());
+  }
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  std::vector<std::pair<Index, std::int64_t>> ghost_rows;
+  for (std::size_t l = 0; l < links.size(); ++l)
+    for (std::size_t k = 0; k < in[l].size(); ++k) ghost_rows.emplace_back(links[l].recv[k], in[l][k]);
+  std::sort(ghost_rows.begin(), ghost_rows.end());
+  const auto row_of = [&](Index id) {
+    std::int64_t row = own_row(id);
+    if (row < 0) {
+      const auto it = std::lower_bound(ghost_rows.begin(), ghost_rows.end(), std::pair<Index, std::int64_t>{id, -1});
+      if (it != ghost_rows.end() && it->first == id) row = it->second;
+    }
+    if (row < 0 || row > std::numeric_limits<Index>::max())
+      throw std::logic_error(fmt::format("frame_share: no frame row for particle id {}", id));
+    return static_cast<Index>(row);
+  };
+  f.bond_rows.reserve(2 * counts[1]);
+  for (std::size_t k = 0; k < b.size(); ++k) {
+    if (flags && b.broken[k] != 0) continue;
+    const Index x = p.id[static_cast<std::size_t>(b.i[k])], y = p.id[static_cast<std::size_t>(b.j[k])];
+    f.bond_rows.push_back(row_of(std::min(x, y)));
+    f.bond_rows.push_back(row_of(std::max(x, y)));
+  }
+  return f;
+}
+
+}  // namespace shard::mpi
