@@ -41,6 +41,32 @@ FrameRecord frame_record_of(const Particles& p, std::size_t k) {
   return r;
 }
 
+// The fields a frame stores, in the records' order.
+Particles frame_particles(const std::vector<FrameRecord>& records) {
+  Particles q;
+  const std::size_t n = records.size();
+  q.position.resize(n);
+  q.velocity.resize(n);
+  q.omega.resize(n);
+  q.radius.resize(n);
+  q.mass.resize(n);
+  q.material.resize(n);
+  q.body.resize(n);
+  q.id.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const FrameRecord& r = records[k];
+    q.position[k] = Vec3(r.position[0], r.position[1], r.position[2]);
+    q.velocity[k] = Vec3(r.velocity[0], r.velocity[1], r.velocity[2]);
+    q.omega[k] = Vec3(r.omega[0], r.omega[1], r.omega[2]);
+    q.radius[k] = r.radius;
+    q.mass[k] = r.mass;
+    q.material[k] = r.material;
+    q.body[k] = r.body;
+    q.id[k] = r.id;
+  }
+  return q;
+}
+
 }  // namespace
 
 GatheredFrame DistributedSimulation::gather_frame(int root) const {
@@ -70,27 +96,8 @@ GatheredFrame DistributedSimulation::gather_frame(int root) const {
   // order does not depend on the partition.
   std::sort(all.begin(), all.end(), [](const FrameRecord& x, const FrameRecord& y) { return x.id < y.id; });
   std::sort(all_pairs.begin(), all_pairs.end());
-  Particles& q = f.particles;
-  const std::size_t n = all.size();
-  q.position.resize(n);
-  q.velocity.resize(n);
-  q.omega.resize(n);
-  q.radius.resize(n);
-  q.mass.resize(n);
-  q.material.resize(n);
-  q.body.resize(n);
-  q.id.resize(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    const FrameRecord& r = all[k];
-    q.position[k] = Vec3(r.position[0], r.position[1], r.position[2]);
-    q.velocity[k] = Vec3(r.velocity[0], r.velocity[1], r.velocity[2]);
-    q.omega[k] = Vec3(r.omega[0], r.omega[1], r.omega[2]);
-    q.radius[k] = r.radius;
-    q.mass[k] = r.mass;
-    q.material[k] = r.material;
-    q.body[k] = r.body;
-    q.id[k] = r.id;
-  }
+  f.particles = frame_particles(all);
+  const Particles& q = f.particles;
   const auto row_of = [&](Index id) {
     const auto it = std::lower_bound(q.id.begin(), q.id.end(), id);
     if (it == q.id.end() || *it != id)
@@ -127,27 +134,8 @@ FrameShare DistributedSimulation::frame_share() const {
   f.total_rows = total[0];
   f.first_bond = before[1];
   f.total_bonds = total[1];
-  Particles& q = f.particles;
-  const std::size_t n = mine.size();
-  q.position.resize(n);
-  q.velocity.resize(n);
-  q.omega.resize(n);
-  q.radius.resize(n);
-  q.mass.resize(n);
-  q.material.resize(n);
-  q.body.resize(n);
-  q.id.resize(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    const FrameRecord& r = mine[k];
-    q.position[k] = Vec3(r.position[0], r.position[1], r.position[2]);
-    q.velocity[k] = Vec3(r.velocity[0], r.velocity[1], r.velocity[2]);
-    q.omega[k] = Vec3(r.omega[0], r.omega[1], r.omega[2]);
-    q.radius[k] = r.radius;
-    q.mass[k] = r.mass;
-    q.material[k] = r.material;
-    q.body[k] = r.body;
-    q.id[k] = r.id;
-  }
+  f.particles = frame_particles(mine);
+  const Particles& q = f.particles;
   const auto own_row = [&](Index id) -> std::int64_t {
     const auto it = std::lower_bound(q.id.begin(), q.id.end(), id);
     if (it == q.id.end() || *it != id) return -1;
