@@ -7,8 +7,10 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 
+#include "contact_candidates.hpp"
 #include "drift_lanes.hpp"
 #include "neighbour_list.hpp"
 #include "parallel.hpp"
@@ -30,19 +32,18 @@ struct ContactArrays {
   std::vector<Index> i, j;
   std::vector<std::size_t> pair;
   std::vector<std::int32_t> material_pair;  // per contact: the materials' row of the law table
-  std::vector<std::uint8_t> candidate;  // per pair of the tile being looked at
   std::vector<std::uint8_t> touched;    // per contact: it touched at the last pass too (not a new impact)
   std::vector<Vec3> normal, velocity, omega_rel, force, couple;
   std::vector<double> overlap, r_eff, m_eff, energy, history;
   void reserve(std::size_t stride) {
     const std::size_t n = kContactBlock;
-    if (i.size() == n && history.size() == n * stride) return;
-    i.resize(n);
-    j.resize(n);
-    pair.resize(n);
+    if (i.size() == n + 8 && history.size() == n * stride) return;
+    // A group of the candidate lanes stores 8 slots past its last candidate (contact_candidates.hpp).
+    i.resize(n + 8);
+    j.resize(n + 8);
+    pair.resize(n + 8);
     material_pair.resize(n);
-    candidate.resize(n);
-    touched.resize(n);
+    touched.resize(n + 8);
     normal.resize(n);
     velocity.resize(n);
     omega_rel.resize(n);
@@ -480,40 +481,108 @@ void copy_history(const double* from, double* to, std::size_t stride) {
   }
 }
 
-// 1 for each pair of [0, count) that may touch: a particle pair within reach (the very test and
-// arithmetic of the geometry pass, so both agree bit for bit) and every wall pair (whose test is
-// not worth vectorising: the geometry pass makes it). No branch: whether a listed pair of a solid
-// touches is close to random, and a branch on it is mispredicted.
-void mark_candidates(const Vec3* position, const double* radius, const Index* first, const Index* second,
-                     std::size_t count, std::uint8_t* candidate) {
-  const double* x = position->data();
-  for (std::size_t q = 0; q < count; ++q) {
-    const std::size_t a = static_cast<std::size_t>(first[q]);
-    const bool wall = second[q] < 0;
-    const std::size_t b = wall ? a : static_cast<std::size_t>(second[q]);
-    const double dx = x[3 * a] - x[3 * b], dy = x[3 * a + 1] - x[3 * b + 1], dz = x[3 * a + 2] - x[3 * b + 2];
-    const double dist2 = (dx * dx + dy * dy) + dz * dz;  // Eigen's squaredNorm order
-    const double reach = radius[a] + radius[b];
-    candidate[q] = static_cast<std::uint8_t>(wall | (!(dist2 >= reach * reach) & (dist2 != 0.0)));
-  }
-}
-
-// The candidates of [k, stop) in pair order into block.pair; a pair that touched and is no longer
-// a candidate loses its history. Returns the number of candidates.
-std::size_t compact_candidates(NeighbourList& list, std::size_t k, std::size_t stop, ContactArrays& block) {
+// The candidates of the tile [k, stop) in pair order into block.pair, with their ends and
+// whether they touched before; a pair that touched and is no longer a candidate loses its history.
+// A candidate is a particle pair within reach (the very test and arithmetic of the geometry below,
+// so both agree bit for bit) or any wall pair (whose test the geometry makes). No branch on the
+// test: whether a listed pair of a solid touches is close to random, and a branch on it is
+// mispredicted; every pair writes its slot and only a candidate advances the count. One pass:
+// the test and the compaction as two loops over the tile cost ~20 % more instructions.
+std::size_t compact_candidates(const Particles& p, NeighbourList& list, std::size_t k, std::size_t stop,
+                               ContactArrays& block) {
+  static_assert(std::is_same_v<Index, std::int32_t>);
   const std::size_t stride = list.history_stride();
+  const Index* first = list.first().data();
+  const Index* second = list.second().data();
+  const double* x = p.position.data()->data();
+  const double* radius = p.radius.data();
   std::uint8_t* touching = list.touching().data();
   double* history = list.history().data();
   std::size_t c = 0;
+  // Whole groups of 8 pairs in AVX-512 lanes where the CPU has them (contact_candidates.hpp).
+  static const bool lanes = candidate_lanes_available();
+  if (lanes && stop - k >= 8) {
+    const CandidateTile tile{first, second, x, radius, touching, history, stride,
+                             block.pair.data(), block.i.data(), block.j.data(), block.touched.data()};
+    const std::size_t groups = (stop - k) / 8;
+    c = candidate_groups_avx512(tile, k, groups, c);
+    k += 8 * groups;
+  }
   for (std::size_t q = k; q < stop; ++q) {
-    const std::uint8_t now = block.candidate[q - k];
-    if (touching[q] & ~now) std::fill_n(history + q * stride, stride, 0.0);
-    block.touched[c] = touching[q];
+    const Index a = first[q], j = second[q];
+    const bool wall = j < 0;
+    const Index b = wall ? a : j;
+    const double dx = x[3 * a] - x[3 * b], dy = x[3 * a + 1] - x[3 * b + 1], dz = x[3 * a + 2] - x[3 * b + 2];
+    const double dist2 = (dx * dx + dy * dy) + dz * dz;  // Eigen's squaredNorm order
+    const double reach = radius[a] + radius[b];
+    const std::uint8_t now = static_cast<std::uint8_t>(wall | (!(dist2 >= reach * reach) & (dist2 != 0.0)));
+    const std::uint8_t before = touching[q];
+    if (before & ~now) std::fill_n(history + q * stride, stride, 0.0);
     touching[q] = now;
+    block.touched[c] = before;
     block.pair[c] = q;
+    block.i[c] = a;
+    block.j[c] = j;
     c += now;
   }
   return c;
+}
+
+// Contact slot c's geometry for the particle pair (a, b): the former Vec3 expressions written out
+// component by component in Eigen's order (a - b, squaredNorm as (x x + y y) + z z, d / dist,
+// s * n, cross products coefficient by coefficient), so the same bits, without the temporaries
+// GCC kept in memory.
+[[gnu::always_inline]] inline void particle_pair_geometry(const Particles& p, Index a, Index b, std::size_t c,
+                                                          ContactArrays& block) {
+  const double* xa = p.position[a].data();
+  const double* xb = p.position[b].data();
+  const double dx = xa[0] - xb[0], dy = xa[1] - xb[1], dz = xa[2] - xb[2];
+  const double dist = std::sqrt((dx * dx + dy * dy) + dz * dz);
+  const double ra = p.radius[a], rb = p.radius[b];
+  const double reach = ra + rb;
+  const double nx = dx / dist, ny = dy / dist, nz = dz / dist;
+  const double overlap = reach - dist;
+  const double sa = -(ra - 0.5 * overlap), sb = rb - 0.5 * overlap;
+  const double ax = sa * nx, ay = sa * ny, az = sa * nz;  // arm_a
+  const double bx = sb * nx, by = sb * ny, bz = sb * nz;  // arm_b
+  const double* va = p.velocity[a].data();
+  const double* vb = p.velocity[b].data();
+  const double* wa = p.omega[a].data();
+  const double* wb = p.omega[b].data();
+  // vel_b = v_b + w_b x arm_b; velocity = (v_a + w_a x arm_a) - vel_b
+  const double ubx = vb[0] + (wb[1] * bz - wb[2] * by);
+  const double uby = vb[1] + (wb[2] * bx - wb[0] * bz);
+  const double ubz = vb[2] + (wb[0] * by - wb[1] * bx);
+  double* n = block.normal[c].data();
+  n[0] = nx, n[1] = ny, n[2] = nz;
+  double* v = block.velocity[c].data();
+  v[0] = (va[0] + (wa[1] * az - wa[2] * ay)) - ubx;
+  v[1] = (va[1] + (wa[2] * ax - wa[0] * az)) - uby;
+  v[2] = (va[2] + (wa[0] * ay - wa[1] * ax)) - ubz;
+  double* w = block.omega_rel[c].data();
+  w[0] = wa[0] - wb[0], w[1] = wa[1] - wb[1], w[2] = wa[2] - wb[2];
+  block.overlap[c] = overlap;
+  block.r_eff[c] = ra * rb / reach;
+  const double ma = p.mass[a], mb = p.mass[b];
+  block.m_eff[c] = ma * mb / (ma + mb);
+}
+
+// Contact slot c's geometry for particle a against wall w; false when it does not touch.
+bool wall_geometry(const Particles& p, const Wall& w, Index a, std::size_t c, ContactArrays& block) {
+  const double ra = p.radius[a];
+  Vec3 n;
+  double distance;
+  if (!wall_contact(w, p.position[a], ra, n, distance) || distance >= ra) return false;
+  const Vec3 arm_a = -distance * n;
+  // A spinning or belt wall's surface moves differently from point to point.
+  const Vec3 vel_b = w.surface_moves() ? w.surface_velocity_at(p.position[a] + arm_a, n) : w.velocity;
+  block.normal[c] = n;
+  block.overlap[c] = ra - distance;
+  block.velocity[c] = p.velocity[a] + p.omega[a].cross(arm_a) - vel_b;
+  block.omega_rel[c] = p.omega[a] - w.angular_velocity();
+  block.r_eff[c] = ra;
+  block.m_eff[c] = p.mass[a];
+  return true;
 }
 
 // Geometry of the touching pairs of the next tile of [k, end) into `block`; pairs that stopped
@@ -521,61 +590,24 @@ std::size_t compact_candidates(NeighbourList& list, std::size_t k, std::size_t s
 std::size_t collect_contacts(const Particles& p, const std::vector<Wall>& walls, NeighbourList& list, std::size_t k,
                              std::size_t end, std::int32_t materials, ContactArrays& block) {
   const std::size_t stop = std::min(end, k + kContactBlock);
-  mark_candidates(p.position.data(), p.radius.data(), list.first().data() + k, list.second().data() + k, stop - k,
-                  block.candidate.data());
-  const std::size_t candidates = compact_candidates(list, k, stop, block);
+  const std::size_t candidates = compact_candidates(p, list, k, stop, block);
   const std::size_t stride = list.history_stride();
-  const Index* first = list.first().data();
-  const Index* second = list.second().data();
-  double* history = list.history().data();
+  const double* history = list.history().data();
   std::size_t c = 0;
   for (std::size_t q = 0; q < candidates; ++q) {
     const std::size_t pair = block.pair[q];
-    const std::uint8_t touched = block.touched[q];
-    const Index a = first[pair], b = second[pair];
-    const double ra = p.radius[a];
-    Vec3 n;
-    double overlap;
-    Vec3 arm_a, vel_b, omega_b;
-    double r_eff, m_eff;
+    const Index a = block.i[q], b = block.j[q];
     if (b >= 0) {
-      const Vec3 d = p.position[a] - p.position[b];
-      const double dist = std::sqrt(d.squaredNorm());
-      const double reach = ra + p.radius[b];
-      n = d / dist;
-      overlap = reach - dist;
-      arm_a = -(ra - 0.5 * overlap) * n;
-      const Vec3 arm_b = (p.radius[b] - 0.5 * overlap) * n;
-      vel_b = p.velocity[b] + p.omega[b].cross(arm_b);
-      omega_b = p.omega[b];
-      r_eff = ra * p.radius[b] / reach;
-      m_eff = p.mass[a] * p.mass[b] / (p.mass[a] + p.mass[b]);
-    } else {
-      const Wall& w = walls[static_cast<std::size_t>(-1 - b)];
-      double distance;
-      if (!wall_contact(w, p.position[a], ra, n, distance) || distance >= ra) {
-        std::fill_n(history + pair * stride, stride, 0.0);
-        list.touching()[pair] = 0;
-        continue;
-      }
-      overlap = ra - distance;
-      arm_a = -distance * n;
-      // A spinning or belt wall's surface moves differently from point to point.
-      vel_b = w.surface_moves() ? w.surface_velocity_at(p.position[a] + arm_a, n) : w.velocity;
-      omega_b = w.angular_velocity();
-      r_eff = ra;
-      m_eff = p.mass[a];
+      particle_pair_geometry(p, a, b, c, block);
+    } else if (!wall_geometry(p, walls[static_cast<std::size_t>(-1 - b)], a, c, block)) {
+      std::fill_n(list.history().data() + pair * stride, stride, 0.0);
+      list.touching()[pair] = 0;
+      continue;
     }
     block.i[c] = a;
     block.j[c] = b;
     block.pair[c] = pair;
-    block.touched[c] = touched;
-    block.normal[c] = n;
-    block.overlap[c] = overlap;
-    block.velocity[c] = p.velocity[a] + p.omega[a].cross(arm_a) - vel_b;
-    block.omega_rel[c] = p.omega[a] - omega_b;
-    block.r_eff[c] = r_eff;
-    block.m_eff[c] = m_eff;
+    block.touched[c] = block.touched[q];
     if (materials > 1)
       block.material_pair[c] =
           p.material[a] * materials + (b >= 0 ? p.material[b] : walls[static_cast<std::size_t>(-1 - b)].material);
@@ -610,35 +642,55 @@ void run_model(const ContactModel& model, double dt, bool materials, ContactArra
 }
 
 // The block's forces into this thread's share, in contact order; the history back to the list.
-// Returns `energy` plus the block's energies, summed in contact order.
+// Returns `energy` plus the block's energies, summed in contact order. A particle pair's loads are
+// written out component by component in the order of the former Vec3 expressions (the same bits):
+// arm x f coefficient by coefficient, arm_b x (-f) with f negated first, torque += (arm x f + couple).
 double scatter_contacts(const Particles& p, const std::vector<Wall>& walls, NeighbourList& list,
                         const ContactArrays& block, Vec3* force, Vec3* torque, ThreadShare& share, double energy) {
   const std::size_t stride = list.history_stride();
   double* history = list.history().data();
+  const double* radius = p.radius.data();
   for (std::size_t k = 0; k < block.count; ++k) {
     const Index a = block.i[k], b = block.j[k];
-    const Vec3& f = block.force[k];
-    const Vec3& n = block.normal[k];
+    const double* f = block.force[k].data();
+    const double* n = block.normal[k].data();
+    const double* couple = block.couple[k].data();
     const double overlap = block.overlap[k];
     energy += block.energy[k];
-    force[a] += f;
-    const Vec3 arm_a = b >= 0 ? Vec3(-(p.radius[a] - 0.5 * overlap) * n) : Vec3(-(p.radius[a] - overlap) * n);
-    torque[a] += arm_a.cross(f) + block.couple[k];
     if (b >= 0) {
-      const Vec3 arm_b = (p.radius[b] - 0.5 * overlap) * n;
-      force[b] -= f;
-      torque[b] += arm_b.cross(-f) - block.couple[k];
+      const double fx = f[0], fy = f[1], fz = f[2];
+      const double sa = -(radius[a] - 0.5 * overlap), sb = radius[b] - 0.5 * overlap;
+      const double ax = sa * n[0], ay = sa * n[1], az = sa * n[2];
+      const double bx = sb * n[0], by = sb * n[1], bz = sb * n[2];
+      double* fa = force[a].data();
+      double* ta = torque[a].data();
+      fa[0] += fx, fa[1] += fy, fa[2] += fz;
+      ta[0] += (ay * fz - az * fy) + couple[0];
+      ta[1] += (az * fx - ax * fz) + couple[1];
+      ta[2] += (ax * fy - ay * fx) + couple[2];
+      const double gx = -fx, gy = -fy, gz = -fz;
+      double* fb = force[b].data();
+      double* tb = torque[b].data();
+      fb[0] -= fx, fb[1] -= fy, fb[2] -= fz;
+      tb[0] += (by * gz - bz * gy) - couple[0];
+      tb[1] += (bz * gx - bx * gz) - couple[1];
+      tb[2] += (bx * gy - by * gx) - couple[2];
     } else {
+      const Vec3& fv = block.force[k];
+      const Vec3& nv = block.normal[k];
+      force[a] += fv;
+      const Vec3 arm_a = -(radius[a] - overlap) * nv;
+      torque[a] += arm_a.cross(fv) + block.couple[k];
       const auto w = static_cast<std::size_t>(-1 - b);
       const Wall& wall = walls[w];
       const Vec3 contact_point = p.position[a] + arm_a;
       const Vec3 pivot = wall.motion.spins ? wall.centre() : Vec3(wall.point + wall.displacement);
-      share.wall_force[w] -= f;
-      share.wall_torque[w] += (contact_point - pivot).cross(-f) - block.couple[k];
-      share.wall_touches.push_back({a, w, f, block.couple[k], arm_a, block.velocity[k], block.omega_rel[k]});
+      share.wall_force[w] -= fv;
+      share.wall_torque[w] += (contact_point - pivot).cross(-fv) - block.couple[k];
+      share.wall_touches.push_back({a, w, fv, block.couple[k], arm_a, block.velocity[k], block.omega_rel[k]});
       share.wall_stored[w] += block.energy[k];
       share.wall_impacts[w] += block.touched[k] ^ 1;
-      if (!block.touched[k]) share.wall_begun.push_back({a, static_cast<std::int32_t>(w), n});
+      if (!block.touched[k]) share.wall_begun.push_back({a, static_cast<std::int32_t>(w), nv});
     }
     copy_history(block.history.data() + k * stride, history + block.pair[k] * stride, stride);
   }
