@@ -112,7 +112,7 @@ double sign_of(double v) { return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0); }
 
 // Gravity and Cundall's local non-viscous damping (opposes the motion with a fraction of the
 // force) on particle k, once its pair and bond forces are complete.
-void add_body_forces(Particles& p, std::size_t k, bool gravity, const Vec3& g, double damping) {
+[[gnu::always_inline]] inline void add_body_forces(Particles& p, std::size_t k, bool gravity, const Vec3& g, double damping) {
   if (gravity) p.force[k] += p.mass[k] * g;
   if (damping > 0) {
     for (int c = 0; c < 3; ++c) {
@@ -124,7 +124,7 @@ void add_body_forces(Particles& p, std::size_t k, bool gravity, const Vec3& g, d
 
 // The second half-kick of velocity Verlet on particle k once its force is complete; held
 // particles get none.
-void kick_particle(Particles& p, std::size_t k, double h) {
+[[gnu::always_inline]] inline void kick_particle(Particles& p, std::size_t k, double h) {
   if (p.flags[k] & (kFixed | kPrescribed)) return;
   p.velocity[k] += h * p.force[k] / p.mass[k];
   p.omega[k] += h * p.torque[k] / p.inertia[k];
