@@ -1,7 +1,9 @@
 #include "shard/simulation.hpp"
 
 #include <fmt/format.h>
+#if defined(__SSE2__)
 #include <emmintrin.h>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -133,11 +135,19 @@ double sign_of(double v) { return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0); }
 // to += from and to -= from for a Vec3 stored x, y, z: x and y as one SSE2 pair, z alone, the
 // same IEEE additions as Eigen's +=.
 [[gnu::always_inline]] inline void add3(double* to, const double* from) {
+#if defined(__SSE2__)
   _mm_storeu_pd(to, _mm_add_pd(_mm_loadu_pd(to), _mm_loadu_pd(from)));
+#else
+  to[0] += from[0], to[1] += from[1];
+#endif
   to[2] += from[2];
 }
 [[gnu::always_inline]] inline void subtract3(double* to, const double* from) {
+#if defined(__SSE2__)
   _mm_storeu_pd(to, _mm_sub_pd(_mm_loadu_pd(to), _mm_loadu_pd(from)));
+#else
+  to[0] -= from[0], to[1] -= from[1];
+#endif
   to[2] -= from[2];
 }
 
