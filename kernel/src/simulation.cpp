@@ -1,14 +1,19 @@
 #include "shard/simulation.hpp"
 
 #include <fmt/format.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 
+#include "contact_candidates.hpp"
 #include "drift_lanes.hpp"
 #include "neighbour_list.hpp"
 #include "parallel.hpp"
@@ -30,19 +35,18 @@ struct ContactArrays {
   std::vector<Index> i, j;
   std::vector<std::size_t> pair;
   std::vector<std::int32_t> material_pair;  // per contact: the materials' row of the law table
-  std::vector<std::uint8_t> candidate;  // per pair of the tile being looked at
   std::vector<std::uint8_t> touched;    // per contact: it touched at the last pass too (not a new impact)
   std::vector<Vec3> normal, velocity, omega_rel, force, couple;
   std::vector<double> overlap, r_eff, m_eff, energy, history;
   void reserve(std::size_t stride) {
     const std::size_t n = kContactBlock;
-    if (i.size() == n && history.size() == n * stride) return;
-    i.resize(n);
-    j.resize(n);
-    pair.resize(n);
+    if (i.size() == n + 8 && history.size() == n * stride) return;
+    // A group of the candidate lanes stores 8 slots past its last candidate (contact_candidates.hpp).
+    i.resize(n + 8);
+    j.resize(n + 8);
+    pair.resize(n + 8);
     material_pair.resize(n);
-    candidate.resize(n);
-    touched.resize(n);
+    touched.resize(n + 8);
     normal.resize(n);
     velocity.resize(n);
     omega_rel.resize(n);
@@ -110,7 +114,7 @@ double sign_of(double v) { return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0); }
 
 // Gravity and Cundall's local non-viscous damping (opposes the motion with a fraction of the
 // force) on particle k, once its pair and bond forces are complete.
-void add_body_forces(Particles& p, std::size_t k, bool gravity, const Vec3& g, double damping) {
+[[gnu::always_inline]] inline void add_body_forces(Particles& p, std::size_t k, bool gravity, const Vec3& g, double damping) {
   if (gravity) p.force[k] += p.mass[k] * g;
   if (damping > 0) {
     for (int c = 0; c < 3; ++c) {
@@ -122,10 +126,29 @@ void add_body_forces(Particles& p, std::size_t k, bool gravity, const Vec3& g, d
 
 // The second half-kick of velocity Verlet on particle k once its force is complete; held
 // particles get none.
-void kick_particle(Particles& p, std::size_t k, double h) {
+[[gnu::always_inline]] inline void kick_particle(Particles& p, std::size_t k, double h) {
   if (p.flags[k] & (kFixed | kPrescribed)) return;
   p.velocity[k] += h * p.force[k] / p.mass[k];
   p.omega[k] += h * p.torque[k] / p.inertia[k];
+}
+
+// to += from and to -= from for a Vec3 stored x, y, z: x and y as one SSE2 pair, z alone, the
+// same IEEE additions as Eigen's +=.
+[[gnu::always_inline]] inline void add3(double* to, const double* from) {
+#if defined(__SSE2__)
+  _mm_storeu_pd(to, _mm_add_pd(_mm_loadu_pd(to), _mm_loadu_pd(from)));
+#else
+  to[0] += from[0], to[1] += from[1];
+#endif
+  to[2] += from[2];
+}
+[[gnu::always_inline]] inline void subtract3(double* to, const double* from) {
+#if defined(__SSE2__)
+  _mm_storeu_pd(to, _mm_sub_pd(_mm_loadu_pd(to), _mm_loadu_pd(from)));
+#else
+  to[0] -= from[0], to[1] -= from[1];
+#endif
+  to[2] -= from[2];
 }
 
 // Below this many particles everything fits in cache and renumbering would only cost time (and
@@ -480,40 +503,108 @@ void copy_history(const double* from, double* to, std::size_t stride) {
   }
 }
 
-// 1 for each pair of [0, count) that may touch: a particle pair within reach (the very test and
-// arithmetic of the geometry pass, so both agree bit for bit) and every wall pair (whose test is
-// not worth vectorising: the geometry pass makes it). No branch: whether a listed pair of a solid
-// touches is close to random, and a branch on it is mispredicted.
-void mark_candidates(const Vec3* position, const double* radius, const Index* first, const Index* second,
-                     std::size_t count, std::uint8_t* candidate) {
-  const double* x = position->data();
-  for (std::size_t q = 0; q < count; ++q) {
-    const std::size_t a = static_cast<std::size_t>(first[q]);
-    const bool wall = second[q] < 0;
-    const std::size_t b = wall ? a : static_cast<std::size_t>(second[q]);
-    const double dx = x[3 * a] - x[3 * b], dy = x[3 * a + 1] - x[3 * b + 1], dz = x[3 * a + 2] - x[3 * b + 2];
-    const double dist2 = (dx * dx + dy * dy) + dz * dz;  // Eigen's squaredNorm order
-    const double reach = radius[a] + radius[b];
-    candidate[q] = static_cast<std::uint8_t>(wall | (!(dist2 >= reach * reach) & (dist2 != 0.0)));
-  }
-}
-
-// The candidates of [k, stop) in pair order into block.pair; a pair that touched and is no longer
-// a candidate loses its history. Returns the number of candidates.
-std::size_t compact_candidates(NeighbourList& list, std::size_t k, std::size_t stop, ContactArrays& block) {
+// The candidates of the tile [k, stop) in pair order into block.pair, with their ends and
+// whether they touched before; a pair that touched and is no longer a candidate loses its history.
+// A candidate is a particle pair within reach (the very test and arithmetic of the geometry below,
+// so both agree bit for bit) or any wall pair (whose test the geometry makes). No branch on the
+// test: whether a listed pair of a solid touches is close to random, and a branch on it is
+// mispredicted; every pair writes its slot and only a candidate advances the count. One pass:
+// the test and the compaction as two loops over the tile cost ~20 % more instructions.
+std::size_t compact_candidates(const Particles& p, NeighbourList& list, std::size_t k, std::size_t stop,
+                               ContactArrays& block) {
+  static_assert(std::is_same_v<Index, std::int32_t>);
   const std::size_t stride = list.history_stride();
+  const Index* first = list.first().data();
+  const Index* second = list.second().data();
+  const double* x = p.position.data()->data();
+  const double* radius = p.radius.data();
   std::uint8_t* touching = list.touching().data();
   double* history = list.history().data();
   std::size_t c = 0;
+  // Whole groups of 8 pairs in AVX-512 lanes where the CPU has them (contact_candidates.hpp).
+  static const bool lanes = candidate_lanes_available();
+  if (lanes && stop - k >= 8) {
+    const CandidateTile tile{first, second, x, radius, touching, history, stride,
+                             block.pair.data(), block.i.data(), block.j.data(), block.touched.data()};
+    const std::size_t groups = (stop - k) / 8;
+    c = candidate_groups_avx512(tile, k, groups, c);
+    k += 8 * groups;
+  }
   for (std::size_t q = k; q < stop; ++q) {
-    const std::uint8_t now = block.candidate[q - k];
-    if (touching[q] & ~now) std::fill_n(history + q * stride, stride, 0.0);
-    block.touched[c] = touching[q];
+    const Index a = first[q], j = second[q];
+    const bool wall = j < 0;
+    const Index b = wall ? a : j;
+    const double dx = x[3 * a] - x[3 * b], dy = x[3 * a + 1] - x[3 * b + 1], dz = x[3 * a + 2] - x[3 * b + 2];
+    const double dist2 = (dx * dx + dy * dy) + dz * dz;  // Eigen's squaredNorm order
+    const double reach = radius[a] + radius[b];
+    const std::uint8_t now = static_cast<std::uint8_t>(wall | (!(dist2 >= reach * reach) & (dist2 != 0.0)));
+    const std::uint8_t before = touching[q];
+    if (before & ~now) std::fill_n(history + q * stride, stride, 0.0);
     touching[q] = now;
+    block.touched[c] = before;
     block.pair[c] = q;
+    block.i[c] = a;
+    block.j[c] = j;
     c += now;
   }
   return c;
+}
+
+// Contact slot c's geometry for the particle pair (a, b): the former Vec3 expressions written out
+// component by component in Eigen's order (a - b, squaredNorm as (x x + y y) + z z, d / dist,
+// s * n, cross products coefficient by coefficient), so the same bits, without the temporaries
+// GCC kept in memory.
+[[gnu::always_inline]] inline void particle_pair_geometry(const Particles& p, Index a, Index b, std::size_t c,
+                                                          ContactArrays& block) {
+  const double* xa = p.position[a].data();
+  const double* xb = p.position[b].data();
+  const double dx = xa[0] - xb[0], dy = xa[1] - xb[1], dz = xa[2] - xb[2];
+  const double dist = std::sqrt((dx * dx + dy * dy) + dz * dz);
+  const double ra = p.radius[a], rb = p.radius[b];
+  const double reach = ra + rb;
+  const double nx = dx / dist, ny = dy / dist, nz = dz / dist;
+  const double overlap = reach - dist;
+  const double sa = -(ra - 0.5 * overlap), sb = rb - 0.5 * overlap;
+  const double ax = sa * nx, ay = sa * ny, az = sa * nz;  // arm_a
+  const double bx = sb * nx, by = sb * ny, bz = sb * nz;  // arm_b
+  const double* va = p.velocity[a].data();
+  const double* vb = p.velocity[b].data();
+  const double* wa = p.omega[a].data();
+  const double* wb = p.omega[b].data();
+  // vel_b = v_b + w_b x arm_b; velocity = (v_a + w_a x arm_a) - vel_b
+  const double ubx = vb[0] + (wb[1] * bz - wb[2] * by);
+  const double uby = vb[1] + (wb[2] * bx - wb[0] * bz);
+  const double ubz = vb[2] + (wb[0] * by - wb[1] * bx);
+  double* n = block.normal[c].data();
+  n[0] = nx, n[1] = ny, n[2] = nz;
+  double* v = block.velocity[c].data();
+  v[0] = (va[0] + (wa[1] * az - wa[2] * ay)) - ubx;
+  v[1] = (va[1] + (wa[2] * ax - wa[0] * az)) - uby;
+  v[2] = (va[2] + (wa[0] * ay - wa[1] * ax)) - ubz;
+  double* w = block.omega_rel[c].data();
+  w[0] = wa[0] - wb[0], w[1] = wa[1] - wb[1], w[2] = wa[2] - wb[2];
+  block.overlap[c] = overlap;
+  block.r_eff[c] = ra * rb / reach;
+  const double ma = p.mass[a], mb = p.mass[b];
+  block.m_eff[c] = ma * mb / (ma + mb);
+}
+
+// Contact slot c's geometry for particle a against wall w; false when it does not touch.
+bool wall_geometry(const Particles& p, const Wall& w, Index a, std::size_t c, ContactArrays& block) {
+  const double ra = p.radius[a];
+  Vec3 n;
+  double distance;
+  if (!wall_contact(w, p.position[a], ra, n, distance) || distance >= ra) return false;
+  const Vec3 arm_a = -distance * n;
+  // A spinning or belt wall's surface moves differently from point to point.
+  const Vec3 vel_b = w.surface_moves() ? w.surface_velocity_at(p.position[a] + arm_a, n) : w.velocity;
+  block.normal[c] = n;
+  block.overlap[c] = ra - distance;
+  block.velocity[c] = p.velocity[a] + p.omega[a].cross(arm_a) - vel_b;
+  block.omega_rel[c] = p.omega[a] - w.angular_velocity();
+  block.r_eff[c] = ra;
+  block.m_eff[c] = p.mass[a];
+  return true;
 }
 
 // Geometry of the touching pairs of the next tile of [k, end) into `block`; pairs that stopped
@@ -521,61 +612,24 @@ std::size_t compact_candidates(NeighbourList& list, std::size_t k, std::size_t s
 std::size_t collect_contacts(const Particles& p, const std::vector<Wall>& walls, NeighbourList& list, std::size_t k,
                              std::size_t end, std::int32_t materials, ContactArrays& block) {
   const std::size_t stop = std::min(end, k + kContactBlock);
-  mark_candidates(p.position.data(), p.radius.data(), list.first().data() + k, list.second().data() + k, stop - k,
-                  block.candidate.data());
-  const std::size_t candidates = compact_candidates(list, k, stop, block);
+  const std::size_t candidates = compact_candidates(p, list, k, stop, block);
   const std::size_t stride = list.history_stride();
-  const Index* first = list.first().data();
-  const Index* second = list.second().data();
-  double* history = list.history().data();
+  const double* history = list.history().data();
   std::size_t c = 0;
   for (std::size_t q = 0; q < candidates; ++q) {
     const std::size_t pair = block.pair[q];
-    const std::uint8_t touched = block.touched[q];
-    const Index a = first[pair], b = second[pair];
-    const double ra = p.radius[a];
-    Vec3 n;
-    double overlap;
-    Vec3 arm_a, vel_b, omega_b;
-    double r_eff, m_eff;
+    const Index a = block.i[q], b = block.j[q];
     if (b >= 0) {
-      const Vec3 d = p.position[a] - p.position[b];
-      const double dist = std::sqrt(d.squaredNorm());
-      const double reach = ra + p.radius[b];
-      n = d / dist;
-      overlap = reach - dist;
-      arm_a = -(ra - 0.5 * overlap) * n;
-      const Vec3 arm_b = (p.radius[b] - 0.5 * overlap) * n;
-      vel_b = p.velocity[b] + p.omega[b].cross(arm_b);
-      omega_b = p.omega[b];
-      r_eff = ra * p.radius[b] / reach;
-      m_eff = p.mass[a] * p.mass[b] / (p.mass[a] + p.mass[b]);
-    } else {
-      const Wall& w = walls[static_cast<std::size_t>(-1 - b)];
-      double distance;
-      if (!wall_contact(w, p.position[a], ra, n, distance) || distance >= ra) {
-        std::fill_n(history + pair * stride, stride, 0.0);
-        list.touching()[pair] = 0;
-        continue;
-      }
-      overlap = ra - distance;
-      arm_a = -distance * n;
-      // A spinning or belt wall's surface moves differently from point to point.
-      vel_b = w.surface_moves() ? w.surface_velocity_at(p.position[a] + arm_a, n) : w.velocity;
-      omega_b = w.angular_velocity();
-      r_eff = ra;
-      m_eff = p.mass[a];
+      particle_pair_geometry(p, a, b, c, block);
+    } else if (!wall_geometry(p, walls[static_cast<std::size_t>(-1 - b)], a, c, block)) {
+      std::fill_n(list.history().data() + pair * stride, stride, 0.0);
+      list.touching()[pair] = 0;
+      continue;
     }
     block.i[c] = a;
     block.j[c] = b;
     block.pair[c] = pair;
-    block.touched[c] = touched;
-    block.normal[c] = n;
-    block.overlap[c] = overlap;
-    block.velocity[c] = p.velocity[a] + p.omega[a].cross(arm_a) - vel_b;
-    block.omega_rel[c] = p.omega[a] - omega_b;
-    block.r_eff[c] = r_eff;
-    block.m_eff[c] = m_eff;
+    block.touched[c] = block.touched[q];
     if (materials > 1)
       block.material_pair[c] =
           p.material[a] * materials + (b >= 0 ? p.material[b] : walls[static_cast<std::size_t>(-1 - b)].material);
@@ -610,35 +664,51 @@ void run_model(const ContactModel& model, double dt, bool materials, ContactArra
 }
 
 // The block's forces into this thread's share, in contact order; the history back to the list.
-// Returns `energy` plus the block's energies, summed in contact order.
+// Returns `energy` plus the block's energies, summed in contact order. A particle pair's loads are
+// written out component by component in the order of the former Vec3 expressions (the same bits):
+// arm x f coefficient by coefficient, arm_b x (-f) with f negated first, torque += (arm x f + couple).
 double scatter_contacts(const Particles& p, const std::vector<Wall>& walls, NeighbourList& list,
                         const ContactArrays& block, Vec3* force, Vec3* torque, ThreadShare& share, double energy) {
   const std::size_t stride = list.history_stride();
   double* history = list.history().data();
+  const double* radius = p.radius.data();
   for (std::size_t k = 0; k < block.count; ++k) {
     const Index a = block.i[k], b = block.j[k];
-    const Vec3& f = block.force[k];
-    const Vec3& n = block.normal[k];
+    const double* f = block.force[k].data();
+    const double* n = block.normal[k].data();
+    const double* couple = block.couple[k].data();
     const double overlap = block.overlap[k];
     energy += block.energy[k];
-    force[a] += f;
-    const Vec3 arm_a = b >= 0 ? Vec3(-(p.radius[a] - 0.5 * overlap) * n) : Vec3(-(p.radius[a] - overlap) * n);
-    torque[a] += arm_a.cross(f) + block.couple[k];
     if (b >= 0) {
-      const Vec3 arm_b = (p.radius[b] - 0.5 * overlap) * n;
-      force[b] -= f;
-      torque[b] += arm_b.cross(-f) - block.couple[k];
+      const double fx = f[0], fy = f[1], fz = f[2];
+      const double sa = -(radius[a] - 0.5 * overlap), sb = radius[b] - 0.5 * overlap;
+      const double ax = sa * n[0], ay = sa * n[1], az = sa * n[2];
+      const double bx = sb * n[0], by = sb * n[1], bz = sb * n[2];
+      const double load_a[3] = {(ay * fz - az * fy) + couple[0], (az * fx - ax * fz) + couple[1],
+                                (ax * fy - ay * fx) + couple[2]};
+      const double gx = -fx, gy = -fy, gz = -fz;
+      const double load_b[3] = {(by * gz - bz * gy) - couple[0], (bz * gx - bx * gz) - couple[1],
+                                (bx * gy - by * gx) - couple[2]};
+      add3(force[a].data(), f);
+      add3(torque[a].data(), load_a);
+      subtract3(force[b].data(), f);
+      add3(torque[b].data(), load_b);
     } else {
+      const Vec3& fv = block.force[k];
+      const Vec3& nv = block.normal[k];
+      force[a] += fv;
+      const Vec3 arm_a = -(radius[a] - overlap) * nv;
+      torque[a] += arm_a.cross(fv) + block.couple[k];
       const auto w = static_cast<std::size_t>(-1 - b);
       const Wall& wall = walls[w];
       const Vec3 contact_point = p.position[a] + arm_a;
       const Vec3 pivot = wall.motion.spins ? wall.centre() : Vec3(wall.point + wall.displacement);
-      share.wall_force[w] -= f;
-      share.wall_torque[w] += (contact_point - pivot).cross(-f) - block.couple[k];
-      share.wall_touches.push_back({a, w, f, block.couple[k], arm_a, block.velocity[k], block.omega_rel[k]});
+      share.wall_force[w] -= fv;
+      share.wall_torque[w] += (contact_point - pivot).cross(-fv) - block.couple[k];
+      share.wall_touches.push_back({a, w, fv, block.couple[k], arm_a, block.velocity[k], block.omega_rel[k]});
       share.wall_stored[w] += block.energy[k];
       share.wall_impacts[w] += block.touched[k] ^ 1;
-      if (!block.touched[k]) share.wall_begun.push_back({a, static_cast<std::int32_t>(w), n});
+      if (!block.touched[k]) share.wall_begun.push_back({a, static_cast<std::int32_t>(w), nv});
     }
     copy_history(block.history.data() + k * stride, history + block.pair[k] * stride, stride);
   }
@@ -701,20 +771,31 @@ void Simulation::bond_chunk(std::size_t begin, std::size_t end, Vec3* force, Vec
     }
     std::fill_n(b.broken, b.count, std::uint8_t{0});
     bond_->compute(b);
+    // The block's loads into the particles in bond order. The batch's pointers as locals, held in
+    // registers (through the struct, GCC reloaded seven of them from the stack for every bond).
+    const Index* bi = b.i;
+    const Index* bj = b.j;
+    std::uint8_t* broken = b.broken;
+    const double* f = b.force->data();
+    const double* ti = b.torque_i->data();
+    const double* tj = b.torque_j->data();
+    const double* e = b.energy;
+    double* fp = force->data();
+    double* tp = torque->data();
     for (std::size_t k = 0; k < b.count; ++k) {
-      if (b.broken[k]) {
+      if (broken[k]) {
         if (breakage_) {
           broke = true;
           continue;  // a bond that fails this step transmits nothing
         }
-        b.broken[k] = 0;
+        broken[k] = 0;
       }
-      energy += b.energy[k];
-      const Index i = b.i[k], j = b.j[k];
-      force[i] += b.force[k];
-      force[j] -= b.force[k];
-      torque[i] += b.torque_i[k];
-      torque[j] += b.torque_j[k];
+      energy += e[k];
+      const std::size_t i = 3 * static_cast<std::size_t>(bi[k]), j = 3 * static_cast<std::size_t>(bj[k]);
+      add3(fp + i, f + 3 * k);
+      subtract3(fp + j, f + 3 * k);
+      add3(tp + i, ti + 3 * k);
+      add3(tp + j, tj + 3 * k);
     }
   }
   share.bond_broke = broke;

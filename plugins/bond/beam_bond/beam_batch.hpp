@@ -12,17 +12,18 @@
 
 namespace shard::beam {
 
-inline constexpr std::size_t kBlockLanes = 64;
+inline constexpr std::size_t kBlockLanes = 64;  // at most 64: BlockOutput::fallback is one bit a lane
 
 using BlockConstants = LawConstants;
 
-// A block's inputs: its bonds' ends in the bond's own order (first = smaller stable id), their
-// state (kStateSize doubles each) and the particle fields as flat arrays (Vec3: x, y, z;
-// Quat: x, y, z, w, Eigen's storage order).
+// A block's inputs: its bonds' ends as the batch lists them (the block step orders each bond's
+// ends itself: first = the smaller stable id, or the smaller index without ids), their state
+// (kStateSize doubles each) and the particle fields as flat arrays (Vec3: x, y, z; Quat: x, y, z,
+// w, Eigen's storage order).
 struct BlockInput {
-  const std::int64_t* first = nullptr;
-  const std::int64_t* second = nullptr;
-  const std::int64_t* swapped = nullptr;  // 1: the batch lists the bond from its second end
+  const Index* i = nullptr;
+  const Index* j = nullptr;
+  const Index* id = nullptr;  // stable ids; null: the indices order the ends
   const double* state = nullptr;  // kStateSize doubles per bond; kEffectsStateSize, kViscousStateSize with effects
   const double* position = nullptr;
   const double* velocity = nullptr;  // read only with a viscous force
@@ -40,7 +41,7 @@ struct BlockOutput {
   double* torque_i = nullptr;
   double* torque_j = nullptr;
   double* energy = nullptr;
-  std::int64_t fallback[kBlockLanes];  // 1: lane not evaluated, run the per-bond path
+  std::uint64_t fallback = 0;  // bit l set: lane l not evaluated, run the per-bond path
   // With the arm: the block's state (the input's), where each evaluated lane stores its new
   // (Gamma, kappa) and arm strains (h_Gamma, h_kappa); a fallback lane's are left for its own step.
   double* state = nullptr;

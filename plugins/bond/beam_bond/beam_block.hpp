@@ -28,12 +28,21 @@ template <class A, bool breakage, bool viscous, bool effects, bool arm>
   // 53.4-54.1 against 56.9-57.5 CPU ns per bond-step, all four effects 78.0-78.1 against 92.3-93.3).
   alignas(64) std::int64_t first[3][kBlockLanes], second[3][kBlockLanes], slot[3][kBlockLanes];
   alignas(64) double swapped[kBlockLanes];
+  // Each bond's ends in its own order (beam_geometry.hpp, ends_of) first, one bond at a time (the
+  // ids are gathered); then the offsets, a loop GCC vectorises.
   const std::size_t padded = (n + W - 1) / W * W;
   for (std::size_t l = 0; l < padded; ++l) {
     const std::size_t k = std::min(l, n - 1);
-    first[0][l] = in.first[k], first[1][l] = 3 * in.first[k], first[2][l] = 4 * in.first[k];
-    second[0][l] = in.second[k], second[1][l] = 3 * in.second[k], second[2][l] = 4 * in.second[k];
-    swapped[l] = in.swapped[k] != 0 ? 1.0 : 0.0;
+    const Index i = in.i[k], j = in.j[k];
+    const bool swap = in.id ? in.id[j] < in.id[i] : j < i;
+    first[0][l] = swap ? j : i;
+    second[0][l] = swap ? i : j;
+    swapped[l] = swap ? 1.0 : 0.0;
+  }
+  for (std::size_t l = 0; l < padded; ++l) {
+    const std::size_t k = std::min(l, n - 1);
+    first[1][l] = 3 * first[0][l], first[2][l] = 4 * first[0][l];
+    second[1][l] = 3 * second[0][l], second[2][l] = 4 * second[0][l];
     slot[0][l] = static_cast<std::int64_t>(k);
     slot[1][l] = static_cast<std::int64_t>(3 * k);
     slot[2][l] = static_cast<std::int64_t>(stride * k);
@@ -103,7 +112,7 @@ template <class A, bool breakage, bool viscous, bool effects, bool arm>
       }
       L::scatter(out.energy, k, r.energy);
     }
-    for (std::size_t l = 0; l < W; ++l) out.fallback[base + l] = L::lane(r.fallback, l);
+    out.fallback |= L::bits(r.fallback) << base;
     if constexpr (arm)  // a fallback lane keeps its state for its own width-1 step
       for (std::size_t s = 0; s < 12; ++s)
         L::scatter(out.state + kPreviousStrainSlot + s, ks,
@@ -124,10 +133,12 @@ inline void evaluate_law(const BlockInput& in, BlockOutput& out, std::size_t n, 
 
 template <class A>
 inline void evaluate_block(const BlockInput& in, BlockOutput& out, std::size_t n, const BlockConstants& c) {
+  out.fallback = 0;
   if (n == 0) return;
   if (!c.effects) evaluate_law<A, false, false>(in, out, n, c);
   else if (c.arm) evaluate_law<A, true, true>(in, out, n, c);
   else evaluate_law<A, true, false>(in, out, n, c);
+  if (n < 64) out.fallback &= (std::uint64_t{1} << n) - 1;  // the lanes past n repeat bond n - 1
 }
 
 }  // namespace shard::beam

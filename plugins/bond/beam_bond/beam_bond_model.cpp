@@ -1,6 +1,7 @@
 #include "beam_bond_model.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -132,11 +133,8 @@ void BeamBond::compute(BondBatch& batch) const {
 
   static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(Quat) == 4 * sizeof(double));
   BlockOutput out;
-  std::int64_t first[kBlockLanes], second[kBlockLanes], swapped[kBlockLanes];
   BlockInput in;
-  in.first = first;
-  in.second = second;
-  in.swapped = swapped;
+  in.id = p.id;
   in.position = reinterpret_cast<const double*>(p.position);
   in.velocity = reinterpret_cast<const double*>(p.velocity);
   in.orientation = reinterpret_cast<const double*>(p.orientation);
@@ -145,12 +143,8 @@ void BeamBond::compute(BondBatch& batch) const {
   in.inertia = p.inertia;
   for (std::size_t base = 0; base < batch.count; base += kBlockLanes) {
     const std::size_t n = std::min(kBlockLanes, batch.count - base);
-    for (std::size_t l = 0; l < n; ++l) {
-      const Ends e = ends_of(p, batch.i[base + l], batch.j[base + l]);
-      first[l] = e.first;
-      second[l] = e.second;
-      swapped[l] = e.swapped;
-    }
+    in.i = batch.i + base;
+    in.j = batch.j + base;
     in.state = batch.state + base * stride;
     out.state = batch.state + base * stride;
     out.force = batch.force[base].data();
@@ -158,8 +152,8 @@ void BeamBond::compute(BondBatch& batch) const {
     out.torque_j = batch.torque_j[base].data();
     out.energy = batch.energy + base;
     block_step_(in, out, n, constants);
-    for (std::size_t l = 0; l < n; ++l)
-      if (out.fallback[l]) step_bond(batch, base + l, stride, constants, NoExtraCriterion{});
+    for (std::uint64_t left = out.fallback; left != 0; left &= left - 1)
+      step_bond(batch, base + static_cast<std::size_t>(std::countr_zero(left)), stride, constants, NoExtraCriterion{});
   }
 }
 

@@ -35,6 +35,7 @@ struct Lanes<double> {
   [[gnu::always_inline]] static index load_index(const std::int64_t* p) { return *p; }
   [[gnu::always_inline]] static double broadcast(double v) { return v; }
   [[gnu::always_inline]] static bool lane(bool m, std::size_t) { return m; }
+  [[gnu::always_inline]] static std::uint64_t bits(bool m) { return m; }
 };
 
 inline double select(bool m, double a, double b) { return m ? a : b; }

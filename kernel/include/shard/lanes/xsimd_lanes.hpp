@@ -73,6 +73,22 @@ struct Lanes<xsimd::batch<double, A>> {
   [[gnu::always_inline]] static index load_index(const std::int64_t* p) { return index::load_unaligned(p); }
   [[gnu::always_inline]] static type broadcast(double v) { return type(v); }
   [[gnu::always_inline]] static bool lane(const mask& m, std::size_t l) { return m.get(l); }
+  // Bit l set where lane l of m is: one instruction (xsimd 8.1's get(l) stores the whole mask as
+  // bools for every lane it is asked about).
+  [[gnu::always_inline]] static std::uint64_t bits(const mask& m) {
+#if defined(__AVX512F__)
+    if constexpr (std::is_same_v<A, xsimd::avx512f>) return static_cast<__mmask8>(m);
+#endif
+#if defined(__AVX__)
+    if constexpr (std::is_base_of_v<xsimd::avx, A>) return static_cast<std::uint64_t>(_mm256_movemask_pd(m));
+#endif
+#if defined(__SSE2__)
+    if constexpr (std::is_base_of_v<xsimd::sse2, A>) return static_cast<std::uint64_t>(_mm_movemask_pd(m));
+#endif
+    std::uint64_t out = 0;
+    for (std::size_t l = 0; l < width; ++l) out |= static_cast<std::uint64_t>(m.get(l)) << l;
+    return out;
+  }
 };
 
 // -x: xsimd 8.1's AVX-512 unary minus computes 0 - x, which turns +0 into +0 (and so a lane's bits
