@@ -77,6 +77,7 @@ void add_compare(CLI::App& app, CommandContext& ctx) {
     prepare_output_folder(o->out, "--out");  // after the cheap reads, before the simulations
     CompareOptions options;
     options.judge_fracture = o->sim.judge_fracture;
+    options.score_reference = o->sim.score_reference;
     RateComparison rc;
     std::string warning;
     double ke = 0;

@@ -40,6 +40,13 @@ void add_simulation_options(CLI::App* cmd, ModelPlan& model, SimulationOptions& 
                   "load-frame compliance C in m/N added to the simulated displacement (w + C F)");
   cmd->add_flag("--judge-fracture", options.judge_fracture,
                 "let crack position and fragment sizes enter the verdict and the residual (always reported)");
+  cmd->add_option_function<std::string>(
+      "--score-reference",
+      [&options](const std::string& name) { options.score_reference = measure::parse_score_reference(name); },
+      "reference distribution of each residual component: normal (the raw score as N(0, 1), default) or welch "
+      "(Student t with the Welch-Satterthwaite degrees of freedom of its estimated variances, converted to the "
+      "normal score of equal tail probability)")
+      ->check(CLI::IsMember({"normal", "welch"}));
   cmd->add_flag("!--ignore-geometry", options.check_geometry,
                 "compare even when the specimens' span or pin distance differ from the scene's");
   cmd->add_option("--time-compression", options.time_compression,
@@ -246,6 +253,7 @@ std::vector<RateComparison> simulate_and_compare(Simulator& simulator, const Rat
   const auto sims = simulator.simulate(runs, log);
   measure::CompareOptions compare_options;
   compare_options.judge_fracture = simulator.options().judge_fracture;
+  compare_options.score_reference = simulator.options().score_reference;
   std::vector<RateComparison> out(models.size());
   for (std::size_t m = 0; m < models.size(); ++m) {
     out[m].rates = groups.rates;

@@ -49,6 +49,7 @@ struct SimulationOptions {
   // geometry is not a model of these data.
   bool check_geometry = true;
   bool judge_fracture = false;  // CompareOptions::judge_fracture
+  measure::ScoreReference score_reference = measure::ScoreReference::Normal;  // CompareOptions::score_reference
 };
 
 void add_simulation_options(CLI::App* cmd, ModelPlan& model, SimulationOptions& options);

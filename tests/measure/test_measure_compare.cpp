@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <random>
 
 #include "shard/measure/comparison.hpp"
@@ -276,4 +277,69 @@ TEST_CASE("the likelihood's variance term charges a model for its wider band") {
   // A feature that is not judged is not a component of the likelihood.
   c.features[0].judged = false;
   CHECK(log_variance_ratio(c, reference) == doctest::Approx(std::log(2.0)));
+}
+
+TEST_CASE("Welch-Satterthwaite degrees of freedom and the equivalent normal score at tabulated points") {
+  // Two equal estimated variances of 3 samples each (dof 2): nu = (2v)^2 / (2 v^2 / 2) = 4.
+  const VarianceTerm equal[] = {{1.0, 2.0}, {1.0, 2.0}};
+  CHECK(satterthwaite_dof(equal, 0) == doctest::Approx(4.0).epsilon(1e-12));
+  // A known variance (sensor noise) adds to the total but not to the sampling error: (1 + 1)^2 / (1 / 2) = 8.
+  const VarianceTerm one[] = {{1.0, 2.0}};
+  CHECK(satterthwaite_dof(one, 1.0) == doctest::Approx(8.0).epsilon(1e-12));
+  // Welch's textbook case: s1^2/n1 = 2 on 4 dof, s2^2/n2 = 1 on 9 dof: 9 / (4/4 + 1/9) = 8.1.
+  const VarianceTerm welch[] = {{2.0, 4.0}, {1.0, 9.0}};
+  CHECK(satterthwaite_dof(welch, 0) == doctest::Approx(8.1).epsilon(1e-12));
+  CHECK(std::isinf(satterthwaite_dof({}, 1.0)));
+  // Student t quantiles: t(0.99; 3) = 4.540703 is the normal 0.99 quantile 2.326348;
+  // t(0.025; 2) = -4.302653 the normal -1.959964; infinite dof leave the score alone.
+  CHECK(equivalent_normal_score(4.540703, 3) == doctest::Approx(2.326348).epsilon(1e-5));
+  CHECK(equivalent_normal_score(-4.302653, 2) == doctest::Approx(-1.959964).epsilon(1e-5));
+  CHECK(equivalent_normal_score(1.5, std::numeric_limits<double>::infinity()) == 1.5);
+  CHECK(equivalent_normal_score(0.0, 3) == doctest::Approx(0.0).epsilon(1e-12));
+  // A large t on few dof stays finite and monotone: on 2 dof F(t) = 1/2 + t / (2 sqrt(2 + t^2)), so t = 40 has
+  // the tail 3.1221e-4, z 3.42078.
+  CHECK(equivalent_normal_score(40.0, 2) == doctest::Approx(3.420782).epsilon(1e-6));
+  CHECK(equivalent_normal_score(400.0, 2) > equivalent_normal_score(40.0, 2));
+}
+
+TEST_CASE("three specimens against three replicates of the same truth: Welch scores keep their false-alarm rate") {
+  // Specimen scatter (stiffness and strength 10 %) far above the load-cell noise: the peak-force
+  // score's variance is estimated from 3 + 3 curves, so the raw score is t on ~4 dof. Read as
+  // N(0, 1), |score| > 2.576 (p 0.01) happens in P(|t_4| > 2.576) = 6.2 % of the draws; the Welch
+  // conversion brings it back to 1 %. 1000 draws: binomial sd 0.31 %, the bounds 3 sd around 1 %.
+  std::mt19937 rng(2027);
+  std::lognormal_distribution<double> scatter(0, 0.1);
+  const double k = 2e5, w_p = 1e-3, noise = 0.01;
+  Metadata meta;
+  meta.load_cell_uncertainty = noise;
+  CompareOptions welch;
+  welch.score_reference = ScoreReference::Welch;
+  const int draws = 1000;
+  int alarms_normal = 0, alarms_welch = 0;
+  double dof_sum = 0;
+  auto peak_score = [](const Comparison& c) {
+    for (const auto& f : c.features)
+      if (f.feature == Feature::PeakForce) return std::pair{f.score, f.dof};
+    return std::pair{0.0, 0.0};
+  };
+  for (int d = 0; d < draws; ++d) {
+    std::vector<Specimen> measured, simulated;
+    for (int i = 0; i < 3; ++i) measured.push_back(specimen(curve(k * scatter(rng), w_p * scatter(rng), 0.1, 0, rng, noise)));
+    for (int i = 0; i < 3; ++i) simulated.push_back(specimen(curve(k * scatter(rng), w_p * scatter(rng), 0.1, 0, rng, 0)));
+    const auto [raw, dof] = peak_score(compare(measured, meta, simulated));
+    const auto [converted, dof_welch] = peak_score(compare(measured, meta, simulated, welch));
+    CHECK(dof == doctest::Approx(dof_welch));
+    CHECK(std::abs(converted) <= std::abs(raw) + 1e-12);  // a t tail is heavier: the normal score is smaller
+    alarms_normal += std::abs(raw) > 2.5758;
+    alarms_welch += std::abs(converted) > 2.5758;
+    dof_sum += dof;
+  }
+  const double mean_dof = dof_sum / draws;
+  CHECK(mean_dof > 2.0);
+  CHECK(mean_dof < 4.0 + 1e-9);  // between min(n) - 1 and n_m + n_s - 2
+  CHECK(alarms_normal > 40);     // expected ~62 (t on 2-4 dof)
+  CHECK(alarms_welch >= 1);
+  CHECK(alarms_welch <= 19);     // expected 10
+  MESSAGE("false alarms at p 0.01 in ", draws, " draws: normal ", alarms_normal, ", welch ", alarms_welch,
+          "; mean Satterthwaite dof ", mean_dof);
 }

@@ -71,15 +71,25 @@ void fill_regimes(Comparison& c, const CompareOptions& options) {
     g.first = bounds[r];
     g.last = bounds[r + 1];
     if (g.points() == 0) continue;
-    double sum_r = 0, sum_r2 = 0, sum_sim = 0, sum_meas = 0;
+    double sum_r = 0, sum_r2 = 0, sum_sim = 0, sum_meas = 0, measured_sampled = 0, measured_known = 0, simulated = 0;
     for (std::size_t k = g.first; k < g.last; ++k) {
+      measured_sampled += c.measured.sampled_variance[k];
+      measured_known += c.measured.u[k] * c.measured.u[k] - c.measured.sampled_variance[k];
+      simulated += c.simulated.u[k] * c.simulated.u[k];
       sum_r += c.residual[k];
       sum_r2 += c.residual[k] * c.residual[k];
       sum_sim += c.simulated.mean[k];
       sum_meas += c.measured.mean[k];
     }
     const double m = static_cast<double>(g.points());
-    g.mean_residual = sum_r / m;
+    // The regime's variance is read as its points' mean, each part with the dof of its sample.
+    const VarianceTerm estimated[] = {{measured_sampled / m, c.measured.sampled_dof},
+                                      {simulated / m, c.simulated.sampled_dof}};
+    g.dof = satterthwaite_dof(estimated, std::max(0.0, measured_known / m));
+    g.raw_mean_residual = sum_r / m;
+    g.mean_residual = options.score_reference == ScoreReference::Welch
+                          ? equivalent_normal_score(g.raw_mean_residual, g.dof)
+                          : g.raw_mean_residual;
     g.rms_residual = std::sqrt(sum_r2 / m);
     g.chi_square = sum_r2;
     g.relative_error = sum_meas != 0 ? (sum_sim - sum_meas) / std::abs(sum_meas) : 0;
@@ -108,6 +118,7 @@ void fill_features(Comparison& c, const std::vector<Specimen>& measured, const M
     fc.measured = mean(m);
     fc.simulated = mean(s);
     const double sd_m = sample_sd(m), sd_s = sample_sd(s);
+    fc.u_measured_sampled = sd_m / std::sqrt(nm);
     fc.u_measured = std::sqrt(sd_m * sd_m / nm + sensor2 / nm / nm);
     fc.u_simulated = sd_s / std::sqrt(ns);
     fc.error = fc.simulated - fc.measured;
@@ -120,7 +131,13 @@ void fill_features(Comparison& c, const std::vector<Specimen>& measured, const M
 void score_features(Comparison& c, const CompareOptions& options) {
   for (auto& fc : c.features) {
     const double u = std::hypot(fc.u_measured, fc.u_simulated);
+    const VarianceTerm estimated[] = {
+        {fc.u_measured_sampled * fc.u_measured_sampled, static_cast<double>(fc.measured_count) - 1},
+        {fc.u_simulated * fc.u_simulated, static_cast<double>(fc.simulated_count) - 1}};
+    fc.dof = satterthwaite_dof(
+        estimated, std::max(0.0, fc.u_measured * fc.u_measured - fc.u_measured_sampled * fc.u_measured_sampled));
     fc.score = u > 0 ? fc.error / u : std::numeric_limits<double>::quiet_NaN();
+    if (options.score_reference == ScoreReference::Welch) fc.score = equivalent_normal_score(fc.score, fc.dof);
     fc.beyond_noise = fc.judged && u > 0 && std::abs(fc.score) > options.noise_threshold;
   }
 }
@@ -207,6 +224,14 @@ std::string_view regime_name(Regime r) {
 
 double force_at(const Curve& c, double w) { return Envelope(c).at(w); }
 
+ScoreReference parse_score_reference(std::string_view name) {
+  if (name == "normal") return ScoreReference::Normal;
+  if (name == "welch") return ScoreReference::Welch;
+  throw std::invalid_argument(fmt::format("score reference '{}': use normal (a score is read as N(0, 1)) or welch "
+                                          "(Student t with Welch-Satterthwaite degrees of freedom, as a normal score)",
+                                          name));
+}
+
 FeatureValues observation_features(const Specimen& s, const Metadata& metadata) {
   FeatureValues f = curve_features(s.curve);
   if (s.crack_position) {
@@ -226,6 +251,7 @@ Comparison compare(const std::vector<Specimen>& measured, const Metadata& metada
   if (simulated.empty()) throw std::invalid_argument("compare: no simulated curves");
   if (options.grid_points < 10) throw std::invalid_argument("compare: at least 10 grid points");
   Comparison c;
+  c.options = options;
   std::vector<double> peaks;
   double xi_end = options.max_xi;
   for (const auto& s : measured) peaks.push_back(s.curve.displacement[peak_index(s.curve)]);
@@ -255,6 +281,9 @@ Comparison compare(const std::vector<Specimen>& measured, const Metadata& metada
   const double nm = static_cast<double>(measured.size()), ns = static_cast<double>(simulated.size());
   c.measured.mean.resize(n);
   c.measured.u.resize(n);
+  c.measured.sampled_variance.resize(n);
+  c.measured.sampled_dof = nm - 1;
+  c.simulated.sampled_dof = ns - 1;
   c.simulated.mean.resize(n);
   c.simulated.u.resize(n);
   for (std::size_t k = 0; k < n; ++k) {
@@ -262,13 +291,14 @@ Comparison compare(const std::vector<Specimen>& measured, const Metadata& metada
     c.measured.mean[k] = column_mean(c.measured_curves, k, &sd_m);
     c.simulated.mean[k] = column_mean(c.simulated_curves, k, &sd_s);
     c.simulated.u[k] = sd_s / std::sqrt(ns);
-    c.measured.u[k] = sd_m * sd_m / nm;  // completed below, once the slope is known
+    c.measured.sampled_variance[k] = sd_m * sd_m / nm;
+    c.simulated.sampled_variance.push_back(c.simulated.u[k] * c.simulated.u[k]);
   }
   double sq = 0;
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t a = k > 0 ? k - 1 : 0, b = std::min(k + 1, n - 1);
     const double slope = (c.measured.mean[b] - c.measured.mean[a]) / (w[b] - w[a]);
-    c.measured.u[k] = std::sqrt(c.measured.u[k] + (uf2 + slope * slope * uw2) / nm);
+    c.measured.u[k] = std::sqrt(c.measured.sampled_variance[k] + (uf2 + slope * slope * uw2) / nm);
     const double diff = c.simulated.mean[k] - c.measured.mean[k];
     sq += diff * diff;
   }
@@ -279,17 +309,19 @@ Comparison compare(const std::vector<Specimen>& measured, const Metadata& metada
   return c;
 }
 
-Comparison with_simulated_band(const Comparison& c, const Comparison& reference, const CompareOptions& options) {
+Comparison with_simulated_band(const Comparison& c, const Comparison& reference) {
   if (reference.xi != c.xi)
     throw std::invalid_argument("with_simulated_band: the comparisons are on different grids (other measurements)");
   Comparison out = c;
   out.simulated.u = reference.simulated.u;
+  out.simulated.sampled_variance = reference.simulated.sampled_variance;
+  out.simulated.sampled_dof = reference.simulated.sampled_dof;
   for (auto& f : out.features) {
     f.u_simulated = 0;  // a feature the reference lacks is judged on the measured band alone
     for (const auto& g : reference.features)
       if (g.feature == f.feature) f.u_simulated = g.u_simulated;
   }
-  score(out, options);
+  score(out, out.options);
   return out;
 }
 

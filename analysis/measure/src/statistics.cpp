@@ -1,5 +1,7 @@
 #include "shard/measure/statistics.hpp"
 
+#include <boost/math/distributions/normal.hpp>
+#include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <limits>
 
@@ -46,6 +48,25 @@ double chi_square_survival(double x, double dof) {
 }
 
 double normal_two_sided(double z) { return std::erfc(std::abs(z) / std::sqrt(2.0)); }
+
+double satterthwaite_dof(std::span<const VarianceTerm> estimated, double known_variance) {
+  double total = known_variance, denominator = 0;
+  for (const auto& term : estimated) {
+    total += term.variance;
+    if (term.variance > 0 && term.dof > 0) denominator += term.variance * term.variance / term.dof;
+  }
+  if (!(denominator > 0)) return std::numeric_limits<double>::infinity();
+  return total * total / denominator;
+}
+
+double equivalent_normal_score(double t, double dof) {
+  if (!std::isfinite(t) || !(dof > 0) || std::isinf(dof)) return t;
+  // Work in the tail of |t| so that large scores keep their precision (cdf near 1 would round).
+  const double tail = boost::math::cdf(boost::math::complement(boost::math::students_t_distribution<double>(dof), std::abs(t)));
+  if (!(tail > 0)) return t;  // beyond double precision: no finite normal equivalent is smaller
+  const double z = boost::math::quantile(boost::math::complement(boost::math::normal_distribution<double>(), tail));
+  return std::copysign(z, t);
+}
 
 double mean(std::span<const double> x) {
   double s = 0;

@@ -14,7 +14,14 @@
 // Regimes, on the measured mean curve: toe (F < 10 % F_max on the rise), elastic (10-60 %),
 // pre-peak (60-90 %), peak (the points around the maximum with F >= 90 % F_max), post-peak.
 // Neighbouring residuals share the specimen scatter, so a regime's mean residual is treated as
-// one standard-normal score: a regime fails "beyond noise" when |mean r| > noise_threshold (2).
+// one score: a regime fails "beyond noise" when |score| > noise_threshold (2).
+//
+// Reference distribution of a score (CompareOptions::score_reference). The variances in it are
+// estimated from a few specimens and replicates, so a score is Student-t distributed, with the
+// Welch-Satterthwaite degrees of freedom of its variance (RegimeResult::dof, FeatureComparison::dof:
+// the specimen and replicate scatter estimated with n - 1, the sensor noise known). `Normal` reads
+// the raw ratio as N(0, 1); `Welch` converts it to the normal score of equal tail probability, so
+// that every later sum of squares is a chi-square in fact, not only in name.
 #include <array>
 #include <optional>
 #include <string>
@@ -30,6 +37,10 @@ enum class Regime : std::size_t { Toe, Elastic, PrePeak, Peak, PostPeak };
 inline constexpr std::size_t kRegimeCount = 5;
 std::string_view regime_name(Regime r);
 
+enum class ScoreReference { Normal, Welch };
+// "normal" / "welch"; throws std::invalid_argument naming the accepted names.
+ScoreReference parse_score_reference(std::string_view name);
+
 struct CompareOptions {
   std::size_t grid_points = 120;
   double max_xi = 3;             // post-peak beyond 3 w_ref carries no information on the model
@@ -41,16 +52,23 @@ struct CompareOptions {
   // initiation force and the failure displacement are judged with them (features.hpp:
   // judged_by_default, fracture_feature).
   bool judge_fracture = false;
+  ScoreReference score_reference = ScoreReference::Normal;
 };
 
 struct Band {
   std::vector<double> mean, u;
+  // The part of u^2 estimated from the curves' scatter (s^2 / n), and its degrees of freedom
+  // (n - 1); the rest of u^2 is sensor noise, known.
+  std::vector<double> sampled_variance;
+  double sampled_dof = 0;
 };
 
 struct RegimeResult {
   Regime regime = Regime::Toe;
   std::size_t first = 0, last = 0;  // grid indices [first, last)
-  double mean_residual = 0;         // mean standardised residual
+  double mean_residual = 0;         // mean standardised residual (as a normal score under Welch)
+  double raw_mean_residual = 0;     // the same before the conversion to a normal score
+  double dof = 0;                   // Welch-Satterthwaite degrees of freedom of its variance
   double rms_residual = 0;
   double chi_square = 0;            // sum r^2 (points treated as independent: an upper bound)
   double relative_error = 0;        // (sum F_sim - sum F_meas) / sum F_meas
@@ -63,7 +81,9 @@ struct FeatureComparison {
   std::size_t measured_count = 0, simulated_count = 0;
   double measured = 0, u_measured = 0, simulated = 0, u_simulated = 0;
   double error = 0, relative_error = 0;
-  double score = 0;  // error / combined uncertainty; NaN when the uncertainty is zero
+  double u_measured_sampled = 0;  // the specimen-scatter part of u_measured (the rest is sensor noise)
+  double score = 0;  // error / combined uncertainty (as a normal score under Welch); NaN when it is zero
+  double dof = 0;    // Welch-Satterthwaite degrees of freedom of the combined variance
   bool beyond_noise = false;
   bool judged = true;  // part of the verdict and the residual vector (CompareOptions::judge_fracture)
 };
@@ -87,6 +107,7 @@ struct Comparison {
   double nrmse = 0;  // RMS(F_sim - F_meas) / F_max,meas on the grid
   std::string verdict;
   bool adequate = false;
+  CompareOptions options;  // what it was scored with (with_simulated_band rescores alike)
 
   ResidualVector residual_vector() const;
 };
@@ -106,7 +127,7 @@ Comparison compare(const std::vector<Specimen>& measured, const Metadata& metada
 // verdict; NRMSE and means unchanged. Candidates judged on one frozen band cannot lower their
 // chi^2 by scattering more (a wider band shrinks every standardised residual): diagnose scores
 // every model against the base model's band. Throws when the grids differ.
-Comparison with_simulated_band(const Comparison& c, const Comparison& reference, const CompareOptions& options = {});
+Comparison with_simulated_band(const Comparison& c, const Comparison& reference);
 
 // The Gaussian likelihood's variance term of `c` against `reference` over the residual vector's
 // components: sum of ln(v_c / v_ref), v the combined variance u_m^2 + u_s^2 (a regime's: its
