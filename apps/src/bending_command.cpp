@@ -254,6 +254,10 @@ void add_bending_command(CLI::App& app, CommandContext& ctx) {
                 "local instrumentation: section width along the beam in m (default: 2 mean diameters)");
   b->add_option("--gauge-core", bo->analysis.gauge_core,
                 "local instrumentation: height band around mid-height in m (default: half the height)");
+  b->add_option("--local-damage-limit", bo->analysis.local_damage_limit,
+                "local instrumentation: a frame counts as elastic while at most this fraction of the bonds has broken "
+                "(default 0: before the first break; e.g. 1e-3 on a beam of 1e6 bonds)")
+      ->check(CLI::Range(0.0, 0.05));
   add_geometry_options(*b, *bo);
   b->callback([bo, &ctx] { ctx.exit_code = bending_command(*bo); });
 

@@ -364,6 +364,10 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
                           ? "The refits' chi^2 carry the likelihood's log-variance term against the base model's band."
                           : "A refit whose NRMSE rises above the base refit's is neither named nor kept, whatever its "
                             "chi^2 (a wider band must not pass for a better model).");
+    if (o->sim.score_reference == measure::ScoreReference::Welch)
+      md += " Each component is Student t on its Welch-Satterthwaite degrees of freedom (specimen and replicate "
+            "scatter estimated, sensor noise known), read as the normal score of equal tail probability "
+            "(--score-reference welch).\n";
     if (!scaled.empty())
       md += "Trial sizes from the base run (plausible_from rules, docs/measurements.md):\n\n```\n" + scaled + "```\n\n";
     for (const auto& e : effects)

@@ -43,10 +43,12 @@ std::string format_report(const BendingReport& r) {
                    "to the deflection under a pin\n",
                    1e-6 * r.voigt.youngs_modulus, r.voigt.poisson_ratio, 100 * r.shear_correction);
   const auto& lg = r.gauges;
+  const std::string first_break =
+      lg.breaks_allowed == 0 ? std::string("the first break") : fmt::format("break {}", lg.breaks_allowed + 1);
   if (lg.valid) {
-    s += fmt::format("  local instrumentation ({} frames in the fit window of {}): beam deflection under the pins "
+    s += fmt::format("  local instrumentation ({} frames in the fit window of {} before {}): beam deflection under the pins "
                      "k_local = {:.5g} N/mm (R^2 {:.4f}) -> E (eq. 14) = {:.4g} MPa\n",
-                     lg.fit_frames, lg.frames.size(), 1e-3 * lg.stiffness, lg.deflection_fit.r_squared,
+                     lg.fit_frames, lg.frames.size(), first_break, 1e-3 * lg.stiffness, lg.deflection_fit.r_squared,
                      1e-6 * lg.youngs_modulus);
     s += fmt::format("    curvature between the pins: E = M / (kappa I) = {:.4g} MPa (R^2 {:.4f}); beam theory on it "
                      "(eq. 14 + shear) predicts k_local = {:.5g} N/mm: measured / predicted = {:.3f}\n",
@@ -56,9 +58,9 @@ std::string format_report(const BendingReport& r) {
                      "contact indentation at pins and supports)\n",
                      a.youngs_modulus / lg.youngs_modulus);
   } else {
-    s += fmt::format("  local instrumentation: {} frames before the first break, {} in the fit window: too few "
-                     "(output.frame_interval smaller)\n",
-                     lg.frames.size(), lg.fit_frames);
+    s += fmt::format("  local instrumentation: {} frames before {}, {} in the fit window: too few "
+                     "(output.frame_interval smaller, or --local-damage-limit)\n",
+                     lg.frames.size(), first_break, lg.fit_frames);
   }
   s += fmt::format("  quasi-static: loading {:.4g} mm/s, {:.3g} s to F_max, kinetic/elastic energy <= {:.3g} before damage\n",
                    1e3 * r.quasi_static.loading_speed, r.quasi_static.load_time, r.quasi_static.max_kinetic_to_elastic);

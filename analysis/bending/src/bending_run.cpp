@@ -197,8 +197,10 @@ BendingReport analyse_bending_run(const std::filesystem::path& path, const Bendi
   }
 
   // Local instrumentation: the beam's own deflection under the pins relative to the supports,
-  // and the curvature between the pins, on every frame before the first break and the peak.
-  const double t_first_break = events.empty() ? 1e300 : events.front().time;
+  // and the curvature between the pins, on every frame before the first break and the peak. The
+  // first break is the first beyond BendingOptions::local_damage_limit (none allowed by default).
+  const auto allowed = static_cast<std::size_t>(std::floor(options.local_damage_limit * static_cast<double>(r.bonds)));
+  const double t_first_break = events.size() > allowed ? events[allowed].time : 1e300;
   const double t_peak = time.empty() ? 0 : time[r.analysis.peak_row];
   {
     SectionGauges gauges;
@@ -231,6 +233,7 @@ BendingReport analyse_bending_run(const std::filesystem::path& path, const Bendi
       rows.push_back(row);
     }
     r.gauges = fit_local_instrumentation(std::move(rows), g, r.analysis.force_max, options.curve);
+    r.gauges.breaks_allowed = allowed;  // for the report's wording
     r.predicted_local_stiffness =
         r.gauges.curvature_modulus > 0
             ? predicted_local_stiffness(g, r.gauges.curvature_modulus, std::clamp(r.voigt.poisson_ratio, 0.0, 0.49))

@@ -29,6 +29,12 @@ struct BendingOptions {
   double major_fragment = 0.05;     // a fragment holding at least this mass fraction is "major"
   double gauge_section = 0;         // m, width of the local-deflection sections; 0: two mean diameters
   double gauge_core = 0;            // m, height band around mid-height the sections use; 0: half the height
+  // The local instrumentation reads a frame as elastic while at most this fraction of the bonds
+  // has broken (anywhere for the deflection under the pins, between the pins for the curvature).
+  // 0: before the first break. A resolved beam loses isolated bonds long before it cracks (the
+  // seed-resolution beam: 20 of 1.35e6 by 0.46 mm of pin travel); random loss of a fraction phi
+  // of the bonds lowers a network's modulus by the order of phi.
+  double local_damage_limit = 0;
 };
 
 struct FragmentSummary {

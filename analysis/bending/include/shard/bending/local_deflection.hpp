@@ -46,7 +46,7 @@ struct LocalFrame {
 };
 
 struct LocalInstrumentation {
-  std::vector<LocalFrame> frames;   // frames before the first break and the peak
+  std::vector<LocalFrame> frames;   // frames before the first break and the peak (BendingOptions::local_damage_limit)
   LinearFit deflection_fit;         // F = k_local w_local + c over the fit window
   double stiffness = 0;             // k_local, N/m
   double youngs_modulus = 0;        // eq. 14 on k_local (bending + shear deflection of the beam), Pa
@@ -54,6 +54,7 @@ struct LocalInstrumentation {
   double curvature_modulus = 0;     // EI / I: the network's own E in the constant-moment zone, Pa
   std::size_t fit_frames = 0;
   bool valid = false;               // at least 3 frames in the window, positive slopes
+  std::size_t breaks_allowed = 0;   // "the first break" is the first after this many (BendingOptions)
 };
 
 // Fits over the frames with fit_low F_max <= F <= fit_high F_max (the curve's options).
