@@ -4,7 +4,8 @@
 
 namespace shard::measure {
 
-// P(X > x) for X ~ chi-square with `dof` degrees of freedom (regularised upper incomplete gamma).
+// P(X > x) for X ~ chi-square with `dof` degrees of freedom (Boost.Math's regularised upper
+// incomplete gamma); NaN for a NaN x or dof <= 0.
 double chi_square_survival(double x, double dof);
 // Two-sided p-value of a standard normal score z.
 double normal_two_sided(double z);
