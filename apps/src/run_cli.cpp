@@ -47,7 +47,9 @@ void add_run_command(CLI::App& app, CommandContext& ctx) {
   cmd->add_option("--restart", options->restart, "continue run.h5 from its checkpoint run.checkpoint.h5");
   cmd->add_option("--checkpoint-every", options->checkpoint_every, "frames between checkpoints (0: only when stopping)")
       ->check(number_from(0, false, "0 (checkpoint only when stopping) or a number of frames"));
-  cmd->add_option("--set", *assignments, "override a scene key, e.g. --set bond.youngs_modulus=13e6");
+  cmd->add_option("--set", *assignments,
+                  "override a scene key, e.g. --set bond.youngs_modulus=13e6 (with --restart: simulation.duration and "
+                  "[stop] keys only, e.g. to run on past the end)");
   cmd->add_option("--out", options->out_dir, "output folder");
   cmd->add_option("--threads", options->threads, "OpenMP threads (default: all cores)")->check(thread_count());
   cmd->add_flag("--quiet", options->quiet, "no progress line");

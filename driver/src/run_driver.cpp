@@ -67,6 +67,26 @@ bool explicitly_sets_breakage(const std::string& scene_text) {
   return false;
 }
 
+// What a restart may change: when the run ends. Every other key made the state in the checkpoint.
+bool restart_may_change(const std::string& key) { return key == "simulation.duration" || key.rfind("stop.", 0) == 0; }
+
+// The run file's scene with the restart's overrides. The frame and series schedule stays the
+// run's own (by default it follows the duration), so the rows already written keep their places.
+Scene restart_scene(const RunSpec& spec, const RunMetadata& meta, const PluginHost& host) {
+  for (const auto& o : spec.overrides)
+    if (!restart_may_change(o.key))
+      throw SceneError(fmt::format(
+          "--restart {} with --set {}: a restart continues the state in the checkpoint, which the scene's {} made; "
+          "only simulation.duration and [stop] keys may change on a restart (run the scene again for the others)",
+          spec.restart.string(), o.text(), o.key));
+  const Scene old = load_scene_text(meta.scene_text, meta.scene_file, host);
+  if (spec.overrides.empty()) return old;
+  SceneOverrides o = spec.overrides;
+  o.push_back({"output.frame_interval", old.frame_interval});
+  o.push_back({"output.series_interval", old.series_interval});
+  return load_scene_text(meta.scene_text, meta.scene_file, host, o);
+}
+
 RunStart read_run_start(const RunSpec& spec, const PluginHost& host, const RunLog& log,
                         const std::function<Checkpoint(const std::filesystem::path&)>& read) {
   RunStart start;
@@ -81,8 +101,7 @@ RunStart read_run_start(const RunSpec& spec, const PluginHost& host, const RunLo
   if (!start.restarting && std::filesystem::is_directory(spec.scene))
     throw SceneError(fmt::format("{}: is a folder, not a scene file; give the .toml file (scenes/ has examples)",
                                  spec.scene.string()));
-  start.scene = start.restarting ? load_scene_text(start.old_meta.scene_text, start.old_meta.scene_file, host)
-                                 : load_scene(spec.scene, host, spec.overrides);
+  start.scene = start.restarting ? restart_scene(spec, start.old_meta, host) : load_scene(spec.scene, host, spec.overrides);
   // Breakage without a bond model is not an error (the default is on, and a contact-only scene
   // is legitimate), but asking for it explicitly means a [bond] section was forgotten.
   if (start.scene.breakage && !start.scene.bond && explicitly_sets_breakage(start.scene.resolved_text) &&

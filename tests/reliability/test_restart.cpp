@@ -6,6 +6,7 @@
 #include "reliability_fixtures.hpp"
 #include "shard/app/run_command.hpp"
 #include "shard/run_file.hpp"
+#include "shard/scene.hpp"
 
 using namespace shard;
 using namespace shard::test;
@@ -134,5 +135,38 @@ TEST_CASE("a restart keeps each wall's series under its own name") {
   const RunFile a(dir / "run.h5");
   // The pins move before the stop: their displacement column of the copied rows is not zero.
   CHECK(a.read_wall_series("pin_left", "displacement").at(10).z() < 0);
+  require_same_run_files(dir / "run.h5", reference_dir / "run.h5");
+}
+
+// A run that ended at its duration is continued past it: --restart with a later
+// simulation.duration ends where a run to that duration ends, bit for bit. Keys that made the
+// state are refused.
+TEST_CASE("a finished run extended by --restart --set simulation.duration equals one run to the later end") {
+  std::ostringstream log;
+  const auto reference_dir = scratch("extend_reference"), dir = scratch("extended");
+  const RunSummary reference = run_scene(options_for(reference_dir), log);  // duration 0.004 s
+  RunOptions first = options_for(dir);
+  first.overrides = parse_overrides({"simulation.duration=0.0022"});
+  const RunSummary short_run = run_scene(first, log);
+  REQUIRE_FALSE(short_run.interrupted());
+  REQUIRE(short_run.steps < reference.steps);
+
+  RunOptions wrong = options_for(dir);
+  wrong.scene.clear();
+  wrong.restart = dir / "run.h5";
+  wrong.overrides = parse_overrides({"simulation.duration=0.004", "bond.youngs_modulus=1e9"});
+  CHECK_THROWS_WITH_AS(run_scene(wrong, log), doctest::Contains("only simulation.duration and [stop] keys"), SceneError);
+  CHECK(RunFile(dir / "run.h5").frame_count() >= 1);  // refused before anything was touched
+
+  RunOptions more = options_for(dir);
+  more.scene.clear();
+  more.restart = dir / "run.h5";
+  more.overrides = parse_overrides({"simulation.duration=0.004"});
+  const RunSummary extended = run_scene(more, log);
+  CHECK(extended.restarted_from == short_run.steps);
+  CHECK(extended.steps == reference.steps);
+  CHECK(extended.bonds_broken == reference.bonds_broken);
+  require_identical(read_checkpoint(dir / "run.checkpoint.h5").simulation,
+                    read_checkpoint(reference_dir / "run.checkpoint.h5").simulation);
   require_same_run_files(dir / "run.h5", reference_dir / "run.h5");
 }

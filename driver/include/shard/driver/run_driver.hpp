@@ -21,8 +21,10 @@ struct RunSpec {
   std::filesystem::path scene;
   SceneOverrides overrides;  // typed (scene_override.hpp); applied in order
   std::filesystem::path out_dir = ".";
-  // Continue the run file from its checkpoint (run.checkpoint.h5): `scene` and `overrides` are then
-  // ignored (the run file holds the resolved scene). Needs a CheckpointWriter to go on writing them.
+  // Continue the run file from its checkpoint (run.checkpoint.h5): `scene` is then ignored (the run
+  // file holds the resolved scene) and `overrides` may change only simulation.duration and [stop]
+  // keys (a run extended past its end, another stop rule). Needs a CheckpointWriter to go on
+  // writing them.
   std::filesystem::path restart;
   int threads = 0;       // OpenMP threads of this run (on this thread); 0: OpenMP's default
   int health_every = 10;  // steps between checks for a numerical blow-up
