@@ -39,7 +39,7 @@ TEST_CASE("each bond effect policy at its neutral values is bit-identical to pla
       neutral[spec.name] = *spec.neutral;
       ++with_neutral;
     }
-  CHECK(with_neutral == 4);  // strength_weibull_modulus, softening_ratio, viscosity_time, compression_stiffness_ratio
+  CHECK(with_neutral == 5);  // strength_weibull_modulus, strength_cv, softening_ratio, viscosity_time, compression_stiffness_ratio
 
   const auto base = host.make_bond("beam_bond", host.params(PluginKind::Bond, "beam_bond", common));
   std::vector<std::string> selections = kPolicies;

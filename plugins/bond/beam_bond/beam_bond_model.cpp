@@ -51,8 +51,10 @@ BeamBond::BeamBond(const BeamBondParams& params, BlockIsa isa)
   if (!(p_.youngs_modulus > 0) || !(shear_modulus_ > 0) || !(p_.shear_coefficient > 0) || !(p_.radius_ratio > 0))
     throw std::invalid_argument("beam_bond: youngs_modulus, shear modulus, shear_coefficient and radius_ratio must be > 0");
   const BondEffects& fx = p_.effects;
-  if (!(fx.strength_weibull_modulus >= 0) || !(fx.softening_ratio >= 0) || !(fx.viscosity_time >= 0))
-    throw std::invalid_argument("beam_bond: strength_weibull_modulus, softening_ratio, viscosity_time must be >= 0");
+  if (!(fx.strength_weibull_modulus >= 0) || !(fx.strength_cv >= 0) || !(fx.softening_ratio >= 0) ||
+      !(fx.viscosity_time >= 0))
+    throw std::invalid_argument(
+        "beam_bond: strength_weibull_modulus, strength_cv, softening_ratio, viscosity_time must be >= 0");
   if (!(fx.viscous_modulus_ratio > 0) || !(fx.compression_stiffness_ratio > 0))
     throw std::invalid_argument("beam_bond: viscous_modulus_ratio and compression_stiffness_ratio must be > 0");
   block_.effects = fx.any();
@@ -60,8 +62,8 @@ BeamBond::BeamBond(const BeamBondParams& params, BlockIsa isa)
   block_.compression_modulus = fx.compression_stiffness_ratio * p_.youngs_modulus;
   block_.arm_modulus_ratio = fx.viscous_modulus_ratio;
   block_.softening_ratio = fx.softening_ratio;
-  if (fx.strength_weibull_modulus > 0)
-    weibull_scale_ = weibull_scale(p_.critical_stress, fx.strength_weibull_modulus);
+  weibull_modulus_ = fx.weibull_modulus();
+  if (weibull_modulus_ > 0) weibull_scale_ = weibull_scale(p_.critical_stress, weibull_modulus_);
 }
 
 std::size_t BeamBond::state_size() const {
@@ -70,8 +72,8 @@ std::size_t BeamBond::state_size() const {
 
 double BeamBond::strength_of(std::int64_t id_a, std::int64_t id_b) const {
   const BondEffects& fx = p_.effects;
-  if (!(fx.strength_weibull_modulus > 0)) return p_.critical_stress;
-  return weibull_quantile(bond_uniform(fx.strength_seed, id_a, id_b), weibull_scale_, fx.strength_weibull_modulus);
+  if (!(weibull_modulus_ > 0)) return p_.critical_stress;
+  return weibull_quantile(bond_uniform(fx.strength_seed, id_a, id_b), weibull_scale_, weibull_modulus_);
 }
 
 void BeamBond::initialize(BondBatch& batch) const {

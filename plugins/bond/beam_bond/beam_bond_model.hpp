@@ -59,6 +59,7 @@ class BeamBond final : public BondModel {
 
   BeamBondParams p_;
   double shear_modulus_;  // G_b actually used
+  double weibull_modulus_ = 0;    // m of the strength law in effect (BondEffects::weibull_modulus; 0: none)
   double weibull_scale_ = 0;      // s0 of the strength law (0 when m = 0)
   BlockConstants block_;          // the parameters as the law reads them
   BlockFunction block_step_;

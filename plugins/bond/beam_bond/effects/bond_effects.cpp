@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "beam_bond_schema.hpp"
+#include "weibull_strength.hpp"
 
 namespace shard::beam {
 namespace {
@@ -18,7 +19,11 @@ std::vector<BondEffectPolicy> make_policies() {
                  "per-bond strength from a Weibull law with mean critical_stress (weibull_strength.hpp)",
                  {number_param("strength_weibull_modulus", "1",
                                "Weibull modulus m of the per-bond strength (mean critical_stress); 0 = no scatter", 0, 0,
-                               false, kInf, 0.0)}});
+                               false, kInf, 0.0),
+                  number_param("strength_cv", "1",
+                               "the same Weibull law given by its coefficient of variation (std / mean of the "
+                               "per-bond strength) instead of m; 0 = no scatter; not with strength_weibull_modulus",
+                               0, 0, false, kMaxStrengthCv, 0.0)}});
   // An integer parameter: the number helper, retyped (2^53 keeps every value exact in a double).
   // No neutral value: the seed alone changes nothing while m = 0.
   auto seed = number_param("strength_seed", "1", "seed of the per-bond strength hash (with the two stable ids)", 0, 0,
@@ -80,6 +85,10 @@ std::vector<ParamSpec> bond_effect_params() {
 BondEffects BondEffects::from(const ParamSet& p) {
   BondEffects e;
   e.strength_weibull_modulus = p.number("strength_weibull_modulus");
+  e.strength_cv = p.number("strength_cv");
+  if (e.strength_weibull_modulus > 0 && e.strength_cv > 0)
+    throw std::invalid_argument("beam_bond: strength_weibull_modulus and strength_cv both set; they give the same "
+                                "Weibull law two ways: keep one");
   e.strength_seed = static_cast<std::uint64_t>(p.integer("strength_seed"));
   e.softening_ratio = p.number("softening_ratio");
   e.viscosity_time = p.number("viscosity_time");
@@ -101,12 +110,18 @@ bool BondEffects::any() const {
     for (const auto& spec : policy.params) {
       if (!spec.neutral) continue;
       const double value = spec.name == "strength_weibull_modulus" ? strength_weibull_modulus
+                           : spec.name == "strength_cv"            ? strength_cv
                            : spec.name == "softening_ratio"        ? softening_ratio
                            : spec.name == "viscosity_time"         ? viscosity_time
                                                                    : compression_stiffness_ratio;
       if (value != *spec.neutral) return true;
     }
   return false;
+}
+
+double BondEffects::weibull_modulus() const {
+  if (strength_weibull_modulus > 0) return strength_weibull_modulus;
+  return strength_cv > 0 ? weibull_modulus_for_cv(strength_cv) : 0.0;
 }
 
 }  // namespace shard::beam

@@ -1,7 +1,7 @@
 #pragma once
 // The physical effects composed into beam_bond's law (docs/effects.md), each a policy with a name,
 // its parameters and ONE neutral value per parameter, declared in its schema here and nowhere else:
-//   weibull_strength       strength_weibull_modulus m [1] (neutral 0), strength_seed
+//   weibull_strength       strength_cv [1] (neutral 0) or strength_weibull_modulus m [1] (neutral 0), strength_seed
 //   softening              softening_ratio s [1] (neutral 0)
 //   viscosity              viscosity_time tau_v [s] (neutral 0), viscous_modulus_ratio beta [1]
 //   compression_asymmetry  compression_stiffness_ratio r [1] (neutral 1)
@@ -33,6 +33,7 @@ std::vector<ParamSpec> bond_effect_params();
 
 struct BondEffects {
   double strength_weibull_modulus = 0;     // m, 1; 0 = every bond has critical_stress
+  double strength_cv = 0;                  // the same law given by its scatter (std / mean), 1; 0 = none
   std::uint64_t strength_seed = 0;         // seed of the per-bond strength hash
   double softening_ratio = 0;              // s, 1; fracture energy over peak elastic energy
   double viscosity_time = 0;               // tau_v, s; eta = E_b tau_v
@@ -45,6 +46,8 @@ struct BondEffects {
   // True when a policy is named or any parameter is away from its neutral value.
   bool any() const;
   bool viscous() const { return viscosity_time > 0; }
+  // The Weibull modulus in effect: strength_weibull_modulus, or the one of strength_cv; 0 = none.
+  double weibull_modulus() const;
 };
 
 // Per-bond state of the effects variant: beam_bond's 9 doubles (l0, b1, b2), the bond's strength

@@ -5,6 +5,7 @@
 // The uniform number comes from a hash of (seed, smaller stable id, larger stable id), not from a
 // stream: a bond gets the same strength in every run and whatever order the kernel lists it in,
 // which gives common random numbers across the runs of one diagnosis.
+#include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -37,6 +38,27 @@ inline double weibull_cdf(double s, double scale, double modulus) {
 // Inverse CDF at u in (0, 1).
 inline double weibull_quantile(double u, double scale, double modulus) {
   return scale * std::pow(-std::log1p(-u), 1 / modulus);
+}
+
+// Coefficient of variation of the law of modulus m, sqrt(Gamma(1 + 2/m) / Gamma(1 + 1/m)^2 - 1):
+// 0.523 at m = 2, 0.281 at m = 4, 0.105 at m = 12; pi / (sqrt(6) m) for large m.
+inline double weibull_cv(double modulus) {
+  const double g1 = std::tgamma(1 + 1 / modulus);
+  return std::sqrt(std::tgamma(1 + 2 / modulus) / (g1 * g1) - 1);
+}
+
+// The modulus whose law scatters by `cv` (0 < cv <= kMaxStrengthCv). The scatter, not m, is the
+// effect's size: it grows from its neutral 0 with the effect, where m runs the other way and
+// jumps from "no scatter" at 0 to the widest scatter just above it.
+inline constexpr double kMaxStrengthCv = 2.0;  // m = 0.54
+inline double weibull_modulus_for_cv(double cv) {
+  // cv(m) falls monotonically; bracket in ln m between m = 0.5 (cv 2.24) and past the asymptote.
+  auto excess = [cv](double log_m) { return weibull_cv(std::exp(log_m)) - cv; };
+  const double hi = std::log(std::max(1e4, 10 / cv));
+  boost::math::tools::eps_tolerance<double> tolerance(50);
+  std::uintmax_t iterations = 200;
+  const auto [a, b] = boost::math::tools::toms748_solve(excess, std::log(0.5), hi, tolerance, iterations);
+  return std::exp(0.5 * (a + b));
 }
 
 }  // namespace shard::beam
