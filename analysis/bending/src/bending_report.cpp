@@ -20,6 +20,13 @@ std::string format_report(const BendingReport& r) {
                    1e-6 * r.bond.critical_stress, r.breakage ? "on" : "off");
   s += fmt::format("  stiffness k = {:.5g} N/mm (fit {:.0f}-{:.0f} % of F_max, {} rows, R^2 = {:.5f}), onset w0 = {:.4f} mm\n",
                    1e-3 * a.stiffness, 100 * a.fit_low, 100 * a.fit_high, a.fit.points, a.fit.r_squared, 1e3 * a.onset);
+  // A rise that oscillates (pins started at speed without a ramp: the beam rings) or breaks within
+  // the window is no line; eq. 14 on it reads the ringing, not the beam.
+  if (a.fit.points >= 3 && a.fit.r_squared < 0.9)
+    s += fmt::format("  warning: the stiffness fit explains only R^2 = {:.2f} of the rise: the load oscillates or breaks "
+                     "within {:.0f}-{:.0f} % of F_max. Widen the window (--fit-high 1.0 averages a ringing beam), or "
+                     "ramp the pins (wall.NAME.ramp = \"1-cos\", ramp_time over a few periods) and run again\n",
+                     a.fit.r_squared, 100 * a.fit_low, 100 * a.fit_high);
   s += fmt::format("  F_max = {:.5g} N at w_s,max = {:.4f} mm (from onset){}; mean over {:.0f} um of travel: at most "
                    "{:.5g} N\n",
                    a.force_max, 1e3 * a.deflection_at_peak, a.failed ? ", then failed" : ", no failure (force did not drop)",
