@@ -72,14 +72,16 @@ bool restart_may_change(const std::string& key) { return key == "simulation.dura
 
 // The run file's scene with the restart's overrides. The frame and series schedule stays the
 // run's own (by default it follows the duration), so the rows already written keep their places.
+// A --set that repeats the run's own value (the first command line given again) changes nothing.
 Scene restart_scene(const RunSpec& spec, const RunMetadata& meta, const PluginHost& host) {
+  const Scene old = load_scene_text(meta.scene_text, meta.scene_file, host);
   for (const auto& o : spec.overrides)
-    if (!restart_may_change(o.key))
+    if (!restart_may_change(o.key) &&
+        load_scene_text(meta.scene_text, meta.scene_file, host, SceneOverrides{o}).resolved_text != old.resolved_text)
       throw SceneError(fmt::format(
-          "--restart {} with --set {}: a restart continues the state in the checkpoint, which the scene's {} made; "
+          "--restart {} with --set {}: a restart continues the state in the checkpoint, which the run's own {} made; "
           "only simulation.duration and [stop] keys may change on a restart (run the scene again for the others)",
           spec.restart.string(), o.text(), o.key));
-  const Scene old = load_scene_text(meta.scene_text, meta.scene_file, host);
   if (spec.overrides.empty()) return old;
   SceneOverrides o = spec.overrides;
   o.push_back({"output.frame_interval", old.frame_interval});

@@ -161,7 +161,8 @@ TEST_CASE("a finished run extended by --restart --set simulation.duration equals
   RunOptions more = options_for(dir);
   more.scene.clear();
   more.restart = dir / "run.h5";
-  more.overrides = parse_overrides({"simulation.duration=0.004"});
+  // With the run's own value of a key given again (the first command line repeated): no change.
+  more.overrides = parse_overrides({"simulation.global_damping=0.05", "simulation.duration=0.004"});
   const RunSummary extended = run_scene(more, log);
   CHECK(extended.restarted_from == short_run.steps);
   CHECK(extended.steps == reference.steps);

@@ -67,16 +67,22 @@ Particles frame_particles(const std::vector<FrameRecord>& records) {
   return q;
 }
 
+// The rank's own particles (not its ghosts) as frame records, in storage order.
+std::vector<FrameRecord> own_frame_records(const Particles& p, std::size_t owned) {
+  std::vector<FrameRecord> mine;
+  mine.reserve(owned);
+  for (std::size_t k = 0; k < p.size(); ++k)
+    if (!(p.flags[k] & kGhost)) mine.push_back(frame_record_of(p, k));
+  return mine;
+}
+
 }  // namespace
 
 GatheredFrame DistributedSimulation::gather_frame(int root) const {
   const Simulation& sim = *local_;
   const Particles& p = sim.particles();
   const Bonds& b = sim.bonds();
-  std::vector<FrameRecord> mine;
-  mine.reserve(owned_);
-  for (std::size_t k = 0; k < p.size(); ++k)
-    if (!(p.flags[k] & kGhost)) mine.push_back(frame_record_of(p, k));
+  std::vector<FrameRecord> mine = own_frame_records(p, owned_);
   // A rank holds the bonds it owns only (owner-computes): each is gathered once. A bond flagged
   // broken but not yet removed is not part of a frame (collect_frame_bonds).
   const bool flags = b.broken.size() == b.size();
@@ -117,10 +123,7 @@ FrameShare DistributedSimulation::frame_share() const {
   const Simulation& sim = *local_;
   const Particles& p = sim.particles();
   const Bonds& b = sim.bonds();
-  std::vector<FrameRecord> mine;
-  mine.reserve(owned_);
-  for (std::size_t k = 0; k < p.size(); ++k)
-    if (!(p.flags[k] & kGhost)) mine.push_back(frame_record_of(p, k));
+  std::vector<FrameRecord> mine = own_frame_records(p, owned_);
   std::sort(mine.begin(), mine.end(), [](const FrameRecord& x, const FrameRecord& y) { return x.id < y.id; });
   const bool flags = b.broken.size() == b.size();
   unsigned long long counts[2] = {mine.size(), 0}, before[2] = {0, 0}, total[2] = {0, 0};
