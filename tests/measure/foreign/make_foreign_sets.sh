@@ -24,7 +24,9 @@
 # at a seating preload of 0.1 N (t = 0, d = 0 there); the load cell reads 0.02 N at zero load.
 # Another beam (make_foreign_default_sets.sh) changes what has a unit through the environment:
 # FOREIGN_SCENE, FOREIGN_LABEL, FOREIGN_SENSOR (the sensor and lab options), FOREIGN_COMPLIANCE [m/N],
-# FOREIGN_TOE (the toe's synth options).
+# FOREIGN_TOE (the toe's synth options). FOREIGN_DRAW=k (default 0) moves every packing seed by
+# 10000 k and every noise seed by 100 k: another draw of the same seven sets (docs/measurements.md,
+# "Other draws of the foreign sets").
 set -euo pipefail
 if [[ $# -ne 4 ]]; then
   echo "usage: $0 SHARD PLUGIN_DIR OUT WORK" >&2
@@ -44,8 +46,9 @@ mkdir -p "$out" "$work"
 read -r -a sensor <<<"${FOREIGN_SENSOR:---scatter 0.02 --force-noise 0.01 --force-offset 0.005 --displacement-step 1e-6 --seeds 4 --ramp 1-cos --ramp-time 0.025 --seating-preload 0.1 --zero-offset 0.02}"
 read -r -a toe <<<"${FOREIGN_TOE:---seating-gap 5e-4 --seating-half-force 0.5}"
 
+draw=${FOREIGN_DRAW:-0}
 synth() {  # name first_seed noise_seed [extra synth options...]
-  local name=$1 first=$2 noise=$3
+  local name=$1 first=$(( $2 + 10000 * draw )) noise=$(( $3 + 100 * draw ))
   shift 3
   rm -rf "${out:?}/$name"
   "$shard" --plugin-dir "$plugins" synth --scene "$scene" --work "$work" --out "$out/$name" \
