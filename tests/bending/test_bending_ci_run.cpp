@@ -47,7 +47,7 @@ TEST_CASE("CI beam: brittle failure between the pins, two major fragments, quasi
   const auto d = shard::bending::analyse_bending_run(summary.output, tolerant);
   CHECK(d.gauges.breaks_allowed == static_cast<std::size_t>(std::floor(0.01 * static_cast<double>(r.bonds))));
   REQUIRE(d.gauges.valid);
-  CHECK(d.gauges.frames.size() >= r.gauges.frames.size());
+  CHECK(d.gauges.frames.size() > r.gauges.frames.size());  // measured 75 -> 110
   CHECK(std::abs(d.gauges.youngs_modulus / r.gauges.youngs_modulus - 1) < 0.10);
   CHECK(std::abs(d.gauges.curvature_modulus / r.gauges.curvature_modulus - 1) < 0.10);
   MESSAGE("local E ", r.gauges.youngs_modulus, " -> ", d.gauges.youngs_modulus, ", curvature E ",

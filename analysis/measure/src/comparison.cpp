@@ -49,6 +49,12 @@ double column_mean(const std::vector<std::vector<double>>& rows, std::size_t k, 
   return mean(v);
 }
 
+// A raw score (difference over its combined uncertainty) read in the options' reference
+// distribution: as it is (N(0, 1)), or as the normal score of its Student t tail (Welch).
+double in_reference(double raw, double dof, const CompareOptions& options) {
+  return options.score_reference == ScoreReference::Welch ? equivalent_normal_score(raw, dof) : raw;
+}
+
 void fill_regimes(Comparison& c, const CompareOptions& options) {
   const auto& f = c.measured.mean;
   const std::size_t n = f.size();
@@ -86,10 +92,7 @@ void fill_regimes(Comparison& c, const CompareOptions& options) {
     const VarianceTerm estimated[] = {{measured_sampled / m, c.measured.sampled_dof},
                                       {simulated / m, c.simulated.sampled_dof}};
     g.dof = satterthwaite_dof(estimated, std::max(0.0, measured_known / m));
-    g.raw_mean_residual = sum_r / m;
-    g.mean_residual = options.score_reference == ScoreReference::Welch
-                          ? equivalent_normal_score(g.raw_mean_residual, g.dof)
-                          : g.raw_mean_residual;
+    g.mean_residual = in_reference(sum_r / m, g.dof, options);
     g.rms_residual = std::sqrt(sum_r2 / m);
     g.chi_square = sum_r2;
     g.relative_error = sum_meas != 0 ? (sum_sim - sum_meas) / std::abs(sum_meas) : 0;
@@ -136,8 +139,7 @@ void score_features(Comparison& c, const CompareOptions& options) {
         {fc.u_simulated * fc.u_simulated, static_cast<double>(fc.simulated_count) - 1}};
     fc.dof = satterthwaite_dof(
         estimated, std::max(0.0, fc.u_measured * fc.u_measured - fc.u_measured_sampled * fc.u_measured_sampled));
-    fc.score = u > 0 ? fc.error / u : std::numeric_limits<double>::quiet_NaN();
-    if (options.score_reference == ScoreReference::Welch) fc.score = equivalent_normal_score(fc.score, fc.dof);
+    fc.score = in_reference(u > 0 ? fc.error / u : std::numeric_limits<double>::quiet_NaN(), fc.dof, options);
     fc.beyond_noise = fc.judged && u > 0 && std::abs(fc.score) > options.noise_threshold;
   }
 }
@@ -292,7 +294,6 @@ Comparison compare(const std::vector<Specimen>& measured, const Metadata& metada
     c.simulated.mean[k] = column_mean(c.simulated_curves, k, &sd_s);
     c.simulated.u[k] = sd_s / std::sqrt(ns);
     c.measured.sampled_variance[k] = sd_m * sd_m / nm;
-    c.simulated.sampled_variance.push_back(c.simulated.u[k] * c.simulated.u[k]);
   }
   double sq = 0;
   for (std::size_t k = 0; k < n; ++k) {
@@ -314,7 +315,6 @@ Comparison with_simulated_band(const Comparison& c, const Comparison& reference)
     throw std::invalid_argument("with_simulated_band: the comparisons are on different grids (other measurements)");
   Comparison out = c;
   out.simulated.u = reference.simulated.u;
-  out.simulated.sampled_variance = reference.simulated.sampled_variance;
   out.simulated.sampled_dof = reference.simulated.sampled_dof;
   for (auto& f : out.features) {
     f.u_simulated = 0;  // a feature the reference lacks is judged on the measured band alone

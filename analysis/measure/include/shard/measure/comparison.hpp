@@ -57,8 +57,9 @@ struct CompareOptions {
 
 struct Band {
   std::vector<double> mean, u;
-  // The part of u^2 estimated from the curves' scatter (s^2 / n), and its degrees of freedom
-  // (n - 1); the rest of u^2 is sensor noise, known.
+  // The part of u^2 estimated from the curves' scatter (s^2 / n; measured side only: the simulated
+  // u^2 is all scatter), and the degrees of freedom of that estimate (n - 1); the rest of the
+  // measured u^2 is sensor noise, known.
   std::vector<double> sampled_variance;
   double sampled_dof = 0;
 };
@@ -67,7 +68,6 @@ struct RegimeResult {
   Regime regime = Regime::Toe;
   std::size_t first = 0, last = 0;  // grid indices [first, last)
   double mean_residual = 0;         // mean standardised residual (as a normal score under Welch)
-  double raw_mean_residual = 0;     // the same before the conversion to a normal score
   double dof = 0;                   // Welch-Satterthwaite degrees of freedom of its variance
   double rms_residual = 0;
   double chi_square = 0;            // sum r^2 (points treated as independent: an upper bound)
