@@ -47,6 +47,12 @@ std::vector<Vec3> read_vec3(hid_t file, const std::string& path, std::size_t row
 
 std::string frame_path(std::size_t k) { return "frames/" + frame_name(k); }
 
+bool is_frame_name(const std::string& name) {
+  if (name.empty() || name.size() > 18) return false;
+  if (!std::all_of(name.begin(), name.end(), [](char c) { return c >= '0' && c <= '9'; })) return false;
+  return frame_name(std::stoull(name)) == name;
+}
+
 // What a frame group lacks of the layout ("" when complete): a kill may have torn the last frame,
 // and the writer sets step and time after the datasets.
 std::string missing_part(hid_t group) {
@@ -182,13 +188,12 @@ struct RunFile::Impl {
     }
     addresses.resize(indexed);
     for (std::size_t k = 0; k < indexed; ++k) frames.push_back(k);
-    // Frames are written in order, so the ones beyond the index are probed by name in order, up to
-    // the first absent or incomplete one. Iterating the group instead (H5Literate) crashed
-    // libhdf5 1.10.8 on a group whose dense link storage a SIGKILL had torn: it freed a garbage
-    // pointer while releasing the link table (test_output_crash, about 1 run in 2 under load).
     try {
-      for (std::size_t k = indexed; h5::path_exists(id(), frame_path(k)) && named_frame_complete(k); ++k)
-        frames.push_back(k);
+      for (const std::string& name : h5::child_names(h5::open_group(id(), "frames").get())) {
+        if (!is_frame_name(name)) continue;
+        const std::size_t k = std::stoull(name);
+        if (k >= indexed && named_frame_complete(k)) frames.push_back(k);
+      }
     } catch (const OutputError&) {
       // A torn link index ends the frames found by name; those found by address remain.
     }
