@@ -48,6 +48,7 @@ struct Confirmation {
   int secant_steps = 0;                        // secant iterations that improved on the linear refit
   double effect_value = 0;
   double chi_square = 0, nrmse = 0, delta_aic = 0, delta_bic = 0;
+  double noise_nrmse = std::numeric_limits<double>::quiet_NaN();  // RateComparison::noise_nrmse
   // The failure point's score (failure_displacement, every rate), NaN when a curve lacks it.
   double failure_chi_square = std::numeric_limits<double>::quiet_NaN();
   ResidualVector residual;  // as scored (the decision's components)
@@ -113,6 +114,7 @@ void run_confirmations(Simulator& simulator, const RateGroups& measured, const M
     }
     conf[k].chi_square = model_score(sims[k], band, scoring);
     conf[k].nrmse = sims[k].nrmse();
+    conf[k].noise_nrmse = sims[k].noise_nrmse();
     conf[k].residual = (scoring == Scoring::FrozenBand ? with_band(sims[k], band) : sims[k]).residual_vector();
     conf[k].failure_chi_square = failure_point_chi_square(scoring == Scoring::FrozenBand ? with_band(sims[k], band) : sims[k]);
     const double extra = k == 0 ? 0 : 1;
@@ -496,7 +498,10 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
           md += fmt::format("| {}{}{} | {:.1f} | {:.1f} %{} | {} | {:+.1f} | {:+.1f} | {} | {} | {} | {} |\n", cf.name,
                             ce && !ce->identifiable ? " (not nameable at these rates)" : "",
                             cf.secant_steps > 0 ? fmt::format(" (secant {})", cf.secant_steps) : "", cf.chi_square,
-                            100 * cf.nrmse, ce && ce->nrmse_rose ? " (rose)" : "",
+                            100 * cf.nrmse,
+                            ce && ce->nrmse_rose ? " (rose)"
+                            : c == 0 && std::isfinite(cf.noise_nrmse) ? fmt::format(" (noise {:.1f} %)", 100 * cf.noise_nrmse)
+                                                                      : "",
                             std::isfinite(cf.failure_chi_square) ? fmt::format("{:.1f}", cf.failure_chi_square) : "-",
                             cf.delta_aic, cf.delta_bic,
                             ce ? fmt::format("{:.0f} %", 100 * ce->share_explained) : "-",
@@ -535,8 +540,9 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
         for (const auto& e : s.decision.effects)
           if (e.nrmse_rose && e.share_explained >= 0.5)
             md += fmt::format("\n{}'s refit lowered chi^2 but raised the NRMSE above the base refit's: not an improvement "
-                              "of the curve, so it is neither named nor kept.\n",
-                              e.name);
+                              "of the curve, so it is neither named nor kept (the base refit's noise floor, the NRMSE noise "
+                              "alone gives: {:.1f} %).\n",
+                              e.name, 100 * s.confirmations.front().noise_nrmse);
       }
       for (const auto& rival : s.decision.rivals) {
         std::string how;

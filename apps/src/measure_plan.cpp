@@ -6,6 +6,7 @@
 #include <cmath>
 #include <ctime>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <toml++/toml.h>
@@ -227,6 +228,12 @@ double RateComparison::nrmse() const {
   double s = 0;
   for (const auto& c : at) s += c.nrmse * c.nrmse;
   return at.empty() ? 0 : std::sqrt(s / static_cast<double>(at.size()));
+}
+
+double RateComparison::noise_nrmse() const {
+  double s = 0;
+  for (const auto& c : at) s += c.noise_nrmse() * c.noise_nrmse();
+  return at.empty() ? std::numeric_limits<double>::quiet_NaN() : std::sqrt(s / static_cast<double>(at.size()));
 }
 
 double RateComparison::chi_square() const {

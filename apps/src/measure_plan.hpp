@@ -128,6 +128,7 @@ struct RateComparison {
   std::vector<measure::Comparison> at;
   measure::ResidualVector residual_vector() const;
   double nrmse() const;
+  double noise_nrmse() const;  // RMS of the per-rate Comparison::noise_nrmse
   double chi_square() const;
 };
 

@@ -343,3 +343,28 @@ TEST_CASE("three specimens against three replicates of the same truth: Welch sco
   MESSAGE("false alarms at p 0.01 in ", draws, " draws: normal ", alarms_normal, ", welch ", alarms_welch,
           "; mean Satterthwaite dof ", mean_dof);
 }
+
+TEST_CASE("a model that is the truth has, on average, the NRMSE of the noise floor") {
+  // noise_nrmse is the RMS of the combined band sqrt(u_m^2 + u_s^2) over F_max: the expected RMS of
+  // the mean curves' difference when both sides draw from one truth (E[s^2] = sigma^2 on either
+  // side). Specimen scatter 10 %, 3 curves a side; over 400 draws the mean squared NRMSE and the
+  // mean squared floor agree within the draws' spread (a draw's NRMSE^2 has ~2 dof: the scatter
+  // scales whole curves; measured 1.058).
+  std::mt19937 rng(4242);
+  std::lognormal_distribution<double> scatter(0, 0.1);
+  const double k = 2e5, w_p = 1e-3;
+  double nrmse2 = 0, floor2 = 0;
+  const int draws = 400;
+  for (int d = 0; d < draws; ++d) {
+    std::vector<Specimen> measured, simulated;
+    for (int i = 0; i < 3; ++i) measured.push_back(specimen(curve(k * scatter(rng), w_p * scatter(rng), 0.1, 0, rng, 0)));
+    for (int i = 0; i < 3; ++i) simulated.push_back(specimen(curve(k * scatter(rng), w_p * scatter(rng), 0.1, 0, rng, 0)));
+    const Comparison c = compare(measured, Metadata{}, simulated);
+    nrmse2 += c.nrmse * c.nrmse;
+    floor2 += c.noise_nrmse() * c.noise_nrmse();
+  }
+  const double ratio = nrmse2 / floor2;
+  MESSAGE("mean NRMSE^2 / mean noise floor^2 over ", draws, " draws of one truth: ", ratio);
+  CHECK(ratio > 0.8);
+  CHECK(ratio < 1.25);
+}

@@ -355,6 +355,13 @@ double log_variance_ratio(const Comparison& c, const Comparison& reference) {
   return sum;
 }
 
+double Comparison::noise_nrmse() const {
+  if (xi.empty() || !(measured_peak_force > 0)) return std::numeric_limits<double>::quiet_NaN();
+  double sum = 0;
+  for (std::size_t k = 0; k < xi.size(); ++k) sum += measured.u[k] * measured.u[k] + simulated.u[k] * simulated.u[k];
+  return std::sqrt(sum / static_cast<double>(xi.size())) / measured_peak_force;
+}
+
 ResidualVector Comparison::residual_vector() const {
   ResidualVector v;
   for (const auto& g : regimes)

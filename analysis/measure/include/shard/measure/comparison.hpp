@@ -110,6 +110,10 @@ struct Comparison {
   CompareOptions options;  // what it was scored with (with_simulated_band rescores alike)
 
   ResidualVector residual_vector() const;
+  // The NRMSE that noise alone gives: RMS over the grid of the combined band sqrt(u_m^2 + u_s^2),
+  // over F_max,meas (the expected NRMSE of a model that is the truth). NRMSEs below it differ by
+  // noise.
+  double noise_nrmse() const;
 };
 
 // Feature values of an observation (a measured specimen or a simulated replicate).
