@@ -2,6 +2,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <csignal>
+
 #include <iostream>
 #include <memory>
 
@@ -60,8 +62,9 @@ void add_run_command(CLI::App& app, CommandContext& ctx) {
     if (options->scene.empty() == options->restart.empty())
       throw std::invalid_argument("shard run needs a scene file, or --restart run.h5 (not both)");
     const RunSummary summary = run_scene(*options, std::cerr);
-    // 130 = 128 + SIGINT, what a shell reports for a job stopped by Ctrl-C.
-    ctx.exit_code = summary.interrupted() ? 130 : 0;
+    // 128 + the signal, what a shell reports for a job it stopped: 130 for Ctrl-C (SIGINT), 143
+    // for SIGTERM. A rank stopped because another rank was signalled reports SIGINT's.
+    ctx.exit_code = summary.interrupted() ? 128 + (summary.interrupt_signal ? summary.interrupt_signal : SIGINT) : 0;
   });
 }
 

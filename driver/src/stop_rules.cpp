@@ -7,9 +7,12 @@
 namespace shard::driver {
 namespace {
 
-// Set by SIGINT; a signal handler can only touch a lock-free flag, so this one flag is global.
+// The signal that asked for a stop (0: none). A signal handler can only touch a lock-free flag,
+// so this one flag is global.
 volatile std::sig_atomic_t g_interrupted = 0;
-extern "C" void on_interrupt(int) { g_interrupted = 1; }
+extern "C" void on_interrupt(int signal) { g_interrupted = signal; }
+
+const char* signal_name(int signal) { return signal == SIGTERM ? "SIGTERM" : "SIGINT"; }
 
 }  // namespace
 
@@ -65,20 +68,24 @@ void RestStop::look(RunState& run) {
                                  still_since_, run.scene.stop.rest_time));
 }
 
-InterruptStop::InterruptStop(std::int64_t at_step) : at_step_(at_step), previous_(std::signal(SIGINT, on_interrupt)) {
+InterruptStop::InterruptStop(std::int64_t at_step)
+    : at_step_(at_step), previous_int_(std::signal(SIGINT, on_interrupt)), previous_term_(std::signal(SIGTERM, on_interrupt)) {
   g_interrupted = 0;
 }
 
-InterruptStop::~InterruptStop() { std::signal(SIGINT, previous_); }
+InterruptStop::~InterruptStop() {
+  std::signal(SIGINT, previous_int_);
+  std::signal(SIGTERM, previous_term_);
+}
 
 void InterruptStop::on_step(RunState& run) {
   const std::int64_t s = run.sim.step_count();
-  if (s == at_step_) g_interrupted = 1;
-  if (g_interrupted)
-    run.request_stop(StopReason::Interrupted,
-                     fmt::format("interrupted (SIGINT) at step {}: checkpoint written; continue with shard run "
-                                 "--restart {}",
-                                 s, run.result.output.string()));
+  if (s == at_step_) g_interrupted = SIGINT;
+  if (!g_interrupted) return;
+  run.result.interrupt_signal = g_interrupted;
+  run.request_stop(StopReason::Interrupted,
+                   fmt::format("interrupted ({}) at step {}: checkpoint written; continue with shard run --restart {}",
+                               signal_name(g_interrupted), s, run.result.output.string()));
 }
 
 }  // namespace shard::driver

@@ -1,12 +1,13 @@
 // The real `shard run` process: SIGKILL leaves a run file that opens with every frame flushed
-// before the kill, and --restart then ends bit-identical to an uninterrupted run; SIGINT stops
-// cleanly (exit 130) after writing a checkpoint.
+// before the kill, and --restart then ends bit-identical to an uninterrupted run; SIGINT and
+// SIGTERM stop cleanly (exit 130, 143) after writing a checkpoint.
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <thread>
+#include <utility>
 
 #include "reliability_fixtures.hpp"
 #include "shard/run_file.hpp"
@@ -93,25 +94,30 @@ TEST_CASE("SIGKILL: the run file opens with every flushed frame, and --restart e
   CHECK(RunFile(dir / "run.h5").frame_count() == RunFile(reference_dir / "run.h5").frame_count());
 }
 
-TEST_CASE("SIGINT: exit code 130 after a checkpoint, and the restart completes the same run") {
+TEST_CASE("SIGINT and SIGTERM: exit 128 + signal after a checkpoint, and the restart completes the same run") {
+  // SIGTERM is what mpirun sends every rank when it is interrupted, and what a batch scheduler
+  // sends at a job's time limit: it must stop as cleanly as Ctrl-C.
   const auto reference_dir = scratch("int_reference");
   REQUIRE(run_shard(quoted_args().substr(1), reference_dir).exit_code == 0);
   const Checkpoint reference = read_checkpoint(reference_dir / "run.checkpoint.h5");
 
-  const auto dir = scratch("interrupted");
-  const pid_t pid = start_shard(dir);
-  wait_for_checkpoints(dir, pid);
-  kill(pid, SIGINT);
-  CHECK(wait_exit(pid) == 130);
-  const std::string err = read_text(dir / "stderr.txt");
-  CHECK(err.find("error") == std::string::npos);
-  const Checkpoint at_interrupt = read_checkpoint(dir / "run.checkpoint.h5");
-  CHECK(at_interrupt.simulation.step < reference.simulation.step);
-  // The interrupted file is complete: its last frame is the state at the interruption.
-  const RunFile interrupted(dir / "run.h5");
-  CHECK(interrupted.read_frame(interrupted.frame_count() - 1).step == at_interrupt.simulation.step);
+  for (const auto& [signal, name] : {std::pair{SIGINT, "SIGINT"}, std::pair{SIGTERM, "SIGTERM"}}) {
+    CAPTURE(name);
+    const auto dir = scratch(std::string("interrupted_") + name);
+    const pid_t pid = start_shard(dir);
+    wait_for_checkpoints(dir, pid);
+    kill(pid, signal);
+    CHECK(wait_exit(pid) == 128 + signal);
+    const std::string err = read_text(dir / "stderr.txt");
+    CHECK(err.find("error") == std::string::npos);
+    const Checkpoint at_interrupt = read_checkpoint(dir / "run.checkpoint.h5");
+    CHECK(at_interrupt.simulation.step < reference.simulation.step);
+    // The interrupted file is complete: its last frame is the state at the interruption.
+    const RunFile interrupted(dir / "run.h5");
+    CHECK(interrupted.read_frame(interrupted.frame_count() - 1).step == at_interrupt.simulation.step);
 
-  const Outcome resumed = run_shard("run --restart run.h5 --threads 1 --quiet", dir);
-  REQUIRE(resumed.exit_code == 0);
-  require_identical(read_checkpoint(dir / "run.checkpoint.h5").simulation, reference.simulation);
+    const Outcome resumed = run_shard("run --restart run.h5 --threads 1 --quiet", dir);
+    REQUIRE(resumed.exit_code == 0);
+    require_identical(read_checkpoint(dir / "run.checkpoint.h5").simulation, reference.simulation);
+  }
 }

@@ -431,12 +431,13 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
                  series_row,
                  write_frame,
                  // The stop rules read the run's walls and counts, the same on every rank: they stop
-                 // alike. SIGINT reaches the ranks one by one: a stop asked on one stops all here.
+                 // alike. A signal reaches the ranks one by one (SIGINT sent to one, mpirun's SIGTERM
+                 // to all at slightly different steps): a stop asked on one stops all here.
                  [&](std::int64_t s) {
                    if (dist.any_rank(state.stop_requested()) && !state.stop_requested())
                      state.request_stop(StopReason::Interrupted,
-                                        fmt::format("interrupted (SIGINT) at step {}: checkpoint written; continue "
-                                                    "with shard run --restart {}",
+                                        fmt::format("interrupted (a signal reached another rank) at step {}: "
+                                                    "checkpoint written; continue with shard run --restart {}",
                                                     s, result.output.string()));
                  }};
   run_observed_steps(state, observers, scene.duration, dist.dt(), restarting,

@@ -12,7 +12,7 @@ enum class StopReason {
   Duration,         // reached the scene's duration
   LoadDrop,         // [stop] after_peak_fraction: the load fell below that fraction of its peak after breakage
   MaxDisplacement,  // [stop] max_displacement: the loading walls travelled that far
-  Interrupted,      // SIGINT (or a test's interrupt step): a checkpoint was written
+  Interrupted,      // SIGINT or SIGTERM (or a test's interrupt step): a checkpoint was written
   Observer,         // another observer asked the run to stop
   Rest,             // [stop] rest_speed, rest_time: every particle stayed slower than rest_speed for rest_time
 };
@@ -54,6 +54,7 @@ struct RunResult {
   std::filesystem::path checkpoint;  // the last checkpoint written (empty: none)
   std::int64_t checkpoint_step = -1;
   std::int64_t restarted_from = -1;  // the checkpoint step a restart continued from
+  int interrupt_signal = 0;  // the signal that interrupted the run (SIGINT for a test's interrupt step)
   bool interrupted() const { return stop == StopReason::Interrupted; }
 };
 

@@ -35,9 +35,11 @@ class RestStop : public RunObserver {
   double still_since_ = -1;  // s: the time since which every particle is slower; < 0: one is not
 };
 
-// SIGINT, caught while this object lives (the previous handler comes back after), or reaching
-// `at_step` (>= 0), stops the run with StopReason::Interrupted. A CheckpointWriter composed with it
-// writes the state to continue from. One may live at a time: a signal reaches the process, not a run.
+// SIGINT (Ctrl-C) or SIGTERM (what mpirun sends every rank when it is interrupted, and what a
+// batch scheduler sends at a job's time limit), caught while this object lives (the previous
+// handlers come back after), or reaching `at_step` (>= 0), stops the run after the current step
+// with StopReason::Interrupted. A CheckpointWriter composed with it writes the state to continue
+// from. One may live at a time: a signal reaches the process, not a run.
 class InterruptStop : public RunObserver {
  public:
   explicit InterruptStop(std::int64_t at_step = -1);
@@ -48,7 +50,8 @@ class InterruptStop : public RunObserver {
 
  private:
   std::int64_t at_step_;
-  void (*previous_)(int);
+  void (*previous_int_)(int);
+  void (*previous_term_)(int);
 };
 
 }  // namespace shard::driver
