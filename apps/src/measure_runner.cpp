@@ -22,6 +22,7 @@
 #if SHARD_MPI_ENSEMBLE
 #include "shard/driver/rank_runs.hpp"
 #endif
+#include "shard/output.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
 #include "significant_digits.hpp"
@@ -345,12 +346,22 @@ std::vector<RunResult> RunPool::try_run(const std::vector<RunRequest>& requests,
     return collect(requests, keys, pending, failures);
   }
 #endif
-  // One OpenMP thread per run, on its own thread or in its own worker process.
+  // One OpenMP thread per run, on its own thread or in its own worker process. Runs on threads of
+  // this process write their run files at once, which an HDF5 library built without thread safety
+  // does not survive (the MPI build's): there they go one at a time.
   auto run_one = [&](std::size_t j) {
     const RunJob& job = queue[j];
     write_cache(cache, job.key, worker_ ? execute_run_job_isolated(job, *worker_) : execute_run_job(job, *host_));
   };
-  driver::run_in_parallel(queue.size(), workers_, run_one, report);
+  int at_once = workers_;
+  if (!worker_ && workers_ > 1 && queue.size() > 1 && !run_files_thread_safe()) {
+    at_once = 1;
+    if (!warned_unsafe_hdf5_)
+      fmt::print(log, "  note: this HDF5 library is not thread-safe (an MPI build's), so the runs go one at a time; "
+                      "--isolate runs them in worker processes, mpirun on MPI ranks, {} at once\n", workers_);
+    warned_unsafe_hdf5_ = true;
+  }
+  driver::run_in_parallel(queue.size(), at_once, run_one, report);
   std::signal(SIGXFSZ, previous_xfsz);
   return collect(requests, keys, pending, failures);
 }

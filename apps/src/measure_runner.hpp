@@ -112,6 +112,7 @@ class RunPool {
   int workers_;
   std::unique_ptr<PluginHost> host_;
   std::optional<driver::WorkerCommand> worker_;
+  bool warned_unsafe_hdf5_ = false;  // the one-at-a-time note was printed
   std::size_t runs_started_ = 0;
 };
 

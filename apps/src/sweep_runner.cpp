@@ -18,6 +18,7 @@
 #include "shard/driver/scene_rules.hpp"
 #include "shard/driver/parallel_runs.hpp"
 #include "shard/driver/run_driver.hpp"
+#include "shard/output.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
 #include "sweep_outputs.hpp"
@@ -148,7 +149,14 @@ SweepResult run_sweep(const SweepOptions& options, std::ostream& log) {
                r.seed, this_run, plates_so_far, broken_so_far, share, duration_text(elapsed),
                finished < count ? fmt::format(", ETA {}", duration_text(eta)) : "");
   };
-  driver::run_in_parallel(count, workers, run_one, done);
+  // An HDF5 library without thread safety (the MPI build's) crashes when two runs write at once.
+  int at_once = workers;
+  if (workers > 1 && count > 1 && !run_files_thread_safe()) {
+    at_once = 1;
+    fmt::print(log, "note: this HDF5 library is not thread-safe (an MPI build's), so the sweep's runs go one at a "
+                    "time\n");
+  }
+  driver::run_in_parallel(count, at_once, run_one, done);
   std::signal(SIGXFSZ, previous_xfsz);
   result.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
 

@@ -7,14 +7,8 @@
 # (NRMSE, chi-square, features). Each rank count starts from an empty work
 # folder, so every run is simulated again (not read from the serial run's cache).
 # Usage: check_mpi_ensemble.sh SHARD MPIEXEC WORK
-set -euo pipefail
-shard=$1
-mpiexec=$2
-work=$3
+source "$(dirname "$0")/mpi_common.sh"
 scene="$(dirname "$0")/../../scenes/measurements/tiny_bending.toml"
-rm -rf "$work"
-mkdir -p "$work"
-mpi() { "$mpiexec" --allow-run-as-root --oversubscribe -np "$@"; }
 model=(--scene "$scene" --seeds 3 --set stop.max_displacement=0.0006)
 
 "$shard" synth "${model[@]}" --work "$work/serial" --out "$work/serial_set" --force-noise 0.01 > "$work/serial.log" 2>&1

@@ -3,14 +3,8 @@
 # few seconds later). `shard run` must stop all ranks at one step with a checkpoint on SIGTERM, and
 # `--restart` on the same ranks must end where the uninterrupted run ends (same step, same peak).
 # Usage: check_mpi_interrupt.sh SHARD MPIEXEC WORK
-set -euo pipefail
-shard=$1
-mpiexec=$2
-work=$3
+source "$(dirname "$0")/mpi_common.sh"
 scene="$(dirname "$0")/../../scenes/four_point_bending_ci.toml"
-rm -rf "$work"
-mkdir -p "$work"
-mpi() { "$mpiexec" --allow-run-as-root --oversubscribe -np "$@"; }
 export OMP_NUM_THREADS=1 OMP_WAIT_POLICY=passive
 
 mpi 2 "$shard" run "$scene" --out "$work/whole" > "$work/whole.log" 2>&1

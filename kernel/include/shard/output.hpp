@@ -109,4 +109,9 @@ class RunWriter {
   std::unique_ptr<Impl> impl_;
 };
 
+// Whether run files may be written from several threads of one process at once: the HDF5
+// library linked was built thread-safe. Debian's serial libhdf5 is; its MPI variant (the
+// SHARD_WITH_MPI build's) is not, and two runs writing at once crash it in H5Dwrite.
+bool run_files_thread_safe();
+
 }  // namespace shard

@@ -267,4 +267,9 @@ void RunWriter::flush() {
 
 const std::filesystem::path& RunWriter::path() const { return impl_->path; }
 
+bool run_files_thread_safe() {
+  hbool_t safe = 0;
+  return H5is_library_threadsafe(&safe) >= 0 && safe;
+}
+
 }  // namespace shard
