@@ -111,6 +111,8 @@ void prepare_wall_table(WallTable& table) {
 }
 
 Vec3 WallMotion::displacement_at(double t) const {
+  if (t <= start_time) return Vec3::Zero();
+  t -= start_time;
   if (!table.time.empty()) return table_travel(table, t) * table.direction;
   double fraction = 0, travel_time = 0;
   ramp_profile(ramp, ramp_time, t, fraction, travel_time);
@@ -118,6 +120,8 @@ Vec3 WallMotion::displacement_at(double t) const {
 }
 
 Vec3 WallMotion::velocity_at(double t) const {
+  if (t < start_time) return Vec3::Zero();
+  t -= start_time;
   if (!table.time.empty()) return table_speed(table, t) * table.direction;
   double fraction = 0, travel_time = 0;
   ramp_profile(ramp, ramp_time, t, fraction, travel_time);
@@ -125,7 +129,8 @@ Vec3 WallMotion::velocity_at(double t) const {
 }
 
 double WallMotion::angle_at(double t) const {
-  if (!spins) return 0.0;
+  if (!spins || t <= start_time) return 0.0;
+  t -= start_time;
   if (!spin_table.time.empty()) return table_travel(spin_table, t);
   double fraction = 0, travel_time = 0;
   ramp_profile(ramp, ramp_time, t, fraction, travel_time);
@@ -133,7 +138,8 @@ double WallMotion::angle_at(double t) const {
 }
 
 double WallMotion::angular_speed_at(double t) const {
-  if (!spins) return 0.0;
+  if (!spins || t < start_time) return 0.0;
+  t -= start_time;
   if (!spin_table.time.empty()) return table_speed(spin_table, t);
   double fraction = 0, travel_time = 0;
   ramp_profile(ramp, ramp_time, t, fraction, travel_time);

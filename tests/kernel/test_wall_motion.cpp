@@ -180,6 +180,46 @@ TEST_CASE("a run restarted in the middle of a ramp continues bit for bit") {
   CHECK(uninterrupted.particles().position[0].z() > 0.0049 + 0.5 * uninterrupted.walls()[0].displacement.z());
 }
 
+TEST_CASE("a wall with a start time rests until then, then runs its profile as from t = 0") {
+  // A pin held 10 ms while a beam settles under gravity, then a 1-cos ramp to 20 mm/s; a constant
+  // velocity held the same way becomes a profile (a function of time, not a sum of steps).
+  for (WallRamp kind : {WallRamp::OneMinusCos, WallRamp::None}) {
+    WallMotion held = ramp(kind);
+    if (kind == WallRamp::None) held.ramp_time = 0;
+    held.start_time = 0.01;
+    const WallMotion free = [&] {
+      WallMotion m = held;
+      m.start_time = 0;
+      return m;
+    }();
+    CHECK(held.is_profile());
+    for (double t : {0.0, 0.004, 0.01}) {
+      CHECK(held.displacement_at(t).norm() == 0.0);
+      CHECK(held.velocity_at(t - 1e-12).norm() == 0.0);
+    }
+    for (double t : {0.0101, 0.02, 0.035, 0.2}) {
+      CHECK(held.displacement_at(t) == free.displacement_at(t - 0.01));
+      CHECK(held.velocity_at(t) == free.velocity_at(t - 0.01));
+    }
+  }
+  // In a run: the floor stays put through the hold (the spheres rest on it under gravity), then
+  // lifts along the ramp, at the profile's position at every step.
+  auto model = test::linear_spring(1e4, 0.5, 0.5);
+  WallMotion m = ramp(WallRamp::OneMinusCos);
+  m.velocity = Vec3(0, 0, 0.02);
+  m.start_time = 0.01;
+  Simulation sim(lifted_sphere(*model, m));
+  sim.run(900);
+  REQUIRE(sim.time() < 0.01);
+  CHECK(sim.walls()[0].displacement.norm() == 0.0);
+  CHECK(sim.walls()[0].velocity.norm() == 0.0);
+  for (int k = 0; k < 30; ++k) {
+    sim.run(100);
+    CHECK(sim.walls()[0].displacement == m.displacement_at(sim.time()));
+  }
+  CHECK(sim.walls()[0].displacement.z() > 0.0);
+}
+
 TEST_CASE("a table wall follows its table, piecewise linear, and a velocity table is integrated exactly") {
   const Scene d = scene_with("displacement", "motion_table = \"table.csv\"\ndirection = [0, 0, 2]\n",
                              "# a stepwise pin displacement\ntime,displacement\n0,0\n0.01,0.001\n0.02,0.001\n0.03,0.004\n");
@@ -232,4 +272,8 @@ TEST_CASE("bad motion profiles give errors naming the file, line and the fix") {
   CHECK(error_of("lonetime", "velocity = [0, 0, 1]\nramp_time = 0.01\n").find("ramp_time is set without a ramp") !=
         std::string::npos);
   CHECK(error_of("ok", "velocity = [0, 0, 1]\nramp = \"linear\"\nramp_time = 0.01\n").empty());
+  CHECK(error_of("held", "velocity = [0, 0, 1]\nstart_time = 0.02\n").empty());
+  const auto negative = error_of("early", "velocity = [0, 0, 1]\nstart_time = -0.02\n");
+  CHECK(negative.find("scene.toml:28:") != std::string::npos);
+  CHECK(negative.find("start_time") != std::string::npos);
 }

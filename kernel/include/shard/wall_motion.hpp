@@ -40,6 +40,10 @@ struct WallMotion {
   WallRamp ramp = WallRamp::None;
   double ramp_time = 0;  // s, > 0 with a ramp
   WallTable table;       // used when it has rows
+  // s: the wall rests where it starts until then, and its profile (constant velocity, ramp or
+  // table, spin included) runs from then on as it would from t = 0: a packing settles under
+  // gravity before a loading pin moves.
+  double start_time = 0;
 
   // Rotation about the line through `spin_centre` along the unit `spin_axis` (right-hand rule);
   // the line moves with the translation. The angle is a function of time for every profile
@@ -52,7 +56,7 @@ struct WallMotion {
 
   // True when the displacement is a function of time (a ramp or a table), false for the
   // constant velocity that is integrated step by step.
-  bool is_profile() const { return ramp != WallRamp::None || !table.time.empty(); }
+  bool is_profile() const { return start_time > 0 || ramp != WallRamp::None || !table.time.empty(); }
   // Displacement since the start and velocity at time t >= 0.
   Vec3 displacement_at(double t) const;
   Vec3 velocity_at(double t) const;

@@ -109,9 +109,10 @@ void read_wall_belt(Section& s, const toml::table& t, Wall& w) {
 }
 
 // The wall's motion profile (wall_motion.hpp): `velocity` with an optional `ramp` over
-// `ramp_time`, or a `motion_table` along `direction`.
+// `ramp_time`, or a `motion_table` along `direction`, from `start_time` on.
 void read_wall_motion(Section& s, const toml::table& t, const std::filesystem::path& dir, Wall& w) {
   w.motion.velocity = w.velocity;
+  w.motion.start_time = s.number("start_time", 0, 0, 1e300, "s");
   const std::string ramp = s.text("ramp", "none");
   if (!parse_wall_ramp(ramp, w.motion.ramp))
     s.fail("ramp", fmt::format("= '{}' is not a ramp; use \"1-cos\", \"linear\" or \"none\"", ramp));
