@@ -22,7 +22,6 @@
 #if SHARD_MPI_ENSEMBLE
 #include "shard/driver/rank_runs.hpp"
 #endif
-#include "shard/output.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
 #include "significant_digits.hpp"
@@ -353,9 +352,8 @@ std::vector<RunResult> RunPool::try_run(const std::vector<RunRequest>& requests,
     const RunJob& job = queue[j];
     write_cache(cache, job.key, worker_ ? execute_run_job_isolated(job, *worker_) : execute_run_job(job, *host_));
   };
-  int at_once = workers_;
-  if (!worker_ && workers_ > 1 && queue.size() > 1 && !run_files_thread_safe()) {
-    at_once = 1;
+  const int at_once = worker_ ? workers_ : driver::in_process_workers(workers_, queue.size());
+  if (at_once < workers_) {
     if (!warned_unsafe_hdf5_)
       fmt::print(log, "  note: this HDF5 library is not thread-safe (an MPI build's), so the runs go one at a time; "
                       "--isolate runs them in worker processes, mpirun on MPI ranks, {} at once\n", workers_);

@@ -18,7 +18,6 @@
 #include "shard/driver/scene_rules.hpp"
 #include "shard/driver/parallel_runs.hpp"
 #include "shard/driver/run_driver.hpp"
-#include "shard/output.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
 #include "sweep_outputs.hpp"
@@ -150,12 +149,10 @@ SweepResult run_sweep(const SweepOptions& options, std::ostream& log) {
                finished < count ? fmt::format(", ETA {}", duration_text(eta)) : "");
   };
   // An HDF5 library without thread safety (the MPI build's) crashes when two runs write at once.
-  int at_once = workers;
-  if (workers > 1 && count > 1 && !run_files_thread_safe()) {
-    at_once = 1;
+  const int at_once = driver::in_process_workers(workers, count);
+  if (at_once < workers)
     fmt::print(log, "note: this HDF5 library is not thread-safe (an MPI build's), so the sweep's runs go one at a "
                     "time\n");
-  }
   driver::run_in_parallel(count, at_once, run_one, done);
   std::signal(SIGXFSZ, previous_xfsz);
   result.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -6,6 +6,8 @@
 #include <mutex>
 #include <thread>
 
+#include "shard/output.hpp"
+
 namespace shard::driver {
 
 std::vector<std::string> run_in_parallel(std::size_t count, int workers, const std::function<void(std::size_t)>& run,
@@ -43,6 +45,10 @@ std::vector<std::string> run_in_parallel(std::size_t count, int workers, const s
   for (std::size_t t = 0; t < threads; ++t) pool.emplace_back(worker);
   for (auto& t : pool) t.join();
   return errors;
+}
+
+int in_process_workers(int workers, std::size_t count) {
+  return workers > 1 && count > 1 && !run_files_thread_safe() ? 1 : workers;
 }
 
 }  // namespace shard::driver

@@ -17,4 +17,10 @@ namespace shard::driver {
 std::vector<std::string> run_in_parallel(std::size_t count, int workers, const std::function<void(std::size_t)>& run,
                                          const std::function<void(std::size_t, const std::string&)>& done = {});
 
+// How many of `count` runs that write their run files from threads of this process may go at
+// once: `workers`, or 1 when the HDF5 library is not thread-safe (run_files_thread_safe: the MPI
+// build's crashes in H5Dwrite when two runs write at once). Runs in worker processes are not
+// limited by it.
+int in_process_workers(int workers, std::size_t count);
+
 }  // namespace shard::driver
