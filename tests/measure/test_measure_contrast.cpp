@@ -164,3 +164,59 @@ TEST_CASE("decision: a rate effect at one rate is never the verdict, a rival at 
   effects.back().identifiable = true;
   CHECK(decide_contrast({3.0, 1.56, 0.1, -0.1}, w, effects, 40).verdict == "v");
 }
+
+TEST_CASE("pair: two effects at once are sized jointly; the second is named only for what it adds") {
+  const auto w = identity(6);
+  const double inf = std::numeric_limits<double>::infinity();
+  const EffectSignature a{"a", 1, {2, 1, 0, 0, 0.4, 0}, 0, inf}, b{"b", 1, {0.3, 0, 1, -1, 0, 0}, 0, inf},
+      c{"c", 1, {0, 0, 0, 0, 0, 1}, 0, inf};
+  // d = 4 a + 3 b + noise below one standard unit.
+  const std::vector<double> d{8 + 0.9 + 0.2, 4 - 0.3, 3 + 0.1, -3 - 0.4, 1.6 + 0.3, -0.2};
+  const auto single = decide_contrast(d, w, {a, b, c}, 60);
+  REQUIRE(single.fits.front().name == "a");
+  CHECK(single.verdict == kUnexplainedDifference);  // a alone leaves b's 3 x sqrt(2) units
+  const auto pair = fit_contrast_pair(d, w, a, b, single.fits.front().chi_square, 60);
+  // The joint least squares of d on (a, b): solved here from its 2 x 2 normal equations (Cramer).
+  auto dot = [](const std::vector<double>& u, const std::vector<double>& v) {
+    double s = 0;
+    for (std::size_t i = 0; i < u.size(); ++i) s += u[i] * v[i];
+    return s;
+  };
+  const double aa = dot(a.signature, a.signature), ab = dot(a.signature, b.signature), bb = dot(b.signature, b.signature),
+               ad = dot(a.signature, d), bd = dot(b.signature, d), det = aa * bb - ab * ab;
+  const double xa = (ad * bb - ab * bd) / det, xb = (aa * bd - ab * ad) / det;
+  CHECK(pair.scale_first == doctest::Approx(xa).epsilon(1e-12));
+  CHECK(pair.scale_second == doctest::Approx(xb).epsilon(1e-12));
+  CHECK(!pair.at_bound);
+  CHECK(pair.scale_first == doctest::Approx(4).epsilon(0.15));
+  CHECK(pair.scale_second == doctest::Approx(3).epsilon(0.15));
+  double rest = 0;
+  for (int i = 0; i < 6; ++i) rest += std::pow(d[i] - xa * a.signature[i] - xb * b.signature[i], 2);
+  CHECK(pair.chi_square == doctest::Approx(rest).epsilon(1e-12));
+  CHECK(pair.drop == doctest::Approx(single.fits.front().chi_square - pair.chi_square));
+  CHECK(pair.p_after > 0.05);
+  CHECK(pair_is_named(pair, 2));
+  // A second that adds nothing but noise is not named: c carries only the 0.2 of noise.
+  const auto noise = fit_contrast_pair(d, w, a, c, single.fits.front().chi_square, 60);
+  CHECK(noise.scale_second == 0.0);  // it would be wanted reversed: held at its neutral bound
+  CHECK(noise.at_bound);
+  CHECK(!pair_is_named(noise, 2));
+  // The sizes stay in their ranges: b capped at 1 leaves a to take what it can.
+  EffectSignature capped = b;
+  capped.scale_max = 1;
+  const auto held = fit_contrast_pair(d, w, a, capped, single.fits.front().chi_square, 60);
+  CHECK(held.scale_second == 1.0);
+  CHECK(held.at_bound);
+  const double a_given_b = (ad - ab) / aa;
+  CHECK(held.scale_first == doctest::Approx(a_given_b).epsilon(1e-12));
+  CHECK(held.chi_square > pair.chi_square);
+  // Judged on a simulated combined contrast (effects interact): the drop and remainder read it.
+  std::vector<double> combined(6);
+  for (int i = 0; i < 6; ++i) combined[i] = 4 * a.signature[i] + 3 * b.signature[i];
+  const auto sim = judge_simulated_pair(d, w, combined, pair, single.fits.front().chi_square, 60);
+  double expected = 0;
+  for (int i = 0; i < 6; ++i) expected += (d[i] - combined[i]) * (d[i] - combined[i]);
+  CHECK(sim.chi_square == doctest::Approx(expected).epsilon(1e-12));
+  CHECK(sim.scale_first == pair.scale_first);
+  CHECK(pair_is_named(sim, 2));
+}

@@ -51,6 +51,31 @@ double positive_log(double x, const char* what, const Curve& c) {
   return std::log(x);
 }
 
+
+double quadratic_chi_square(const Eigen::VectorXd& d, const Eigen::MatrixXd& w, const Eigen::VectorXd& model) {
+  const Eigen::VectorXd r = d - model;
+  return r.dot(w * r);
+}
+
+// The remainder with the form tolerance of the model's contrast on the diagonal.
+double form_chi_square(const Eigen::VectorXd& d, const Eigen::MatrixXd& w, const Eigen::VectorXd& model,
+                       double tolerance) {
+  Eigen::MatrixXd c = w.llt().solve(Eigen::MatrixXd::Identity(w.rows(), w.cols()));
+  for (Eigen::Index i = 0; i < d.size(); ++i) c(i, i) += std::pow(tolerance * model(i), 2);
+  const Eigen::VectorXd r = d - model;
+  return r.dot(c.llt().solve(r));
+}
+
+void judge_pair(ContrastPairFit& p, const Eigen::VectorXd& d, const Eigen::MatrixXd& w, const Eigen::VectorXd& model,
+                double first_chi_square, double dof, const ContrastOptions& options) {
+  const auto m = static_cast<double>(d.size());
+  p.chi_square = quadratic_chi_square(d, w, model);
+  p.drop = first_chi_square - p.chi_square;
+  p.p_drop = p.drop > 0 ? hotelling_p(p.drop, 1, dof - m + 1) : 1.0;
+  p.chi_square_form = form_chi_square(d, w, model, options.form_tolerance);
+  p.p_after = hotelling_p(p.chi_square_form, std::max(1.0, m - 2), dof);
+}
+
 }  // namespace
 
 ContrastScale contrast_scale(const std::vector<Curve>& curves) {
@@ -152,7 +177,6 @@ ContrastDecision decide_contrast(const std::vector<double>& difference, const st
   const Eigen::MatrixXd w = to_matrix(weight);
   if (w.rows() != d.size()) throw std::invalid_argument("contrast: weight and difference differ in size");
   const auto m = static_cast<double>(d.size());
-  const Eigen::MatrixXd covariance = w.llt().solve(Eigen::MatrixXd::Identity(w.rows(), w.cols()));
   ContrastDecision out;
   out.chi_square = d.dot(w * d);
   out.p_value = hotelling_p(out.chi_square, m, dof);
@@ -175,10 +199,7 @@ ContrastDecision decide_contrast(const std::vector<double>& difference, const st
     // (a t test with nu - m + 1 of them): chi^2(1) made a null set's chance direction significant.
     fit.p_drop = fit.drop > 0 ? hotelling_p(fit.drop, 1, dof - m + 1) : 1.0;
     // The remainder judged with the effect's form tolerance (ContrastOptions::form_tolerance).
-    const Eigen::VectorXd r = d - fit.scale * t;
-    Eigen::MatrixXd c_form = covariance;
-    for (Eigen::Index i = 0; i < d.size(); ++i) c_form(i, i) += std::pow(options.form_tolerance * fit.scale * t(i), 2);
-    fit.chi_square_form = r.dot(c_form.llt().solve(r));
+    fit.chi_square_form = form_chi_square(d, w, fit.scale * t, options.form_tolerance);
     fit.p_after = hotelling_p(fit.chi_square_form, std::max(1.0, m - 1), dof);
     out.fits.push_back(fit);
   }
@@ -211,6 +232,88 @@ ContrastDecision decide_contrast(const std::vector<double>& difference, const st
         f.chi_square - named->chi_square < options.rival_chi_square)
       out.rivals.push_back(f.name);
   return out;
+}
+
+}  // namespace shard::measure
+
+namespace shard::measure {
+
+ContrastPairFit fit_contrast_pair(const std::vector<double>& difference, const std::vector<std::vector<double>>& weight,
+                                  const EffectSignature& first, const EffectSignature& second, double first_chi_square,
+                                  double dof, const ContrastOptions& options) {
+  const Eigen::VectorXd d = to_vector(difference), t1 = to_vector(first.signature), t2 = to_vector(second.signature);
+  const Eigen::MatrixXd w = to_matrix(weight);
+  if (t1.size() != d.size() || t2.size() != d.size())
+    throw std::invalid_argument(fmt::format("contrast: the signature of '{}' or '{}' has the wrong length", first.name,
+                                            second.name));
+  Eigen::Matrix2d a;
+  a << t1.dot(w * t1), t1.dot(w * t2), t1.dot(w * t2), t2.dot(w * t2);
+  const Eigen::Vector2d rhs(t1.dot(w * d), t2.dot(w * d));
+  ContrastPairFit p;
+  p.first = first.name;
+  p.second = second.name;
+  // Candidates: the free optimum, then each size held at one of its finite bounds with the other
+  // refit, then both at bounds; the best admissible one is the constrained optimum (a convex
+  // quadratic over a box: its minimum is the free one or lies on the box's faces).
+  auto admissible = [&](double x, double y) {
+    return x >= first.scale_min && x <= first.scale_max && y >= second.scale_min && y <= second.scale_max;
+  };
+  std::vector<std::pair<double, double>> candidates;
+  const Eigen::FullPivLU<Eigen::Matrix2d> lu(a);
+  if (lu.isInvertible()) {
+    const Eigen::Vector2d x = lu.solve(rhs);
+    candidates.emplace_back(x(0), x(1));
+  }
+  const double bounds1[] = {first.scale_min, first.scale_max}, bounds2[] = {second.scale_min, second.scale_max};
+  for (double x : bounds1)
+    if (std::isfinite(x) && a(1, 1) > 0) candidates.emplace_back(x, std::clamp((rhs(1) - a(0, 1) * x) / a(1, 1), second.scale_min, second.scale_max));
+  for (double y : bounds2)
+    if (std::isfinite(y) && a(0, 0) > 0) candidates.emplace_back(std::clamp((rhs(0) - a(0, 1) * y) / a(0, 0), first.scale_min, first.scale_max), y);
+  for (double x : bounds1)
+    for (double y : bounds2)
+      if (std::isfinite(x) && std::isfinite(y)) candidates.emplace_back(x, y);
+  double best = std::numeric_limits<double>::infinity();
+  bool free_optimum = false;
+  for (std::size_t k = 0; k < candidates.size(); ++k) {
+    const auto [x, y] = candidates[k];
+    if (!admissible(x, y)) continue;
+    const double c = quadratic_chi_square(d, w, x * t1 + y * t2);
+    if (c < best) {
+      best = c;
+      p.scale_first = x;
+      p.scale_second = y;
+      free_optimum = k == 0 && lu.isInvertible();
+    }
+  }
+  if (!std::isfinite(best)) {  // nothing admissible: the first alone at its single size
+    p.scale_first = std::clamp(rhs(0) / a(0, 0), first.scale_min, first.scale_max);
+    p.scale_second = 0;
+  }
+  p.at_bound = !free_optimum;
+  if (lu.isInvertible()) {
+    const Eigen::Matrix2d inv = lu.inverse();
+    p.u_scale_first = std::sqrt(std::max(0.0, inv(0, 0)));
+    p.u_scale_second = std::sqrt(std::max(0.0, inv(1, 1)));
+  } else {
+    p.u_scale_first = p.u_scale_second = std::numeric_limits<double>::infinity();
+  }
+  judge_pair(p, d, w, p.scale_first * t1 + p.scale_second * t2, first_chi_square, dof, options);
+  return p;
+}
+
+ContrastPairFit judge_simulated_pair(const std::vector<double>& difference,
+                                     const std::vector<std::vector<double>>& weight, const std::vector<double>& combined,
+                                     ContrastPairFit sized, double first_chi_square, double dof,
+                                     const ContrastOptions& options) {
+  if (combined.size() != difference.size())
+    throw std::invalid_argument("contrast: the pair's simulated contrast has the wrong length");
+  judge_pair(sized, to_vector(difference), to_matrix(weight), to_vector(combined), first_chi_square, dof, options);
+  return sized;
+}
+
+bool pair_is_named(const ContrastPairFit& pair, std::size_t seconds_tried, const ContrastOptions& options) {
+  const double n = static_cast<double>(std::max<std::size_t>(1, seconds_tried));
+  return pair.scale_second != 0 && pair.p_drop < options.drop_p / n && pair.p_after > options.remaining_p;
 }
 
 }  // namespace shard::measure

@@ -113,6 +113,42 @@ ContrastDecision decide_contrast(const std::vector<double>& difference, const st
                                  const std::vector<EffectSignature>& effects, double dof,
                                  const ContrastOptions& options = {});
 
+// Two effects at once (issue 15 item 6): when the best single effect takes a significant share of
+// a set's difference but leaves a remainder beyond noise, the next is sought as a pair with it.
+// The pair's sizes are the two-column generalised least squares of d on (t_first, t_second), each
+// kept in its range (a size at a bound is held there and the other refit); the second is judged
+// by what it adds: the drop from the first's own chi^2 is a likelihood-ratio statistic referred,
+// like a single effect's, to Hotelling's distribution of one component, Bonferroni over the
+// seconds tried; the remainder gets the form tolerance of both effects' contrast and m - 2
+// components.
+struct ContrastPairFit {
+  std::string first, second;
+  double scale_first = 0, scale_second = 0;      // in the signatures' trial sizes from neutral
+  double u_scale_first = 0, u_scale_second = 0;  // marginal standard uncertainties
+  bool at_bound = false;                         // either size was held at its range's bound
+  double chi_square = 0;       // (d - a t1 - b t2)' W (d - a t1 - b t2)
+  double chi_square_form = 0;  // with the form tolerance of a t1 + b t2
+  double drop = 0;             // the first's own chi^2 minus the pair's
+  double p_drop = 1;           // hotelling_p(drop, 1, nu - m + 1)
+  double p_after = 1;          // Hotelling-type p of chi_square_form, m - 2 components
+};
+
+// `first_chi_square`: the first effect's own chi^2 (its single fit), from which the drop counts.
+ContrastPairFit fit_contrast_pair(const std::vector<double>& difference, const std::vector<std::vector<double>>& weight,
+                                  const EffectSignature& first, const EffectSignature& second, double first_chi_square,
+                                  double dof, const ContrastOptions& options = {});
+
+// A pair fit simulated at its sizes: `combined` is the model's contrast with both effects on at
+// once (not the sum of the two: effects interact). Scales are carried from `sized`.
+ContrastPairFit judge_simulated_pair(const std::vector<double>& difference,
+                                     const std::vector<std::vector<double>>& weight, const std::vector<double>& combined,
+                                     ContrastPairFit sized, double first_chi_square, double dof,
+                                     const ContrastOptions& options = {});
+
+// The pair is named when the first effect's own drop was significant (the caller's condition),
+// the second's drop beats drop_p over `seconds_tried`, and the remainder is compatible with noise.
+bool pair_is_named(const ContrastPairFit& pair, std::size_t seconds_tried, const ContrastOptions& options = {});
+
 // Inverse of a symmetric positive-definite matrix (throws when it is not).
 std::vector<std::vector<double>> spd_inverse(const std::vector<std::vector<double>>& a);
 
