@@ -153,6 +153,8 @@ void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>&
     const std::string& show =
         d.decision.verdict == kUnexplainedDifference ? d.decision.fits.front().name : d.decision.verdict;
     for (const auto& t : trials[s])
+      if (effects[t.effect].name == d.decision.fits.front().name) d.closest = SetDiagnosis::ConfirmedRun{t.effect, t.scale, t.run};
+    for (const auto& t : trials[s])
       if (effects[t.effect].name == show) {
         d.after = study.curve_contrast(d.contrast, t.run, base);
         d.after_effect = show;

@@ -49,9 +49,43 @@ std::string unidentifiable_text(const ContrastReport& r, const std::string& name
                      name, e ? e->rates_needed : 2, e && !e->separated_by.empty() ? e->separated_by : "A second rate");
 }
 
+bool names_a_pair(const SetDiagnosis& d) { return d.pair && d.decision.verdict == d.after_effect && d.pair->first + " + " + d.pair->second == d.decision.verdict; }
+
+// What the best pair did: named (the verdict) or tried and left.
+std::string pair_text(const ContrastReport& r, const SetDiagnosis& d) {
+  const ContrastPairFit& p = *d.pair;
+  const CandidateEffect* a = effect_named(r, p.first);
+  const CandidateEffect* b = effect_named(r, p.second);
+  const std::string sizes = fmt::format("{} = {:.4g} {} with {} = {:.4g} {}", p.first, d.pair_values[0], a ? a->unit : "",
+                                        p.second, d.pair_values[1], b ? b->unit : "");
+  if (names_a_pair(d))
+    return fmt::format(" Two effects at once: {} (simulated together) leave chi^2 {:.1f} (p = {:.2g} for what "
+                       "remains); the second's drop from {}'s own chi^2 {:.1f} has p = {:.2g} (level {:.2g}: {} seconds "
+                       "tried).{}",
+                       sizes, p.chi_square, p.p_after, p.first, p.chi_square + p.drop, p.p_drop,
+                       ContrastOptions{}.drop_p / static_cast<double>(std::max<std::size_t>(1, d.seconds_tried)),
+                       d.seconds_tried, p.at_bound ? " A size sits at the bound of its range." : "");
+  return fmt::format(" With a second effect the best pair, {} (simulated together), leaves chi^2 {:.1f} (p = {:.2g} for "
+                     "what remains), the second's drop p = {:.2g} against a level of {:.2g}: not named.",
+                     sizes, p.chi_square, p.p_after, p.p_drop,
+                     ContrastOptions{}.drop_p / static_cast<double>(std::max<std::size_t>(1, d.seconds_tried)));
+}
+
 std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
   const ContrastDecision& c = d.decision;
   const std::string& name = r.sets.names[d.set];
+  if (names_a_pair(d)) {
+    std::string rivals;
+    for (const auto& rival : c.rivals)
+      rivals += fmt::format(" {} explains it almost as well (within {:g} in chi^2): these data cannot tell them apart.",
+                            rival, ContrastOptions{}.rival_chi_square);
+    return fmt::format("{} differs from the reference (T^2 = {:.1f}, p = {:.2g}) by two effects: the closest single "
+                       "one, {}, takes {:.0f} % of it away but leaves p = {:.2g} for what remains.{} `shard calibrate` "
+                       "this set `--with` each to size them on the whole curve.{}",
+                       name, c.chi_square, c.p_value, c.fits.front().name,
+                       c.chi_square > 0 ? 100 * c.fits.front().drop / c.chi_square : 0.0, c.fits.front().p_after,
+                       pair_text(r, d), rivals);
+  }
   if (c.verdict == kNoDifference)
     return fmt::format("{} does not differ from the reference beyond the specimens' scatter (Hotelling T^2 = {:.1f}, "
                        "p = {:.2g}); no library effect's contrast is significant.",
@@ -84,6 +118,7 @@ std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
                          f.name, f.chi_square, f.p_after);
       }
     }
+    if (d.pair) s += pair_text(r, d);
     if (!c.unidentifiable.empty()) s += unidentifiable_text(r, c.unidentifiable);
     return s;
   }
@@ -168,11 +203,13 @@ std::string contrast_markdown(const ContrastReport& r) {
     const ContrastDecision& c = d.decision;
     const bool named = c.verdict != kNoDifference && c.verdict != kUnexplainedDifference;
     const CandidateEffect* e = named ? effect_named(r, c.verdict) : nullptr;
+    std::string value = "-";
+    if (names_a_pair(d))
+      value = fmt::format("{:.4g}; {:.4g}", d.pair_values[0], d.pair_values[1]);
+    else if (named)
+      value = fmt::format("{:.4g} +- {:.2g} {}", fitted_value(r, d, 0), fitted_uncertainty(r, d, 0), e ? e->unit : "");
     md += fmt::format("| {} | {:.1f} | {:.2g} | {} | {} | {:.2f} % -> {} |\n", r.sets.names[d.set], c.chi_square, c.p_value,
-                      c.verdict,
-                      named ? fmt::format("{:.4g} +- {:.2g} {}", fitted_value(r, d, 0), fitted_uncertainty(r, d, 0),
-                                          e ? e->unit : "")
-                            : "-",
+                      c.verdict, value,
                       100 * d.before.nrmse,
                       d.after_effect.empty() ? "-" : fmt::format("{:.2f} % ({})", 100 * d.after.nrmse, d.after_effect));
   }
@@ -182,8 +219,11 @@ std::string contrast_markdown(const ContrastReport& r) {
     md += fmt::format("\n## {}\n\n{}\n\n", r.sets.names[d.set], verdict_text(r, d));
     const bool shown = !d.after_components.empty();
     md += fmt::format("| component | measured difference | u |{}\n|---|---|---|{}\n",
-                      shown ? fmt::format(" model with {} = {:.4g} | (model - measured) / u |", d.after_effect, d.after_value)
-                            : "",
+                      !shown ? ""
+                      : names_a_pair(d)
+                          ? fmt::format(" model with {} = {:.4g}, {} = {:.4g} | (model - measured) / u |", d.pair->first,
+                                        d.pair_values[0], d.pair->second, d.pair_values[1])
+                          : fmt::format(" model with {} = {:.4g} | (model - measured) / u |", d.after_effect, d.after_value),
                       shown ? "---|---|" : "");
     for (std::size_t i = 0; i < d.contrast.names.size(); ++i) {
       // u: the marginal standard uncertainty of the difference (the weight is the inverse covariance).
@@ -243,7 +283,16 @@ std::string contrast_json(const ContrastReport& r) {
                        k ? ", " : "", json_escape(f.name), fitted_value(r, d, k), fitted_uncertainty(r, d, k), f.chi_square,
                        f.p_drop, f.p_after, f.at_bound, f.identifiable);
     }
-    j += fmt::format("], \"unidentifiable\": \"{}\", \"rivals\": [", json_escape(c.unidentifiable));
+    j += "], \"pair\": ";
+    if (d.pair)
+      j += fmt::format("{{\"first\": \"{}\", \"second\": \"{}\", \"values\": [{:.9g}, {:.9g}], \"chi_square\": {:.9g}, "
+                       "\"p_drop\": {:.9g}, \"p_after\": {:.9g}, \"seconds_tried\": {}, \"at_bound\": {}, \"named\": {}}}",
+                       json_escape(d.pair->first), json_escape(d.pair->second), d.pair_values[0], d.pair_values[1],
+                       d.pair->chi_square, d.pair->p_drop, d.pair->p_after, d.seconds_tried, d.pair->at_bound,
+                       names_a_pair(d));
+    else
+      j += "null";
+    j += fmt::format(", \"unidentifiable\": \"{}\", \"rivals\": [", json_escape(c.unidentifiable));
     for (std::size_t k = 0; k < c.rivals.size(); ++k) j += fmt::format("{}\"{}\"", k ? ", " : "", json_escape(c.rivals[k]));
     j += "]}";
   }

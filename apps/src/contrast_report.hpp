@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,8 @@ struct ContrastOptionsCli {
   int base_iterations = 3;
   int confirm = 2;
   int confirm_iterations = 2;
+  int pair_iterations = 3;
+  int pairs = 2;  // pairs of effects simulated per set whose closest single effect leaves a remainder (0: none)
   measure::ContrastOptions decide;  // --form-tolerance
   double finer = 0;  // > 0: the base also fitted at diameters this factor smaller (form error vs resolution)
 };
@@ -49,6 +52,17 @@ struct SetDiagnosis {
   std::string after_effect;
   double after_value = 0;
   std::vector<double> after_components;  // the shown effect's simulated contrast, per component
+  // The confirmed run of decision.fits.front() (the closest single effect), which a pair starts from.
+  struct ConfirmedRun {
+    std::size_t effect = 0;  // index into the library
+    double scale = 0;        // in trial sizes from neutral
+    ContrastStudy::Simulated run;
+  };
+  std::optional<ConfirmedRun> closest;
+  // Two effects at once (contrast_pairs.cpp): the best pair simulated, named or not, and its values.
+  std::optional<measure::ContrastPairFit> pair;
+  double pair_values[2] = {0, 0};
+  std::size_t seconds_tried = 0;
 };
 
 // Simulates each set's best `count` effects at their linear sizes, then (up to `iterations` in
@@ -56,6 +70,17 @@ struct SetDiagnosis {
 void confirm_contrasts(ContrastStudy& study, const std::vector<measure::CandidateEffect>& effects,
                        const ContrastStudy::Simulated& base, std::vector<SetDiagnosis>& sets, int count, int iterations,
                        measure::ContrastOptions decide, std::ostream& log);
+
+// Sets whose closest single effect takes a significant share of the difference but leaves a
+// remainder beyond noise: that effect kept at its confirmed size, each other library effect added
+// (two-column fit on the simulated contrasts), the best `count` pairs simulated with both effects
+// on, re-sized once by a Gauss-Newton step when `iterations` > 1; "A + B" when the second's drop
+// is significant over the seconds tried and the remainder is noise (issue 15 item 6).
+// `trials`: the library's runs at their plausible sizes (index e + 1; 0 is the base).
+void confirm_contrast_pairs(ContrastStudy& study, const ContrastSets& names,
+                            const std::vector<measure::CandidateEffect>& effects,
+                            const std::vector<ContrastStudy::Simulated>& trials, std::vector<SetDiagnosis>& sets,
+                            int count, int iterations, measure::ContrastOptions decide, std::ostream& log);
 
 struct ContrastReport {
   const ContrastSets& sets;

@@ -7,7 +7,9 @@
 //    rate the sets were tested at; each set's measured contrast against the effects' simulated
 //    contrasts (linear sizes, Hotelling's test for "no difference");
 // 3. confirmation: the best effects of each set simulated at their fitted sizes (and once more at
-//    the size their simulated contrast asks for); those runs decide.
+//    the size their simulated contrast asks for); those runs decide;
+// 4. two effects at once: where the closest single effect leaves a remainder beyond noise, it is
+//    kept and the next sought as a pair with it (contrast_pairs.cpp).
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
@@ -43,6 +45,13 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
                   "form error shrinks with resolution")
       ->check(CLI::Range(0.2, 1.0));
   cmd->add_option("--confirm", o->confirm, "best effects per set confirmed by simulated runs at their fitted size");
+  cmd->add_option("--pairs", o->pairs,
+                  "pairs of effects simulated per set when the closest single effect leaves a remainder beyond "
+                  "noise (two effects at once; 0: single effects only)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--pair-iterations", o->pair_iterations,
+                  "runs per pair: the first at the linear sizes, later ones a Gauss-Newton step each")
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--out", o->out, "folder for diagnose.md, diagnose.json and contrasts.png")->default_val("diagnose");
   cmd->callback([o, &ctx] {
     const ContrastSets sets = read_contrast_sets(o->sets, o->reference);
@@ -92,6 +101,7 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
       out.push_back(std::move(d));
     }
     confirm_contrasts(study, effects, sims[0], out, o->confirm, o->confirm_iterations, o->decide, std::cerr);
+    if (o->pairs > 0) confirm_contrast_pairs(study, sets, effects, sims, out, o->pairs, o->pair_iterations, o->decide, std::cerr);
 
     const ContrastReport report{sets,     effects, cal, study, out, simulator.max_kinetic_to_elastic(),
                                 simulator.max_probe_kinetic_to_elastic(),

@@ -1,0 +1,195 @@
+// Two effects at once in the contrast diagnosis (issue 15 item 6; docs/measurements.md,
+// "Contrasts: two effects at once"): keep the closest single effect, add the next, judge what it adds.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <iterator>
+#include <cmath>
+#include <optional>
+#include <ostream>
+
+#include "contrast_report.hpp"
+
+namespace shard {
+
+using namespace measure;
+
+namespace {
+
+constexpr double kPairFirstShare = 0.5;
+
+// A signature in units of `unit` trial sizes, with the effect's range in those units.
+EffectSignature in_units(const CandidateEffect& e, std::vector<double> signature, double unit, bool identifiable) {
+  double lo = e.scale_min() / unit, hi = e.scale_max() / unit;
+  if (unit < 0) std::swap(lo, hi);
+  return {e.name, e.value_at(unit) - e.neutral, std::move(signature), lo, hi, identifiable};
+}
+
+struct PairTrial {
+  std::size_t set = 0, second = 0;
+  double scale_first = 0, scale_second = 0;  // in trial sizes from neutral
+  ContrastPairFit fit;                      // judged on the run once it has one
+  std::optional<ContrastStudy::Simulated> run;
+  bool stepped = false;  // a Gauss-Newton step has been taken from this run
+};
+
+ModelPlan pair_model(const ModelPlan& base, const std::vector<CandidateEffect>& effects, std::size_t first,
+                     double scale_first, std::size_t second, double scale_second) {
+  return with_effect(with_effect(base, effects[first], effects[first].value_at(scale_first)), effects[second],
+                     effects[second].value_at(scale_second));
+}
+
+}  // namespace
+
+void confirm_contrast_pairs(ContrastStudy& study, const ContrastSets& names, const std::vector<CandidateEffect>& effects,
+                            const std::vector<ContrastStudy::Simulated>& trials, std::vector<SetDiagnosis>& sets,
+                            int count, int iterations, ContrastOptions decide, std::ostream& log) {
+  const ContrastStudy::Simulated& base = trials.front();
+  const double n = static_cast<double>(effects.size());
+  std::vector<PairTrial> pairs;
+  for (std::size_t s = 0; s < sets.size(); ++s) {
+    SetDiagnosis& d = sets[s];
+    if (d.decision.verdict != kUnexplainedDifference || !d.closest || d.decision.fits.empty()) continue;
+    const ContrastFit& closest = d.decision.fits.front();
+    // The first must have earned its place: a significant drop of its own over the library, and
+    // most of the difference (the stepwise path keeps an effect that explains much but not all;
+    // one that takes less than half is no better a start than the pair without it).
+    if (!(closest.p_drop < decide.drop_p / n) || !closest.identifiable || d.closest->scale == 0) continue;
+    if (!(closest.drop >= kPairFirstShare * d.decision.chi_square)) continue;
+    const std::size_t f = d.closest->effect;
+    const EffectSignature first = in_units(effects[f], study.model_contrast(d.contrast, d.closest->run, base),
+                                           d.closest->scale, true);
+    std::vector<PairTrial> mine;
+    for (std::size_t e = 0; e < effects.size(); ++e) {
+      if (e == f || !effects[e].identifiable_at(study.rate_count(d.contrast))) continue;
+      ++d.seconds_tried;
+      const EffectSignature second =
+          in_units(effects[e], study.model_contrast(d.contrast, trials[1 + e], base), 1.0, true);
+      const ContrastPairFit fit = fit_contrast_pair(d.contrast.difference, d.contrast.weight, first, second,
+                                                    closest.chi_square, study.dof(), decide);
+      if (fit.scale_second == 0 || !(fit.drop > 0)) continue;
+      mine.push_back({s, e, fit.scale_first * d.closest->scale, fit.scale_second, fit, std::nullopt});
+    }
+    std::sort(mine.begin(), mine.end(), [](const auto& a, const auto& b) { return a.fit.chi_square < b.fit.chi_square; });
+    if (mine.size() > static_cast<std::size_t>(count)) mine.resize(static_cast<std::size_t>(count));
+    pairs.insert(pairs.end(), mine.begin(), mine.end());
+  }
+  if (pairs.empty()) return;
+
+  auto judge = [&](PairTrial& p) {
+    SetDiagnosis& d = sets[p.set];
+    ContrastPairFit sized = p.fit;
+    sized.scale_first = p.scale_first;
+    sized.scale_second = p.scale_second;
+    p.fit = judge_simulated_pair(d.contrast.difference, d.contrast.weight, study.model_contrast(d.contrast, *p.run, base),
+                                 sized, d.decision.fits.front().chi_square, study.dof(), decide);
+  };
+  for (int pass = 0; pass < std::max(1, iterations); ++pass) {
+    std::vector<ModelPlan> models;
+    std::vector<std::size_t> owner;
+    std::vector<PairTrial> new_trials;  // appended after the loop: `pairs` must not grow under it
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      PairTrial& p = pairs[k];
+      SetDiagnosis& d = sets[p.set];
+      const std::size_t f = d.closest->effect;
+      if (p.run) {
+        // A Gauss-Newton step from the pair's run: its residual on the two effects' columns per
+        // trial size (the closest's confirmed contrast over its size, the second's trial run),
+        // each step kept inside its effect's range.
+        if (p.stepped || pair_is_named(p.fit, d.seconds_tried, decide)) continue;
+        p.stepped = true;
+        std::vector<double> residual = d.contrast.difference;
+        const auto combined = study.model_contrast(d.contrast, *p.run, base);
+        for (std::size_t i = 0; i < residual.size(); ++i) residual[i] -= combined[i];
+        EffectSignature c1 = in_units(effects[f], study.model_contrast(d.contrast, d.closest->run, base),
+                                      d.closest->scale, true);
+        EffectSignature c2 = in_units(effects[p.second], study.model_contrast(d.contrast, trials[1 + p.second], base),
+                                      1.0, true);
+        const double x1 = p.scale_first / d.closest->scale, x2 = p.scale_second;
+        c1.scale_min -= x1, c1.scale_max -= x1, c2.scale_min -= x2, c2.scale_max -= x2;
+        const double chi_here = p.fit.chi_square;
+        const ContrastPairFit step = fit_contrast_pair(residual, d.contrast.weight, c1, c2, chi_here, study.dof(), decide);
+        const double next_first = (x1 + step.scale_first) * d.closest->scale, next_second = x2 + step.scale_second;
+        // Not worth a run when the step is small against the sizes (the linear step's limit).
+        if (std::abs(next_first - p.scale_first) <= 0.1 * std::abs(p.scale_first) &&
+            std::abs(next_second - p.scale_second) <= 0.1 * std::abs(p.scale_second))
+          continue;
+        PairTrial next = p;
+        next.scale_first = next_first;
+        next.scale_second = next_second;
+        next.run.reset();
+        next.stepped = false;
+        models.push_back(pair_model(study.base(), effects, f, next_first, p.second, next_second));
+        owner.push_back(pairs.size() + new_trials.size());
+        new_trials.push_back(std::move(next));  // the earlier run stays a candidate: the better is kept
+        continue;
+      }
+      models.push_back(pair_model(study.base(), effects, f, p.scale_first, p.second, p.scale_second));
+      owner.push_back(k);
+    }
+    pairs.insert(pairs.end(), std::make_move_iterator(new_trials.begin()), std::make_move_iterator(new_trials.end()));
+    if (models.empty()) break;
+    log << fmt::format("diagnose: two effects at once, pass {}: {} runs of pairs at their fitted sizes\n", pass + 1,
+                       models.size());
+    std::vector<std::optional<ContrastStudy::Simulated>> runs(models.size());
+    try {
+      auto all = study.simulate(models, log);
+      for (std::size_t m = 0; m < models.size(); ++m) runs[m] = std::move(all[m]);
+    } catch (const std::exception&) {
+      for (std::size_t m = 0; m < models.size(); ++m) try {
+          runs[m] = std::move(study.simulate({models[m]}, log).front());
+        } catch (const std::exception& e) {
+          const std::string what = e.what();
+          const PairTrial& p = pairs[owner[m]];
+          log << fmt::format("diagnose: {} + {} did not run and is left out: {}\n",
+                             effects[sets[p.set].closest->effect].name, effects[p.second].name,
+                             what.substr(0, what.find('\n')));
+        }
+    }
+    for (std::size_t m = 0; m < models.size(); ++m) {
+      PairTrial& p = pairs[owner[m]];
+      if (!runs[m]) continue;
+      p.run = std::move(runs[m]);
+      judge(p);
+      log << fmt::format("diagnose: {}: {} = {:.4g} with {} = {:.4g}: chi^2 {:.1f} (p after {:.2g}), the second's drop p = {:.2g}\n",
+                         names.names[sets[p.set].set], effects[sets[p.set].closest->effect].name,
+                         effects[sets[p.set].closest->effect].value_at(p.scale_first), effects[p.second].name,
+                         effects[p.second].value_at(p.scale_second), p.fit.chi_square, p.fit.p_after, p.fit.p_drop);
+    }
+    std::erase_if(pairs, [](const PairTrial& p) { return !p.run; });
+  }
+
+  for (std::size_t s = 0; s < sets.size(); ++s) {
+    SetDiagnosis& d = sets[s];
+    // As for single effects (decide_contrast): the lowest chi^2 among the pairs that pass is named;
+    // when none passes, the lowest chi^2 is reported as tried.
+    const PairTrial* best = nullptr;
+    for (const bool named_only : {true, false}) {
+      for (const auto& p : pairs)
+        if (p.set == s && (!named_only || pair_is_named(p.fit, d.seconds_tried, decide)) &&
+            (!best || p.fit.chi_square < best->fit.chi_square))
+          best = &p;
+      if (best) break;
+    }
+    if (!best) continue;
+    const CandidateEffect& first = effects[d.closest->effect];
+    const CandidateEffect& second = effects[best->second];
+    d.pair = best->fit;
+    d.pair_values[0] = first.value_at(best->scale_first);
+    d.pair_values[1] = second.value_at(best->scale_second);
+    if (!pair_is_named(best->fit, d.seconds_tried, decide)) continue;
+    d.decision.verdict = first.name + " + " + second.name;
+    d.decision.rivals.clear();
+    for (const auto& p : pairs)
+      if (p.set == s && p.second != best->second && pair_is_named(p.fit, d.seconds_tried, decide) &&
+          p.fit.chi_square - best->fit.chi_square < decide.rival_chi_square &&
+          std::find(d.decision.rivals.begin(), d.decision.rivals.end(), first.name + " + " + effects[p.second].name) ==
+              d.decision.rivals.end())
+        d.decision.rivals.push_back(first.name + " + " + effects[p.second].name);
+    d.after = study.curve_contrast(d.contrast, *best->run, base);
+    d.after_effect = d.decision.verdict;
+    d.after_components = study.model_contrast(d.contrast, *best->run, base);
+  }
+}
+
+}  // namespace shard
