@@ -18,11 +18,14 @@ namespace {
 
 constexpr double kPairFirstShare = 0.5;
 
-// A signature in units of `unit` trial sizes, with the effect's range in those units.
-EffectSignature in_units(const CandidateEffect& e, std::vector<double> signature, double unit, bool identifiable) {
-  double lo = e.scale_min() / unit, hi = e.scale_max() / unit;
+// A signature in units of `unit` trial sizes, with the effect's range in those units (for a
+// second effect, whose size the pair's fit chooses freely, at most kFarthestTrialSteps from neutral).
+EffectSignature in_units(const CandidateEffect& e, std::vector<double> signature, double unit, bool second) {
+  double lo = e.scale_min(), hi = e.scale_max();
+  if (second) lo = std::max(lo, -kFarthestTrialSteps), hi = std::min(hi, kFarthestTrialSteps);
+  lo /= unit, hi /= unit;
   if (unit < 0) std::swap(lo, hi);
-  return {e.name, e.value_at(unit) - e.neutral, std::move(signature), lo, hi, identifiable};
+  return {e.name, e.value_at(unit) - e.neutral, std::move(signature), lo, hi, true};
 }
 
 struct PairTrial {
@@ -58,7 +61,7 @@ void confirm_contrast_pairs(ContrastStudy& study, const ContrastSets& names, con
     if (!(closest.drop >= kPairFirstShare * d.decision.chi_square)) continue;
     const std::size_t f = d.closest->effect;
     const EffectSignature first = in_units(effects[f], study.model_contrast(d.contrast, d.closest->run, base),
-                                           d.closest->scale, true);
+                                           d.closest->scale, false);
     std::vector<PairTrial> mine;
     for (std::size_t e = 0; e < effects.size(); ++e) {
       if (e == f || !effects[e].identifiable_at(study.rate_count(d.contrast))) continue;
@@ -102,7 +105,7 @@ void confirm_contrast_pairs(ContrastStudy& study, const ContrastSets& names, con
         const auto combined = study.model_contrast(d.contrast, *p.run, base);
         for (std::size_t i = 0; i < residual.size(); ++i) residual[i] -= combined[i];
         EffectSignature c1 = in_units(effects[f], study.model_contrast(d.contrast, d.closest->run, base),
-                                      d.closest->scale, true);
+                                      d.closest->scale, false);
         EffectSignature c2 = in_units(effects[p.second], study.model_contrast(d.contrast, trials[1 + p.second], base),
                                       1.0, true);
         const double x1 = p.scale_first / d.closest->scale, x2 = p.scale_second;

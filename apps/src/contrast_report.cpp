@@ -81,10 +81,10 @@ std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
                             rival, ContrastOptions{}.rival_chi_square);
     return fmt::format("{} differs from the reference (T^2 = {:.1f}, p = {:.2g}) by two effects: the closest single "
                        "one, {}, takes {:.0f} % of it away but leaves p = {:.2g} for what remains.{} `shard calibrate` "
-                       "this set `--with` each to size them on the whole curve.{}",
+                       "this set `--with {} --with {}` sizes both on the contrast.{}",
                        name, c.chi_square, c.p_value, c.fits.front().name,
                        c.chi_square > 0 ? 100 * c.fits.front().drop / c.chi_square : 0.0, c.fits.front().p_after,
-                       pair_text(r, d), rivals);
+                       pair_text(r, d), d.pair->first, d.pair->second, rivals);
   }
   if (c.verdict == kNoDifference)
     return fmt::format("{} does not differ from the reference beyond the specimens' scatter (Hotelling T^2 = {:.1f}, "

@@ -42,6 +42,11 @@ std::vector<measure::CandidateEffect> scaled_to_base_run(std::vector<measure::Ca
                                                          ContrastStudy& study, std::string& described,
                                                          std::ostream& log);
 
+// The farthest an effect is sized from neutral where the data choose the size freely (calibrate's
+// search, a pair's second effect), in trial steps (its library size): a size the library's
+// plausible value misjudges by more is a different effect.
+inline constexpr double kFarthestTrialSteps = 8.0;
+
 struct SetDiagnosis {
   std::size_t set = 0;
   ContrastStudy::Contrast contrast;

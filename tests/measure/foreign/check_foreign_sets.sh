@@ -28,7 +28,7 @@ failures=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 
 printf '| set | peak force | peak displacement | stiffness | largest score |\n|---|---|---|---|---|\n'
-for set in reference null compliance weibull softening asymmetry toe; do
+for set in reference null compliance weibull softening asymmetry toe both; do
   folder=$sets/$set
   "$shard" --plugin-dir "$plugins" compare "$folder" --scene "$here/foreign_beam.toml" --work "$work/model" \
     --out "$work/compare_$set" > "$work/compare_$set.log" 2>&1 || { cat "$work/compare_$set.log"; fail "$set: compare"; continue; }

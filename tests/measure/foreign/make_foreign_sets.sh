@@ -18,6 +18,7 @@
 #   softening    softening ratio 1.5 (library: bond_softening)                1401-1404
 #   asymmetry    normal bond spring 3x stiffer in compression (library: compression_asymmetry) 1501-1504
 #   toe          seating toe g = 0.5 mm, F_h = 0.5 N (outside the library)   1601-1604
+#   both         compliance and softening at once (the sizes above; two effects hidden) 1701-1704
 # Sensor model for all: 2 % specimen scatter, 0.01 N load-cell noise, 0.005 N tare sd, 1 um
 # displacement steps. Lab conditions for all, recorded in metadata.toml [test]: the pins reach
 # 0.02 m/s along a 1-cos ramp over 25 ms (20 mm/s in 25 ms, 0.25 mm of travel); each curve starts
@@ -62,3 +63,4 @@ synth weibull 1301 4 --set bond.weibull_modulus=2
 synth softening 1401 5 --set bond.softening_ratio=1.5
 synth asymmetry 1501 6 --set bond.compression_ratio=3
 synth toe 1601 7 "${toe[@]}"
+synth both 1701 8 --machine-compliance "${FOREIGN_COMPLIANCE:-2e-4}" --set bond.softening_ratio=1.5
