@@ -84,6 +84,14 @@ void confirm_contrast_pairs(ContrastStudy& study, const ContrastSets& names, con
     ContrastPairFit sized = p.fit;
     sized.scale_first = p.scale_first;
     sized.scale_second = p.scale_second;
+    // At a bound when a run's size is: the first at its range's ends, the second also at the
+    // farthest trial step.
+    const CandidateEffect& a = effects[d.closest->effect];
+    const CandidateEffect& b = effects[p.second];
+    auto at = [](double x, double lo, double hi) { return x <= lo + 1e-9 * std::abs(lo) || x >= hi - 1e-9 * std::abs(hi); };
+    sized.at_bound = at(p.scale_first, a.scale_min(), a.scale_max()) ||
+                     at(p.scale_second, std::max(b.scale_min(), -kFarthestTrialSteps),
+                        std::min(b.scale_max(), kFarthestTrialSteps));
     p.fit = judge_simulated_pair(d.contrast.difference, d.contrast.weight, study.model_contrast(d.contrast, *p.run, base),
                                  sized, d.decision.fits.front().chi_square, study.dof(), decide);
   };
