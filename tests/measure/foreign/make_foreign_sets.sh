@@ -26,7 +26,7 @@
 # Another beam (make_foreign_default_sets.sh) changes what has a unit through the environment:
 # FOREIGN_SCENE, FOREIGN_LABEL, FOREIGN_SENSOR (the sensor and lab options), FOREIGN_COMPLIANCE [m/N],
 # FOREIGN_TOE (the toe's synth options). FOREIGN_DRAW=k (default 0) moves every packing seed by
-# 10000 k and every noise seed by 100 k: another draw of the same seven sets (docs/measurements.md,
+# 10000 k and every noise seed by 100 k: another draw of the same sets (docs/measurements.md,
 # "Other draws of the foreign sets").
 set -euo pipefail
 if [[ $# -ne 4 ]]; then
