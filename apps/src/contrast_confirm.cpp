@@ -55,6 +55,25 @@ std::vector<CandidateEffect> scaled_to_base_run(std::vector<CandidateEffect> eff
   return effects;
 }
 
+std::vector<std::optional<ContrastStudy::Simulated>> simulate_each(ContrastStudy& study,
+                                                                   const std::vector<ModelPlan>& models,
+                                                                   const std::function<std::string(std::size_t)>& label,
+                                                                   std::ostream& log) {
+  std::vector<std::optional<ContrastStudy::Simulated>> runs(models.size());
+  try {
+    auto all = study.simulate(models, log);
+    for (std::size_t m = 0; m < models.size(); ++m) runs[m] = std::move(all[m]);
+  } catch (const std::exception&) {
+    for (std::size_t m = 0; m < models.size(); ++m) try {
+        runs[m] = std::move(study.simulate({models[m]}, log).front());
+      } catch (const std::exception& e) {
+        const std::string what = e.what();
+        log << fmt::format("diagnose: {} did not run and is left out: {}\n", label(m), what.substr(0, what.find('\n')));
+      }
+  }
+  return runs;
+}
+
 void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>& effects,
                        const ContrastStudy::Simulated& base, std::vector<SetDiagnosis>& sets, int count, int iterations,
                        ContrastOptions decide, std::ostream& log) {
@@ -104,22 +123,13 @@ void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>&
       }
     if (models.empty()) break;
     log << fmt::format("diagnose: confirmation pass {}: {} runs of effects at their fitted sizes\n", pass + 1, models.size());
-    // One batch; when a run fails (a size the plugin refuses, or an unstable one) the models are
-    // run one by one (finished runs are cached) and a failed trial is dropped with its reason.
-    std::vector<std::optional<ContrastStudy::Simulated>> runs(models.size());
-    try {
-      auto all = study.simulate(models, log);
-      for (std::size_t m = 0; m < models.size(); ++m) runs[m] = std::move(all[m]);
-    } catch (const std::exception&) {
-      for (std::size_t m = 0; m < models.size(); ++m) try {
-          runs[m] = std::move(study.simulate({models[m]}, log).front());
-        } catch (const std::exception& e) {
-          const std::string what = e.what();
+    auto runs = simulate_each(
+        study, models,
+        [&](std::size_t m) {
           const Trial& t = trials[owner[m].first][owner[m].second];
-          log << fmt::format("diagnose: {} at {:.4g} did not run and is left out: {}\n", effects[t.effect].name,
-                             effects[t.effect].value_at(t.scale), what.substr(0, what.find('\n')));
-        }
-    }
+          return fmt::format("{} at {:.4g}", effects[t.effect].name, effects[t.effect].value_at(t.scale));
+        },
+        log);
     for (std::size_t m = 0; m < models.size(); ++m) {
       Trial& t = trials[owner[m].first][owner[m].second];
       if (runs[m]) {

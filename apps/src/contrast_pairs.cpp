@@ -142,21 +142,13 @@ void confirm_contrast_pairs(ContrastStudy& study, const ContrastSets& names, con
     if (models.empty()) break;
     log << fmt::format("diagnose: two effects at once, pass {}: {} runs of pairs at their fitted sizes\n", pass + 1,
                        models.size());
-    std::vector<std::optional<ContrastStudy::Simulated>> runs(models.size());
-    try {
-      auto all = study.simulate(models, log);
-      for (std::size_t m = 0; m < models.size(); ++m) runs[m] = std::move(all[m]);
-    } catch (const std::exception&) {
-      for (std::size_t m = 0; m < models.size(); ++m) try {
-          runs[m] = std::move(study.simulate({models[m]}, log).front());
-        } catch (const std::exception& e) {
-          const std::string what = e.what();
+    auto runs = simulate_each(
+        study, models,
+        [&](std::size_t m) {
           const PairTrial& p = pairs[owner[m]];
-          log << fmt::format("diagnose: {} + {} did not run and is left out: {}\n",
-                             effects[sets[p.set].closest->effect].name, effects[p.second].name,
-                             what.substr(0, what.find('\n')));
-        }
-    }
+          return effects[sets[p.set].closest->effect].name + " + " + effects[p.second].name;
+        },
+        log);
     for (std::size_t m = 0; m < models.size(); ++m) {
       PairTrial& p = pairs[owner[m]];
       if (!runs[m]) continue;

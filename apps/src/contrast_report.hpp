@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include <filesystem>
+#include <functional>
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -69,6 +70,14 @@ struct SetDiagnosis {
   double pair_values[2] = {0, 0};
   std::size_t seconds_tried = 0;
 };
+
+// One batch of models; when a run fails (a size the plugin refuses, or an unstable one) the models
+// are run one by one (finished runs are cached) and a failed one is left out (empty) with its
+// reason in the log, named by `label`.
+std::vector<std::optional<ContrastStudy::Simulated>> simulate_each(ContrastStudy& study,
+                                                                   const std::vector<ModelPlan>& models,
+                                                                   const std::function<std::string(std::size_t)>& label,
+                                                                   std::ostream& log);
 
 // Simulates each set's best `count` effects at their linear sizes, then (up to `iterations` in
 // all) at the size the simulated contrast asks for; the decision is taken on those runs.
