@@ -149,6 +149,11 @@ TEST_CASE("numeric options out of range are refused while parsing, in one line")
   // A CLI11 mistake of another kind (an unknown option) takes the same one-line form.
   o = run_shard("run " + scene + " --thread 2", dir);
   CHECK(require_one_line_error(o).find("--thread") != std::string::npos);
+  // calibrate --with takes one effect or two different ones (a pair named by diagnose).
+  o = run_shard("calibrate a b --reference a --with machine_compliance --with machine_compliance --scene " + scene, dir);
+  CHECK(require_one_line_error(o).find("--with machine_compliance given twice") != std::string::npos);
+  o = run_shard("calibrate a b --reference a --with x --with y --with z --scene " + scene, dir);
+  CHECK(require_one_line_error(o).find("one effect or two at once") != std::string::npos);
   o = run_shard("--plugin-dir nowhere plugins", dir);  // was searched silently
   CHECK(require_one_line_error(o).find("nowhere") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(dir / "run.h5"));
