@@ -30,6 +30,9 @@ EffectSignature in_units(const CandidateEffect& e, std::vector<double> signature
 
 struct PairTrial {
   std::size_t set = 0, second = 0;
+  // The two columns of the linear fit: the first's confirmed contrast per confirmed size, the
+  // second's trial contrast per trial size (each with its range in those units).
+  EffectSignature first_column, second_column;
   double scale_first = 0, scale_second = 0;  // in trial sizes from neutral
   ContrastPairFit fit;                      // judged on the run once it has one
   std::optional<ContrastStudy::Simulated> run;
@@ -38,8 +41,8 @@ struct PairTrial {
 
 ModelPlan pair_model(const ModelPlan& base, const std::vector<CandidateEffect>& effects, std::size_t first,
                      double scale_first, std::size_t second, double scale_second) {
-  return with_effect(with_effect(base, effects[first], effects[first].value_at(scale_first)), effects[second],
-                     effects[second].value_at(scale_second));
+  return with_effects(base, {{&effects[first], effects[first].value_at(scale_first)},
+                             {&effects[second], effects[second].value_at(scale_second)}});
 }
 
 }  // namespace
@@ -71,7 +74,7 @@ void confirm_contrast_pairs(ContrastStudy& study, const ContrastSets& names, con
       const ContrastPairFit fit = fit_contrast_pair(d.contrast.difference, d.contrast.weight, first, second,
                                                     closest.chi_square, study.dof(), decide);
       if (fit.scale_second == 0 || !(fit.drop > 0)) continue;
-      mine.push_back({s, e, fit.scale_first * d.closest->scale, fit.scale_second, fit, std::nullopt});
+      mine.push_back({s, e, first, second, fit.scale_first * d.closest->scale, fit.scale_second, fit, std::nullopt});
     }
     std::sort(mine.begin(), mine.end(), [](const auto& a, const auto& b) { return a.fit.chi_square < b.fit.chi_square; });
     if (mine.size() > static_cast<std::size_t>(count)) mine.resize(static_cast<std::size_t>(count));
@@ -112,10 +115,7 @@ void confirm_contrast_pairs(ContrastStudy& study, const ContrastSets& names, con
         std::vector<double> residual = d.contrast.difference;
         const auto combined = study.model_contrast(d.contrast, *p.run, base);
         for (std::size_t i = 0; i < residual.size(); ++i) residual[i] -= combined[i];
-        EffectSignature c1 = in_units(effects[f], study.model_contrast(d.contrast, d.closest->run, base),
-                                      d.closest->scale, false);
-        EffectSignature c2 = in_units(effects[p.second], study.model_contrast(d.contrast, trials[1 + p.second], base),
-                                      1.0, true);
+        EffectSignature c1 = p.first_column, c2 = p.second_column;
         const double x1 = p.scale_first / d.closest->scale, x2 = p.scale_second;
         c1.scale_min -= x1, c1.scale_max -= x1, c2.scale_min -= x2, c2.scale_max -= x2;
         const double chi_here = p.fit.chi_square;

@@ -32,9 +32,7 @@ std::vector<double> difference(const ResidualVector& r, const ResidualVector& ba
 }  // namespace
 
 ModelPlan step_plan(const ModelPlan& scene, const std::vector<std::string>& keys, const StepModel& model) {
-  ModelPlan plan = with_parameters(scene, keys, model.parameters);
-  for (const auto& [effect, value] : model.kept) plan = with_effect(plan, *effect, value);
-  return plan;
+  return with_effects(with_parameters(scene, keys, model.parameters), model.kept);
 }
 
 double effect_scale(const CandidateEffect& e, double value) { return (value - e.neutral) / (e.plausible - e.neutral); }

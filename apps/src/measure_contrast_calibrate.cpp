@@ -27,9 +27,11 @@ namespace fs = std::filesystem;
 using namespace measure;
 
 // The model with every added effect at its size (in trial steps from neutral).
-ModelPlan with_effects(ModelPlan model, const std::vector<CandidateEffect>& effects, const std::vector<double>& scales) {
-  for (std::size_t k = 0; k < effects.size(); ++k) model = with_effect(std::move(model), effects[k], effects[k].value_at(scales[k]));
-  return model;
+ModelPlan with_sized_effects(const ModelPlan& model, const std::vector<CandidateEffect>& effects,
+                             const std::vector<double>& scales) {
+  std::vector<std::pair<const CandidateEffect*, double>> sized;
+  for (std::size_t k = 0; k < effects.size(); ++k) sized.emplace_back(&effects[k], effects[k].value_at(scales[k]));
+  return with_effects(model, sized);
 }
 
 struct EffectFit {
@@ -47,7 +49,7 @@ struct EffectFit {
   // Several sizes in one batch (the runs go to the workers together).
   std::vector<double> chi_squares(const std::vector<std::vector<double>>& points) {
     std::vector<ModelPlan> models;
-    for (const auto& scales : points) models.push_back(with_effects(study->base(), *effects, scales));
+    for (const auto& scales : points) models.push_back(with_sized_effects(study->base(), *effects, scales));
     std::vector<ContrastStudy::Simulated> runs = study->simulate(models, std::cerr);
     std::vector<double> chi2s;
     for (std::size_t k = 0; k < points.size(); ++k) {

@@ -383,6 +383,11 @@ ModelPlan with_effect(ModelPlan model, const CandidateEffect& effect, double val
   return model;
 }
 
+ModelPlan with_effects(ModelPlan model, const std::vector<std::pair<const CandidateEffect*, double>>& effects) {
+  for (const auto& [effect, value] : effects) model = with_effect(std::move(model), *effect, value);
+  return model;
+}
+
 ModelPlan with_parameters(ModelPlan model, const std::vector<std::string>& keys, const std::vector<double>& values) {
   for (std::size_t i = 0; i < keys.size(); ++i) model.overrides.push_back({keys[i], significant(values[i], 12)});
   return model;

@@ -161,6 +161,8 @@ std::vector<HistoryEntry> read_history(const std::filesystem::path& work_dir);
 namespace shard {
 
 ModelPlan with_effect(ModelPlan model, const measure::CandidateEffect& effect, double value);
+// Several effects on at once, each (effect, value) in turn.
+ModelPlan with_effects(ModelPlan model, const std::vector<std::pair<const measure::CandidateEffect*, double>>& effects);
 ModelPlan with_parameters(ModelPlan model, const std::vector<std::string>& keys, const std::vector<double>& values);
 
 // The model linearised around `base` (section.key parameters `keys` at `values`): the residual,
