@@ -20,7 +20,7 @@
 #include "shard/bending/calibration.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
-#include "significant_digits.hpp"
+#include "shard/measure/significant_digits.hpp"
 
 namespace shard {
 namespace {

@@ -19,7 +19,7 @@
 #include "shard/bending/rate_check.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
-#include "significant_digits.hpp"
+#include "shard/measure/significant_digits.hpp"
 
 namespace shard {
 namespace {

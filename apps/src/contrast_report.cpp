@@ -16,7 +16,7 @@ using namespace measure;
 namespace {
 
 const CandidateEffect* effect_named(const ContrastReport& r, const std::string& name) {
-  for (const auto& e : r.effects)
+  for (const auto& e : r.result.effects)
     if (e.name == name) return &e;
   return nullptr;
 }
@@ -148,16 +148,16 @@ std::string contrast_markdown(const ContrastReport& r) {
                                                 : std::string("the consensus of the others"));
   md += fmt::format("Components per curve: {}. Specimen scatter pooled over all sets: {:g} degrees of freedom. "
                     "Effects tried: {}.\n\n",
-                    fmt::join(names, ", "), r.study.dof(), r.effects.size());
-  if (!r.scaled_sizes.empty())
-    md += "Trial sizes from the fitted base run (plausible_from rules, docs/measurements.md):\n\n```\n" + r.scaled_sizes +
+                    fmt::join(names, ", "), r.result.dof, r.result.effects.size());
+  if (!r.result.scaled_sizes.empty())
+    md += "Trial sizes from the fitted base run (plausible_from rules, docs/measurements.md):\n\n```\n" + r.result.scaled_sizes +
           "```\n\n";
   md += "## The base model and its form error\n\n";
-  if (r.calibration.keys.empty())
+  if (r.result.calibration.keys.empty())
     md += "Base parameters as in the scene (no --param given).\n\n";
   else {
-    for (std::size_t k = 0; k < r.calibration.path.size(); ++k) md += fmt::format("{}. {}\n", k + 1, r.calibration.path[k]);
-    const BaseCalibration& c = r.calibration;
+    for (std::size_t k = 0; k < r.result.calibration.path.size(); ++k) md += fmt::format("{}. {}\n", k + 1, r.result.calibration.path[k]);
+    const BaseCalibration& c = r.result.calibration;
     md += fmt::format("\nFitted to {}:", c.form_targets ? "the reference's stiffness, peak force, peak displacement and "
                                                           "post-peak regime"
                                                         : "the reference's stiffness, peak force and peak displacement");
@@ -168,22 +168,22 @@ std::string contrast_markdown(const ContrastReport& r) {
                           c.range[k].min, c.range[k].max);
     }
     md += " (uncertainties from the reference's specimen scatter through the last Gauss-Newton step).\n";
-    for (const auto& key : r.calibration.at_bound)
+    for (const auto& key : r.result.calibration.at_bound)
       md += fmt::format("\n{}'s last step was clamped to a factor of 2: the base fit did not converge in the "
                         "iterations given (--base-iterations).\n",
                         key);
   }
-  const Comparison& fe = r.calibration.form_error;
+  const Comparison& fe = r.result.calibration.form_error;
   md += fmt::format("\nAgainst the reference the fitted base model leaves NRMSE {:.1f} %: {}\n\n", 100 * fe.nrmse, fe.verdict);
   md += "| regime | mean residual | force error |\n|---|---|---|\n";
   for (const auto& g : fe.regimes)
     if (g.points() > 0)
       md += fmt::format("| {} | {:+.2f} | {:+.1f} % |\n", regime_name(g.regime), g.mean_residual, 100 * g.relative_error);
-  if (r.finer) {
-    const Comparison& ff = r.finer->form_error;
-    md += fmt::format("\nAt diameters x {:g} (the base fitted again: ", r.finer_factor);
-    for (std::size_t k = 0; k < r.finer->keys.size(); ++k)
-      md += fmt::format("{}{}={:.4g}", k ? ", " : "", r.finer->keys[k], r.finer->values[k]);
+  if (r.result.finer) {
+    const Comparison& ff = r.result.finer->form_error;
+    md += fmt::format("\nAt diameters x {:g} (the base fitted again: ", r.result.finer_factor);
+    for (std::size_t k = 0; k < r.result.finer->keys.size(); ++k)
+      md += fmt::format("{}{}={:.4g}", k ? ", " : "", r.result.finer->keys[k], r.result.finer->values[k]);
     md += fmt::format(") the form error is NRMSE {:.1f} % against {:.1f} %: ", 100 * ff.nrmse, 100 * fe.nrmse);
     // A third less is more than the packing noise of a few seeds moves an NRMSE (tiny beam: 5-7 %).
     md += ff.nrmse < 2.0 / 3.0 * fe.nrmse
@@ -191,7 +191,7 @@ std::string contrast_markdown(const ContrastReport& r) {
               : "resolution does not explain it; it comes from the form of the laws or the fixture, and the contrasts "
                 "below are what can be trusted.\n";
     // Which regimes and features stay beyond noise at the finer packing (the same verdict as above).
-    md += fmt::format("\nAt diameters x {:g}: {}\n", r.finer_factor, ff.verdict);
+    md += fmt::format("\nAt diameters x {:g}: {}\n", r.result.finer_factor, ff.verdict);
     md += "\n| regime | mean residual | force error |\n|---|---|---|\n";
     for (const auto& g : ff.regimes)
       if (g.points() > 0)
@@ -200,7 +200,7 @@ std::string contrast_markdown(const ContrastReport& r) {
   md += "\nThis form error is common to sets tested with one fixture; it cancels in the contrasts below.\n\n";
   md += "## Verdicts\n\n| set | T^2 | p (no difference) | verdict | value | contrast NRMSE: base -> with effect |\n"
         "|---|---|---|---|---|---|\n";
-  for (const auto& d : r.diagnoses) {
+  for (const auto& d : r.result.sets) {
     const ContrastDecision& c = d.decision;
     const bool named = c.verdict != kNoDifference && c.verdict != kUnexplainedDifference;
     const CandidateEffect* e = named ? effect_named(r, c.verdict) : nullptr;
@@ -216,7 +216,7 @@ std::string contrast_markdown(const ContrastReport& r) {
   }
   md += "\nContrast NRMSE: RMS difference between the measured contrast curve (set mean - reference mean) and the "
         "model's, over the displacement range both cover, in units of the reference's peak force.\n";
-  for (const auto& d : r.diagnoses) {
+  for (const auto& d : r.result.sets) {
     md += fmt::format("\n## {}\n\n{}\n\n", r.sets.names[d.set], verdict_text(r, d));
     const bool shown = !d.after_components.empty();
     md += fmt::format("| component | measured difference | u |{}\n|---|---|---|{}\n",
@@ -248,30 +248,30 @@ std::string contrast_markdown(const ContrastReport& r) {
   md += fmt::format("\nLargest kinetic/elastic energy ratio before breakage (deformation, less the rigid-body motion): "
                     "{:.2g} over the base and the effects at their fitted sizes; {:.2g} over the effects' trials at their "
                     "library sizes (not judged: a probe, not a model of the data).\n",
-                    r.max_kinetic_to_elastic, r.max_probe_kinetic_to_elastic);
-  if (!r.dynamic_warning.empty()) md += "\n" + r.dynamic_warning + "\n";
+                    r.result.health.max_kinetic_to_elastic, r.result.health.max_probe_kinetic_to_elastic);
+  if (!r.result.health.dynamic_warning.empty()) md += "\n" + r.result.health.dynamic_warning + "\n";
   return md;
 }
 
 std::string contrast_json(const ContrastReport& r) {
   std::string j = fmt::format("{{\"reference\": \"{}\", \"dof\": {:.9g}, \"form_error_nrmse\": {:.9g}, \"base\": {{",
-                              r.sets.reference ? json_escape(r.sets.names[*r.sets.reference]) : "", r.study.dof(),
-                              r.calibration.form_error.nrmse);
-  for (std::size_t k = 0; k < r.calibration.keys.size(); ++k)
-    j += fmt::format("{}\"{}\": {:.9g}", k ? ", " : "", json_escape(r.calibration.keys[k]), r.calibration.values[k]);
+                              r.sets.reference ? json_escape(r.sets.names[*r.sets.reference]) : "", r.result.dof,
+                              r.result.calibration.form_error.nrmse);
+  for (std::size_t k = 0; k < r.result.calibration.keys.size(); ++k)
+    j += fmt::format("{}\"{}\": {:.9g}", k ? ", " : "", json_escape(r.result.calibration.keys[k]), r.result.calibration.values[k]);
   j += "}, \"base_uncertainty\": {";
-  for (std::size_t k = 0; k < r.calibration.keys.size(); ++k)
-    j += fmt::format("{}\"{}\": {}", k ? ", " : "", json_escape(r.calibration.keys[k]),
-                     std::isfinite(r.calibration.uncertainty[k]) ? fmt::format("{:.9g}", r.calibration.uncertainty[k])
+  for (std::size_t k = 0; k < r.result.calibration.keys.size(); ++k)
+    j += fmt::format("{}\"{}\": {}", k ? ", " : "", json_escape(r.result.calibration.keys[k]),
+                     std::isfinite(r.result.calibration.uncertainty[k]) ? fmt::format("{:.9g}", r.result.calibration.uncertainty[k])
                                                                  : std::string("null"));
   j += "}, \"base_at_range_bound\": [";
   std::string sep;
-  for (std::size_t k = 0; k < r.calibration.keys.size(); ++k)
-    if (r.calibration.at_range_bound[k]) j += fmt::format("{}\"{}\"", sep, json_escape(r.calibration.keys[k])), sep = ", ";
-  j += fmt::format("], \"base_form_targets\": {}", r.calibration.form_targets);
-  j += fmt::format(", \"dynamic_warning\": \"{}\", \"sets\": [", json_escape(r.dynamic_warning));
-  for (std::size_t s = 0; s < r.diagnoses.size(); ++s) {
-    const SetDiagnosis& d = r.diagnoses[s];
+  for (std::size_t k = 0; k < r.result.calibration.keys.size(); ++k)
+    if (r.result.calibration.at_range_bound[k]) j += fmt::format("{}\"{}\"", sep, json_escape(r.result.calibration.keys[k])), sep = ", ";
+  j += fmt::format("], \"base_form_targets\": {}", r.result.calibration.form_targets);
+  j += fmt::format(", \"dynamic_warning\": \"{}\", \"sets\": [", json_escape(r.result.health.dynamic_warning));
+  for (std::size_t s = 0; s < r.result.sets.size(); ++s) {
+    const SetDiagnosis& d = r.result.sets[s];
     const ContrastDecision& c = d.decision;
     j += fmt::format("{}{{\"name\": \"{}\", \"t_square\": {:.9g}, \"p_value\": {:.9g}, \"verdict\": \"{}\", "
                      "\"nrmse_base\": {:.9g}, \"nrmse_effect\": {:.9g}, \"effect_shown\": \"{}\", \"fits\": [",
@@ -304,7 +304,7 @@ void plot_contrasts(const ContrastReport& r, const fs::path& image) {
   const fs::path dat = fs::path(image).replace_extension(".dat"), gp = fs::path(image).replace_extension(".gp");
   {
     std::ofstream out(dat);
-    for (const auto& d : r.diagnoses) {
+    for (const auto& d : r.result.sets) {
       out << "# " << r.sets.names[d.set] << "\n# xi measured u base effect\n";
       for (std::size_t k = 0; k < d.before.xi.size(); ++k)
         out << fmt::format("{:.6g} {:.6g} {:.6g} {:.6g} {:.6g}\n", d.before.xi[k], d.before.measured[k],
@@ -313,13 +313,13 @@ void plot_contrasts(const ContrastReport& r, const fs::path& image) {
       out << "\n\n";
     }
   }
-  const std::size_t n = r.diagnoses.size();
+  const std::size_t n = r.result.sets.size();
   std::string script = fmt::format(
       "set terminal pngcairo noenhanced size 900,{} font ',9'\nset output '{}'\nset multiplot layout {},1\n"
       "set xlabel 'w / w_ref'\nset ylabel 'dF / F_ref'\nset grid\nset key outside right\n",
       std::max<std::size_t>(300, 260 * n), image.string(), n);
   for (std::size_t s = 0; s < n; ++s) {
-    const SetDiagnosis& d = r.diagnoses[s];
+    const SetDiagnosis& d = r.result.sets[s];
     script += fmt::format("set title '{}: {}'\n", r.sets.names[d.set], d.decision.verdict);
     script += fmt::format(
         "plot '{0}' index {1} using 1:($2-2*$3):($2+2*$3) with filledcurves lc rgb '#cfe0f0' title 'measured +-2u', "

@@ -75,7 +75,7 @@ RateComparison with_band(const RateComparison& c, const RateComparison& referenc
   return out;
 }
 
-StepLinearisation linearise_step(Simulator& simulator, const RateGroups& measured, const Metadata& metadata,
+StepLinearisation linearise_step(EnsembleSimulator& simulator, const RateGroups& measured, const Metadata& metadata,
                                  const ModelPlan& scene, const std::vector<std::string>& keys, const StepModel& model,
                                  const std::vector<const CandidateEffect*>& candidates, const RateComparison* band,
                                  Scoring scoring, std::ostream& log) {
@@ -119,7 +119,7 @@ StepLinearisation linearise_step(Simulator& simulator, const RateGroups& measure
   return l;
 }
 
-std::vector<CandidateEffect> plausible_on_base_run(std::vector<CandidateEffect> effects, Simulator& simulator,
+std::vector<CandidateEffect> plausible_on_base_run(std::vector<CandidateEffect> effects, EnsembleSimulator& simulator,
                                                 const RateGroups& measured, const Metadata& metadata, const ModelPlan& base,
                                                 std::string& described, std::ostream& log) {
   described.clear();

@@ -63,7 +63,7 @@ struct StepLinearisation {
 // `band`: the reference band; empty: the step's base comparison is the reference (the first
 // step). With FrozenBand every run's residual vector is scored against it; otherwise each keeps
 // its own band (the Jacobian and signatures are differences of standardised residuals).
-StepLinearisation linearise_step(Simulator& simulator, const RateGroups& measured, const measure::Metadata& metadata,
+StepLinearisation linearise_step(EnsembleSimulator& simulator, const RateGroups& measured, const measure::Metadata& metadata,
                                  const ModelPlan& scene, const std::vector<std::string>& keys, const StepModel& model,
                                  const std::vector<const measure::CandidateEffect*>& candidates,
                                  const RateComparison* band, Scoring scoring, std::ostream& log);
@@ -75,7 +75,7 @@ StepLinearisation linearise_step(Simulator& simulator, const RateGroups& measure
 // not move the probe, and the tiny beam at its scene values gets the sizes its tests were tuned
 // with. `described` receives one line per resolved effect (empty when none has a rule).
 std::vector<measure::CandidateEffect> plausible_on_base_run(std::vector<measure::CandidateEffect> effects,
-                                                            Simulator& simulator, const RateGroups& measured,
+                                                            EnsembleSimulator& simulator, const RateGroups& measured,
                                                             const measure::Metadata& metadata, const ModelPlan& base,
                                                             std::string& described, std::ostream& log);
 

@@ -37,7 +37,7 @@ struct Fit {
   std::vector<std::string> keys;
   std::vector<double> base_values;
   const CandidateEffect* effect = nullptr;
-  Simulator* simulator = nullptr;
+  EnsembleSimulator* simulator = nullptr;
   const RateGroups* measured = nullptr;
   const Metadata* metadata = nullptr;
   const RateComparison* band = nullptr;  // the base model's: every evaluation is scored against it
@@ -120,7 +120,7 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
     fit.keys = o->params;
     fit.scoring = scoring_from_name(o->scoring);
     for (const auto& k : o->params) fit.base_values.push_back(scene_number(o->model, k));
-    Simulator simulator(o->sim, ctx.plugin_dirs);
+    EnsembleSimulator simulator(o->sim, ctx.plugin_dirs);
     // The trial size as diagnose resolves it (the base run at the scene's values), so the
     // linearised start below is diagnose's first step, cached.
     std::string scaled;

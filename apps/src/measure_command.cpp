@@ -86,7 +86,7 @@ void add_compare(CLI::App& app, CommandContext& ctx) {
         throw std::runtime_error("compare: give a model with --scene or simulated curves with --sim, not both");
       // Every rate of the set (or --rate's), the model run at each: one comparison per rate and
       // one joint residual, in one history entry.
-      Simulator simulator(o->sim, ctx.plugin_dirs);
+      EnsembleSimulator simulator(o->sim, ctx.plugin_dirs);
       rc = simulate_and_compare(simulator, rate_groups(set, o->rate), set.metadata, {o->model}, std::cerr).front();
       ke = simulator.max_kinetic_to_elastic();
       warning = simulator.dynamic_warning();
@@ -200,7 +200,7 @@ void add_synth(CLI::App& app, CommandContext& ctx) {
     ModelPlan truth = o->model;
     truth.machine_compliance = 0;  // the sensor model applies it to the true force
     o->sensor.machine_compliance = o->model.machine_compliance;
-    Simulator simulator(o->sim, ctx.plugin_dirs);
+    EnsembleSimulator simulator(o->sim, ctx.plugin_dirs);
     // The truth runs with the lab's ramp and fragment threshold; the preload zeroes the recorded
     // (noisy, compliant) signal below, as the machine does.
     TestConditions runs = o->test;

@@ -89,7 +89,7 @@ std::string values_text(const std::vector<std::string>& keys, const StepModel& m
 // Simulates the refits of one step. One batch; when a run fails (a linear step can reach an
 // unstable size), the models are retried one by one: finished runs are cached, and a failed
 // effect refit is reported and left out of the decision instead of ending the diagnosis.
-void run_confirmations(Simulator& simulator, const RateGroups& measured, const Metadata& metadata, const ModelPlan& scene,
+void run_confirmations(EnsembleSimulator& simulator, const RateGroups& measured, const Metadata& metadata, const ModelPlan& scene,
                        const std::vector<std::string>& keys, const RateComparison& band, Scoring scoring,
                        std::vector<Confirmation>& conf, std::size_t components) {
   std::vector<ModelPlan> models;
@@ -175,7 +175,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
     const auto& keys = o->params;
     StepModel model;
     for (const auto& k : keys) model.parameters.push_back(scene_number(o->model, k));
-    Simulator simulator(o->sim, ctx.plugin_dirs);
+    EnsembleSimulator simulator(o->sim, ctx.plugin_dirs);
     std::string scaled;  // the trial sizes that follow from the base run
     const auto effects = plausible_on_base_run(select_effects(read_effect_library(library), o->only), simulator,
                                                measured, set.metadata, step_plan(o->model, keys, model), scaled,

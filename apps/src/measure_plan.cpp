@@ -14,7 +14,7 @@
 #include "shard/measure/report.hpp"
 #include "shard/measure/synthetic.hpp"
 #include "run_job.hpp"
-#include "significant_digits.hpp"
+#include "shard/measure/significant_digits.hpp"
 
 namespace shard {
 
@@ -56,12 +56,12 @@ void add_simulation_options(CLI::App* cmd, ModelPlan& model, SimulationOptions& 
       ->check(CLI::PositiveNumber);
 }
 
-Simulator::Simulator(const SimulationOptions& options, const std::vector<fs::path>& plugin_dirs)
-    : options_(options), pool_(options.work_dir, plugin_dirs, options.workers) {
+EnsembleSimulator::EnsembleSimulator(const SimulationOptions& options, const std::vector<fs::path>& plugin_dirs)
+    : options_(options), plugin_dirs_(plugin_dirs), pool_(options.work_dir, plugin_dirs, options.workers) {
   if (options_.isolate) pool_.isolate_runs(shard_run_worker());
 }
 
-std::vector<std::vector<Specimen>> Simulator::simulate(const std::vector<ModelPlan>& models, std::ostream& log) {
+std::vector<std::vector<Specimen>> EnsembleSimulator::simulate(const std::vector<ModelPlan>& models, std::ostream& log) {
   std::vector<RunRequest> requests;
   for (const auto& m : models) {
     SceneOverrides overrides = m.overrides;
@@ -97,25 +97,20 @@ std::vector<std::vector<Specimen>> Simulator::simulate(const std::vector<ModelPl
     for (int k = 0; k < options_.seeds; ++k, ++i) {
       Specimen s;
       s.id = fmt::format("sim_seed{}", options_.first_seed + k);
-      s.curve = models[m].machine_compliance > 0 ? with_machine_compliance(results[i].curve, models[m].machine_compliance)
-                                                 : results[i].curve;
-      // Zeroed as the lab zeroed its curves: the machine's compliance is in what it recorded.
-      if (test_.seating_preload > 0)
-        s.curve = zeroed_at_preload(s.curve, test_.seating_preload,
-                                    fmt::format("the simulated curve of {} (seed {}, run {})", models[m].scene.string(),
-                                                options_.first_seed + k, results[i].key));
+      s.curve = results[i].curve;
+      s.crack_position = results[i].crack_position;
+      s.fragment_sizes = results[i].fragment_sizes;
+      s = recorded_as_tested(std::move(s), models[m], test_,
+                             fmt::format("the simulated curve of {} (seed {}, run {})", models[m].scene.string(),
+                                         options_.first_seed + k, results[i].key));
       (models[m].probe ? max_probe_ke_ : max_ke_) = std::max(models[m].probe ? max_probe_ke_ : max_ke_,
                                                              results[i].kinetic_to_elastic);
-      s.crack_position = results[i].crack_position;
-      for (double d : results[i].fragment_sizes)
-        if (d >= test_.fragment_size_threshold) s.fragment_sizes.push_back(d);
-      if (!s.fragment_sizes.empty()) s.fragment_count = static_cast<double>(s.fragment_sizes.size());
       out[m].push_back(std::move(s));
     }
   return out;
 }
 
-std::string Simulator::dynamic_warning() const {
+std::string EnsembleSimulator::dynamic_warning() const {
   const bool energetic = max_ke_ > kDynamicKineticToElastic;
   const bool fast = max_rate_factor_ > 1.01;
   if (!energetic && !fast) return {};
@@ -132,7 +127,7 @@ std::string Simulator::dynamic_warning() const {
              "(shard bending-rate-check --set on its pin velocities)";
 }
 
-void Simulator::check_inputs(const ModelPlan& model, const std::vector<Specimen>& specimens, const Metadata& metadata) {
+void EnsembleSimulator::check_inputs(const ModelPlan& model, const std::vector<Specimen>& specimens, const Metadata& metadata) {
   if (inputs_checked_ || specimens.empty()) return;
   inputs_checked_ = true;
   use_test_conditions(metadata.test);
@@ -166,51 +161,11 @@ void Simulator::check_inputs(const ModelPlan& model, const std::vector<Specimen>
           1e3 * scene.particle_diameter));
 }
 
-std::vector<Specimen> Simulator::simulate(const ModelPlan& model, std::ostream& log) {
-  return simulate(std::vector<ModelPlan>{model}, log).front();
+ParameterRange EnsembleSimulator::parameter_range(const std::string& key) const {
+  return plugin_parameter_range(key, plugin_dirs_);
 }
 
-double scene_number(const ModelPlan& model, const std::string& key) {
-  // The last override of the key wins, as in the scene loader; otherwise the scene file's value.
-  for (auto it = model.overrides.rbegin(); it != model.overrides.rend(); ++it)
-    if (it->key == key) {
-      if (const auto* d = std::get_if<double>(&it->value)) return *d;
-      if (const auto* i = std::get_if<std::int64_t>(&it->value)) return static_cast<double>(*i);
-      throw std::runtime_error(fmt::format("--set {}: a number is needed here", it->text()));
-    }
-  const toml::table root = toml::parse_file(model.scene.string());
-  const auto dot = key.find('.');
-  const auto v = root[key.substr(0, dot)][key.substr(dot + 1)].value<double>();
-  if (!v)
-    throw std::runtime_error(fmt::format("{}: no number {} in the scene: set it there or with --set {}=value",
-                                         model.scene.string(), key, key));
-  return *v;
-}
-
-std::vector<Specimen> specimens_at_rate(const MeasurementSet& set, double rate) {
-  std::vector<Specimen> out;
-  const auto rates = set.loading_rates();
-  if (rate <= 0 && rates.size() > 1)
-    throw std::runtime_error(fmt::format("the measurements have {} loading rates; choose one with --rate", rates.size()));
-  for (const auto& s : set.specimens)
-    if (rate <= 0 || std::abs(s.loading_rate - rate) <= 1e-9 * rate) out.push_back(s);
-  if (out.empty()) throw std::runtime_error(fmt::format("no specimen at loading rate {} m/s", rate));
-  return out;
-}
-
-RateGroups rate_groups(const MeasurementSet& set, double rate) {
-  RateGroups g;
-  const std::vector<double> rates = rate > 0 ? std::vector<double>{rate} : set.loading_rates();
-  for (double r : rates) {
-    std::vector<Specimen> at;
-    for (const auto& s : set.specimens)
-      if (std::abs(s.loading_rate - r) <= 1e-9 * r) at.push_back(s);
-    if (at.empty()) throw std::runtime_error(fmt::format("no specimen at loading rate {} m/s", r));
-    g.rates.push_back(r);
-    g.specimens.push_back(std::move(at));
-  }
-  return g;
-}
+RunHealth EnsembleSimulator::health() const { return {max_ke_, max_probe_ke_, dynamic_warning()}; }
 
 ResidualVector RateComparison::residual_vector() const {
   ResidualVector v;
@@ -242,7 +197,7 @@ double RateComparison::chi_square() const {
   return x;
 }
 
-std::vector<RateComparison> simulate_and_compare(Simulator& simulator, const RateGroups& groups, const Metadata& metadata,
+std::vector<RateComparison> simulate_and_compare(EnsembleSimulator& simulator, const RateGroups& groups, const Metadata& metadata,
                                                  const std::vector<ModelPlan>& models, std::ostream& log) {
   // With one rate the model runs at the scene's own speed unless the data are at another one.
   if (!models.empty()) {
@@ -373,33 +328,13 @@ std::vector<HistoryEntry> read_history(const fs::path& work_dir) {
 
 namespace shard {
 
-ModelPlan with_effect(ModelPlan model, const CandidateEffect& effect, double value) {
-  if (effect.post_processing()) {
-    model.machine_compliance += value;
-  } else {
-    // The effect library states its values as scene text (value_format): parsed as --set is.
-    for (const auto& s : effect.overrides(value)) model.overrides.push_back(SceneOverride::parse(s));
-  }
-  return model;
-}
-
-ModelPlan with_effects(ModelPlan model, const std::vector<std::pair<const CandidateEffect*, double>>& effects) {
-  for (const auto& [effect, value] : effects) model = with_effect(std::move(model), *effect, value);
-  return model;
-}
-
-ModelPlan with_parameters(ModelPlan model, const std::vector<std::string>& keys, const std::vector<double>& values) {
-  for (std::size_t i = 0; i < keys.size(); ++i) model.overrides.push_back({keys[i], significant(values[i], 12)});
-  return model;
-}
-
 double chi_square(const Comparison& c) {
   double x = 0;
   for (double r : c.residual_vector().values) x += r * r;
   return x;
 }
 
-Linearisation linearise(Simulator& simulator, const RateGroups& measured, const Metadata& metadata,
+Linearisation linearise(EnsembleSimulator& simulator, const RateGroups& measured, const Metadata& metadata,
                         const ModelPlan& base, const std::vector<std::string>& keys, const std::vector<double>& values,
                         const std::vector<CandidateEffect>& effects, std::ostream& log) {
   constexpr double kStep = 0.05;  // relative step of the base parameters

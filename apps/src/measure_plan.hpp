@@ -14,20 +14,18 @@
 #include "measure_runner.hpp"
 #include "shard/measure/comparison.hpp"
 #include "shard/measure/measurements.hpp"
+#include "shard/measure/model_plan.hpp"
+#include "shard/measure/rate_groups.hpp"
+#include "shard/measure/simulator.hpp"
 #include "shard/scene_override.hpp"
 
 namespace shard {
 
-struct ModelPlan {
-  std::filesystem::path scene;
-  SceneOverrides overrides;  // typed; --set strings are parsed at the command line
-  double machine_compliance = 0;  // m/N, series spring applied to the simulated curves
-  double loading_rate = 0;        // m/s of the loading pins; 0 = the scene's own
-  // An effect's trial at its library size (a probe for its signature, not a model of the data):
-  // its kinetic/elastic ratio is kept apart from the dynamic warning (a lubricated-roller trial
-  // whose beam slides is dynamic, the model of the data need not be).
-  bool probe = false;
-};
+using measure::ModelPlan;
+using measure::scene_number;
+using measure::with_effect;
+using measure::with_effects;
+using measure::with_parameters;
 
 struct SimulationOptions {
   int seeds = 3;
@@ -54,20 +52,18 @@ struct SimulationOptions {
 
 void add_simulation_options(CLI::App* cmd, ModelPlan& model, SimulationOptions& options);
 
-// Above this kinetic/elastic energy ratio before breakage (with the load >= 20 % of its peak) a
-// run is called dynamic: the bound the measurement commands have always printed. The resolved
-// bending scene stays at or below 1.2e-4 with F_max moving < 1 % at half its rate
-// (docs/four_point_bending.md); the damped tiny beam sits at 0.008-0.03 at 0.02 m/s, where its
-// curve still moves < 2 % over a 4x rate change, so above the bound the warning asks for that
-// check (shard bending-rate-check) rather than proving inertia.
-inline constexpr double kDynamicKineticToElastic = 1e-2;
-
-class Simulator {
+// The DEM ensemble as the measurement science's simulator: every model's packing-seed replicates
+// run through the RunPool (cached, on threads, worker processes or MPI ranks), at the data's rate
+// and ramp, recorded as the lab recorded.
+class EnsembleSimulator final : public measure::Simulator {
  public:
-  Simulator(const SimulationOptions& options, const std::vector<std::filesystem::path>& plugin_dirs);
+  EnsembleSimulator(const SimulationOptions& options, const std::vector<std::filesystem::path>& plugin_dirs);
   // The replicates of every model, all runs in one parallel batch.
-  std::vector<std::vector<measure::Specimen>> simulate(const std::vector<ModelPlan>& models, std::ostream& log);
-  std::vector<measure::Specimen> simulate(const ModelPlan& model, std::ostream& log);
+  std::vector<std::vector<measure::Specimen>> simulate(const std::vector<ModelPlan>& models, std::ostream& log) override;
+  std::vector<measure::Specimen> simulate(const ModelPlan& model, std::ostream& log) { return simulate_one(model, log); }
+  double parameter(const ModelPlan& model, const std::string& key) const override { return scene_number(model, key); }
+  measure::ParameterRange parameter_range(const std::string& key) const override;
+  measure::RunHealth health() const override;
   RunPool& pool() { return pool_; }
   const SimulationOptions& options() const { return options_; }
   // Largest kinetic/elastic ratio of the runs simulated so far (the quasi-static check).
@@ -92,10 +88,11 @@ class Simulator {
   // differs from the scene's by more than 2 %, or its width or height by more than 2 % and one
   // particle diameter (a packing's extent differs from seed to seed by up to a diameter).
   void check_inputs(const ModelPlan& model, const std::vector<measure::Specimen>& specimens,
-                    const measure::Metadata& metadata);
+                    const measure::Metadata& metadata) override;
 
  private:
   SimulationOptions options_;
+  std::vector<std::filesystem::path> plugin_dirs_;
   RunPool pool_;
   double max_ke_ = 0;
   double max_probe_ke_ = 0;
@@ -106,19 +103,9 @@ class Simulator {
   bool inputs_checked_ = false;
 };
 
-// The value of section.key in the resolved scene (overrides applied); throws when absent.
-double scene_number(const ModelPlan& model, const std::string& key);
-
-std::vector<measure::Specimen> specimens_at_rate(const measure::MeasurementSet& set, double rate);
-
-// The measured specimens grouped by loading rate (ascending): only `rate` when it is > 0,
-// otherwise every rate in the set. A model is simulated at each rate and judged on all of them,
-// so a rate effect (bond viscosity) shows as a difference between the groups.
-struct RateGroups {
-  std::vector<double> rates;
-  std::vector<std::vector<measure::Specimen>> specimens;
-};
-RateGroups rate_groups(const measure::MeasurementSet& set, double rate);
+using measure::RateGroups;
+using measure::rate_groups;
+using measure::specimens_at_rate;
 
 // One model against every rate group: the joint residual vector is the per-rate vectors one
 // after the other (components named "<name>@<rate>" when there are several rates); the NRMSE
@@ -133,7 +120,7 @@ struct RateComparison {
 };
 
 // Simulates every model at every rate of `groups` (one parallel batch) and compares.
-std::vector<RateComparison> simulate_and_compare(Simulator& simulator, const RateGroups& groups,
+std::vector<RateComparison> simulate_and_compare(EnsembleSimulator& simulator, const RateGroups& groups,
                                                  const measure::Metadata& metadata, const std::vector<ModelPlan>& models,
                                                  std::ostream& log);
 
@@ -160,11 +147,6 @@ std::vector<HistoryEntry> read_history(const std::filesystem::path& work_dir);
 
 namespace shard {
 
-ModelPlan with_effect(ModelPlan model, const measure::CandidateEffect& effect, double value);
-// Several effects on at once, each (effect, value) in turn.
-ModelPlan with_effects(ModelPlan model, const std::vector<std::pair<const measure::CandidateEffect*, double>>& effects);
-ModelPlan with_parameters(ModelPlan model, const std::vector<std::string>& keys, const std::vector<double>& values);
-
 // The model linearised around `base` (section.key parameters `keys` at `values`): the residual,
 // the Jacobian per relative step (+5 % runs) and each effect's signature at its plausible size,
 // all on the same packing seeds, in one parallel batch.
@@ -174,7 +156,7 @@ struct Linearisation {
   std::vector<std::vector<double>> jacobian;
   std::vector<measure::EffectSignature> signatures;
 };
-Linearisation linearise(Simulator& simulator, const RateGroups& measured,
+Linearisation linearise(EnsembleSimulator& simulator, const RateGroups& measured,
                         const measure::Metadata& metadata, const ModelPlan& base, const std::vector<std::string>& keys,
                         const std::vector<double>& values, const std::vector<measure::CandidateEffect>& effects,
                         std::ostream& log);

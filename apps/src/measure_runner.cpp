@@ -24,7 +24,7 @@
 #endif
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
-#include "significant_digits.hpp"
+#include "shard/measure/significant_digits.hpp"
 
 namespace shard {
 namespace {

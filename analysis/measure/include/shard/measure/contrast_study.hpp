@@ -1,6 +1,6 @@
 #pragma once
-// What `shard diagnose SET_A SET_B ...` and `shard calibrate SETS --reference R --with EFFECT`
-// share (docs/measurements.md "Contrasts"): the sets read and checked against each other, the
+// What the contrast diagnosis and the contrast calibration share (docs/measurements.md
+// "Contrasts"): the sets read and checked against each other, the
 // base model calibrated on the reference, the model's contrasts simulated on common packing
 // seeds, and each set's measured contrast with its covariance. The statistics are
 // shard/measure/contrast.hpp; this file turns measurement folders and runs into their inputs.
@@ -10,11 +10,12 @@
 #include <string>
 #include <vector>
 
-#include "measure_plan.hpp"
+#include "shard/measure/comparison.hpp"
 #include "shard/measure/contrast.hpp"
 #include "shard/measure/effect_library.hpp"
+#include "shard/measure/simulator.hpp"
 
-namespace shard {
+namespace shard::measure {
 
 struct ContrastSets {
   std::vector<measure::MeasurementSet> sets;
@@ -57,10 +58,10 @@ class ContrastStudy {
   ContrastStudy(const ContrastSets& sets, Simulator& simulator, ModelPlan base);
 
   double dof() const { return dof_; }
+  const ContrastSets& sets() const { return sets_; }
 
-  // plugin_dirs: where the parameters' ranges are looked up besides the default search path.
-  BaseCalibration calibrate_base(const std::vector<std::string>& keys, int iterations, std::ostream& log,
-                                 const std::vector<std::filesystem::path>& plugin_dirs = {});
+  // The parameters' values and ranges are the simulator's (its scene and plugins).
+  BaseCalibration calibrate_base(const std::vector<std::string>& keys, int iterations, std::ostream& log);
   const ModelPlan& base() const { return base_; }
 
   // The rates every model must run at (all groups' rates and their references').
@@ -113,4 +114,4 @@ class ContrastStudy {
   double dof_ = 0;
 };
 
-}  // namespace shard
+}  // namespace shard::measure

@@ -1,4 +1,4 @@
-#include "contrast_study.hpp"
+#include "shard/measure/contrast_study.hpp"
 
 #include <fmt/format.h>
 
@@ -12,12 +12,12 @@
 #include <stdexcept>
 
 #include "shard/measure/effect_library.hpp"
+#include "shard/measure/rate_groups.hpp"
 #include "shard/measure/statistics.hpp"
 
-namespace shard {
+namespace shard::measure {
 
 namespace fs = std::filesystem;
-using namespace measure;
 
 namespace {
 
@@ -236,13 +236,12 @@ std::vector<std::vector<double>> ContrastStudy::components(const Simulated& mode
   return rows;
 }
 
-BaseCalibration ContrastStudy::calibrate_base(const std::vector<std::string>& keys, int iterations, std::ostream& log,
-                                              const std::vector<fs::path>& plugin_dirs) {
+BaseCalibration ContrastStudy::calibrate_base(const std::vector<std::string>& keys, int iterations, std::ostream& log) {
   BaseCalibration cal;
   cal.keys = keys;
   for (const auto& k : keys) {
-    cal.start.push_back(scene_number(base_, k));
-    cal.range.push_back(plugin_parameter_range(k, plugin_dirs));
+    cal.start.push_back(simulator_.parameter(base_, k));
+    cal.range.push_back(simulator_.parameter_range(k));
   }
   cal.values = cal.start;
   cal.uncertainty.assign(keys.size(), 0.0);
@@ -539,4 +538,4 @@ ContrastStudy::CurveContrast ContrastStudy::curve_contrast(const Contrast& c, co
   return out;
 }
 
-}  // namespace shard
+}  // namespace shard::measure

@@ -1,4 +1,4 @@
-// Two effects at once in the contrast diagnosis (issue 15 item 6; docs/measurements.md,
+// Two effects at once in the contrast diagnosis (docs/measurements.md,
 // "Contrasts: two effects at once"): keep the closest single effect, add the next, judge what it adds.
 #include <fmt/format.h>
 
@@ -8,11 +8,9 @@
 #include <optional>
 #include <ostream>
 
-#include "contrast_report.hpp"
+#include "shard/measure/contrast_diagnosis.hpp"
 
-namespace shard {
-
-using namespace measure;
+namespace shard::measure {
 
 namespace {
 
@@ -47,7 +45,7 @@ ModelPlan pair_model(const ModelPlan& base, const std::vector<CandidateEffect>& 
 
 }  // namespace
 
-void confirm_contrast_pairs(ContrastStudy& study, const ContrastSets& names, const std::vector<CandidateEffect>& effects,
+void confirm_contrast_pairs(ContrastStudy& study, const std::vector<CandidateEffect>& effects,
                             const std::vector<ContrastStudy::Simulated>& trials, std::vector<SetDiagnosis>& sets,
                             int count, int iterations, ContrastOptions decide, std::ostream& log) {
   const ContrastStudy::Simulated& base = trials.front();
@@ -155,7 +153,7 @@ void confirm_contrast_pairs(ContrastStudy& study, const ContrastSets& names, con
       p.run = std::move(runs[m]);
       judge(p);
       log << fmt::format("diagnose: {}: {} = {:.4g} with {} = {:.4g}: chi^2 {:.1f} (p after {:.2g}), the second's drop p = {:.2g}\n",
-                         names.names[sets[p.set].set], effects[sets[p.set].closest->effect].name,
+                         study.sets().names[sets[p.set].set], effects[sets[p.set].closest->effect].name,
                          effects[sets[p.set].closest->effect].value_at(p.scale_first), effects[p.second].name,
                          effects[p.second].value_at(p.scale_second), p.fit.chi_square, p.fit.p_after, p.fit.p_drop);
     }
@@ -195,4 +193,4 @@ void confirm_contrast_pairs(ContrastStudy& study, const ContrastSets& names, con
   }
 }
 
-}  // namespace shard
+}  // namespace shard::measure

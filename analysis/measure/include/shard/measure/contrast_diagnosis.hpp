@@ -1,0 +1,116 @@
+#pragma once
+// The contrast diagnosis (docs/measurements.md "Contrasts"): which library effect makes each
+// measurement set differ from the reference (or from the consensus of the others), with the base
+// model's form error cancelled in the difference. Steps:
+// 1. the base parameters fitted to the reference on simulated runs; its form error reported;
+// 2. one batch on common packing seeds: the base and each effect at its plausible size, at every
+//    rate the sets were tested at; each set's measured contrast against the effects' simulated
+//    contrasts (linear sizes, Hotelling's test for "no difference");
+// 3. confirmation: the best effects of each set simulated at their fitted sizes (and once more at
+//    the size their simulated contrast asks for); those runs decide;
+// 4. two effects at once: where the closest single effect leaves a remainder beyond noise, it is
+//    kept and the next sought as a pair with it.
+// The statistics are contrast.hpp; the study (sets, base fit, simulated contrasts) is
+// contrast_study.hpp; everything runs through a Simulator.
+#include <functional>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "shard/measure/contrast_study.hpp"
+#include "shard/measure/effect_library.hpp"
+
+namespace shard::measure {
+
+// The library's plausible_from rules resolved from the scene's fitted base run
+// (shard/measure/effect_scaling.hpp); simulates the base once when an effect has a rule (the
+// study's next batch then finds those runs in the cache). The sizes are logged and kept in
+// `described` for the report.
+std::vector<CandidateEffect> scaled_to_base_run(std::vector<CandidateEffect> effects,
+                                                         ContrastStudy& study, std::string& described,
+                                                         std::ostream& log);
+
+// The farthest an effect is sized from neutral where the data choose the size freely (calibrate's
+// search, a pair's second effect), in trial steps (its library size): a size the library's
+// plausible value misjudges by more is a different effect.
+inline constexpr double kFarthestTrialSteps = 8.0;
+
+struct SetDiagnosis {
+  std::size_t set = 0;
+  ContrastStudy::Contrast contrast;
+  ContrastDecision linear;    // from the signatures at the plausible sizes
+  ContrastDecision decision;  // from the confirmation runs (the linear one when none ran)
+  std::vector<double> confirmed_values;  // effect values of decision.fits' runs, by fit name order
+  ContrastStudy::CurveContrast before, after;  // base model; with the named (or best) effect
+  std::string after_effect;
+  double after_value = 0;
+  std::vector<double> after_components;  // the shown effect's simulated contrast, per component
+  // The confirmed run of decision.fits.front() (the closest single effect), which a pair starts from.
+  struct ConfirmedRun {
+    std::size_t effect = 0;  // index into the library
+    double scale = 0;        // in trial sizes from neutral
+    ContrastStudy::Simulated run;
+  };
+  std::optional<ConfirmedRun> closest;
+  // Two effects at once (contrast_pairs.cpp): the best pair simulated, named or not, and its values.
+  std::optional<ContrastPairFit> pair;
+  double pair_values[2] = {0, 0};
+  std::size_t seconds_tried = 0;
+};
+
+// One batch of models; when a run fails (a size the plugin refuses, or an unstable one) the models
+// are run one by one (finished runs are cached) and a failed one is left out (empty) with its
+// reason in the log, named by `label`.
+std::vector<std::optional<ContrastStudy::Simulated>> simulate_each(ContrastStudy& study,
+                                                                   const std::vector<ModelPlan>& models,
+                                                                   const std::function<std::string(std::size_t)>& label,
+                                                                   std::ostream& log);
+
+// Simulates each set's best `count` effects at their linear sizes, then (up to `iterations` in
+// all) at the size the simulated contrast asks for; the decision is taken on those runs.
+void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>& effects,
+                       const ContrastStudy::Simulated& base, std::vector<SetDiagnosis>& sets, int count, int iterations,
+                       ContrastOptions decide, std::ostream& log);
+
+// Sets whose closest single effect takes a significant share of the difference but leaves a
+// remainder beyond noise: that effect kept at its confirmed size, each other library effect added
+// (two-column fit on the simulated contrasts), the best `count` pairs simulated with both effects
+// on, re-sized once by a Gauss-Newton step when `iterations` > 1; "A + B" when the second's drop
+// is significant over the seconds tried and the remainder is noise.
+// `trials`: the library's runs at their plausible sizes (index e + 1; 0 is the base).
+void confirm_contrast_pairs(ContrastStudy& study,
+                            const std::vector<CandidateEffect>& effects,
+                            const std::vector<ContrastStudy::Simulated>& trials, std::vector<SetDiagnosis>& sets,
+                            int count, int iterations, ContrastOptions decide, std::ostream& log);
+
+// What the diagnosis is asked to do beyond the decision rules (`decide`).
+struct ContrastDiagnosisOptions {
+  std::vector<std::string> params;  // base parameters section.key fitted to the reference
+  int base_iterations = 3;          // Gauss-Newton iterations of the base fit
+  int confirm = 2;                  // best effects per set confirmed by simulated runs
+  int confirm_iterations = 2;
+  int pairs = 2;                    // pairs simulated per set (0: single effects only)
+  int pair_iterations = 3;
+  double finer = 0;                 // > 0: the base also fitted at diameters this factor smaller
+  ContrastOptions decide;
+};
+
+// Everything the diagnosis found, for the renderers (markdown, JSON, plot) and for tests.
+struct ContrastDiagnosis {
+  std::vector<CandidateEffect> effects;  // with their plausible sizes resolved on the base run
+  std::string scaled_sizes;              // scaled_to_base_run's lines
+  BaseCalibration calibration;
+  std::optional<BaseCalibration> finer;  // the base fitted at a finer packing, when asked for
+  double finer_factor = 0;
+  double dof = 0;                         // of the pooled specimen covariance
+  std::vector<double> rates;              // every rate simulated
+  std::vector<SetDiagnosis> sets;         // one per set held against the reference
+  RunHealth health;
+};
+
+ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simulator, const ModelPlan& base,
+                                     const std::vector<CandidateEffect>& library,
+                                     const ContrastDiagnosisOptions& options, std::ostream& log);
+
+}  // namespace shard::measure

@@ -1,0 +1,74 @@
+#include "shard/measure/contrast_diagnosis.hpp"
+
+#include <fmt/format.h>
+
+#include <ostream>
+
+#include "shard/measure/significant_digits.hpp"
+
+namespace shard::measure {
+namespace {
+
+// Does resolution explain the form error? The same base fit at a packing of finer diameters.
+BaseCalibration finer_calibration(const ContrastSets& sets, Simulator& simulator, const ModelPlan& base,
+                                  const ContrastDiagnosisOptions& options, std::ostream& log) {
+  ModelPlan fine = base;
+  for (const char* key : {"generator.diameter_min", "generator.diameter_max"})
+    fine.overrides.push_back({key, significant(options.finer * simulator.parameter(base, key), 9)});
+  ContrastStudy fine_study(sets, simulator, fine);
+  log << fmt::format("diagnose: the base fit again with diameters x {:g}\n", options.finer);
+  return fine_study.calibrate_base(options.params, options.params.empty() ? 0 : options.base_iterations, log);
+}
+
+// Each set's contrast against the effects' trials at their plausible sizes: the linear decision.
+SetDiagnosis linear_diagnosis(const ContrastStudy& study, std::size_t set, const std::vector<CandidateEffect>& effects,
+                              const std::vector<ContrastStudy::Simulated>& trials, const ContrastOptions& decide) {
+  SetDiagnosis d;
+  d.set = set;
+  d.contrast = study.contrast(set, trials[0]);
+  std::vector<EffectSignature> signatures;
+  for (std::size_t e = 0; e < effects.size(); ++e)
+    signatures.push_back({effects[e].name, effects[e].plausible - effects[e].neutral,
+                          study.model_contrast(d.contrast, trials[1 + e], trials[0]), effects[e].scale_min(),
+                          effects[e].scale_max(), effects[e].identifiable_at(study.rate_count(d.contrast))});
+  d.linear = decide_contrast(d.contrast.difference, d.contrast.weight, signatures, study.dof(), decide);
+  d.decision = d.linear;
+  d.before = study.curve_contrast(d.contrast, trials[0], trials[0]);
+  return d;
+}
+
+}  // namespace
+
+ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simulator, const ModelPlan& base,
+                                     const std::vector<CandidateEffect>& library,
+                                     const ContrastDiagnosisOptions& options, std::ostream& log) {
+  ContrastDiagnosis out;
+  ContrastStudy study(sets, simulator, base);
+  out.calibration = study.calibrate_base(options.params, options.params.empty() ? 0 : options.base_iterations, log);
+  if (options.finer > 0) {
+    out.finer = finer_calibration(sets, simulator, base, options, log);
+    out.finer_factor = options.finer;
+  }
+  out.effects = scaled_to_base_run(library, study, out.scaled_sizes, log);
+  std::vector<ModelPlan> models{study.base()};
+  for (const auto& e : out.effects) {
+    models.push_back(with_effect(study.base(), e, e.plausible));
+    models.back().probe = true;
+  }
+  out.rates = study.rates();
+  log << fmt::format("diagnose: base and {} effects at {} rate(s)\n", out.effects.size(), out.rates.size());
+  const auto trials = study.simulate(models, log);
+  for (std::size_t s = 0; s < sets.sets.size(); ++s)
+    if (!sets.reference || *sets.reference != s)
+      out.sets.push_back(linear_diagnosis(study, s, out.effects, trials, options.decide));
+  confirm_contrasts(study, out.effects, trials[0], out.sets, options.confirm, options.confirm_iterations,
+                    options.decide, log);
+  if (options.pairs > 0)
+    confirm_contrast_pairs(study, out.effects, trials, out.sets, options.pairs, options.pair_iterations,
+                           options.decide, log);
+  out.dof = study.dof();
+  out.health = simulator.health();
+  return out;
+}
+
+}  // namespace shard::measure

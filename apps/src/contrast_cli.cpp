@@ -1,0 +1,43 @@
+// The options and the effect library the contrast commands (diagnose SETS, calibrate SETS) share.
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <stdexcept>
+
+#include "contrast_report.hpp"
+
+namespace shard {
+
+namespace fs = std::filesystem;
+using namespace measure;
+
+void add_contrast_options(CLI::App* cmd, ContrastOptionsCli& o) {
+  cmd->add_option("sets", o.sets, "measurement folders (the reference among them)")->required();
+  add_simulation_options(cmd, o.model, o.sim);
+  cmd->get_option("--scene")->required();
+  cmd->add_option("--reference", o.reference,
+                  "the set the others are held against (folder or its name); default: the consensus of the others");
+  cmd->add_option("--param", o.diagnosis.params,
+                  "base parameter section.key fitted to the reference first (its value is read from the scene)");
+  cmd->add_option("--base-iterations", o.diagnosis.base_iterations, "Gauss-Newton iterations of the base fit")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--effects", o.library, "candidate-effect library (default: effects.toml next to the scene)");
+  cmd->add_option("--only", o.only, "try only these effects of the library (comma-separated)")->delimiter(',');
+  cmd->add_option("--form-tolerance", o.diagnosis.decide.form_tolerance,
+                  "share of an effect's simulated contrast by which the lab's may differ in form (0: exact shape)")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--confirm-iterations", o.diagnosis.confirm_iterations,
+                  "confirmation passes: the first at the linear size, later ones at the size the runs ask for")
+      ->check(CLI::PositiveNumber);
+}
+
+std::vector<CandidateEffect> contrast_effects(const ContrastOptionsCli& o) {
+  const fs::path library = o.library.empty() ? o.model.scene.parent_path() / "effects.toml" : o.library;
+  if (!fs::exists(library))
+    throw std::runtime_error(fmt::format("{}: the effect library (candidate effects to try) does not exist. Fix: pass "
+                                         "--effects FILE, e.g. --effects scenes/measurements/effects.toml",
+                                         library.string()));
+  return select_effects(read_effect_library(library), o.only);
+}
+
+}  // namespace shard

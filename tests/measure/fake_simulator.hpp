@@ -1,0 +1,131 @@
+#pragma once
+// A simulator of analytic four-point bending curves for the measurement science's decision paths:
+// each model plan's overrides set the parameters of a closed-form curve, so a diagnosis runs in
+// milliseconds and its verdicts can be asserted against a known truth. The curve rises as
+// F = F_p x (1 + n (1 - x)), x = w / w_p, to its peak and falls linearly to zero over d w_p:
+//   stiffness    k   = 1e-3 E (1 + 0.8 (mu - 0.3))              [N/m]   E: bond.youngs_modulus
+//   peak force   F_p = 2.5e-4 S (1 + 0.5 (mu - 0.3)) (1 + 0.15 (c - 1))  S: bond.critical_stress
+//   nonlinearity n   = 0.08 + 0.1 s,  ductility d = 0.15 + 0.4 s         s: fake.softening
+// mu: support.friction (reference 0.3; both ways), c: fake.compression_ratio, and the library's
+// machine compliance through recorded_as_tested. fake.softening_twin acts as fake.softening (a
+// rival with the same signature); fake.toe (outside any library) adds slack before the rise.
+// Each packing seed scatters k and F_p by ~1 %, as a random packing does.
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "shard/measure/simulator.hpp"
+
+namespace shard::measure::fake {
+
+inline const std::map<std::string, double>& defaults() {
+  static const std::map<std::string, double> d{{"bond.youngs_modulus", 1e7}, {"bond.critical_stress", 2e5},
+                                               {"fake.softening", 0},         {"fake.softening_twin", 0},
+                                               {"support.friction", 0.3},     {"fake.compression_ratio", 1},
+                                               {"fake.toe", 0}};
+  return d;
+}
+
+// A standard normal draw from a hash of (seed, stream): the same for every model on one seed.
+inline double normal_draw(std::uint64_t seed, std::uint64_t stream) {
+  auto uniform = [](std::uint64_t x) {
+    x += 0x9E3779B97F4A7C15ull;
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+    x ^= x >> 31;
+    return (static_cast<double>(x >> 11) + 0.5) * 0x1.0p-53;
+  };
+  const double u1 = uniform(seed * 1000003 + 2 * stream), u2 = uniform(seed * 1000003 + 2 * stream + 1);
+  return std::sqrt(-2 * std::log(u1)) * std::cos(2 * M_PI * u2);
+}
+
+struct Parameters {
+  std::map<std::string, double> values = defaults();
+  double at(const std::string& key) const { return values.at(key); }
+};
+
+inline Parameters parameters_of(const ModelPlan& model) {
+  Parameters p;
+  for (const auto& o : model.overrides) {
+    if (!p.values.count(o.key)) throw std::invalid_argument("fake simulator: unknown parameter " + o.key);
+    if (const auto* d = std::get_if<double>(&o.value)) p.values[o.key] = *d;
+    else if (const auto* i = std::get_if<std::int64_t>(&o.value)) p.values[o.key] = static_cast<double>(*i);
+  }
+  return p;
+}
+
+// One curve: `scatter` is the relative sd of k and F_p over seeds (specimens or packings).
+inline Curve curve_of(const Parameters& p, std::uint64_t seed, double scatter, double rate) {
+  const double mu = p.at("support.friction"), s = p.at("fake.softening") + p.at("fake.softening_twin");
+  const double k = 1e-3 * p.at("bond.youngs_modulus") * (1 + 0.8 * (mu - 0.3)) * std::exp(scatter * normal_draw(seed, 1));
+  const double f_p = 2.5e-4 * p.at("bond.critical_stress") * (1 + 0.5 * (mu - 0.3)) *
+                     (1 + 0.15 * (p.at("fake.compression_ratio") - 1)) * std::exp(scatter * normal_draw(seed, 2));
+  const double n = 0.08 + 0.1 * s, d = 0.15 + 0.4 * s, toe = p.at("fake.toe");
+  const double w_p = f_p * (1 + n) / k;
+  Curve c;
+  const double w_end = toe + w_p * (1.3 + d);
+  for (int i = 0; i <= 400; ++i) {
+    const double w = w_end * i / 400.0, x = (w - toe) / w_p;
+    double f = 0;
+    if (x > 0 && x <= 1) f = f_p * x * (1 + n * (1 - x));
+    else if (x > 1) f = std::max(0.0, f_p * (1 - (x - 1) / d));
+    c.displacement.push_back(w);
+    c.force.push_back(f);
+    c.time.push_back(w / rate);
+    c.u_force.push_back(0.05);
+    c.u_displacement.push_back(1e-6);
+  }
+  return c;
+}
+
+inline Specimen specimen_of(const Parameters& p, std::uint64_t seed, double scatter, double rate) {
+  Specimen s;
+  s.id = "seed" + std::to_string(seed);
+  s.length = 0.18, s.width = 0.03, s.height = 0.035, s.span = 0.17, s.pin_distance = 0.08;
+  s.loading_rate = rate;
+  s.curve = curve_of(p, seed, scatter, rate);
+  return s;
+}
+
+class FakeSimulator final : public Simulator {
+ public:
+  explicit FakeSimulator(int seeds = 3) : seeds_(seeds) {}
+
+  std::vector<std::vector<Specimen>> simulate(const std::vector<ModelPlan>& models, std::ostream&) override {
+    std::vector<std::vector<Specimen>> out;
+    for (const auto& m : models) {
+      const Parameters p = parameters_of(m);
+      std::vector<Specimen> replicates;
+      for (int seed = 1; seed <= seeds_; ++seed)
+        replicates.push_back(recorded_as_tested(specimen_of(p, static_cast<std::uint64_t>(seed), 0.01, m.loading_rate),
+                                                m, test_, "fake run"));
+      out.push_back(std::move(replicates));
+      ++runs_;
+    }
+    return out;
+  }
+  void check_inputs(const ModelPlan&, const std::vector<Specimen>&, const Metadata& metadata) override {
+    test_ = metadata.test;
+  }
+  double parameter(const ModelPlan& model, const std::string& key) const override {
+    return parameters_of(model).at(key);
+  }
+  ParameterRange parameter_range(const std::string& key) const override {
+    if (key == "support.friction") return {0, 2};
+    return {0, std::numeric_limits<double>::infinity()};
+  }
+  RunHealth health() const override { return {}; }
+  int models_simulated() const { return runs_; }
+
+ private:
+  int seeds_;
+  int runs_ = 0;
+  TestConditions test_;
+};
+
+}  // namespace shard::measure::fake
