@@ -49,9 +49,6 @@ std::string unidentifiable_text(const ContrastReport& r, const std::string& name
                      name, e ? e->rates_needed : 2, e && !e->separated_by.empty() ? e->separated_by : "A second rate");
 }
 
-// The same rule that made the verdict (confirm_contrast_pairs).
-bool names_a_pair(const SetDiagnosis& d) { return d.pair && pair_is_named(*d.pair, d.seconds_tried); }
-
 // What the best pair did: named (the verdict) or tried and left.
 std::string pair_text(const ContrastReport& r, const SetDiagnosis& d) {
   const ContrastPairFit& p = *d.pair;

@@ -173,4 +173,27 @@ TEST_CASE("calibrating the named effect cuts the contrast NRMSE") {
   CHECK(c.after.nrmse < 0.5 * c.before.nrmse);
 }
 
+TEST_CASE("a name the curve does not bear out is withheld") {
+  auto named = [](double rising_nrmse, double drop) {
+    SetDiagnosis d;
+    d.decision.verdict = "bond_softening";
+    d.decision.chi_square = 100;
+    d.decision.fits.push_back({});
+    d.decision.fits.back().name = "bond_softening";
+    d.decision.fits.back().drop = drop;
+    d.decision.rivals = {"weibull_strength"};
+    d.after.rising_nrmse = rising_nrmse;
+    d.after.rising_floor = 0.04;
+    return d;
+  };
+  std::vector<SetDiagnosis> sets{named(0.059, 90), named(0.061, 90), named(0.02, 40)};
+  require_curve_agreement(sets, ContrastOptions{});
+  CHECK(sets[0].decision.verdict == "bond_softening");  // within 1.5 x the floor, 90 % of T^2
+  CHECK(sets[0].share == doctest::Approx(0.9));
+  CHECK(sets[1].decision.verdict == kUnexplainedDifference);  // the curve misses
+  CHECK(sets[1].withheld == "bond_softening");
+  CHECK(sets[1].decision.rivals.empty());
+  CHECK(sets[2].decision.verdict == kUnexplainedDifference);  // 40 % of T^2 is not most of it
+}
+
 }  // namespace shard::measure

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <ostream>
 
 #include "shard/measure/significant_digits.hpp"
@@ -37,7 +38,32 @@ SetDiagnosis linear_diagnosis(const ContrastStudy& study, std::size_t set, const
   return d;
 }
 
+double share_of(const SetDiagnosis& d, const ContrastOptions& options) {
+  const double t2 = d.decision.chi_square;
+  if (!(t2 > 0)) return 0;
+  if (d.pair && (pair_is_named(*d.pair, d.seconds_tried, options) || d.decision.verdict == kUnexplainedDifference))
+    return std::max(0.0, (t2 - d.pair->chi_square) / t2);
+  return d.decision.fits.empty() ? 0 : std::max(0.0, d.decision.fits.front().drop / t2);
+}
+
 }  // namespace
+
+bool names_a_pair(const SetDiagnosis& d, const ContrastOptions& options) {
+  return d.pair && pair_is_named(*d.pair, d.seconds_tried, options) && d.withheld.empty();
+}
+
+void require_curve_agreement(std::vector<SetDiagnosis>& sets, const ContrastOptions& options) {
+  for (auto& d : sets) {
+    d.share = share_of(d, options);
+    const std::string& verdict = d.decision.verdict;
+    if (verdict == kNoDifference || verdict == kUnexplainedDifference) continue;
+    const bool curve_agrees = d.after.rising_nrmse <= options.curve_floor_factor * d.after.rising_floor;
+    if (curve_agrees && d.share >= options.min_share) continue;
+    d.withheld = verdict;
+    d.decision.verdict = kUnexplainedDifference;
+    d.decision.rivals.clear();
+  }
+}
 
 ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simulator, const ModelPlan& base,
                                      const std::vector<CandidateEffect>& library,
@@ -66,6 +92,7 @@ ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simula
   if (options.pairs > 0)
     confirm_contrast_pairs(study, out.effects, trials, out.sets, options.pairs, options.pair_iterations,
                            options.decide, log);
+  require_curve_agreement(out.sets, options.decide);
   out.dof = study.dof();
   out.health = simulator.health();
   return out;

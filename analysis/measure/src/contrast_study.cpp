@@ -102,6 +102,27 @@ std::vector<double> median_of(const std::vector<std::vector<double>>& rows) {
   return out;
 }
 
+double mean_peak_displacement(const std::vector<Curve>& curves) {
+  double sum = 0;
+  for (const auto& c : curves) sum += c.displacement[peak_index(c)];
+  return curves.empty() ? 0 : sum / static_cast<double>(curves.size());
+}
+
+// The RMS differences and floors of a curve contrast, over every point and over the rising branch.
+void summarise(ContrastStudy::CurveContrast& c) {
+  double sum = 0, floor = 0, rising_sum = 0, rising_floor = 0;
+  std::size_t rising = 0;
+  for (std::size_t i = 0; i < c.xi.size(); ++i) {
+    const double d2 = std::pow(c.measured[i] - c.simulated[i], 2);
+    const double u2 = std::pow(c.u_measured[i], 2) + std::pow(c.u_simulated[i], 2);
+    sum += d2, floor += u2;
+    if (c.rising[i]) rising_sum += d2, rising_floor += u2, ++rising;
+  }
+  auto rms = [](double s, std::size_t n) { return n == 0 ? 0.0 : std::sqrt(s / static_cast<double>(n)); };
+  c.nrmse = rms(sum, c.xi.size()), c.floor = rms(floor, c.xi.size());
+  c.rising_nrmse = rms(rising_sum, rising), c.rising_floor = rms(rising_floor, rising);
+}
+
 }  // namespace
 
 ContrastSets read_contrast_sets(const std::vector<fs::path>& folders, const std::string& reference) {
@@ -474,7 +495,6 @@ ContrastStudy::CurveContrast ContrastStudy::curve_contrast(const Contrast& c, co
                                                            const Simulated& base) const {
   CurveContrast out;
   const ContrastScale ms = measured_scale_, ss = simulated_scale(base);
-  double sum = 0;
   for (std::size_t gi : c.groups) {
     const ContrastGroup& g = groups_[gi];
     auto curves_of = [&](std::size_t set, double rate) {
@@ -505,8 +525,11 @@ ContrastStudy::CurveContrast ContrastStudy::curve_contrast(const Contrast& c, co
       sd = sample_sd(f);
       return measure::mean(f);
     };
+    const double xi_rising = std::min(mean_peak_displacement(own) / ms.w_ref,
+                                      mean_peak_displacement(model.curves[rate_index(g.rate)]) / ss.w_ref);
     for (std::size_t k = 0; k < kCurvePoints; ++k) {
       const double xi = xi_end * static_cast<double>(k) / static_cast<double>(kCurvePoints - 1);
+      out.rising.push_back(xi <= xi_rising);
       double sd_own = 0, sd_ref = 0;
       const double f_own = mean_sd(own, xi * ms.w_ref, sd_own);
       double f_ref = 0;
@@ -524,17 +547,19 @@ ContrastStudy::CurveContrast ContrastStudy::curve_contrast(const Contrast& c, co
       const double n_own = static_cast<double>(own.size()), n_ref = static_cast<double>(refs.front().size());
       const auto& sim_own = model.curves[rate_index(g.rate)];
       const auto& sim_ref = base.curves[rate_index(g.reference_rate)];
-      double s_own = 0, s_ref = 0;
-      for (const auto& cv : sim_own) s_own += force_at(cv, xi * ss.w_ref) / static_cast<double>(sim_own.size());
-      for (const auto& cv : sim_ref) s_ref += force_at(cv, xi * ss.w_ref) / static_cast<double>(sim_ref.size());
+      // The model's contrast seed by seed (common random numbers pair model and base runs).
+      std::vector<double> per_seed;
+      for (std::size_t seed = 0; seed < std::min(sim_own.size(), sim_ref.size()); ++seed)
+        per_seed.push_back((force_at(sim_own[seed], xi * ss.w_ref) - force_at(sim_ref[seed], xi * ss.w_ref)) / ss.f_ref);
       out.xi.push_back(xi);
       out.measured.push_back((f_own - f_ref) / ms.f_ref);
       out.u_measured.push_back(std::sqrt(sd_own * sd_own / n_own + sd_ref * sd_ref / n_ref) / ms.f_ref);
-      out.simulated.push_back((s_own - s_ref) / ss.f_ref);
-      sum += std::pow(out.measured.back() - out.simulated.back(), 2);
+      out.simulated.push_back(measure::mean(per_seed));
+      out.u_simulated.push_back(per_seed.size() > 1 ? sample_sd(per_seed) / std::sqrt(static_cast<double>(per_seed.size()))
+                                                    : 0.0);
     }
   }
-  out.nrmse = out.xi.empty() ? 0 : std::sqrt(sum / static_cast<double>(out.xi.size()));
+  summarise(out);
   return out;
 }
 

@@ -88,6 +88,12 @@ struct ContrastOptions {
   // noise floor of 4 % contrast NRMSE, it called compliance, softening and Weibull sets
   // "unexplained" although their effect removed 93-98 % of T^2 (docs/measurements.md).
   double form_tolerance = 0.2;
+  // A name must also reproduce the contrast as a curve, not only its summary components: the
+  // named model's simulated contrast curve within curve_floor_factor times the curve's noise
+  // floor (ContrastStudy::CurveContrast::floor), and at least min_share of T^2 explained.
+  // Otherwise the set reads "unexplained difference" with its closest effect and share.
+  double curve_floor_factor = 1.5;
+  double min_share = 0.5;
   // Effects tried for the Bonferroni corrections (0: those passed). A confirmation that decides
   // on the simulated refits of the top few still pays for every effect the ranking looked at.
   std::size_t tried = 0;

@@ -57,7 +57,19 @@ struct SetDiagnosis {
   std::optional<ContrastPairFit> pair;
   double pair_values[2] = {0, 0};
   std::size_t seconds_tried = 0;
+  // The share of T^2 the verdict explains (for an unexplained difference: the closest effect's or
+  // pair's), and the name the statistics gave but the curve did not bear out (empty otherwise).
+  double share = 0;
+  std::string withheld;
 };
+
+// The set is named as a pair of effects (the pair rule named it and the curve bore it out).
+bool names_a_pair(const SetDiagnosis& d, const ContrastOptions& options = {});
+
+// The last word on a name (ContrastOptions::curve_floor_factor, min_share): a set named by the
+// component statistics whose named model does not reproduce the contrast curve to within its
+// noise floor, or explains less than min_share of T^2, becomes an unexplained difference.
+void require_curve_agreement(std::vector<SetDiagnosis>& sets, const ContrastOptions& options);
 
 // One batch of models; when a run fails (a size the plugin refuses, or an unstable one) the models
 // are run one by one (finished runs are cached) and a failed one is left out (empty) with its

@@ -91,9 +91,18 @@ class ContrastStudy {
   // The contrast as curves: measured (set mean - reference mean) and simulated (model at the
   // set's rate - base at the reference's rate) forces in units of the peak force, against
   // displacement in units of the peak displacement; `nrmse` is their RMS difference.
+  // `floor` is the NRMSE the two would show if the model's contrast were the true one: the RMS
+  // of the measured contrast's standard uncertainty and of the simulated contrast's scatter over
+  // the packing seeds (u_simulated, paired seed by seed).
+  // The rising branch (up to the earlier of the set's and the model's mean peak) is where an
+  // effect's form shows: after the peak a brittle curve drops in a step whose position moves with
+  // the effect's fitted size, and the pointwise difference there measures that position (judged
+  // by the components), not the form. rising_nrmse and rising_floor are taken over it.
   struct CurveContrast {
-    std::vector<double> xi, measured, u_measured, simulated;
-    double nrmse = 0;
+    std::vector<double> xi, measured, u_measured, simulated, u_simulated;
+    std::vector<char> rising;  // the point lies on the rising branch
+    double nrmse = 0, floor = 0;
+    double rising_nrmse = 0, rising_floor = 0;
   };
   CurveContrast curve_contrast(const Contrast& c, const Simulated& model, const Simulated& base) const;
 
