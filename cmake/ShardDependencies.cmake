@@ -3,6 +3,8 @@ find_package(Eigen3 3.4 REQUIRED NO_MODULE)
 find_package(fmt REQUIRED)
 find_package(tomlplusplus REQUIRED)
 find_package(CLI11 REQUIRED)
+# Every JSON document is written and read through libshard_io (io/include/shard/io/json.hpp).
+find_package(nlohmann_json 3.10 REQUIRED)
 # HDF5 is named explicitly, whatever Debian's hdf5.pc alternative points at (installing
 # libhdf5-openmpi-dev switches it): the serial build takes the serial library through h5cc, the
 # MPI build the OpenMPI one through h5pcc.openmpi.
