@@ -6,6 +6,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "shard/io/json.hpp"
 #include "shard/measure/report.hpp"
 
 namespace shard {
@@ -69,6 +70,25 @@ std::string pair_text(const ContrastReport& r, const SetDiagnosis& d) {
                      ContrastOptions{}.drop_p / static_cast<double>(std::max<std::size_t>(1, d.seconds_tried)));
 }
 
+// A name the component statistics gave and the curve did not bear out: a lead, never a name.
+std::string withheld_text(const SetDiagnosis& d, const std::string& name) {
+  const ContrastDecision& c = d.decision;
+  const bool curve_misses = d.after.rising_nrmse > ContrastOptions{}.curve_floor_factor * d.after.rising_floor;
+  std::string why = curve_misses
+                        ? fmt::format("its simulated contrast curve misses the measured one before the peak (NRMSE "
+                                      "{:.1f} % against a noise floor of {:.1f} %; a name needs at most {:g}x the floor)",
+                                      100 * d.after.rising_nrmse, 100 * d.after.rising_floor,
+                                      ContrastOptions{}.curve_floor_factor)
+                        : fmt::format("it explains {:.0f} % of the difference (a name needs {:.0f} %)", 100 * d.share,
+                                      100 * ContrastOptions{}.min_share);
+  return fmt::format("{} differs from the reference (T^2 = {:.1f}, p = {:.2g}): unexplained difference. The closest, "
+                     "{}, explains {:.0f} % of T^2 and passes the component tests, but {}: the lab's difference is "
+                     "that physics in another form, or another physics. `shard calibrate` this set `--with {}` and "
+                     "look at what remains before adding it to the model.",
+                     name, c.chi_square, c.p_value, d.withheld, 100 * d.share, why,
+                     d.withheld.substr(0, d.withheld.find(" + ")));
+}
+
 std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
   const ContrastDecision& c = d.decision;
   const std::string& name = r.sets.names[d.set];
@@ -88,6 +108,8 @@ std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
     return fmt::format("{} does not differ from the reference beyond the specimens' scatter (Hotelling T^2 = {:.1f}, "
                        "p = {:.2g}); no library effect's contrast is significant.",
                        name, c.chi_square, c.p_value);
+  if (c.verdict == kUnexplainedDifference && !d.withheld.empty())
+    return withheld_text(d, name);
   if (c.verdict == kUnexplainedDifference) {
     std::string s = fmt::format("{} differs from the reference (T^2 = {:.1f}, p = {:.2g}), and no library effect "
                                 "explains the difference.",
@@ -195,8 +217,8 @@ std::string contrast_markdown(const ContrastReport& r) {
         md += fmt::format("| {} | {:+.2f} | {:+.1f} % |\n", regime_name(g.regime), g.mean_residual, 100 * g.relative_error);
   }
   md += "\nThis form error is common to sets tested with one fixture; it cancels in the contrasts below.\n\n";
-  md += "## Verdicts\n\n| set | T^2 | p (no difference) | verdict | value | contrast NRMSE: base -> with effect |\n"
-        "|---|---|---|---|---|---|\n";
+  md += "## Verdicts\n\n| set | T^2 | p (no difference) | verdict | value | share of T^2 | contrast NRMSE: base -> with "
+        "effect | before the peak: with effect / floor |\n|---|---|---|---|---|---|---|---|\n";
   for (const auto& d : r.result.sets) {
     const ContrastDecision& c = d.decision;
     const bool named = c.verdict != kNoDifference && c.verdict != kUnexplainedDifference;
@@ -206,13 +228,18 @@ std::string contrast_markdown(const ContrastReport& r) {
       value = fmt::format("{:.4g}; {:.4g}", d.pair_values[0], d.pair_values[1]);
     else if (named)
       value = fmt::format("{:.4g} +- {:.2g} {}", fitted_value(r, d, 0), fitted_uncertainty(r, d, 0), e ? e->unit : "");
-    md += fmt::format("| {} | {:.1f} | {:.2g} | {} | {} | {:.2f} % -> {} |\n", r.sets.names[d.set], c.chi_square, c.p_value,
-                      c.verdict, value,
-                      100 * d.before.nrmse,
-                      d.after_effect.empty() ? "-" : fmt::format("{:.2f} % ({})", 100 * d.after.nrmse, d.after_effect));
+    const std::string verdict = d.withheld.empty() ? c.verdict : fmt::format("{} (closest: {})", c.verdict, d.withheld);
+    md += fmt::format("| {} | {:.1f} | {:.2g} | {} | {} | {:.0f} % | {:.2f} % -> {} | {} |\n", r.sets.names[d.set],
+                      c.chi_square, c.p_value, verdict, value, 100 * d.share, 100 * d.before.nrmse,
+                      d.after_effect.empty() ? "-" : fmt::format("{:.2f} % ({})", 100 * d.after.nrmse, d.after_effect),
+                      d.after_effect.empty()
+                          ? "-"
+                          : fmt::format("{:.2f} % / {:.2f} %", 100 * d.after.rising_nrmse, 100 * d.after.rising_floor));
   }
   md += "\nContrast NRMSE: RMS difference between the measured contrast curve (set mean - reference mean) and the "
-        "model's, over the displacement range both cover, in units of the reference's peak force.\n";
+        "model's, over the displacement range both cover, in units of the reference's peak force. Before the peak: the "
+        "same over the rising branch, against its noise floor (the measured contrast's standard uncertainty and the "
+        "simulated contrast's packing scatter); a name needs at most 1.5x the floor there and half of T^2 explained.\n";
   for (const auto& d : r.result.sets) {
     md += fmt::format("\n## {}\n\n{}\n\n", r.sets.names[d.set], verdict_text(r, d));
     const bool shown = !d.after_components.empty();
@@ -250,51 +277,76 @@ std::string contrast_markdown(const ContrastReport& r) {
   return md;
 }
 
-std::string contrast_json(const ContrastReport& r) {
-  std::string j = fmt::format("{{\"reference\": \"{}\", \"dof\": {:.9g}, \"form_error_nrmse\": {:.9g}, \"base\": {{",
-                              r.sets.reference ? json_escape(r.sets.names[*r.sets.reference]) : "", r.result.dof,
-                              r.result.calibration.form_error.nrmse);
-  for (std::size_t k = 0; k < r.result.calibration.keys.size(); ++k)
-    j += fmt::format("{}\"{}\": {:.9g}", k ? ", " : "", json_escape(r.result.calibration.keys[k]), r.result.calibration.values[k]);
-  j += "}, \"base_uncertainty\": {";
-  for (std::size_t k = 0; k < r.result.calibration.keys.size(); ++k)
-    j += fmt::format("{}\"{}\": {}", k ? ", " : "", json_escape(r.result.calibration.keys[k]),
-                     std::isfinite(r.result.calibration.uncertainty[k]) ? fmt::format("{:.9g}", r.result.calibration.uncertainty[k])
-                                                                 : std::string("null"));
-  j += "}, \"base_at_range_bound\": [";
-  std::string sep;
-  for (std::size_t k = 0; k < r.result.calibration.keys.size(); ++k)
-    if (r.result.calibration.at_range_bound[k]) j += fmt::format("{}\"{}\"", sep, json_escape(r.result.calibration.keys[k])), sep = ", ";
-  j += fmt::format("], \"base_form_targets\": {}", r.result.calibration.form_targets);
-  j += fmt::format(", \"dynamic_warning\": \"{}\", \"sets\": [", json_escape(r.result.health.dynamic_warning));
-  for (std::size_t s = 0; s < r.result.sets.size(); ++s) {
-    const SetDiagnosis& d = r.result.sets[s];
-    const ContrastDecision& c = d.decision;
-    j += fmt::format("{}{{\"name\": \"{}\", \"t_square\": {:.9g}, \"p_value\": {:.9g}, \"verdict\": \"{}\", "
-                     "\"nrmse_base\": {:.9g}, \"nrmse_effect\": {:.9g}, \"effect_shown\": \"{}\", \"fits\": [",
-                     s ? ", " : "", json_escape(r.sets.names[d.set]), c.chi_square, c.p_value, json_escape(c.verdict),
-                     d.before.nrmse, d.after_effect.empty() ? d.before.nrmse : d.after.nrmse, json_escape(d.after_effect));
-    for (std::size_t k = 0; k < c.fits.size(); ++k) {
-      const ContrastFit& f = c.fits[k];
-      j += fmt::format("{}{{\"name\": \"{}\", \"value\": {:.9g}, \"u_value\": {:.9g}, \"chi_square\": {:.9g}, "
-                       "\"p_drop\": {:.9g}, \"p_after\": {:.9g}, \"at_bound\": {}, \"identifiable\": {}}}",
-                       k ? ", " : "", json_escape(f.name), fitted_value(r, d, k), fitted_uncertainty(r, d, k), f.chi_square,
-                       f.p_drop, f.p_after, f.at_bound, f.identifiable);
-    }
-    j += "], \"pair\": ";
-    if (d.pair)
-      j += fmt::format("{{\"first\": \"{}\", \"second\": \"{}\", \"values\": [{:.9g}, {:.9g}], \"chi_square\": {:.9g}, "
-                       "\"p_drop\": {:.9g}, \"p_after\": {:.9g}, \"seconds_tried\": {}, \"at_bound\": {}, \"named\": {}}}",
-                       json_escape(d.pair->first), json_escape(d.pair->second), d.pair_values[0], d.pair_values[1],
-                       d.pair->chi_square, d.pair->p_drop, d.pair->p_after, d.seconds_tried, d.pair->at_bound,
-                       names_a_pair(d));
-    else
-      j += "null";
-    j += fmt::format(", \"unidentifiable\": \"{}\", \"rivals\": [", json_escape(c.unidentifiable));
-    for (std::size_t k = 0; k < c.rivals.size(); ++k) j += fmt::format("{}\"{}\"", k ? ", " : "", json_escape(c.rivals[k]));
-    j += "]}";
+namespace {
+
+// diagnose.json's format: raise it when a key changes meaning or disappears.
+constexpr int kDiagnoseFormatVersion = 2;
+
+io::Json base_json(const BaseCalibration& c) {
+  io::Json values = io::Json::object(), uncertainty = io::Json::object(), at_bound = io::Json::array();
+  for (std::size_t k = 0; k < c.keys.size(); ++k) {
+    values[c.keys[k]] = c.values[k];
+    uncertainty[c.keys[k]] = c.uncertainty[k];
+    if (c.at_range_bound[k]) at_bound.push_back(c.keys[k]);
   }
-  return j + "]}\n";
+  return {{"base", values}, {"base_uncertainty", uncertainty}, {"base_at_range_bound", at_bound},
+          {"base_form_targets", c.form_targets}};
+}
+
+io::Json fits_json(const ContrastReport& r, const SetDiagnosis& d) {
+  io::Json fits = io::Json::array();
+  for (std::size_t k = 0; k < d.decision.fits.size(); ++k) {
+    const ContrastFit& f = d.decision.fits[k];
+    fits.push_back({{"name", f.name}, {"value", fitted_value(r, d, k)}, {"u_value", fitted_uncertainty(r, d, k)},
+                    {"chi_square", f.chi_square}, {"p_drop", f.p_drop}, {"p_after", f.p_after},
+                    {"at_bound", f.at_bound}, {"identifiable", f.identifiable}});
+  }
+  return fits;
+}
+
+io::Json pair_json(const SetDiagnosis& d) {
+  if (!d.pair) return nullptr;
+  return {{"first", d.pair->first},          {"second", d.pair->second},
+          {"values", {d.pair_values[0], d.pair_values[1]}},
+          {"chi_square", d.pair->chi_square}, {"p_drop", d.pair->p_drop},
+          {"p_after", d.pair->p_after},       {"seconds_tried", d.seconds_tried},
+          {"at_bound", d.pair->at_bound},     {"named", names_a_pair(d)}};
+}
+
+io::Json set_json(const ContrastReport& r, const SetDiagnosis& d) {
+  const ContrastDecision& c = d.decision;
+  const bool shown = !d.after_effect.empty();
+  return {{"name", r.sets.names[d.set]},
+          {"t_square", c.chi_square},
+          {"p_value", c.p_value},
+          {"verdict", c.verdict},
+          {"withheld", d.withheld},
+          {"share_explained", d.share},
+          {"nrmse_base", d.before.nrmse},
+          {"nrmse_effect", shown ? d.after.nrmse : d.before.nrmse},
+          {"nrmse_floor", shown ? d.after.floor : d.before.floor},
+          {"rising_nrmse_base", d.before.rising_nrmse},
+          {"rising_nrmse_effect", shown ? d.after.rising_nrmse : d.before.rising_nrmse},
+          {"rising_nrmse_floor", shown ? d.after.rising_floor : d.before.rising_floor},
+          {"effect_shown", d.after_effect},
+          {"fits", fits_json(r, d)},
+          {"pair", pair_json(d)},
+          {"unidentifiable", c.unidentifiable},
+          {"rivals", c.rivals}};
+}
+
+}  // namespace
+
+io::Json contrast_json(const ContrastReport& r) {
+  io::Json j = io::json_document(kDiagnoseFormatVersion);
+  j["reference"] = r.sets.reference ? r.sets.names[*r.sets.reference] : "";
+  j["dof"] = r.result.dof;
+  j["form_error_nrmse"] = r.result.calibration.form_error.nrmse;
+  j.update(base_json(r.result.calibration));
+  j["dynamic_warning"] = r.result.health.dynamic_warning;
+  j["sets"] = io::Json::array();
+  for (const auto& d : r.result.sets) j["sets"].push_back(set_json(r, d));
+  return j;
 }
 
 void plot_contrasts(const ContrastReport& r, const fs::path& image) {

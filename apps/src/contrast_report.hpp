@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "measure_plan.hpp"
+#include "shard/io/json.hpp"
 #include "shard/measure/contrast_diagnosis.hpp"
 #include "shard/measure/effect_library.hpp"
 
@@ -36,7 +37,7 @@ struct ContrastReport {
 };
 
 std::string contrast_markdown(const ContrastReport& r);
-std::string contrast_json(const ContrastReport& r);
+io::Json contrast_json(const ContrastReport& r);
 // One panel per set: measured contrast with its +-2u band, the base model's and the named
 // effect's simulated contrasts (gnuplot).
 void plot_contrasts(const ContrastReport& r, const std::filesystem::path& image);

@@ -51,7 +51,7 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
     const ContrastReport report{sets, result};
     const std::string md = contrast_markdown(report);
     std::ofstream(o->out / "diagnose.md") << md;
-    std::ofstream(o->out / "diagnose.json") << contrast_json(report);
+    io::write_json(o->out / "diagnose.json", contrast_json(report));
     try {
       plot_contrasts(report, o->out / "contrasts.png");
     } catch (const std::exception& e) {

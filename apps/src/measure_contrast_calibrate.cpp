@@ -14,6 +14,7 @@
 #include "contrast_report.hpp"
 #include "shard/driver/output_folder.hpp"
 #include "measure_commands.hpp"
+#include "shard/io/json.hpp"
 #include "shard/measure/contrast_calibration.hpp"
 #include "shard/app/commands.hpp"
 #include "shard/measure/report.hpp"
@@ -48,18 +49,26 @@ std::string calibration_markdown(const ContrastSets& sets, const ContrastCalibra
   return md;
 }
 
-std::string calibration_json(const ContrastSets& sets, const ContrastCalibration& c) {
-  std::string names, values_json;
-  for (std::size_t k = 0; k < c.effects.size(); ++k) {
-    names += (k ? " + " : "") + c.effects[k].name;
-    values_json += fmt::format("{}{:.9g}", k ? ", " : "", c.values[k]);
-  }
-  return fmt::format(
-      "{{\"set\": \"{}\", \"reference\": \"{}\", \"effect\": \"{}\", \"value\": {:.9g}, \"values\": [{}], "
-      "\"at_bound\": {}, \"evaluations\": {}, \"chi_square_before\": {:.9g}, \"chi_square_after\": {:.9g}, "
-      "\"nrmse_before\": {:.9g}, \"nrmse_after\": {:.9g}}}\n",
-      json_escape(sets.names[c.target]), json_escape(sets.names[*sets.reference]), json_escape(names), c.values[0],
-      values_json, c.at_bound, c.evaluations, c.chi_square_before, c.chi_square_after, c.before.nrmse, c.after.nrmse);
+// calibrate.json's format (contrast form): raise it when a key changes meaning or disappears.
+constexpr int kCalibrationFormatVersion = 2;
+
+io::Json calibration_json(const ContrastSets& sets, const ContrastCalibration& c) {
+  std::string names;
+  for (const auto& e : c.effects) names += (names.empty() ? "" : " + ") + e.name;
+  io::Json j = io::json_document(kCalibrationFormatVersion);
+  j["set"] = sets.names[c.target];
+  j["reference"] = sets.names[*sets.reference];
+  j["effect"] = names;
+  j["value"] = c.values.front();
+  j["values"] = c.values;
+  j["at_bound"] = c.at_bound;
+  j["evaluations"] = c.evaluations;
+  j["chi_square_before"] = c.chi_square_before;
+  j["chi_square_after"] = c.chi_square_after;
+  j["nrmse_before"] = c.before.nrmse;
+  j["nrmse_after"] = c.after.nrmse;
+  j["nrmse_floor"] = c.after.floor;
+  return j;
 }
 
 // Both model versions in <work>/history.jsonl: the fall of the error, per version.
@@ -135,7 +144,7 @@ void add_calibrate_contrast_command(CLI::App& app, CommandContext& ctx) {
     const ContrastCalibration c = calibrate_contrast(sets, target, simulator, o->model, chosen, options, std::cerr);
     const std::string md = calibration_markdown(sets, c);
     std::ofstream(o->out / "calibrate.md") << md;
-    std::ofstream(o->out / "calibrate.json") << calibration_json(sets, c);
+    io::write_json(o->out / "calibrate.json", calibration_json(sets, c));
     fmt::print("{}", md);
     record_history(o->sim.work_dir, o->label.empty() ? sets.names[target] : o->label, c);
     ctx.exit_code = 0;
