@@ -51,7 +51,7 @@ struct Study {
   Study() {
     options.params = {"bond.youngs_modulus", "bond.critical_stress"};
     // A lab's study holds several batches: their pooled scatter gives Hotelling's test its
-    // degrees of freedom (two sets of four specimens leave 1 for 6 components, and no power).
+    // degrees of freedom (two sets of four specimens leave no degree of freedom for 8 components: no power).
     add("reference", measured({}, 1000));
     add("null", measured({}, 2000));
     sets.reference = 0;

@@ -168,6 +168,16 @@ TEST_CASE("fracture transients: crack initiation at the first significant drop, 
   const FeatureValues g = curve_features(smooth);
   CHECK(*g[Feature::InitiationForce] == doctest::Approx(2.5));
   CHECK(*g[Feature::Oscillations] == 0);
+  // Damage that bends the curve before any drop: 2 N/mm to 2.0 N at 1 mm, then 1 N/mm to the peak.
+  // The curve leaves the elastic line by more than the 0.052 N threshold (2 % of 2.6 N) past
+  // w = 1.052 mm: initiation is the last point before, at 2.05 N; the overshoot is 27 %.
+  const Curve bent = polyline({{0, 0}, {1e-3, 2.0}, {1.6e-3, 2.6}, {2e-3, 0}}, 1e-5, 0.01);
+  const CrackInitiation at_bend = crack_initiation(bent);
+  CHECK(at_bend.displacement == doctest::Approx(1.05e-3).epsilon(0.01));
+  CHECK(at_bend.force == doctest::Approx(2.05).epsilon(0.01));
+  CHECK(*curve_features(bent)[Feature::InitiationForce] == doctest::Approx(at_bend.force));
+  // The first drop of the cracked curve above: at 2.0 N and 1 mm, before its overshoot to 2.5 N.
+  CHECK(crack_initiation(c).displacement == doctest::Approx(1e-3));
   // A record cut while the load is still 60 % of F_max: the failure point is its end (a lower bound).
   const Curve cut = polyline({{0, 0}, {1e-3, 2.5}, {1.2e-3, 1.5}}, 1e-5, 0.01);
   CHECK(*curve_features(cut)[Feature::FailureDisplacement] == doctest::Approx(1.2e-3));

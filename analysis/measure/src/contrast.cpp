@@ -94,7 +94,7 @@ ContrastScale contrast_scale(const std::vector<Curve>& curves) {
 const std::vector<std::string>& contrast_component_names() {
   static const std::vector<std::string> names = {
       "ln_stiffness", "ln_peak_force", "ln_peak_displacement", "ln_work_to_peak",
-      "nonlinearity", "ductility",
+      "nonlinearity", "ductility",    "ln_initiation_force", "ln_initiation_displacement",
   };
   return names;
 }
@@ -102,6 +102,7 @@ const std::vector<std::string>& contrast_component_names() {
 std::vector<double> contrast_components(const Curve& c) {
   const std::size_t p = peak_index(c);
   const FeatureValues f = curve_features(c);
+  const CrackInitiation initiation = crack_initiation(c);
   const double f_max = c.force[p];
   const double w_peak = c.displacement[p];
   double w_parted = c.displacement.back();
@@ -117,6 +118,8 @@ std::vector<double> contrast_components(const Curve& c) {
       positive_log(*f[Feature::WorkToPeak], "the work to peak", c),
       *f[Feature::Nonlinearity],
       positive_log(w_parted / w_peak, "the parting-to-peak displacement ratio", c),
+      positive_log(initiation.force, "the force at crack initiation", c),
+      positive_log(initiation.displacement, "the displacement at crack initiation", c),
   };
 }
 

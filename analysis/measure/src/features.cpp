@@ -158,13 +158,9 @@ FeatureValues curve_features(const Curve& c) {
   f.sensor_uncertainty[5] = work_uncertainty(c, p, c.size() - 1);
 
   const double drop = significant_drop(c);
-  std::size_t top = 0;  // row of the running maximum
-  for (std::size_t k = 0; k < c.size(); ++k) {
-    if (c.force[k] > c.force[top]) top = k;
-    if (c.force[top] - c.force[k] > drop) break;
-  }
-  f[Feature::InitiationForce] = c.force[top];
-  f.sensor_uncertainty[static_cast<std::size_t>(Feature::InitiationForce)] = c.u_force[top];
+  const CrackInitiation initiation = crack_initiation(c);
+  f[Feature::InitiationForce] = initiation.force;
+  f.sensor_uncertainty[static_cast<std::size_t>(Feature::InitiationForce)] = c.u_force[initiation.index];
 
   // Zig-zag count after the peak: a reversal is recorded once the force has moved by more than
   // `drop` against the current direction from the last extreme.
@@ -188,6 +184,24 @@ FeatureValues curve_features(const Curve& c) {
   f[Feature::FailureDisplacement] = fail < c.size() ? crossing(c, fail, kFailureFraction * f_max) : c.displacement.back();
   f.sensor_uncertainty[static_cast<std::size_t>(Feature::FailureDisplacement)] = c.u_displacement[at];
   return f;
+}
+
+CrackInitiation crack_initiation(const Curve& c) {
+  const double drop = significant_drop(c);
+  const ElasticFit line = elastic_fit(c);
+  const double toe_end = kElasticLow * c.force[peak_index(c)];
+  std::size_t top = 0;  // row of the running maximum
+  std::size_t k = 0;
+  for (; k < c.size(); ++k) {
+    if (c.force[k] > c.force[top]) top = k;
+    if (c.force[top] - c.force[k] > drop) break;
+    const double on_line = line.stiffness * (c.displacement[k] - line.toe_offset);
+    if (c.force[top] > toe_end && on_line - c.force[k] > drop) break;
+  }
+  // The last point before the break: the running maximum after a drop, the previous point after
+  // a departure from the line.
+  const std::size_t at = k == c.size() ? top : std::min(top, k > 0 ? k - 1 : 0);
+  return {at, c.force[at], c.displacement[at]};
 }
 
 double fragment_x50(const std::vector<double>& sizes, const std::vector<double>& masses) {

@@ -8,10 +8,13 @@
 // sets does not. So the question asked of each set is "how does it differ from the reference, and
 // which library effect makes the model differ in the same way?".
 //
-// Components. Each curve (a measured specimen or a simulated replicate) is reduced to six
+// Components. Each curve (a measured specimen or a simulated replicate) is reduced to eight
 // numbers that are comparable between a lab's beam and the model: logarithms of stiffness, peak
 // force, peak displacement and work to peak (relative changes, free of the form error's scale),
-// the nonlinearity before the peak and the post-peak ductility ln(w_parted / w_peak). A force
+// the nonlinearity before the peak, the post-peak ductility ln(w_parted / w_peak), and the
+// logarithms of force and displacement at crack initiation (features.hpp: crack_initiation). A
+// brittle test's force maximum comes during unstable fracture, up to ~65 % above the force at
+// initiation, so a batch whose initiation moves can keep its F_max: only the initiation shows it. A force
 // read at a fixed displacement past the peak was tried and dropped: it is a step in where the
 // beam parts, and on foreign truth it alone pulled a machine-compliance fit to half the truth.
 //

@@ -10,11 +10,10 @@
 //   nonlinearity       1 - F_max / (k (w_peak - w0)), 1: how far the secant to the peak falls below
 //                      the elastic line (w0 = toe offset, where that line crosses F = 0); 0 = linear
 //   post_peak_work     integral of F dw after the peak, J
-//   initiation_force   F at the first significant load drop (the force before the first fall of
-//                      more than max(2 % F_max, 5 u_F) below the running maximum), N: the first
-//                      burst of bond breaks or the first crack. Equals F_max for a curve that rises
-//                      smoothly to its peak; below it when the beam cracked first and an inertial
-//                      overshoot or a second ligament carried the load higher
+//   initiation_force   F at crack initiation (crack_initiation), N: the first burst of bond
+//                      breaks or the first crack. Equals F_max for a curve that rises linearly to
+//                      its peak; below it when the beam cracked first and an inertial overshoot
+//                      or a second ligament carried the load higher
 //   oscillations       after the peak, the number of reversals of dF/dw whose swing exceeds the
 //                      same threshold (a hysteresis count, so sensor noise does not count): a
 //                      dynamic transient (the pins ringing on the broken beam), 0 for a quasi-static
@@ -83,6 +82,18 @@ ElasticFit elastic_fit(const Curve& c);
 // The threshold a load drop or swing must exceed to count (initiation_force, oscillations).
 double significant_drop(const Curve& c);
 FeatureValues curve_features(const Curve& c);
+
+// Crack initiation, read the same way on measured and simulated curves: the earlier of the last
+// point before the first load drop of more than significant_drop below the running maximum, and
+// the last point before the force falls below the elastic line (elastic_fit) by more than that
+// threshold (damage bends a curve before it drops), past the seating toe. The force maximum of
+// an unstable fracture can lie well above it (the overshoot F_max / F_init - 1).
+struct CrackInitiation {
+  std::size_t index = 0;
+  double force = 0;         // N
+  double displacement = 0;  // m
+};
+CrackInitiation crack_initiation(const Curve& c);
 
 // Mass-weighted median size x50 of a fragment set (masses, or size^3 when no masses are given).
 double fragment_x50(const std::vector<double>& sizes, const std::vector<double>& masses);
