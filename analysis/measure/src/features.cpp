@@ -189,18 +189,20 @@ FeatureValues curve_features(const Curve& c) {
 CrackInitiation crack_initiation(const Curve& c) {
   const double drop = significant_drop(c);
   const ElasticFit line = elastic_fit(c);
-  const double toe_end = kElasticLow * c.force[peak_index(c)];
+  // The line is judged from the middle of its fit window on: below it a seating toe, a ramp or
+  // the first points of a coarse record bend away from a line that they did not determine.
+  const double line_from = 0.5 * (kElasticLow + kElasticHigh) * c.force[peak_index(c)];
   std::size_t top = 0;  // row of the running maximum
   std::size_t k = 0;
   for (; k < c.size(); ++k) {
     if (c.force[k] > c.force[top]) top = k;
     if (c.force[top] - c.force[k] > drop) break;
     const double on_line = line.stiffness * (c.displacement[k] - line.toe_offset);
-    if (c.force[top] > toe_end && on_line - c.force[k] > drop) break;
+    if (c.force[k] > line_from && on_line - c.force[k] > drop) break;
   }
   // The last point before the break: the running maximum after a drop, the previous point after
   // a departure from the line.
-  const std::size_t at = k == c.size() ? top : std::min(top, k > 0 ? k - 1 : 0);
+  const std::size_t at = k == c.size() || k == 0 ? top : std::min(top, k - 1);
   return {at, c.force[at], c.displacement[at]};
 }
 
