@@ -3,10 +3,11 @@
 // each model plan's overrides set the parameters of a closed-form curve, so a diagnosis runs in
 // milliseconds and its verdicts can be asserted against a known truth. The curve rises as
 // F = F_p x (1 + n (1 - x)), x = w / w_p, to its peak and falls linearly to zero over d w_p:
-//   stiffness    k   = 1e-3 E (1 + 0.8 (mu - 0.3))              [N/m]   E: bond.youngs_modulus
-//   peak force   F_p = 2.5e-4 S (1 + 0.5 (mu - 0.3)) (1 + 0.15 (c - 1))  S: bond.critical_stress
+//   stiffness    k   = 1e-3 E (1 + 0.8 r)                     [N/m]   E: bond.youngs_modulus
+//   peak force   F_p = 2.5e-4 S (1 + 0.5 r) (1 + 0.15 (c - 1))          S: bond.critical_stress
 //   nonlinearity n   = 0.08 + 0.1 s,  ductility d = 0.15 + 0.4 s         s: fake.softening
-// mu: support.friction (reference 0.3; both ways), c: fake.compression_ratio, and the library's
+// r = mu - 0.3 above the reference's roller friction mu = 0.3, a quarter of that below (support.friction:
+// no mirror image either way), c: fake.compression_ratio, and the library's
 // machine compliance through recorded_as_tested. fake.softening_twin acts as fake.softening (a
 // rival with the same signature); fake.toe (outside any library) adds slack before the rise.
 // Each packing seed scatters k and F_p by ~1 %, as a random packing does.
@@ -63,8 +64,10 @@ inline Parameters parameters_of(const ModelPlan& model) {
 // One curve: `scatter` is the relative sd of k and F_p over seeds (specimens or packings).
 inline Curve curve_of(const Parameters& p, std::uint64_t seed, double scatter, double rate) {
   const double mu = p.at("support.friction"), s = p.at("fake.softening") + p.at("fake.softening_twin");
-  const double k = 1e-3 * p.at("bond.youngs_modulus") * (1 + 0.8 * (mu - 0.3)) * std::exp(scatter * normal_draw(seed, 1));
-  const double f_p = 2.5e-4 * p.at("bond.critical_stress") * (1 + 0.5 * (mu - 0.3)) *
+  // Roller friction restrains the beam more the more there is, and saturates towards none.
+  const double restraint = mu >= 0.3 ? mu - 0.3 : 0.25 * (mu - 0.3);
+  const double k = 1e-3 * p.at("bond.youngs_modulus") * (1 + 0.8 * restraint) * std::exp(scatter * normal_draw(seed, 1));
+  const double f_p = 2.5e-4 * p.at("bond.critical_stress") * (1 + 0.5 * restraint) *
                      (1 + 0.15 * (p.at("fake.compression_ratio") - 1)) * std::exp(scatter * normal_draw(seed, 2));
   const double n = 0.08 + 0.1 * s, d = 0.15 + 0.4 * s, toe = p.at("fake.toe");
   const double w_p = f_p * (1 + n) / k;

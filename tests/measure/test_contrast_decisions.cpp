@@ -24,7 +24,7 @@ CandidateEffect effect(const std::string& name, const std::string& parameter, do
 
 std::vector<CandidateEffect> library() {
   return {effect("bond_softening", "fake.softening", 0, 1, 0, 10),
-          effect("support_friction", "support.friction", 0.3, 0.6, 0, 2),
+          effect("support_friction", "support.friction", 0.3, 0.1, 0, 2),  // trial: lubricated rollers
           effect("compression_asymmetry", "fake.compression_ratio", 1, 2, 1, 10),
           effect(kMachineCompliance, kMachineCompliance, 0, 3e-5, 0, 1e-2)};
 }
@@ -94,6 +94,7 @@ TEST_CASE("one library effect: named with its size; a null set: no difference") 
   s.add("softening", measured({{"fake.softening", 1.5}}, 3000));
   s.add("compliance", measured({}, 4000, 5e-5));
   s.add("less friction", measured({{"support.friction", 0.1}}, 5000));
+  s.add("more friction", measured({{"support.friction", 0.45}}, 8000));
   const ContrastDiagnosis d = s.run();
   CHECK(diagnosis_of(d, s, "null").decision.verdict == kNoDifference);
   const SetDiagnosis& soft = diagnosis_of(d, s, "softening");
@@ -102,10 +103,18 @@ TEST_CASE("one library effect: named with its size; a null set: no difference") 
   const SetDiagnosis& comp = diagnosis_of(d, s, "compliance");
   REQUIRE(comp.decision.verdict == kMachineCompliance);
   CHECK(value_of(comp, kMachineCompliance) == doctest::Approx(5e-5).epsilon(0.2));
-  // Friction below the reference's: the effect moves the model both ways from the fitted state.
+  // Roller friction below and above the reference's: the effect moves the model both ways from
+  // the fitted state, each side from a trial of its own (the response is 4x steeper above).
   const SetDiagnosis& slip = diagnosis_of(d, s, "less friction");
   REQUIRE(slip.decision.verdict == "support_friction");
   CHECK(value_of(slip, "support_friction") == doctest::Approx(0.1).epsilon(0.5));
+  const SetDiagnosis& grip = diagnosis_of(d, s, "more friction");
+  REQUIRE(grip.decision.verdict == "support_friction");
+  CHECK(value_of(grip, "support_friction") == doctest::Approx(0.45).epsilon(0.1));
+  // Already the linear size, before any confirmation run: from the trial on the data's side (0.5),
+  // not extrapolated from the lubricated trial (0.1), which would ask for ~0.9.
+  for (const auto& f : grip.linear.fits)
+    if (f.name == "support_friction") CHECK(library()[1].value_at(f.scale) == doctest::Approx(0.45).epsilon(0.15));
   // The named effect's simulated contrast reproduces the measured contrast curve.
   CHECK(soft.after.nrmse < 0.5 * soft.before.nrmse);
 }

@@ -18,17 +18,64 @@ BaseCalibration finer_calibration(const ContrastSets& sets, Simulator& simulator
   return fine_study.calibrate_base(options.params, options.params.empty() ? 0 : options.base_iterations, log);
 }
 
+// An effect whose physics lets it move the model both ways from the reference (more or less roller
+// friction than the reference's, none included) gets a second trial one step the other way: an
+// effect's response is seldom symmetric (no friction and twice the friction are no mirror images),
+// so the trial on one side, extrapolated to the other, points the fit the wrong way.
+bool moves_both_ways(const CandidateEffect& e) { return e.scale_min() <= -1 && e.scale_max() >= 1; }
+
+// The trial runs of the study's first batch: the base, each effect at its plausible size, then the
+// two-sided effects one step the other way (`mirror[e]`: the index of e's, or 0 when none).
+struct Trials {
+  std::vector<ModelPlan> models;
+  std::vector<std::size_t> mirror;
+};
+
+Trials trial_models(const ModelPlan& base, const std::vector<CandidateEffect>& effects) {
+  Trials t;
+  t.models.push_back(base);
+  for (const auto& e : effects) {
+    t.models.push_back(with_effect(base, e, e.plausible));
+    t.models.back().probe = true;
+  }
+  for (const auto& e : effects) {
+    t.mirror.push_back(moves_both_ways(e) ? t.models.size() : 0);
+    if (!moves_both_ways(e)) continue;
+    t.models.push_back(with_effect(base, e, e.value_at(-1)));
+    t.models.back().probe = true;
+  }
+  return t;
+}
+
+// Effect e's contrast per trial step, on the side of neutral where the set's difference lies: the
+// side whose fit alone leaves the smaller chi^2 (one-sided effects have one).
+EffectSignature signature_for(const ContrastStudy& study, const SetDiagnosis& d, const CandidateEffect& e,
+                              const std::vector<ContrastStudy::Simulated>& runs, std::size_t plus,
+                              std::size_t mirror) {
+  const bool nameable = e.identifiable_at(study.rate_count(d.contrast));
+  const double step = e.plausible - e.neutral;
+  const auto t_plus = study.model_contrast(d.contrast, runs[plus], runs[0]);
+  if (mirror == 0) return {e.name, step, t_plus, e.scale_min(), e.scale_max(), nameable};
+  std::vector<double> t_minus = study.model_contrast(d.contrast, runs[mirror], runs[0]);
+  for (double& x : t_minus) x = -x;  // per step towards plausible, read on the other side
+  const EffectSignature up{e.name, step, t_plus, 0, e.scale_max(), nameable};
+  const EffectSignature down{e.name, step, t_minus, e.scale_min(), 0, nameable};
+  auto chi_square = [&](const EffectSignature& s) {
+    return decide_contrast(d.contrast.difference, d.contrast.weight, {s}, study.dof()).fits.front().chi_square;
+  };
+  return chi_square(down) < chi_square(up) ? down : up;
+}
+
 // Each set's contrast against the effects' trials at their plausible sizes: the linear decision.
 SetDiagnosis linear_diagnosis(const ContrastStudy& study, std::size_t set, const std::vector<CandidateEffect>& effects,
-                              const std::vector<ContrastStudy::Simulated>& trials, const ContrastOptions& decide) {
+                              const std::vector<ContrastStudy::Simulated>& trials, const std::vector<std::size_t>& mirror,
+                              const ContrastOptions& decide) {
   SetDiagnosis d;
   d.set = set;
   d.contrast = study.contrast(set, trials[0]);
   std::vector<EffectSignature> signatures;
   for (std::size_t e = 0; e < effects.size(); ++e)
-    signatures.push_back({effects[e].name, effects[e].plausible - effects[e].neutral,
-                          study.model_contrast(d.contrast, trials[1 + e], trials[0]), effects[e].scale_min(),
-                          effects[e].scale_max(), effects[e].identifiable_at(study.rate_count(d.contrast))});
+    signatures.push_back(signature_for(study, d, effects[e], trials, 1 + e, mirror[e]));
   d.linear = decide_contrast(d.contrast.difference, d.contrast.weight, signatures, study.dof(), decide);
   d.decision = d.linear;
   d.before = study.curve_contrast(d.contrast, trials[0], trials[0]);
@@ -86,17 +133,14 @@ ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simula
     out.finer_factor = options.finer;
   }
   out.effects = scaled_to_base_run(library, study, out.scaled_sizes, log);
-  std::vector<ModelPlan> models{study.base()};
-  for (const auto& e : out.effects) {
-    models.push_back(with_effect(study.base(), e, e.plausible));
-    models.back().probe = true;
-  }
+  const Trials plan = trial_models(study.base(), out.effects);
   out.rates = study.rates();
-  log << fmt::format("diagnose: base and {} effects at {} rate(s)\n", out.effects.size(), out.rates.size());
-  const auto trials = study.simulate(models, log);
+  log << fmt::format("diagnose: base and {} effects ({} of them both ways) at {} rate(s)\n", out.effects.size(),
+                     plan.models.size() - 1 - out.effects.size(), out.rates.size());
+  const auto trials = study.simulate(plan.models, log);
   for (std::size_t s = 0; s < sets.sets.size(); ++s)
     if (!sets.reference || *sets.reference != s)
-      out.sets.push_back(linear_diagnosis(study, s, out.effects, trials, options.decide));
+      out.sets.push_back(linear_diagnosis(study, s, out.effects, trials, plan.mirror, options.decide));
   confirm_contrasts(study, out.effects, trials[0], out.sets, options.confirm, options.confirm_iterations,
                     options.decide, log);
   if (options.pairs > 0)
