@@ -79,11 +79,11 @@ std::string separating_text(const ContrastReport& r, const std::string& lead) {
 // A name the component statistics gave and the curve did not bear out: a lead, never a name.
 std::string withheld_text(const ContrastReport& r, const SetDiagnosis& d, const std::string& name) {
   const ContrastDecision& c = d.decision;
-  const bool curve_misses = d.after.rising_nrmse > ContrastOptions{}.curve_floor_factor * d.after.rising_floor;
+  const bool curve_misses = d.after.rising_nrmse > ContrastOptions{}.curve_floor_factor * naming_floor(d.after);
   std::string why = curve_misses
                         ? fmt::format("its simulated contrast curve misses the measured one before the peak (NRMSE "
                                       "{:.1f} % against a noise floor of {:.1f} %; a name needs at most {:g}x the floor)",
-                                      100 * d.after.rising_nrmse, 100 * d.after.rising_floor,
+                                      100 * d.after.rising_nrmse, 100 * naming_floor(d.after),
                                       ContrastOptions{}.curve_floor_factor)
                         : fmt::format("it explains {:.0f} % of the difference (a name needs {:.0f} %)", 100 * d.share,
                                       100 * ContrastOptions{}.min_share);
@@ -241,7 +241,7 @@ std::string contrast_markdown(const ContrastReport& r) {
                       d.after_effect.empty() ? "-" : fmt::format("{:.2f} % ({})", 100 * d.after.nrmse, d.after_effect),
                       d.after_effect.empty()
                           ? "-"
-                          : fmt::format("{:.2f} % / {:.2f} %", 100 * d.after.rising_nrmse, 100 * d.after.rising_floor));
+                          : fmt::format("{:.2f} % / {:.2f} %", 100 * d.after.rising_nrmse, 100 * naming_floor(d.after)));
   }
   md += "\nContrast NRMSE: RMS difference between the measured contrast curve (set mean - reference mean) and the "
         "model's, over the displacement range both cover, in units of the reference's peak force. Before the peak: the "
@@ -334,7 +334,7 @@ io::Json set_json(const ContrastReport& r, const SetDiagnosis& d) {
           {"nrmse_floor", shown ? d.after.floor : d.before.floor},
           {"rising_nrmse_base", d.before.rising_nrmse},
           {"rising_nrmse_effect", shown ? d.after.rising_nrmse : d.before.rising_nrmse},
-          {"rising_nrmse_floor", shown ? d.after.rising_floor : d.before.rising_floor},
+          {"rising_nrmse_floor", shown ? naming_floor(d.after) : naming_floor(d.before)},
           {"effect_shown", d.after_effect},
           {"fits", fits_json(r, d)},
           {"pair", pair_json(d)},

@@ -208,10 +208,18 @@ TEST_CASE("a name the curve does not bear out is withheld") {
     d.decision.fits.back().drop = drop;
     d.decision.rivals = {"weibull_strength"};
     d.after.rising_nrmse = rising_nrmse;
-    d.after.rising_floor = 0.04;
+    // One rising point whose noise floor is 0.04 with the 20 % form tolerance of the 0.1 contrast
+    // added: sqrt(0.03^2 + 0.02^2 + 0.02^2) = 0.0412.
+    d.after.xi = {0.5};
+    d.after.rising = {1};
+    d.after.measured = {0.1};
+    d.after.simulated = {0.1};
+    d.after.u_measured = {0.03};
+    d.after.u_simulated = {0.02};
     return d;
   };
-  std::vector<SetDiagnosis> sets{named(0.059, 90), named(0.061, 90), named(0.02, 40)};
+  REQUIRE(naming_floor(named(0, 0).after) == doctest::Approx(0.04123).epsilon(1e-3));
+  std::vector<SetDiagnosis> sets{named(0.0615, 90), named(0.0625, 90), named(0.02, 40)};
   require_curve_agreement(sets, ContrastOptions{});
   CHECK(sets[0].decision.verdict == "bond_softening");  // within 1.5 x the floor, 90 % of T^2
   CHECK(sets[0].share == doctest::Approx(0.9));

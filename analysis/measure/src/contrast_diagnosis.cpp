@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <ostream>
 #include <stdexcept>
 
@@ -105,6 +106,18 @@ ModelPlan base_at_grain_size(const ContrastSets& sets, const Simulator& simulato
   return at_grain_size(simulator, base, grain, log);
 }
 
+double naming_floor(const ContrastStudy::CurveContrast& c, const ContrastOptions& options) {
+  double sum = 0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < c.xi.size(); ++i)
+    if (c.rising[i]) {
+      sum += std::pow(c.u_measured[i], 2) + std::pow(c.u_simulated[i], 2) +
+             std::pow(options.form_tolerance * c.simulated[i], 2);
+      ++n;
+    }
+  return n == 0 ? 0.0 : std::sqrt(sum / static_cast<double>(n));
+}
+
 bool names_a_pair(const SetDiagnosis& d, const ContrastOptions& options) {
   return d.pair && pair_is_named(*d.pair, d.seconds_tried, options) && d.withheld.empty();
 }
@@ -114,7 +127,7 @@ void require_curve_agreement(std::vector<SetDiagnosis>& sets, const ContrastOpti
     d.share = share_of(d, options);
     const std::string& verdict = d.decision.verdict;
     if (verdict == kNoDifference || verdict == kUnexplainedDifference) continue;
-    const bool curve_agrees = d.after.rising_nrmse <= options.curve_floor_factor * d.after.rising_floor;
+    const bool curve_agrees = d.after.rising_nrmse <= options.curve_floor_factor * naming_floor(d.after, options);
     if (curve_agrees && d.share >= options.min_share) continue;
     d.withheld = verdict;
     d.decision.verdict = kUnexplainedDifference;

@@ -71,6 +71,11 @@ ModelPlan base_at_grain_size(const ContrastSets& sets, const Simulator& simulato
 // The set is named as a pair of effects (the pair rule named it and the curve bore it out).
 bool names_a_pair(const SetDiagnosis& d, const ContrastOptions& options = {});
 
+// The noise floor a named model's rising-branch contrast is held to: the curve's own floor with
+// the form tolerance of the model's contrast added (ContrastOptions::form_tolerance, as the
+// component test adds it): the library's effect and the lab's are the same physics in two forms.
+double naming_floor(const ContrastStudy::CurveContrast& c, const ContrastOptions& options = {});
+
 // The last word on a name (ContrastOptions::curve_floor_factor, min_share): a set named by the
 // component statistics whose named model does not reproduce the contrast curve to within its
 // noise floor, or explains less than min_share of T^2, becomes an unexplained difference.
