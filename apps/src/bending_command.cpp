@@ -18,6 +18,7 @@
 #include "shard/bending/bending_plot.hpp"
 #include "shard/bending/bending_run.hpp"
 #include "shard/bending/calibration.hpp"
+#include "shard/io/json.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
 #include "shard/measure/significant_digits.hpp"
@@ -65,7 +66,7 @@ int bending_command(BendingCliOptions& o) {
   const auto report = bending::analyse_bending_run(o.run, o.analysis);
   fmt::print("{}", bending::format_report(report));
   const auto json = o.json.empty() ? beside(o.run, "_bending.json") : std::filesystem::path(o.json);
-  write_text(json, bending::report_json(report));
+  io::write_json(json, bending::report_json(report));
   const auto csv = beside(o.run, "_bending_curve.csv");
   bending::write_curve_csv(csv.string(), report.curve);
   const auto local_csv = beside(o.run, "_local_curve.csv");
@@ -189,7 +190,7 @@ int calibrate_command(CalibrateCliOptions& o, const CommandContext& ctx) {
                  1e3 * report.geometry.height, 1e3 * report.geometry.span);
       if (!breakage) report = analyse();
     }
-    write_text(beside(s.output, "_bending.json"), bending::report_json(report));
+    io::write_json(beside(s.output, "_bending.json"), bending::report_json(report));
     if (use_local && !report.gauges.valid)
       throw std::runtime_error(fmt::format(
           "calibration run {}: {}: only {} frames in the stiffness fit window, too few for the local instrumentation; "
@@ -231,7 +232,7 @@ int calibrate_command(CalibrateCliOptions& o, const CommandContext& ctx) {
              100 * targets.tolerance, targets.max_runs, o.out_dir.string());
   const auto result = bending::calibrate(targets, e_b, sigma, evaluate, observer);
   write_text(o.out_dir / "calibration.csv", bending::calibration_csv(result));
-  write_text(o.out_dir / "calibration.json", bending::calibration_json(result, targets));
+  io::write_json(o.out_dir / "calibration.json", bending::calibration_json(result, targets));
   fmt::print("{}: {}\nfinal: bond.youngs_modulus = {:.6g} Pa, bond.critical_stress = {:.6g} Pa\n",
              result.converged ? "converged" : "NOT converged", result.message, result.bond_youngs_modulus,
              result.bond_critical_stress);

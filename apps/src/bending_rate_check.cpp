@@ -17,6 +17,7 @@
 #include "shard/app/run_command.hpp"
 #include "shard/bending/bending_run.hpp"
 #include "shard/bending/rate_check.hpp"
+#include "shard/io/json.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
 #include "shard/measure/significant_digits.hpp"
@@ -55,6 +56,24 @@ SceneOverrides slowed_overrides(const RateCheckCliOptions& o, const Scene& scene
   return out;
 }
 
+// rate_check.json: each measured figure as [at the scene's rate, at the reduced rate].
+constexpr int kRateCheckFormat = 1;
+io::Json rate_check_json(const RateCheckCliOptions& o, const bending::BendingReport& fast,
+                         const bending::BendingReport& slow, const bending::RateCheck& check) {
+  io::Json j = io::json_document(kRateCheckFormat);
+  j["scene"] = o.scene.string();
+  j["factor"] = o.factor;
+  j["speed_m_per_s"] = {fast.quasi_static.loading_speed, slow.quasi_static.loading_speed};
+  j["force_max_N"] = {fast.analysis.force_max, slow.analysis.force_max};
+  j["stiffness_N_per_m"] = {fast.analysis.stiffness, slow.analysis.stiffness};
+  j["youngs_modulus_Pa"] = {fast.analysis.youngs_modulus, slow.analysis.youngs_modulus};
+  j["deflection_at_peak_m"] = {fast.analysis.deflection_at_peak, slow.analysis.deflection_at_peak};
+  j["force_max_change"] = check.force_max_change;
+  j["stiffness_change"] = check.stiffness_change;
+  j["passed"] = check.passed();
+  return j;
+}
+
 int rate_check_command(const RateCheckCliOptions& o, const CommandContext& ctx) {
   if (!(o.factor > 0 && o.factor < 1))
     throw std::runtime_error(fmt::format("--factor {}: the reduced rate is a fraction of the scene's, 0 < factor < 1", o.factor));
@@ -88,16 +107,7 @@ int rate_check_command(const RateCheckCliOptions& o, const CommandContext& ctx) 
   fmt::print("  kinetic/elastic before damage: {:.3g} (rate), {:.3g} (slow); crack at {:+.1f} / {:+.1f} mm\n",
              fast.quasi_static.max_kinetic_to_elastic, slow.quasi_static.max_kinetic_to_elastic,
              1e3 * fast.crack.position, 1e3 * slow.crack.position);
-  std::ofstream json(o.out_dir / "rate_check.json");
-  json << fmt::format(
-      "{{\n  \"scene\": \"{}\",\n  \"factor\": {:.9g},\n  \"speed_m_per_s\": [{:.9g}, {:.9g}],\n"
-      "  \"force_max_N\": [{:.9g}, {:.9g}],\n  \"stiffness_N_per_m\": [{:.9g}, {:.9g}],\n"
-      "  \"youngs_modulus_Pa\": [{:.9g}, {:.9g}],\n  \"deflection_at_peak_m\": [{:.9g}, {:.9g}],\n"
-      "  \"force_max_change\": {:.9g},\n  \"stiffness_change\": {:.9g},\n  \"passed\": {}\n}}\n",
-      o.scene.string(), o.factor, fast.quasi_static.loading_speed, slow.quasi_static.loading_speed, fast.analysis.force_max,
-      slow.analysis.force_max, fast.analysis.stiffness, slow.analysis.stiffness, fast.analysis.youngs_modulus,
-      slow.analysis.youngs_modulus, fast.analysis.deflection_at_peak, slow.analysis.deflection_at_peak,
-      check.force_max_change, check.stiffness_change, check.passed());
+  io::write_json(o.out_dir / "rate_check.json", rate_check_json(o, fast, slow, check));
   return check.passed() ? 0 : 2;
 }
 

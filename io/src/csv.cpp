@@ -149,6 +149,7 @@ CsvTable CsvTable::parse(std::string_view text, const std::string& origin, CsvHe
     if (t.header_line_ == 0 && t.rows_.empty() && (header_open || !all_numbers(row, t.decimal_comma()))) {
       check_header(row, origin);
       t.header_ = std::move(row.fields);
+      t.header_columns_ = std::move(row.columns);
       t.header_line_ = line_no;
       continue;
     }

@@ -10,7 +10,7 @@
 #include <cstring>
 #include <system_error>
 
-#include "output/h5_io.hpp"
+#include "h5_io.hpp"
 #include "shard/checkpoint.hpp"
 
 namespace shard {

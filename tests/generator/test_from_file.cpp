@@ -42,16 +42,16 @@ TEST_CASE("stl_fill save -> from_file reload is bit for bit, bonds and quality i
     CHECK(figure(loaded, name) == figure(made, name));
 }
 
-TEST_CASE("malformed sphere and bond files are refused with file and line") {
+TEST_CASE("malformed sphere and bond files are refused with file, line and column") {
   const auto dir = test::scratch_dir("from_file_errors");
   std::ofstream(dir / "s.csv") << "x,y,z,r\n0,0,0,0.001\n0.002,0,0,0.001\n0.004,0,0,-1\n";
   from_file::FromFileSettings f;
   f.spheres = (dir / "s.csv").string();
-  CHECK_THROWS_WITH(from_file::FromFile(f).generate({}), doctest::Contains("line 4: values must be finite and the radius > 0"));
+  CHECK_THROWS_WITH(from_file::FromFile(f).generate({}), doctest::Contains("s.csv:4:11: spheres file: values must be finite and the radius > 0"));
   std::ofstream(dir / "ok.csv") << "x,y,z,r\n0,0,0,0.001\n0.002,0,0,0.001\n";
   std::ofstream(dir / "ok.bonds.csv") << "i,j\n0,2\n";
   f.spheres = (dir / "ok.csv").string();
-  CHECK_THROWS_WITH(from_file::FromFile(f).generate({}), doctest::Contains("line 2: expected two different sphere indices"));
+  CHECK_THROWS_WITH(from_file::FromFile(f).generate({}), doctest::Contains("ok.bonds.csv:2:1: bonds file: not a bond; expected two different sphere indices"));
   std::ofstream(dir / "ok.bonds.csv") << "i,j\n0,1\n1,0\n";
   CHECK_THROWS_WITH(from_file::FromFile(f).generate({}), doctest::Contains("appears twice"));
   std::ofstream(dir / "overlap.csv") << "0,0,0,0.001\n0.0015,0,0,0.001\n";

@@ -2,6 +2,7 @@
 // RunWriter must come back from from_file's own HDF5 reader bit for bit (positions, radii,
 // materials, surviving bonds), for the chosen frame.
 #include <doctest/doctest.h>
+#include <hdf5.h>
 
 #include <cmath>
 #include <cstring>
@@ -137,4 +138,26 @@ TEST_CASE("from_file refuses a missing frame, a non-run file and an ambiguous so
   both.spheres.clear();
   both.run.clear();
   CHECK_THROWS_WITH(from_file::FromFile(both).generate({}), doctest::Contains("exactly one of 'spheres'"));
+}
+
+TEST_CASE("from_file refuses a run file of a newer format version, as RunFile does") {
+  const auto dir = test::scratch_dir("from_file_run_version");
+  const auto run = dir / "run.h5";
+  {
+    Particles p;
+    p.add(Vec3::Zero(), 1e-3, 2500.0);
+    RunWriter writer(run, RunMetadata{}, {});
+    writer.write_frame(0, 0.0, p, Bonds{});
+  }
+  CHECK(load(run, 0).position.size() == 1);
+  const hid_t f = H5Fopen(run.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  REQUIRE(f >= 0);
+  const hid_t attribute = H5Aopen(f, "format_version", H5P_DEFAULT);
+  REQUIRE(attribute >= 0);  // the writer stamped it
+  const std::int64_t newer = 2;
+  H5Awrite(attribute, H5T_NATIVE_INT64, &newer);
+  H5Aclose(attribute);
+  H5Fclose(f);
+  CHECK_THROWS_WITH(load(run, 0), doctest::Contains("is a run file of format version 2, but this Shard reads format "
+                                                    "versions 1 to 1"));
 }

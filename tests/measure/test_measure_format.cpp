@@ -161,3 +161,40 @@ TEST_CASE("misspelt column, text in a number, wrong field count, bad geometry, d
     CHECK(e.fix().find("load_cell") != std::string::npos);
   }
 }
+
+TEST_CASE("lab exports: a ';' curve with decimal commas and a units row, a specimens file with BOM and CRLF") {
+  const auto dir = make_folder("lab_export");
+  // kCurve's values in mm, kN and ms, as a German testing machine writes them.
+  write(dir / "curves/A.csv",
+        "time;displacement;force\n"
+        "ms;mm;kN\n"
+        "0;0;0\n1000;0,01;0,002\n2000;0,02;0,004\n3000;0,03;0,0055\n4000;0,04;0,003\n5000;0,05;0,0005\n");
+  write(dir / "specimens.csv",
+        "\xEF\xBB\xBFid,length,width,height,span,pin_distance,loading_rate,crack_position,fragment_count\r\n"
+        "A,0.18,0.03,0.035,0.18,0.08,2e-4,0.004,3\r\n"
+        "B,0.18,0.03,0.035,0.18,0.08,2e-4,,\r\n");
+  const MeasurementSet lab = read_measurements(dir);
+  const MeasurementSet plain = read_measurements(make_folder("lab_export_plain"));
+  REQUIRE(lab.specimens.size() == 2);
+  CHECK(lab.specimens[0].id == "A");
+  CHECK(lab.specimens[0].height == plain.specimens[0].height);
+  const auto& a = lab.specimens[0].curve;
+  const auto& p = plain.specimens[0].curve;
+  REQUIRE(a.size() == p.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    // One conversion (e.g. 0,0055 kN * 1e3) differs from the plain text by at most an ulp or two.
+    CHECK(a.time[k] == doctest::Approx(p.time[k]).epsilon(1e-15));
+    CHECK(a.displacement[k] == doctest::Approx(p.displacement[k]).epsilon(1e-15));
+    CHECK(a.force[k] == doctest::Approx(p.force[k]).epsilon(1e-15));
+  }
+}
+
+TEST_CASE("a ragged lab export names file, line and field") {
+  const auto dir = make_folder("lab_ragged");
+  write(dir / "curves/B.csv", "time;displacement;force\ns;m;N\n0;0;0\n1;1e-5\n");
+  const auto e = error_of(dir);
+  CHECK(e.file().filename() == "B.csv");
+  CHECK(e.line() == 4);
+  CHECK(e.column() == 3);
+  CHECK(e.problem() == "the line has 2 fields but the header has 3 (time,displacement,force)");
+}

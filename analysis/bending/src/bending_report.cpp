@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include "shard/bending/bending_run.hpp"
+#include "shard/io/json.hpp"
 
 namespace shard::bending {
 
@@ -74,43 +75,53 @@ std::string format_report(const BendingReport& r) {
   return s;
 }
 
-std::string report_json(const BendingReport& r) {
+io::Json report_json(const BendingReport& r) {
   const auto& g = r.geometry;
   const auto& a = r.analysis;
-  std::string fr;
-  for (double m : r.fragments.major_mass_fractions) fr += fmt::format("{}{:.6g}", fr.empty() ? "" : ", ", m);
-  std::string s = "{\n";
-  s += fmt::format("  \"run\": \"{}\",\n", r.run.string());
-  s += fmt::format("  \"span_m\": {:.9g}, \"pin_distance_m\": {:.9g}, \"width_m\": {:.9g}, \"height_m\": {:.9g},\n", g.span,
-                   g.pin_distance, g.width, g.height);
-  s += fmt::format("  \"particles\": {}, \"bonds\": {}, \"mean_diameter_m\": {:.9g}, \"length_m\": {:.9g},\n", r.particles,
-                   r.bonds, r.mean_diameter, r.length);
-  s += fmt::format("  \"bond_youngs_modulus_Pa\": {:.9g}, \"bond_critical_stress_Pa\": {:.9g}, \"breakage\": {},\n",
-                   r.bond.youngs_modulus, r.bond.critical_stress, r.breakage);
-  s += fmt::format("  \"stiffness_N_per_m\": {:.9g}, \"fit_r_squared\": {:.9g}, \"fit_points\": {}, \"onset_m\": {:.9g},\n",
-                   a.stiffness, a.fit.r_squared, a.fit.points, a.onset);
-  s += fmt::format("  \"force_max_N\": {:.9g}, \"force_max_smoothed_N\": {:.9g}, \"deflection_at_peak_m\": {:.9g}, "
-                   "\"failed\": {},\n",
-                   a.force_max, a.force_max_smoothed, a.deflection_at_peak, a.failed);
-  s += fmt::format("  \"youngs_modulus_Pa\": {:.9g}, \"youngs_modulus_secant_Pa\": {:.9g}, \"flexural_strength_Pa\": {:.9g},\n",
-                   a.youngs_modulus, a.youngs_modulus_secant, a.flexural_strength);
-  s += fmt::format("  \"crack_found\": {}, \"crack_position_m\": {:.9g}, \"crack_between_pins\": {}, \"crack_breaks\": {}, "
-                   "\"breaks\": {},\n",
-                   r.crack.found, r.crack.position, r.crack.between_pins, r.crack.cluster_breaks, r.crack.breaks);
-  s += fmt::format("  \"fragments\": {}, \"major_fragments\": {}, \"major_mass_fractions\": [{}],\n", r.fragments.count,
-                   r.fragments.major, fr);
-  s += fmt::format("  \"voigt_youngs_modulus_Pa\": {:.9g}, \"voigt_poisson_ratio\": {:.9g},\n", r.voigt.youngs_modulus,
-                   r.voigt.poisson_ratio);
-  s += fmt::format("  \"local_valid\": {}, \"local_fit_frames\": {}, \"local_stiffness_N_per_m\": {:.9g}, "
-                   "\"local_youngs_modulus_Pa\": {:.9g},\n",
-                   r.gauges.valid, r.gauges.fit_frames, r.gauges.stiffness, r.gauges.youngs_modulus);
-  s += fmt::format("  \"curvature_youngs_modulus_Pa\": {:.9g}, \"predicted_local_stiffness_N_per_m\": {:.9g}, "
-                   "\"shear_to_bending_deflection\": {:.9g},\n",
-                   r.gauges.curvature_modulus, r.predicted_local_stiffness, r.shear_correction);
-  s += fmt::format("  \"loading_speed_m_per_s\": {:.9g}, \"max_kinetic_to_elastic\": {:.9g}\n", r.quasi_static.loading_speed,
-                   r.quasi_static.max_kinetic_to_elastic);
-  s += "}\n";
-  return s;
+  io::Json j = io::json_document(kBendingReportFormat);
+  j["run"] = r.run.string();
+  j["span_m"] = g.span;
+  j["pin_distance_m"] = g.pin_distance;
+  j["width_m"] = g.width;
+  j["height_m"] = g.height;
+  j["particles"] = r.particles;
+  j["bonds"] = r.bonds;
+  j["mean_diameter_m"] = r.mean_diameter;
+  j["length_m"] = r.length;
+  j["bond_youngs_modulus_Pa"] = r.bond.youngs_modulus;
+  j["bond_critical_stress_Pa"] = r.bond.critical_stress;
+  j["breakage"] = r.breakage;
+  j["stiffness_N_per_m"] = a.stiffness;
+  j["fit_r_squared"] = a.fit.r_squared;
+  j["fit_points"] = a.fit.points;
+  j["onset_m"] = a.onset;
+  j["force_max_N"] = a.force_max;
+  j["force_max_smoothed_N"] = a.force_max_smoothed;
+  j["deflection_at_peak_m"] = a.deflection_at_peak;
+  j["failed"] = a.failed;
+  j["youngs_modulus_Pa"] = a.youngs_modulus;
+  j["youngs_modulus_secant_Pa"] = a.youngs_modulus_secant;
+  j["flexural_strength_Pa"] = a.flexural_strength;
+  j["crack_found"] = r.crack.found;
+  j["crack_position_m"] = r.crack.position;
+  j["crack_between_pins"] = r.crack.between_pins;
+  j["crack_breaks"] = r.crack.cluster_breaks;
+  j["breaks"] = r.crack.breaks;
+  j["fragments"] = r.fragments.count;
+  j["major_fragments"] = r.fragments.major;
+  j["major_mass_fractions"] = r.fragments.major_mass_fractions;
+  j["voigt_youngs_modulus_Pa"] = r.voigt.youngs_modulus;
+  j["voigt_poisson_ratio"] = r.voigt.poisson_ratio;
+  j["local_valid"] = r.gauges.valid;
+  j["local_fit_frames"] = r.gauges.fit_frames;
+  j["local_stiffness_N_per_m"] = r.gauges.stiffness;
+  j["local_youngs_modulus_Pa"] = r.gauges.youngs_modulus;
+  j["curvature_youngs_modulus_Pa"] = r.gauges.curvature_modulus;
+  j["predicted_local_stiffness_N_per_m"] = r.predicted_local_stiffness;
+  j["shear_to_bending_deflection"] = r.shear_correction;
+  j["loading_speed_m_per_s"] = r.quasi_static.loading_speed;
+  j["max_kinetic_to_elastic"] = r.quasi_static.max_kinetic_to_elastic;
+  return j;
 }
 
 }  // namespace shard::bending

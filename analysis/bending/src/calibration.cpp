@@ -119,25 +119,28 @@ std::string calibration_csv(const CalibrationResult& r) {
   return s;
 }
 
-std::string calibration_json(const CalibrationResult& r, const CalibrationTargets& t) {
-  std::string s = "{\n";
-  s += fmt::format("  \"target_youngs_modulus_Pa\": {:.9g},\n", t.youngs_modulus);
-  s += t.force_max ? fmt::format("  \"target_force_max_N\": {:.9g},\n", *t.force_max) : "  \"target_force_max_N\": null,\n";
-  s += fmt::format("  \"tolerance\": {:.9g},\n  \"converged\": {},\n  \"message\": \"{}\",\n", t.tolerance, r.converged,
-                   r.message);
-  s += fmt::format("  \"bond_youngs_modulus_Pa\": {:.9g},\n  \"bond_critical_stress_Pa\": {:.9g},\n  \"runs\": [\n",
-                   r.bond_youngs_modulus, r.bond_critical_stress);
-  for (std::size_t k = 0; k < r.runs.size(); ++k) {
-    const auto& c = r.runs[k];
-    s += fmt::format(
-        "    {{\"run\": {}, \"stage\": \"{}\", \"bond_youngs_modulus_Pa\": {:.9g}, \"bond_critical_stress_Pa\": {:.9g}, "
-        "\"breakage\": {}, \"youngs_modulus_Pa\": {:.9g}, \"force_max_N\": {:.9g}, \"failed\": {}, \"wall_seconds\": {:.3f}, "
-        "\"output\": \"{}\"}}{}\n",
-        c.index, c.stage, c.bond_youngs_modulus, c.bond_critical_stress, c.breakage, c.youngs_modulus, c.force_max,
-        c.failed, c.wall_seconds, c.output, k + 1 < r.runs.size() ? "," : "");
-  }
-  s += "  ]\n}\n";
-  return s;
+io::Json calibration_json(const CalibrationResult& r, const CalibrationTargets& t) {
+  io::Json j = io::json_document(kCalibrationFormat);
+  j["target_youngs_modulus_Pa"] = t.youngs_modulus;
+  j["target_force_max_N"] = t.force_max ? io::Json(*t.force_max) : io::Json(nullptr);
+  j["tolerance"] = t.tolerance;
+  j["converged"] = r.converged;
+  j["message"] = r.message;
+  j["bond_youngs_modulus_Pa"] = r.bond_youngs_modulus;
+  j["bond_critical_stress_Pa"] = r.bond_critical_stress;
+  j["runs"] = io::Json::array();
+  for (const auto& c : r.runs)
+    j["runs"].push_back({{"run", c.index},
+                         {"stage", c.stage},
+                         {"bond_youngs_modulus_Pa", c.bond_youngs_modulus},
+                         {"bond_critical_stress_Pa", c.bond_critical_stress},
+                         {"breakage", c.breakage},
+                         {"youngs_modulus_Pa", c.youngs_modulus},
+                         {"force_max_N", c.force_max},
+                         {"failed", c.failed},
+                         {"wall_seconds", c.wall_seconds},
+                         {"output", c.output}});
+  return j;
 }
 
 }  // namespace shard::bending

@@ -4,106 +4,80 @@
 #include <algorithm>
 #include <cctype>
 #include <fstream>
-#include <sstream>
+#include <optional>
 #include <stdexcept>
 
 #include "shard/bending/curve_analysis.hpp"
+#include "shard/io/csv.hpp"
 
 namespace shard::bending {
 namespace {
 
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r\"");
-  const auto e = s.find_last_not_of(" \t\r\"");
-  return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
 }
 
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream ss(line);
-  std::string cell;
-  while (std::getline(ss, cell, ',')) out.push_back(trim(cell));
-  return out;
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  const auto e = s.find_last_not_of(" \t\r");
+  return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
 }
 
 bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-// The factor to SI from a column name's unit suffix.
-double unit_factor(const std::string& name) {
+// The factor to SI from a column name's unit suffix, for files without a units row.
+double name_unit_factor(const std::string& name) {
   if (ends_with(name, "_mm") || ends_with(name, "[mm]")) return 1e-3;
   if (ends_with(name, "_kN") || ends_with(name, "[kN]")) return 1e3;
   return 1.0;
 }
 
+// The first column whose name starts with one of `prefixes` (lower case; the names of Shard's own
+// files and of Zwick and Instron exports).
+std::optional<std::size_t> find_column(const io::CsvTable& t, std::initializer_list<const char*> prefixes) {
+  for (std::size_t c = 0; c < t.header().size(); ++c)
+    for (const char* p : prefixes)
+      if (lower(t.header()[c]).rfind(p, 0) == 0) return c;
+  return std::nullopt;
+}
+
 }  // namespace
 
 Curve read_curve_csv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(fmt::format("{}: cannot open the load curve", path));
-  std::string line;
-  std::size_t line_no = 0;
-  std::vector<std::string> header;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (trim(line).empty() || trim(line)[0] == '#') continue;
-    header = split(line);
-    break;
+  const auto t = io::CsvTable::read(path);
+  const auto cw = find_column(t, {"displacement", "deflection", "w", "standardweg", "extension", "deformation"});
+  const auto cf = find_column(t, {"force", "load", "f", "standardkraft", "kraft"});
+  const auto ct = find_column(t, {"time", "t_", "prüfzeit", "zeit"});
+  if (!cw || !cf)
+    throw std::runtime_error(fmt::format("{}:{}: the header needs a displacement column (displacement..., w..., "
+                                         "Standardweg, Extension) and a force column (force..., F..., Standardkraft, "
+                                         "Load)",
+                                         path, t.header_line()));
+  // A units row converts each value to SI itself; without one, a name ending in _mm or _kN does.
+  auto factor = [&](std::size_t c) { return t.units().empty() ? name_unit_factor(t.header()[c]) : 1.0; };
+  Curve curve;
+  for (const auto& row : t.rows()) {
+    curve.displacement.push_back(factor(*cw) * t.number(row, *cw, "displacement"));
+    curve.force.push_back(factor(*cf) * t.number(row, *cf, "force"));
+    if (ct) curve.time.push_back(factor(*ct) * t.number(row, *ct, "time"));
   }
-  if (header.empty()) throw std::runtime_error(fmt::format("{}: no header line", path));
-  auto find = [&](std::initializer_list<const char*> prefixes) -> std::ptrdiff_t {
-    for (std::size_t c = 0; c < header.size(); ++c)
-      for (const char* p : prefixes)
-        if (header[c].rfind(p, 0) == 0) return static_cast<std::ptrdiff_t>(c);
-    return -1;
-  };
-  const auto cw = find({"displacement", "deflection", "w"});
-  const auto cf = find({"force", "load", "F"});
-  const auto ct = find({"time", "t_"});
-  if (cw < 0 || cf < 0)
-    throw std::runtime_error(fmt::format(
-        "{}:{}: the header needs a displacement column (displacement..., w...) and a force column (force..., F...)",
-        path, line_no));
-  const double sw = unit_factor(header[static_cast<std::size_t>(cw)]);
-  const double sf = unit_factor(header[static_cast<std::size_t>(cf)]);
-  Curve c;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (trim(line).empty() || trim(line)[0] == '#') continue;
-    const auto cells = split(line);
-    auto value = [&](std::ptrdiff_t col) {
-      const auto k = static_cast<std::size_t>(col);
-      if (k >= cells.size()) throw std::runtime_error(fmt::format("{}:{}: too few columns", path, line_no));
-      try {
-        std::size_t used = 0;
-        const double v = std::stod(cells[k], &used);
-        if (used != cells[k].size()) throw std::invalid_argument(cells[k]);
-        return v;
-      } catch (const std::exception&) {
-        throw std::runtime_error(fmt::format("{}:{}: '{}' is not a number", path, line_no, cells[k]));
-      }
-    };
-    c.displacement.push_back(sw * value(cw));
-    c.force.push_back(sf * value(cf));
-    if (ct >= 0) c.time.push_back(value(ct));
-  }
-  if (c.force.empty()) throw std::runtime_error(fmt::format("{}: no data rows", path));
-  return c;
+  if (curve.force.empty()) throw std::runtime_error(fmt::format("{}: no data rows", path));
+  return curve;
 }
 
 std::map<std::string, std::string> read_curve_metadata(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(fmt::format("{}: cannot open the load curve", path));
   std::map<std::string, std::string> out;
-  std::string line;
-  for (std::size_t line_no = 1; std::getline(in, line); ++line_no) {
-    const std::string t = trim(line);
-    if (t.rfind("#!", 0) != 0) continue;
-    const auto eq = t.find('=');
+  const auto table = io::CsvTable::read(path);
+  for (const auto& comment : table.comments()) {
+    if (!comment.text.starts_with('!')) continue;
+    const auto eq = comment.text.find('=');
     if (eq == std::string::npos)
-      throw std::runtime_error(fmt::format("{}:{}: a '#!' line is 'key = value', e.g. '#! span_mm = 180'", path, line_no));
-    out[trim(t.substr(2, eq - 2))] = trim(t.substr(eq + 1));
+      throw std::runtime_error(
+          fmt::format("{}:{}: a '#!' line is 'key = value', e.g. '#! span_mm = 180'", path, comment.line));
+    out[trim(comment.text.substr(1, eq - 1))] = trim(comment.text.substr(eq + 1));
   }
   return out;
 }

@@ -60,7 +60,8 @@ class RunFile {
  public:
   enum class Mode { read, read_write };
   // Throws OutputError naming the path and the fix when it is missing, a folder, no HDF5 file, no
-  // run file (no /frames group: a checkpoint?) or, for writing, cannot be opened for writing.
+  // run file (no /frames group: a checkpoint?), of a newer format version than this Shard reads or,
+  // for writing, cannot be opened for writing.
   explicit RunFile(const std::filesystem::path& path, Mode mode = Mode::read);
   static RunFile open(const std::filesystem::path& path) { return RunFile(path); }
   ~RunFile();
@@ -74,6 +75,9 @@ class RunFile {
   // Root attributes and the /plugins, /generator and /notes groups.
   RunMetadata metadata() const;
   int abi_version() const;
+  // The layout's version (root attribute format_version; 1 for files written before it existed).
+  // Opening refuses a file newer than this Shard reads, naming both versions.
+  int format_version() const;
 
   // The numbers k of the complete frames /frames/<k:06d>, ascending; a run of `shard run` numbers
   // them 0 .. frame_count() - 1. A frame is complete once it holds its step and time attributes and

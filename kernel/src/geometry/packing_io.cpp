@@ -5,40 +5,21 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
+
+#include "shard/io/csv.hpp"
 
 namespace shard::geometry {
 namespace {
 
-std::ifstream open_or_throw(const std::filesystem::path& file, const char* what) {
-  std::ifstream in(file);
-  if (!in)
+// Read by the one CSV reader (shard/io/csv.hpp): an optional header, ',' or ';' or tab, decimal
+// commas; rows of one length, errors with file:line:column.
+io::CsvTable read_table(const std::filesystem::path& file, const char* what) {
+  if (!std::filesystem::is_regular_file(file))
     throw std::runtime_error(fmt::format("{} file '{}' cannot be opened: check the path (relative paths are "
                                          "resolved against the scene folder)",
                                          what, file.string()));
-  return in;
-}
-
-// Splits a CSV data line into numbers; false for comments, blank lines and a header.
-bool parse_numbers(std::string line, std::vector<double>& values) {
-  values.clear();
-  const auto first = line.find_first_not_of(" \t\r");
-  if (first == std::string::npos || line[first] == '#') return false;
-  std::replace(line.begin(), line.end(), ',', ' ');
-  std::istringstream in(line);
-  std::string field;
-  while (in >> field) {
-    char* end = nullptr;
-    const double v = std::strtod(field.c_str(), &end);
-    if (end == field.c_str() || *end != '\0') {
-      values.clear();
-      values.push_back(std::numeric_limits<double>::quiet_NaN());  // marks a text field
-      return true;
-    }
-    values.push_back(v);
-  }
-  return !values.empty();
+  return io::CsvTable::read(file, io::CsvHeader::optional);
 }
 
 }  // namespace
@@ -67,35 +48,20 @@ void save_packing_csv(const std::filesystem::path& spheres_file, const SpherePac
 }
 
 StoredPacking read_spheres_csv(const std::filesystem::path& file) {
-  std::ifstream in = open_or_throw(file, "spheres");
+  const auto t = read_table(file, "spheres");
   StoredPacking stored;
-  std::string line;
-  std::vector<double> v;
-  std::size_t row = 0;
-  bool with_material = false;
-  while (std::getline(in, line)) {
-    ++row;
-    if (!parse_numbers(line, v)) continue;
-    if (std::isnan(v[0])) {
-      if (stored.spheres.centre.empty()) continue;  // header
-      throw std::runtime_error(fmt::format("spheres file '{}' line {}: a non-numeric field; expected x,y,z,r[,material]",
-                                           file.string(), row));
-    }
-    if (stored.spheres.centre.empty()) with_material = v.size() >= 5;
-    if (v.size() != (with_material ? 5u : 4u))
-      throw std::runtime_error(fmt::format("spheres file '{}' line {}: {} columns, expected {} (x,y,z,r{}) as on the "
-                                           "first data line",
-                                           file.string(), row, v.size(), with_material ? 5 : 4,
-                                           with_material ? ",material" : ""));
-    if (!std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); }) || !(v[3] > 0.0))
-      throw std::runtime_error(fmt::format("spheres file '{}' line {}: values must be finite and the radius > 0",
-                                           file.string(), row));
+  const bool with_material = !t.rows().empty() && t.rows()[0].fields.size() >= 5;
+  for (const auto& row : t.rows()) {
+    if (row.fields.size() != (with_material ? 5u : 4u))
+      t.fail(row, 0, fmt::format("spheres file: {} columns", row.fields.size()), "expected x,y,z,r[,material] in m");
+    double v[5] = {0, 0, 0, 0, 0};
+    for (std::size_t c = 0; c < row.fields.size(); ++c) v[c] = t.number(row, c, "x,y,z,r[,material] in m");
+    if (!(v[3] > 0.0)) t.fail(row, 3, "spheres file: values must be finite and the radius > 0", "write the radius in m");
     stored.spheres.centre.emplace_back(v[0], v[1], v[2]);
     stored.spheres.radius.push_back(v[3]);
     if (with_material) {
       if (v[4] < 0.0 || v[4] != std::floor(v[4]))
-        throw std::runtime_error(fmt::format("spheres file '{}' line {}: material must be an integer >= 0",
-                                             file.string(), row));
+        t.fail(row, 4, "spheres file: material must be an integer >= 0", "write the material index 0, 1, ...");
       stored.material.push_back(static_cast<std::int32_t>(v[4]));
     }
   }
@@ -106,24 +72,19 @@ StoredPacking read_spheres_csv(const std::filesystem::path& file) {
 }
 
 BondList read_bonds_csv(const std::filesystem::path& file, std::size_t particles) {
-  std::ifstream in = open_or_throw(file, "bonds");
+  const auto t = read_table(file, "bonds");
   BondList bonds;
-  std::string line;
-  std::vector<double> v;
-  std::size_t row = 0;
-  while (std::getline(in, line)) {
-    ++row;
-    if (!parse_numbers(line, v)) continue;
-    if (std::isnan(v[0]) && bonds.empty()) continue;  // header
-    const auto n = static_cast<double>(particles);
-    if (v.size() != 2 || !(v[0] >= 0 && v[0] < n && v[1] >= 0 && v[1] < n) || v[0] != std::floor(v[0]) ||
-        v[1] != std::floor(v[1]) || v[0] == v[1])
-      throw std::runtime_error(fmt::format("bonds file '{}' line {}: expected two different sphere indices i,j in "
-                                           "[0, {}) (0-based rows of the spheres file)",
-                                           file.string(), row, particles));
-    const auto i = static_cast<Index>(v[0]);
-    const auto j = static_cast<Index>(v[1]);
-    bonds.emplace_back(std::min(i, j), std::max(i, j));
+  const auto n = static_cast<double>(particles);
+  const std::string fix = fmt::format("expected two different sphere indices i,j in [0, {}) (0-based rows of the "
+                                      "spheres file)",
+                                      particles);
+  for (const auto& row : t.rows()) {
+    if (row.fields.size() != 2) t.fail(row, 0, fmt::format("bonds file: {} columns", row.fields.size()), fix);
+    const double i = t.number(row, 0, "index i"), j = t.number(row, 1, "index j");
+    if (!(i >= 0 && i < n && j >= 0 && j < n) || i != std::floor(i) || j != std::floor(j) || i == j)
+      t.fail(row, 0, "bonds file: not a bond", fix);
+    bonds.emplace_back(std::min(static_cast<Index>(i), static_cast<Index>(j)),
+                       std::max(static_cast<Index>(i), static_cast<Index>(j)));
   }
   std::vector<std::pair<Index, Index>> sorted = bonds;
   std::sort(sorted.begin(), sorted.end());

@@ -4,10 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <string>
+
+#include "shard/io/csv.hpp"
 
 namespace shard::geometry {
 
@@ -22,29 +22,19 @@ SizeDistribution SizeDistribution::uniform(double d_min, double d_max) {
   return psd;
 }
 
+// Read by the one CSV reader (shard/io/csv.hpp): an optional header, ',' or ';' or tab, decimal
+// commas, a units row ("mm;-" converts the diameters to m).
 SizeDistribution SizeDistribution::from_table(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in)
-    throw std::runtime_error(fmt::format("PSD table '{}' cannot be opened: check the path", file.string()));
+  const auto t = io::CsvTable::read(file, io::CsvHeader::optional);
   SizeDistribution psd;
-  std::string line;
-  int row = 0;
-  while (std::getline(in, line)) {
-    ++row;
-    if (line.empty() || line[0] == '#') continue;
-    std::replace(line.begin(), line.end(), ',', ' ');
-    std::istringstream fields(line);
-    double d = 0, f = 0;
-    if (!(fields >> d >> f)) {
-      if (psd.diameter_.empty()) continue;  // a header line
-      throw std::runtime_error(fmt::format("PSD table '{}' line {}: expected 'diameter_m, cumulative_fraction'",
-                                           file.string(), row));
-    }
+  for (const auto& row : t.rows()) {
+    if (row.fields.size() < 2)
+      t.fail(row, 0, "PSD table: one field", "write two columns, diameter_m and cumulative_fraction");
+    const double d = t.number(row, 0, "diameter in m"), f = t.number(row, 1, "cumulative fraction");
     if (!(d > 0.0) || f < 0.0 || f > 1.0 ||
         (!psd.diameter_.empty() && (d <= psd.diameter_.back() || f < psd.fraction_.back())))
-      throw std::runtime_error(fmt::format("PSD table '{}' line {}: diameters must be > 0 and increasing, "
-                                           "fractions non-decreasing within [0, 1]",
-                                           file.string(), row));
+      t.fail(row, 0, "PSD table: diameters must be > 0 and increasing, fractions non-decreasing within [0, 1]",
+             "sort the rows by diameter and give cumulative fractions from 0 to 1");
     psd.diameter_.push_back(d);
     psd.fraction_.push_back(f);
   }

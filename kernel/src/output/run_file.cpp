@@ -11,11 +11,13 @@
 #include <type_traits>
 
 #include "h5_io.hpp"
+#include "run_layout.hpp"
 
 namespace shard {
 
 namespace {
 
+using h5::frame_path;
 constexpr std::size_t kAll = std::numeric_limits<std::size_t>::max();
 
 const std::vector<std::string>& scalar_series_names() {
@@ -45,66 +47,10 @@ std::vector<Vec3> read_vec3(hid_t file, const std::string& path, std::size_t row
   return out;
 }
 
-std::string frame_path(std::size_t k) { return "frames/" + frame_name(k); }
-
 bool is_frame_name(const std::string& name) {
   if (name.empty() || name.size() > 18) return false;
   if (!std::all_of(name.begin(), name.end(), [](char c) { return c >= '0' && c <= '9'; })) return false;
   return frame_name(std::stoull(name)) == name;
-}
-
-// What a frame group lacks of the layout ("" when complete): a kill may have torn the last frame,
-// and the writer sets step and time after the datasets.
-std::string missing_part(hid_t group) {
-  for (const char* name : {"step", "time"})
-    if (!h5::has_attribute(group, name)) return fmt::format("its {} attribute", name);
-  for (const char* name : {"id", "position", "velocity", "omega", "radius", "material", "bonds"})
-    if (!h5::path_exists(group, name)) return fmt::format("its '{}' dataset", name);
-  return {};
-}
-
-h5::Handle open_file(const std::filesystem::path& path, RunFile::Mode mode) {
-  const std::string name = path.string();
-  std::error_code error;
-  if (!std::filesystem::exists(path, error))
-    throw OutputError(name + ": no such run file; give the run.h5 that `shard run` wrote");
-  if (std::filesystem::is_directory(path, error))
-    throw OutputError(name + ": is a folder, not a run file; give the run.h5 inside it");
-  if (H5Fis_hdf5(path.c_str()) <= 0) {
-    H5Eclear2(H5E_DEFAULT);
-    throw OutputError(name + ": not an HDF5 file, so not a run file; give the run.h5 that `shard run` wrote");
-  }
-  hid_t id = -1;
-  if (mode == RunFile::Mode::read_write) {
-    id = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
-  } else {
-    // A running job holds an exclusive lock on its file; reading what it has flushed is the point
-    // of flushing, so a locked file is opened again without locking. (Not the first choice:
-    // within the writer's own process HDF5 refuses a second open with other locking flags.)
-    id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-    if (id < 0) {
-      H5Eclear2(H5E_DEFAULT);
-      h5::Handle access = h5::plist_handle(H5Pcreate(H5P_FILE_ACCESS), "creating file access list");
-      h5::check(H5Pset_file_locking(access.get(), false, true), "disabling file locking");
-      id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, access.get());
-    }
-  }
-  if (id < 0) {
-    const std::string cause = h5::take_error_stack();
-    const std::string detail = cause.empty() ? "" : " (" + cause + ")";
-    if (mode == RunFile::Mode::read_write)
-      throw OutputError(fmt::format("cannot open the run file '{}' for writing{}; is it read-only, or is its run "
-                                    "still going?",
-                                    name, detail));
-    throw OutputError(fmt::format("cannot open the run file '{}'{}; it is damaged: give the run.h5 that `shard run` "
-                                  "wrote",
-                                  name, detail));
-  }
-  h5::Handle file(id, H5Fclose);
-  if (!h5::path_exists(file.get(), "frames"))
-    throw OutputError(name + ": has no /frames group, so it is no Shard run file (a checkpoint?); give the run.h5 "
-                             "that `shard run` wrote");
-  return file;
 }
 
 // Per-particle masses rho 4/3 pi r^3 (rho: one value, or one per material id).
@@ -147,13 +93,7 @@ struct RunFile::Impl {
   }
 
   // A frame counts once its group opens and holds every attribute and dataset.
-  static bool frame_complete(hid_t group) {
-    try {
-      return missing_part(group).empty();
-    } catch (const OutputError&) {
-      return false;
-    }
-  }
+  static bool frame_complete(hid_t group) { return h5::frame_complete(group); }
 
   bool named_frame_complete(std::size_t k) const {
     try {
@@ -226,7 +166,7 @@ struct RunFile::Impl {
     if (h5::path_exists(id(), frame_path(k))) {
       std::string missing;
       try {
-        missing = missing_part(h5::open_group(id(), frame_path(k)).get());
+        missing = h5::frame_missing_part(h5::open_group(id(), frame_path(k)).get());
       } catch (const OutputError& error) {
         missing = error.what();
       }
@@ -299,7 +239,7 @@ RunFile::RunFile(const std::filesystem::path& path, Mode mode) {
   impl_ = std::make_unique<Impl>();
   impl_->path = path;
   impl_->mode = mode;
-  impl_->file = open_file(path, mode);
+  impl_->file = h5::open_run_file(path, mode == Mode::read_write ? h5::RunAccess::read_write : h5::RunAccess::read);
   impl_->scan_frames();
   impl_->scan_series();
 }
@@ -342,6 +282,11 @@ RunMetadata RunFile::metadata() const {
                                   "run` wrote",
                                   impl_->path.string(), error.what()));
   }
+}
+
+int RunFile::format_version() const {
+  const h5::QuietErrors quiet;
+  return static_cast<int>(h5::run_format_version(impl_->id()));
 }
 
 int RunFile::abi_version() const {

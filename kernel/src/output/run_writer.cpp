@@ -23,6 +23,7 @@
 #include "break_event_writer.hpp"
 #include "frame_writer.hpp"
 #include "h5_io.hpp"
+#include "run_layout.hpp"
 #include "series_writer.hpp"
 #include "shard/output.hpp"
 #include "shard/plugin.hpp"
@@ -102,6 +103,7 @@ h5::Handle create_run_file(const std::filesystem::path& path, const RunMetadata&
   h5::write_attribute(file, "scene", meta.scene_text);
   h5::write_attribute(file, "seed", meta.seed);
   h5::write_attribute(file, "abi_version", static_cast<std::int64_t>(kAbiVersion));
+  h5::write_run_format_version(file);
   h5::Handle plugins = h5::create_group(file, "plugins");
   for (const auto& [name, description] : meta.plugins)
     h5::write_attribute(plugins.get(), name, description);

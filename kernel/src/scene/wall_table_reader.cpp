@@ -2,108 +2,101 @@
 
 #include <fmt/format.h>
 
-#include <charconv>
-#include <fstream>
+#include <optional>
 #include <string>
-#include <vector>
 
+#include "shard/io/csv.hpp"
 #include "shard/scene.hpp"
 
 namespace shard {
 namespace {
 
-struct Cell {
-  std::string text;
-  std::size_t column = 1;  // 1-based character column of the cell's start
+// The names a table may use: time and either a position (displacement, angle) or a rate.
+struct TableNames {
+  std::string key, position, rate, position_unit, rate_unit;
 };
 
-std::vector<Cell> split_row(const std::string& line) {
-  std::vector<Cell> cells;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t comma = line.find(',', start);
-    std::string raw = line.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-    std::size_t lead = raw.find_first_not_of(" \t\r");
-    const std::size_t trail = raw.find_last_not_of(" \t\r");
-    if (lead == std::string::npos) lead = 0;
-    cells.push_back({trail == std::string::npos ? std::string() : raw.substr(lead, trail - lead + 1), start + lead + 1});
-    if (comma == std::string::npos) break;
-    start = comma + 1;
+TableNames names_of(WallTableKind kind) {
+  if (kind == WallTableKind::Rotation) return {"rotation_table", "angle", "angular_velocity", "rad", "rad/s"};
+  return {"motion_table", "displacement", "velocity", "m", "m/s"};
+}
+
+struct TableColumns {
+  std::size_t time = 0, value = 0;
+  bool gives_velocity = false;
+};
+
+TableColumns find_columns(const io::CsvTable& t, const TableNames& n) {
+  std::optional<std::size_t> time, value;
+  TableColumns out;
+  for (std::size_t c = 0; c < t.header().size(); ++c) {
+    const std::string& h = t.header()[c];
+    const long at = t.header_columns()[c];
+    if (h == "time") {
+      time = c;
+    } else if (h == n.position || h == n.rate) {
+      if (value)
+        throw SceneError(fmt::format("{}:{}:{}: the {} names both {} and {}; give one of them", t.file(),
+                                     t.header_line(), at, n.key, n.position, n.rate));
+      value = c;
+      out.gives_velocity = h == n.rate;
+    } else {
+      throw SceneError(fmt::format("{}:{}:{}: unknown column '{}' in the {}; the columns are time [s] and either "
+                                   "{} [{}] or {} [{}]",
+                                   t.file(), t.header_line(), at, h, n.key, n.position, n.position_unit, n.rate,
+                                   n.rate_unit));
+    }
   }
-  return cells;
+  if (!time || !value)
+    throw SceneError(fmt::format("{}:{}:1: the {}'s header must name time and either {} or {}, e.g. 'time,{}'",
+                                 t.file(), t.header_line(), n.key, n.position, n.rate, n.position));
+  out.time = *time, out.value = *value;
+  return out;
+}
+
+double cell_number(const io::CsvTable& t, const io::CsvRow& row, std::size_t c) {
+  if (const auto v = io::parse_csv_number(row.fields[c], t.decimal_comma())) return *v * t.si_factor(c);
+  throw SceneError(fmt::format("{}:{}:{}: '{}' is not a number", t.file(), row.line, row.columns[c], row.fields[c]));
 }
 
 }  // namespace
 
+// The table is read by the one CSV reader (shard/io/csv.hpp): ',' or ';' or tab, decimal commas,
+// a units row ("s;mm") applied to SI.
 WallTable read_wall_table(const std::filesystem::path& file, WallTableKind kind) {
-  const std::string name = file.string();
-  const bool turns = kind == WallTableKind::Rotation;
-  // The value column's two names: a position (displacement, angle) or a rate.
-  const std::string position = turns ? "angle" : "displacement", rate = turns ? "angular_velocity" : "velocity";
-  const std::string key = turns ? "rotation_table" : "motion_table";
-  std::ifstream in(file);
-  if (!in)
+  const TableNames n = names_of(kind);
+  if (!std::filesystem::is_regular_file(file))
     throw SceneError(fmt::format("{}: cannot open the wall's {} (a CSV of time and {} or {}); check the path, which "
                                  "is relative to the scene file",
-                                 name, key, position, rate));
+                                 file.string(), n.key, n.position, n.rate));
+  const io::CsvTable t = [&] {
+    try {
+      return io::CsvTable::read(file);
+    } catch (const io::CsvError& e) {
+      throw SceneError(fmt::format("{} (the wall's {}: a header 'time,{}' and one row per instant)", e.what(), n.key,
+                                   n.position));
+    }
+  }();
+  const TableColumns columns = find_columns(t, n);
   WallTable table;
-  table.file = name;
-  int time_col = -1, value_col = -1;
-  std::size_t columns = 0;
-  std::string line;
-  int line_no = 0, last_line = 0;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (line.find_first_not_of(" \t\r") == std::string::npos || line[line.find_first_not_of(" \t")] == '#') continue;
-    const std::vector<Cell> cells = split_row(line);
-    if (columns == 0) {  // the header
-      columns = cells.size();
-      for (std::size_t c = 0; c < cells.size(); ++c) {
-        const std::string& h = cells[c].text;
-        if (h == "time") time_col = static_cast<int>(c);
-        else if (h == position || h == rate) {
-          if (value_col >= 0)
-            throw SceneError(fmt::format("{}:{}:{}: the {} names both {} and {}; give one of them", name, line_no,
-                                         cells[c].column, key, position, rate));
-          value_col = static_cast<int>(c);
-          table.gives_velocity = h == rate;
-        } else {
-          throw SceneError(fmt::format("{}:{}:{}: unknown column '{}' in the {}; the columns are time [s] and either "
-                                       "{} [{}] or {} [{}]",
-                                       name, line_no, cells[c].column, h, key, position, turns ? "rad" : "m", rate,
-                                       turns ? "rad/s" : "m/s"));
-        }
-      }
-      if (time_col < 0 || value_col < 0)
-        throw SceneError(fmt::format("{}:{}:1: the {}'s header must name time and either {} or {}, e.g. 'time,{}'",
-                                     name, line_no, key, position, rate, position));
-      continue;
-    }
-    if (cells.size() != columns)
-      throw SceneError(fmt::format("{}:{}:1: {} cells where the header has {}", name, line_no, cells.size(), columns));
-    double v[2] = {0, 0};
-    for (int k = 0; k < 2; ++k) {
-      const Cell& cell = cells[static_cast<std::size_t>(k == 0 ? time_col : value_col)];
-      const char* end = cell.text.data() + cell.text.size();
-      const auto r = std::from_chars(cell.text.data(), end, v[k]);
-      if (r.ec != std::errc() || r.ptr != end || cell.text.empty())
-        throw SceneError(fmt::format("{}:{}:{}: '{}' is not a number", name, line_no, cell.column, cell.text));
-    }
-    if (table.time.empty() && v[0] != 0.0)
+  table.file = file.string();
+  table.gives_velocity = columns.gives_velocity;
+  long last_line = 0;
+  for (const auto& row : t.rows()) {
+    const double time = cell_number(t, row, columns.time), value = cell_number(t, row, columns.value);
+    const long at = row.columns[columns.time];
+    if (table.time.empty() && time != 0.0)
       throw SceneError(fmt::format("{}:{}:{}: the first time is {} s; the table must start at time 0 (the start of "
                                    "the run)",
-                                   name, line_no, cells[static_cast<std::size_t>(time_col)].column, v[0]));
-    if (!table.time.empty() && !(v[0] > table.time.back()))
+                                   t.file(), row.line, at, time));
+    if (!table.time.empty() && !(time > table.time.back()))
       throw SceneError(fmt::format("{}:{}:{}: time {} s is not later than {} s on line {}; the times must increase "
                                    "strictly",
-                                   name, line_no, cells[static_cast<std::size_t>(time_col)].column, v[0],
-                                   table.time.back(), last_line));
-    table.time.push_back(v[0]);
-    table.value.push_back(v[1]);
-    last_line = line_no;
+                                   t.file(), row.line, at, time, table.time.back(), last_line));
+    table.time.push_back(time);
+    table.value.push_back(value);
+    last_line = row.line;
   }
-  if (columns == 0)
-    throw SceneError(fmt::format("{}: the {} is empty; write a header 'time,{}' and rows", name, key, position));
   try {
     prepare_wall_table(table);
   } catch (const std::invalid_argument& e) {

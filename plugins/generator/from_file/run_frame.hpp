@@ -1,7 +1,7 @@
 #pragma once
 // Reads the particles and bonds of one frame of a Shard run file (run.h5, layout in
-// docs/output-format.md) with the HDF5 C API. Plugins may not link the kernel library, whose
-// shard::RunFile does the same; this reader follows the documented layout instead.
+// docs/output-format.md) through shard::h5, the run-file layer under shard::RunFile as well: the
+// same opening checks, format version and rule for complete frames.
 #include <cstdint>
 #include <filesystem>
 #include <utility>
@@ -23,8 +23,8 @@ struct RunFrame {
 };
 
 // frame >= 0: that frame; frame < 0: counted from the end (-1 = the last complete frame).
-// Throws std::runtime_error naming the file and the defect (not HDF5, not a run file, no such
-// frame, inconsistent dataset shapes).
+// Throws std::runtime_error naming the file and the defect (not HDF5, not a run file, a newer
+// format version, no such frame, inconsistent dataset shapes).
 RunFrame read_run_frame(const std::filesystem::path& path, long frame);
 
 }  // namespace shard::from_file

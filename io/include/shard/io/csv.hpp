@@ -64,6 +64,7 @@ class CsvTable {
   bool decimal_comma() const { return separator_ != ','; }
   const std::vector<std::string>& header() const { return header_; }  // empty without a header row
   long header_line() const { return header_line_; }
+  const std::vector<long>& header_columns() const { return header_columns_; }  // where each name starts
   // The units row's text per column ("" for a column without one); empty when there is no row.
   const std::vector<std::string>& units() const { return units_; }
   const std::vector<CsvRow>& rows() const { return rows_; }
@@ -83,6 +84,7 @@ class CsvTable {
   char separator_ = ',';
   std::vector<std::string> header_;
   long header_line_ = 0;
+  std::vector<long> header_columns_;
   std::vector<std::string> units_;
   std::vector<double> factors_;
   std::vector<CsvRow> rows_;

@@ -19,6 +19,7 @@
 #include "shard/bending/curve_analysis.hpp"
 #include "shard/bending/local_deflection.hpp"
 #include "shard/bending/network_stiffness.hpp"
+#include "shard/io/json.hpp"
 
 namespace shard::bending {
 
@@ -78,8 +79,12 @@ struct BendingReport {
 // Throws std::runtime_error with the path and the missing item when the run is not a bending run.
 BendingReport analyse_bending_run(const std::filesystem::path& run, const BendingOptions& options = {});
 
-// Human-readable summary (several lines) and a JSON object with the same figures.
+// Human-readable summary (several lines).
 std::string format_report(const BendingReport& r);
-std::string report_json(const BendingReport& r);
+
+// The same figures as a JSON document (shard/io/json.hpp), SI units named in each key
+// ("force_max_N"); figures that could not be measured are null. Format version 1.
+inline constexpr int kBendingReportFormat = 1;
+io::Json report_json(const BendingReport& r);
 
 }  // namespace shard::bending

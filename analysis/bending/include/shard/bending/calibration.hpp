@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "shard/io/json.hpp"
+
 namespace shard::bending {
 
 struct CalibrationTargets {
@@ -57,6 +59,8 @@ CalibrationResult calibrate(const CalibrationTargets& targets, double initial_yo
 double secant_update(const std::vector<double>& x, const std::vector<double>& y, double target);
 
 std::string calibration_csv(const CalibrationResult& r);
-std::string calibration_json(const CalibrationResult& r, const CalibrationTargets& targets);
+// The targets, the outcome and every run as a JSON document (shard/io/json.hpp); format version 1.
+inline constexpr int kCalibrationFormat = 1;
+io::Json calibration_json(const CalibrationResult& r, const CalibrationTargets& targets);
 
 }  // namespace shard::bending

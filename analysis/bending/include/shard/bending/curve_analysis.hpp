@@ -74,10 +74,12 @@ struct Curve {
   std::vector<double> time, displacement, force;  // time may be empty
 };
 
-// Reads a CSV with a header naming its columns: the displacement column is the first whose name
-// starts with "displacement" or "w", the force column the first starting with "force" or "F"
-// (units: m and N; a name ending in "_mm" is converted from mm, "_kN" from kN). Lines starting
-// with '#' are comments. Throws std::runtime_error naming file and line on bad input.
+// Reads a CSV with a header naming its columns (shard/io/csv.hpp: Shard's files and lab exports
+// with ';', decimal commas and a units row): the displacement column is the first whose name starts
+// with "displacement", "w", "Standardweg" or "Extension", the force column the first starting with
+// "force", "F", "Standardkraft" or "Load" (any case). Units: a units row under the header is
+// applied; without one, m and N, or mm and kN for a name ending in "_mm" or "_kN". Lines starting
+// with '#' are comments. Throws std::runtime_error naming file:line:column on bad input.
 Curve read_curve_csv(const std::string& path);
 // The file's "#! key = value" lines (a measurement file's set-up: span_mm, pin_distance_mm,
 // width_mm, height_mm, and displacement = local | pins, what the displacement column measured).

@@ -1,26 +1,27 @@
 #pragma once
-// A comma-separated table with a header line, kept as text so every value can be reported with
-// its file, line and column when it does not parse. '#' starts a comment line; blank lines are
-// skipped; fields are trimmed.
+// A measurement table with a header line, read by the one CSV reader (shard/io/csv.hpp: ',' or
+// ';' or tab, decimal commas, quotes, a units row applied to SI, a byte-order mark, CRLF) and kept
+// as text so every value can be reported with its file, line and column when it does not parse.
+// '#' starts a comment line; blank lines are skipped; fields are trimmed. Problems are
+// MeasurementError, whose column is the 1-based field of the table.
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "shard/io/csv.hpp"
+
 namespace shard::measure {
 
-struct CsvRow {
-  long line = 0;  // 1-based line in the file
-  std::vector<std::string> fields;
-};
+using CsvRow = io::CsvRow;  // line (1-based) and the fields
 
 class CsvTable {
  public:
   static CsvTable read(const std::filesystem::path& file);
 
   const std::filesystem::path& file() const { return file_; }
-  const std::vector<std::string>& header() const { return header_; }
-  const std::vector<CsvRow>& rows() const { return rows_; }
+  const std::vector<std::string>& header() const { return table_.header(); }
+  const std::vector<CsvRow>& rows() const { return table_.rows(); }
 
   // 0-based column index; nullopt when absent.
   std::optional<std::size_t> find(const std::string& name) const;
@@ -29,17 +30,17 @@ class CsvTable {
   // Rejects columns not in `known`, naming the closest known one.
   void reject_unknown(const std::vector<std::string>& known) const;
 
-  // The value in `column` of `row` as a finite number; empty cells are errors.
+  // The value in `column` of `row` as a finite number in SI (a units row is applied); empty cells
+  // are errors.
   double number(const CsvRow& row, std::size_t column, const std::string& unit_hint) const;
   // nullopt for an empty cell, otherwise as number().
   std::optional<double> optional_number(const CsvRow& row, std::size_t column, const std::string& unit_hint) const;
   const std::string& text(const CsvRow& row, std::size_t column) const;
 
  private:
+  CsvTable(std::filesystem::path file, io::CsvTable table) : file_(std::move(file)), table_(std::move(table)) {}
   std::filesystem::path file_;
-  std::vector<std::string> header_;
-  long header_line_ = 0;
-  std::vector<CsvRow> rows_;
+  io::CsvTable table_;
 };
 
 // The name in `known` nearest to `word` within 3 edits (Levenshtein), or "" when none is: the
