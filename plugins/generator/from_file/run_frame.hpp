@@ -1,6 +1,6 @@
 #pragma once
 // Reads the particles and bonds of one frame of a Shard run file (run.h5, layout in
-// docs/output-format.md) with the HDF5 C API. Plugins may not link the kernel library, whose
+// docs/reference/output-format.md) with the HDF5 C API. Plugins may not link the kernel library, whose
 // shard::RunFile does the same; this reader follows the documented layout instead.
 #include <cstdint>
 #include <filesystem>
