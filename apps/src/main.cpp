@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingDirectory);
   shard::add_run_command(app, ctx);
   shard::add_plugins_command(app, ctx);
+  shard::add_schema_command(app, ctx);
   shard::add_bending_command(app, ctx);  // bending, calibrate
   shard::add_fragments_command(app, ctx);
   shard::add_measure_command(app, ctx);
