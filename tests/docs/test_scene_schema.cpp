@@ -24,6 +24,13 @@ const std::string kBoxFill =
 const std::string kGenerator = "[generator]\n" + kBoxFill;
 const std::string kUnknown = "zz_not_a_key = 1\n";
 
+// A key set as one line, so a failing CHECK prints both lists.
+std::string joined(const std::set<std::string>& keys) {
+  std::string out;
+  for (const auto& k : keys) out += (out.empty() ? "" : ", ") + k;
+  return out;
+}
+
 // The keys the loader lists when it refuses an unknown key in `text`.
 std::set<std::string> accepted_keys(const std::string& text) {
   try {
@@ -41,7 +48,7 @@ std::set<std::string> accepted_keys(const std::string& text) {
   return {};
 }
 
-std::set<std::string> schema_keys(const std::string& header) {
+std::set<std::string> schema_key_set(const std::string& header) {
   for (const auto& section : scene_schema())
     if (section.header == header) {
       std::set<std::string> keys;
@@ -52,6 +59,9 @@ std::set<std::string> schema_keys(const std::string& header) {
   return {};
 }
 
+std::string schema_keys(const std::string& header) { return joined(schema_key_set(header)); }
+std::string loader_keys(const std::string& text) { return joined(accepted_keys(text)); }
+
 std::string wall(const std::string& shape_keys) {
   return "[[wall]]\nname = \"w\"\n" + shape_keys + kUnknown;
 }
@@ -60,21 +70,21 @@ std::string wall(const std::string& shape_keys) {
 
 TEST_CASE("the scene schema lists exactly the keys the loader accepts") {
   const std::string base = kSimulation + kMaterial + kGenerator;
-  CHECK(accepted_keys(kSimulation + kUnknown + kMaterial + kGenerator) == schema_keys("[simulation]"));
-  CHECK(accepted_keys(kSimulation + kMaterial + kUnknown + kGenerator) == schema_keys("[material]"));
-  CHECK(accepted_keys(base + "[output]\n" + kUnknown) == schema_keys("[output]"));
-  CHECK(accepted_keys(base + "[analysis]\n" + kUnknown) == schema_keys("[analysis]"));
-  CHECK(accepted_keys(base + "[stop]\n" + kUnknown) == schema_keys("[stop]"));
-  CHECK(accepted_keys(base + "[[grip]]\nmin_corner = [0, 0, 0]\nmax_corner = [1, 1, 1]\n" + kUnknown) ==
+  CHECK(loader_keys(kSimulation + kUnknown + kMaterial + kGenerator) == schema_keys("[simulation]"));
+  CHECK(loader_keys(kSimulation + kMaterial + kUnknown + kGenerator) == schema_keys("[material]"));
+  CHECK(loader_keys(base + "[output]\n" + kUnknown) == schema_keys("[output]"));
+  CHECK(loader_keys(base + "[analysis]\n" + kUnknown) == schema_keys("[analysis]"));
+  CHECK(loader_keys(base + "[stop]\n" + kUnknown) == schema_keys("[stop]"));
+  CHECK(loader_keys(base + "[[grip]]\nmin_corner = [0, 0, 0]\nmax_corner = [1, 1, 1]\n" + kUnknown) ==
         schema_keys("[[grip]]"));
   // A wall reads the keys of its shape: together the three shapes' keys are the section's.
   std::set<std::string> walls = accepted_keys(base + wall("shape = \"plane\"\n"));
   walls.merge(accepted_keys(base + wall("shape = \"cylinder\"\nradius = 0.01\nlength = 0.1\n")));
   walls.merge(accepted_keys(base + wall("shape = \"mesh\"\nfile = \"" SHARD_SOURCE_DIR "/scenes/geometry/cube_10mm.stl\"\n")));
-  CHECK(walls == schema_keys("[[wall]]"));
+  CHECK(joined(walls) == schema_keys("[[wall]]"));
   const std::string body = kSimulation + kMaterial + "[[body]]\nname = \"b\"\n";
-  CHECK(accepted_keys(body + kUnknown + "[body.generator]\n" + kBoxFill) == schema_keys("[[body]]"));
-  CHECK(accepted_keys(body + "[body.generator]\n" + kBoxFill + "[body.stream]\ncopies = 1\nstart = [0, 0, 0]\n" +
+  CHECK(loader_keys(body + kUnknown + "[body.generator]\n" + kBoxFill) == schema_keys("[[body]]"));
+  CHECK(loader_keys(body + "[body.generator]\n" + kBoxFill + "[body.stream]\ncopies = 1\nstart = [0, 0, 0]\n" +
                       kUnknown) == schema_keys("[body.stream]"));
 }
 
