@@ -38,7 +38,8 @@ int main(int argc, char** argv) {
   shard::route_measurement_command(args);
 #if SHARD_MPI_ENSEMBLE
   // Under mpirun a measurement command's runs spread over the ranks: rank 0 runs the command, the
-  // others run its simulations until it ends (docs/explanation/scaling.md, "Distributed ensembles").
+  // others run its simulations until it ends (docs/how-to/run-on-a-cluster.md, "A measurement ensemble
+  // over ranks").
   std::optional<shard::driver::RankEnsemble> ensemble;
   if (shard::spreads_runs_over_ranks(args)) {
     ensemble.emplace(argc, argv);

@@ -150,7 +150,7 @@ TEST_CASE("ConfirmationRule::earlier_refits widens the Bonferroni share to a who
 TEST_CASE("a later step's converged refits: a real second effect passes the path's level, a fit to noise does not") {
   // Step 2 of two stepwise diagnoses (10 components, 3 nuisance parameters: E_b, sigma_crit and
   // the kept effect), each after a first step that tried 2 nameable refits; converged refits
-  // (docs/explanation/diagnosis.md "Several effects at once").
+  // (docs/explanation/diagnosis.md "Which effect is missing").
   ConfirmationRule path;
   path.earlier_refits = 2;
   // Hidden compliance + softening: softening 14.877 -> 2.040 (p_drop 3.4e-4 < 0.05 / 4), Weibull

@@ -68,7 +68,7 @@ TEST_CASE("contrast diagnosis on foreign truth: null, four library effects, one 
   // Two effects at once: machine compliance 2e-4 m/N and the foreign softening 1.5. The closest
   // single effect (compliance) takes most of the difference and leaves a remainder; the pair with
   // bond_softening explains it (six draws of these sets: both named in 6, compliance 1.76-2.17e-4
-  // m/N; docs/explanation/diagnosis.md, "Two effects at once").
+  // m/N; docs/explanation/diagnosis.md, "Lab data: contrasts across sets").
   CHECK(verdict["both"] == "machine_compliance + bond_softening");
   const auto both_at = json.find(name_key("both"));
   const double both_compliance = number_after(json, "\"values\": [", json.find("\"pair\": {", both_at));
