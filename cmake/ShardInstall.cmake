@@ -3,7 +3,7 @@
 # prefix, so that an out-of-tree plugin project needs only
 #     find_package(Shard REQUIRED)
 #     shard_add_plugin(my_effect SOURCES my_effect.cpp)
-# (docs/plugins.md). Included from the top-level CMakeLists.txt after the kernel and apps.
+# (docs/how-to/write-a-plugin.md). Included from the top-level CMakeLists.txt after the kernel and apps.
 include(CMakePackageConfigHelpers)
 set(SHARD_INSTALL_CMAKE_DIR lib/cmake/Shard)
 

@@ -214,7 +214,7 @@ int fragments_command(const FragmentsOptions& options, std::ostream& out, std::o
     }
     return 0;
   } catch (const std::exception& e) {
-    // One line naming the run file, as every shard error (docs/errors.md).
+    // One line naming the run file, as every shard error (docs/reference/errors.md).
     const std::string what = e.what();
     const std::string file = options.run_file.string();
     err << "shard: error: " << (what.find(file) == std::string::npos ? file + ": " : "") << what << "\n";

@@ -1,6 +1,6 @@
 // `shard bending-rate-check scene.toml`: the four-point bending scene at its loading rate and at
 // a fraction of it (default half), same packing, and the change of F_max and of the initial
-// stiffness against the < 3 % / < 2 % criteria (docs/four_point_bending.md: "result unchanged when the
+// stiffness against the < 3 % / < 2 % criteria (docs/explanation/four-point-bending.md: "result unchanged when the
 // rate is halved").
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>

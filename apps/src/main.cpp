@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingDirectory);
   shard::add_run_command(app, ctx);
   shard::add_plugins_command(app, ctx);
+  shard::add_schema_command(app, ctx);
   shard::add_bending_command(app, ctx);  // bending, calibrate
   shard::add_fragments_command(app, ctx);
   shard::add_measure_command(app, ctx);
@@ -37,7 +38,8 @@ int main(int argc, char** argv) {
   shard::route_measurement_command(args);
 #if SHARD_MPI_ENSEMBLE
   // Under mpirun a measurement command's runs spread over the ranks: rank 0 runs the command, the
-  // others run its simulations until it ends (docs/scaling-out.md, "Distributed ensembles").
+  // others run its simulations until it ends (docs/how-to/run-on-a-cluster.md, "A measurement ensemble
+  // over ranks").
   std::optional<shard::driver::RankEnsemble> ensemble;
   if (shard::spreads_runs_over_ranks(args)) {
     ensemble.emplace(argc, argv);
@@ -51,7 +53,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     // --help and --version arrive as ParseErrors with exit code 0: CLI11 prints them.
     if (e.get_exit_code() == 0) return app.exit(e);
-    // A bad option or value is a one-line error like every other (docs/errors.md).
+    // A bad option or value is a one-line error like every other (docs/reference/errors.md).
     fmt::print(stderr, "shard: error: {}; `shard --help` lists the commands, `shard COMMAND --help` their options\n",
                e.what());
     return 1;

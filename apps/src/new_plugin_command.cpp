@@ -1,5 +1,5 @@
 // `shard new-plugin KIND NAME [--dir DIR]`: writes a one-file plugin and its CMakeLists.txt from
-// the templates, ready to build out of tree against the installed Shard package (docs/plugins.md).
+// the templates, ready to build out of tree against the installed Shard package (docs/how-to/write-a-plugin.md).
 // `shard new-plugin --effect NAME`: a bond effect composed onto beam_bond (shard/bond_effect.hpp),
 // its plugin source, a scaffold test and a CMakeLists.txt that builds and registers both.
 #include <CLI/CLI.hpp>

@@ -8,38 +8,12 @@
 #include <memory>
 
 #include "option_checks.hpp"
+#include "param_text.hpp"
 #include "shard/app/commands.hpp"
 #include "shard/app/run_command.hpp"
 #include "shard/plugin_host.hpp"
 
 namespace shard {
-namespace {
-
-std::string param_type(ParamType t) {
-  switch (t) {
-    case ParamType::Number: return "number";
-    case ParamType::Integer: return "integer";
-    case ParamType::Boolean: return "bool";
-    case ParamType::String: return "string";
-    case ParamType::Vector3: return "vec3";
-  }
-  return "?";
-}
-
-std::string default_text(const ParamSpec& s) {
-  return std::visit(
-      [](const auto& d) -> std::string {
-        using T = std::decay_t<decltype(d)>;
-        if constexpr (std::is_same_v<T, std::monostate>) return "(required)";
-        else if constexpr (std::is_same_v<T, double>) return fmt::format("{}", d);
-        else if constexpr (std::is_same_v<T, bool>) return d ? "true" : "false";
-        else if constexpr (std::is_same_v<T, std::string>) return "\"" + d + "\"";
-        else return fmt::format("[{}, {}, {}]", d[0], d[1], d[2]);
-      },
-      s.default_value);
-}
-
-}  // namespace
 
 void add_run_command(CLI::App& app, CommandContext& ctx) {
   auto options = std::make_shared<RunOptions>();
@@ -77,11 +51,9 @@ void add_plugins_command(CLI::App& app, CommandContext& ctx) {
       fmt::print("{}/{} {}  ({})\n  {}\n", to_string(p->info.kind), p->info.name, p->info.version, p->file,
                  p->info.doc);
       for (const auto& s : p->info.params)
-        fmt::print("    {:<26} {:<7} [{}] default {}{}{}  {}\n", s.name, param_type(s.type), s.unit, default_text(s),
-                   s.neutral ? fmt::format(", neutral {}", *s.neutral) : "",
-                   s.scope == ParamScope::Material ? ", per [[material]]"
-                                                   : (s.scope == ParamScope::Pair ? ", per [[material_pair]]" : ""),
-                   s.doc);
+        fmt::print("    {:<26} {:<7} [{}] default {}{}{}  {}\n", s.name, param_type_text(s.type), s.unit,
+                   param_default_text(s), s.neutral ? fmt::format(", neutral {}", *s.neutral) : "",
+                   s.scope == ParamScope::Model ? "" : ", " + param_scope_text(s.scope), s.doc);
     }
     ctx.exit_code = 0;
   });

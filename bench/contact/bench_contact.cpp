@@ -1,4 +1,4 @@
-// The contact law alone, without the neighbour search and integration around it (docs/performance.md):
+// The contact law alone, without the neighbour search and integration around it (docs/explanation/performance.md):
 //   bench_contact PLUGIN [contacts=4096] [steps=2000] [key=value ...] [materials=M]
 // e.g. bench_contact hertz_mindlin 4096 2000 effects=cohesion cohesion_stress=5e4
 // A fixed random batch (a quarter particle-wall contacts, overlaps 1e-4..1e-2 of the radius,
@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
     const long steps = argc > 3 ? std::atol(argv[3]) : 2000;
     PluginHost host;
     host.load_directories(PluginHost::default_search_path());
-    // materials=M (docs/materials.md): a table of M materials, all of the plugin's values, and each
+    // materials=M (docs/reference/materials.md): a table of M materials, all of the plugin's values, and each
     // contact of a random pair: the cost of gathering the pair's row per lane (M = 1: no table).
     auto values = overrides(argc, argv, 4);
     std::size_t materials = 1;

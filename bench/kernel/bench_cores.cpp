@@ -4,7 +4,7 @@
 // thread's (speed-up = threads); on this shared VM other sessions' processes take a share of
 // every core whatever their nice value (the kernel's autogroup scheduling gives each session a
 // fair share), and the speed-up drops towards 1. Run it before a two-thread benchmark: a speed-up
-// below ~1.9 here means the benchmark's own cannot show more (docs/performance.md).
+// below ~1.9 here means the benchmark's own cannot show more (docs/explanation/performance.md).
 //
 //   OMP_NUM_THREADS=2 OMP_WAIT_POLICY=passive taskset -c 0,1 bench_cores [iterations=4e8]
 #include <omp.h>

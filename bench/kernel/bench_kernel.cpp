@@ -1,8 +1,8 @@
-// Step-loop benchmarks of issue 8 (docs/performance.md). One summary line per benchmark, so a
+// Step-loop benchmarks of issue 8 (docs/explanation/performance.md). One summary line per benchmark, so a
 // later change can be compared line by line:
 //   bench_kernel bonded  [particles=20000] [pull_speed=0.2] [max_steps=20000]
 //   bench_kernel bonded_effects [same] [policies=all]  (the bond's effect policies on at the
-//       effect library's plausible sizes, docs/effects.md; policies: a comma list of
+//       effect library's plausible sizes, docs/reference/effects.md; policies: a comma list of
 //       weibull_strength, softening, viscosity, compression_asymmetry; any other name is named in
 //       `effects` at its neutral values, e.g. an out-of-tree bond effect found on SHARD_PLUGIN_PATH)
 //   bench_kernel settle  [particles=100000] [steps=1000]
@@ -45,7 +45,7 @@ double cpu_seconds() {
 
 // FNV-1a (bonded and pack lines) over the bits of every particle's position, orientation, velocity and spin, taken
 // in stable-id order: equal hashes mean a bit-identical state whatever the internal numbering, so
-// a speed-up can be checked not to have moved a single bit (docs/performance.md).
+// a speed-up can be checked not to have moved a single bit (docs/explanation/performance.md).
 std::uint64_t state_hash(const Particles& p) {
   std::vector<std::size_t> by_id(p.size());
   for (std::size_t k = 0; k < p.size(); ++k) by_id[static_cast<std::size_t>(p.id[k])] = k;

@@ -1,4 +1,4 @@
-// The decomposed step loop (docs/scaling-out.md, "Strong scaling 1 -> 2 ranks" and "Cost model"). Modes:
+// The decomposed step loop (docs/explanation/scaling.md, "Measured speed-up" and "Cost model"). Modes:
 //   mpirun -np N bench_mpi [--barriers] [--serial] [block] [particles=20000] [steps=300] [pull_speed=0.2]
 //       bench_kernel's bonded block on N ranks
 //   mpirun -np N bench_mpi [--barriers] [--serial] pack [particles=100000] [steps=100]
@@ -286,7 +286,7 @@ int partition(const Options& o, int rank) {
   return 0;
 }
 
-// What a frame of `shard run` decomposed costs (docs/scaling-out.md, "Frames"): the bonded block
+// What a frame of `shard run` decomposed costs (docs/explanation/scaling.md, "How the world is cut"): the bonded block
 // stepped a little, then `reps` gathers of a frame to rank 0 the way the run driver did before
 // session 9 (gather_state without contacts: whole particle records, bonds with model state) and
 // the way a labelled frame is gathered now (gather_frame: a frame's fields, bonds as id pairs),

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The decomposed run's cost model (docs/scaling-out.md, "Cost model"), calibrated on measurement
+"""The decomposed run's cost model (docs/explanation/scaling.md, "Cost model"), calibrated on measurement
 files written by bench/mpi/measure.sh (and bench/mpi/callgrind_split.sh), and its projection.
 
     python3 bench/mpi/cost_model.py MEASUREMENTS.txt [MORE.txt ...]
@@ -28,7 +28,7 @@ NETWORKS = {
     "InfiniBand HDR100 (assumed)": (1.5e-6, 12.0e9),
     "10 GbE TCP (assumed)": (30e-6, 1.1e9),
 }
-SEED_STEPS_TO_FAILURE = (1.44e5, 2.2e5)  # docs/performance.md: 4-6 mm of pin travel at 20 mm/s
+SEED_STEPS_TO_FAILURE = (1.44e5, 2.2e5)  # docs/explanation/performance.md: 4-6 mm of pin travel at 20 mm/s
 # The 1e7-sphere plant scene (assumed): plates of the belt_to_chute kind (1015 bonds per 283
 # spheres), a compact bulk of 1e7 spheres (the ghost and neighbour counts of the partition of a
 # 1e7-sphere block, `bench_mpi partition block 10000000`), 10 walls, flowing at up to 3 m/s with a

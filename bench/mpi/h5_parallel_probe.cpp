@@ -1,5 +1,5 @@
-// A probe for the parallel-HDF5 frame writer that is not built yet (docs/scaling-out.md, "What is
-// still missing"): does the parallel HDF5 library of the MPI build accept the serial RunWriter's
+// A probe for the parallel-HDF5 frame writer that is not built yet (docs/explanation/scaling.md, "Where it
+// stops scaling"): does the parallel HDF5 library of the MPI build accept the serial RunWriter's
 // file settings (the 1.8 object format, attribute creation order, metadata evictions off until a
 // flush) under the MPI-IO driver, a variable-length string attribute written alike by every rank,
 // and a collective hyperslab write of each rank's rows at the exclusive prefix sum of the counts?

@@ -1,5 +1,5 @@
 #!/bin/sh
-# The strong-scaling figures and the cost model's calibration (docs/scaling-out.md), each command a
+# The strong-scaling figures and the cost model's calibration (docs/explanation/scaling.md), each command a
 # one-liner that can be re-run alone. Appends every summary line to $OUT; then
 #   python3 bench/mpi/cost_model.py $OUT
 # prints the calibrated constants and the projection table. Run from the source tree, with a

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Settle/impact throughput of scenes/belt_to_chute.toml (docs/performance.md, "Belt to chute"):
+# Settle/impact throughput of scenes/belt_to_chute.toml (docs/explanation/performance.md, "The figures"):
 # particle-steps per second on 1 and 2 threads, and their growth with the number of plates.
 #   bench/process/bench_belt_to_chute.sh [build/release/bin/shard] [window_s=0.8] [plates="5 10 20 40"]
 # Each run simulates the first `window_s` seconds: the plates ride the belt, the front ones leave it,

@@ -18,7 +18,7 @@ WIDTH, HEIGHT = 1600, 520
 # Spheres drawn at their full radius hide the bonds between them (bonds join the centres of
 # touching spheres); at 0.6 of it each bond shows as a short line between neighbours.
 SPHERE_SCALE = 0.6
-# Fragment labels are canonical (0 the heaviest, docs/fragments.md): the two halves are 0 and 1,
+# Fragment labels are canonical (0 the heaviest, docs/reference/fragments.md): the two halves are 0 and 1,
 # then chips. Distinct, colour-blind-safe hues for the first labels, grey for the rest.
 FRAGMENT_COLOURS = [(0.0, 0.45, 0.70), (0.90, 0.62, 0.0), (0.0, 0.62, 0.45),
                     (0.80, 0.40, 0.0), (0.80, 0.47, 0.65), (0.34, 0.71, 0.91)]

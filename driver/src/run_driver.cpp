@@ -163,7 +163,7 @@ RunMetadata run_metadata(const Scene& scene, const SceneInstance& inst, const Pl
            b.from_generator_section ? "" : b.name);
   if (scene.contact) record(PluginKind::Contact, "contact", *scene.contact);
   if (scene.bond) record(PluginKind::Bond, "bond", *scene.bond);
-  if (scene.bond)  // the out-of-tree bond effects composed onto the law (docs/plugins.md)
+  if (scene.bond)  // the out-of-tree bond effects composed onto the law (docs/how-to/write-a-plugin.md)
     for (const auto* e : host.bond_effects_on(scene.bond->name, scene.bond->params))
       meta.plugins.emplace_back("bond_effect/" + e->info.name,
                                 fmt::format("version={}; file={}; on bond/{}", e->info.version, e->file, e->law));
@@ -207,7 +207,7 @@ RunResult run(const RunSpec& spec, const PluginHost& host, const std::vector<Run
   SceneInstance inst = instantiate(scene, host, info);
   Simulation& sim = *inst.simulation;
   NumericalHealth health(sim);
-  BodyImpactRecorder impacts(sim.particles());  // first wall contact per body (docs/bodies.md)
+  BodyImpactRecorder impacts(sim.particles());  // first wall contact per body (docs/reference/bodies.md)
   if (restart_point) {
     try {
       sim.import_state(restart_point->simulation);

@@ -1,4 +1,4 @@
-// Checkpoint files (layout in docs/errors.md, "Checkpoints"): one small HDF5 file beside the run
+// Checkpoint files (layout in docs/how-to/restart-a-run.md, "The checkpoint file"): one small HDF5 file beside the run
 // file, replaced atomically. Kept apart from run.h5 on purpose: the run file's crash safety rests
 // on flushing only at frames and never rewriting an object (output/run_writer.cpp), while a
 // checkpoint is rewritten every time.

@@ -81,10 +81,10 @@ constexpr RetiredPlugin kRetiredPlugins[] = {
     {PluginKind::Contact, "hertz_mindlin_plus",
      "plugin = \"hertz_mindlin\" with effects = \"cohesion, support_friction\" (or just their parameters), "
      "cohesion_stress unchanged, and wall_friction = mu_w as support_friction_ratio = mu_w / friction "
-     "(docs/effects.md)"},
+     "(docs/reference/effects.md)"},
     {PluginKind::Bond, "beam_bond_plus",
      "plugin = \"beam_bond\" with effects = \"weibull_strength, softening, viscosity, compression_asymmetry\" "
-     "(name the ones you use; their parameters keep their names, docs/effects.md)"},
+     "(name the ones you use; their parameters keep their names, docs/reference/effects.md)"},
 };
 
 std::string joined(const std::vector<std::string>& names) {

@@ -236,7 +236,7 @@ Simulation::Simulation(SimulationSetup setup)
     bond_->initialize(batch);
   }
 
-  // Time step (docs/physics.md, "Time step"): every model states its limit; "auto" takes the smallest.
+  // Time step (docs/explanation/physics.md, "Time step"): every model states its limit; "auto" takes the smallest.
   double r_min = std::numeric_limits<double>::infinity();
   std::size_t lightest = 0;
   double r_max = 0;

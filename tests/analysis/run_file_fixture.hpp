@@ -1,5 +1,5 @@
 #pragma once
-// Writes a small run.h5 in the layout of docs/output-format.md with HDF5's C API directly (not
+// Writes a small run.h5 in the layout of docs/reference/output-format.md with HDF5's C API directly (not
 // through shard::RunWriter), so the reader is checked against the documented layout.
 #include <hdf5.h>
 

@@ -1,5 +1,5 @@
 // The reader against the kernel's own writer (shard::RunWriter): the layout both follow is
-// docs/output-format.md, and this test fails if either drifts from it.
+// docs/reference/output-format.md, and this test fails if either drifts from it.
 #include <doctest/doctest.h>
 
 #include <filesystem>

@@ -114,7 +114,7 @@ TEST_CASE("a frame cut off before its time attribute is not listed") {
   const auto path = scratch("partial");
   test::write_run_file(path, frames, 2500.0);
   CHECK(RunFile(path).frames() == std::vector<std::size_t>{0});
-  // Asked for, it is named with what it lacks (docs/errors.md, row 73).
+  // Asked for, it is named with what it lacks (docs/reference/errors.md, row 73).
   const std::string incomplete = "frame 2 of '" + path.string() + "' is incomplete (it lacks its step attribute)";
   CHECK_THROWS_WITH_AS(RunFile(path).read_frame(2), doctest::Contains(incomplete.c_str()), OutputError);
   std::filesystem::remove(path);

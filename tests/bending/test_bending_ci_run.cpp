@@ -33,7 +33,7 @@ TEST_CASE("CI beam: brittle failure between the pins, two major fragments, quasi
   // network's E from the curvature in the constant-moment zone (same packing, same run). The
   // tolerance is the packing's heterogeneity: E_curv measures the middle 64 mm only, and the
   // network E differs between packings of this beam by 7 % (sd, 4 seeds; 14 % on the default
-  // beam, 5 seeds). Measured 1.038 here; 0.94-1.06 over 9 packings (docs/four_point_bending.md).
+  // beam, 5 seeds). Measured 1.038 here; 0.94-1.06 over 9 packings (docs/explanation/four-point-bending.md).
   REQUIRE(r.gauges.valid);
   CHECK(r.gauges.deflection_fit.r_squared > 0.99);
   CHECK(std::abs(r.gauges.youngs_modulus / r.gauges.curvature_modulus - 1) < 0.10);

@@ -48,7 +48,7 @@ struct Reader {
 
   [[noreturn]] void fail(const std::string& where, const std::string& what) const {
     throw std::runtime_error(fmt::format("{}: {}: {} (regenerate with `cmake --build build/release --target "
-                                         "beam_bond_reference`, docs/plugins.md)",
+                                         "beam_bond_reference`, docs/how-to/write-a-plugin.md)",
                                          path, where, what));
   }
 
@@ -115,7 +115,7 @@ void write_reference(const std::string& path, const ReferenceData& d) {
   out << "# " << d.model << " reference data (tests/bond/beam_reference.hpp). Do not edit: after a deliberate\n"
       << "# physics change regenerate every file with\n"
       << "#   cmake --build build/release --target beam_bond_reference\n"
-      << "# and state the change in the commit (docs/plugins.md, \"Reference data\").\n";
+      << "# and state the change in the commit (docs/how-to/write-a-plugin.md, \"Reference data\").\n";
   out << "model = \"" << d.model << "\"\n";
   out << "description = \"" << d.description << "\"\n";
   out << "dt = " << number(d.dt) << "\n\n[params]\n";

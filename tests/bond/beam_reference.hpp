@@ -5,7 +5,7 @@
 // ids), the plugin's parameters, and for each of a few deformation steps the forces, torques,
 // energies, break decisions and break stresses the plugin computed. test_bond_beam_reference
 // recomputes them through the loaded plugin and compares; beam_bond_reference_gen writes them
-// (docs/plugins.md, "Reference data"). The configuration is stored, not re-drawn, so the check
+// (docs/how-to/write-a-plugin.md, "Reference data"). The configuration is stored, not re-drawn, so the check
 // does not depend on the standard library's random distributions.
 #include <cstddef>
 #include <cstdint>

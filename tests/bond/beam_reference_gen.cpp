@@ -1,7 +1,7 @@
 // Writes beam_bond's reference data (beam_reference.hpp): one TOML file per case into the folder
 // given, from the plugin file given. Run after a deliberate physics change only, through
 //   cmake --build build/release --target beam_bond_reference
-// which writes plugins/bond/beam_bond/reference/ (docs/plugins.md, "Reference data").
+// which writes plugins/bond/beam_bond/reference/ (docs/how-to/write-a-plugin.md, "Reference data").
 #include <cstdio>
 #include <exception>
 #include <string>

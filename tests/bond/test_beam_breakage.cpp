@@ -159,7 +159,7 @@ TEST_CASE("eq. 12 time step for Table I: t_bond = 0.17 sqrt(m / K) ~ 1.7e-6 s") 
 }
 
 TEST_CASE("eq. 4's dashpot shrinks the step by 1 / (sqrt(1 + z^2) + z), z = (c / K) / t_bond") {
-  // bar_pull's damping of 0.3 N s/m blew up at the undamped step (docs/physics.md); with the
+  // bar_pull's damping of 0.3 N s/m blew up at the undamped step (docs/explanation/physics.md); with the
   // damped step it runs, as does 1.0.
   auto p = breakable();
   const beam::BeamBond elastic(p);

@@ -1,4 +1,4 @@
-// The shortcuts the beam bond's step takes (docs/performance.md) against the exact expressions
+// The shortcuts the beam bond's step takes (docs/explanation/performance.md) against the exact expressions
 // they replace: the arcsin series for mu and mu_axis, the square-root-free normalisation of a
 // near-unit quaternion, and the bound that skips the von Mises square roots.
 #include <doctest/doctest.h>

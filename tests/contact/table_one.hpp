@@ -1,5 +1,5 @@
 #pragma once
-// The seed's filter-cake material (seed Table I, docs/physics.md) and hand-written reference formulas:
+// The seed's filter-cake material (seed Table I, docs/explanation/physics.md) and hand-written reference formulas:
 // the tests compute expected values here, independently of the plugin sources.
 #include <cmath>
 #include <numbers>

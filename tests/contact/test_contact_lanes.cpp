@@ -150,7 +150,7 @@ TEST_CASE("linear_spring: every instruction set's lanes give the scalar results 
 
 namespace {
 
-// Three materials, a soft cake, a stiff rubber-like one and steel (docs/materials.md), each pair
+// Three materials, a soft cake, a stiff rubber-like one and steel (docs/reference/materials.md), each pair
 // with its own friction and restitution.
 ContactMaterials three_materials(bool hertz) {
   ContactMaterials m;

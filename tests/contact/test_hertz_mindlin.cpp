@@ -34,7 +34,7 @@ TEST_CASE("hertz_mindlin declares its parameters with SI units, defaults and ran
   const ContactPlugins plugins;
   const PluginInfo& info = plugins.info("hertz_mindlin");
   CHECK(info.kind == PluginKind::Contact);
-  // The law's four, then `effects` and its policies' parameters (docs/effects.md).
+  // The law's four, then `effects` and its policies' parameters (docs/reference/effects.md).
   REQUIRE(info.params.size() == 8);
   const std::array<const char*, 7> names{"shear_modulus",   "poisson_ratio",          "friction",        "restitution",
                                          "cohesion_stress", "support_friction_ratio", "rolling_friction"};

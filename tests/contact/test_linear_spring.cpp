@@ -31,7 +31,7 @@ TEST_CASE("linear_spring declares its parameters and refuses out-of-range values
   const ContactPlugins plugins;
   const PluginInfo& info = plugins.info("linear_spring");
   CHECK(info.kind == PluginKind::Contact);
-  // The law's four, then `effects` and its policy's parameter (docs/effects.md).
+  // The law's four, then `effects` and its policy's parameter (docs/reference/effects.md).
   REQUIRE(info.params.size() == 7);
   CHECK(info.params[4].name == "effects");
   CHECK(info.params[5].name == "support_friction_ratio");

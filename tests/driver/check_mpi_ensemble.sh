@@ -1,5 +1,5 @@
 #!/bin/bash
-# Distributed ensembles (docs/ensembles.md): the measurement loop's runs handed out over MPI ranks
+# Distributed ensembles (docs/how-to/run-on-a-cluster.md): the measurement loop's runs handed out over MPI ranks
 # give the numbers of the serial run. `shard synth` on the tiny beam, serially and under mpirun
 # with 3 ranks (rank 0 runs the command, ranks 1-2 the simulations), must write the same
 # measurement set byte for byte; `shard compare` of the model against that set under mpirun with

@@ -1,4 +1,4 @@
-// [stop] rest_speed and rest_time (docs/process.md, "Run to rest"): a sphere dropped onto a floor
+// [stop] rest_speed and rest_time (docs/how-to/parameter-sweep.md, "Run to rest"): a sphere dropped onto a floor
 // bounces with restitution 0.5 and comes to rest; the rule ends the run at the first step after
 // every particle stayed slower than rest_speed for rest_time, within the time the bounces predict.
 // Bad values are refused with the key and the fix.

@@ -1,4 +1,4 @@
-# Out-of-tree plugin workflow, as a user runs it (docs/plugins.md):
+# Out-of-tree plugin workflow, as a user runs it (docs/how-to/write-a-plugin.md):
 #   1. cmake --install the Shard build into a fresh prefix;
 #   2. the installed `shard new-plugin KIND NAME` writes a template, for each kind;
 #   3. each template is configured (find_package(Shard)) and built against the prefix only,
@@ -66,10 +66,10 @@ run("${shard}" --plugin-dir "${WORK_DIR}/oot_contact/build/plugins" plugins)
 if(NOT run_output MATCHES "adhesion_force [^\n]*neutral 0")
   message(FATAL_ERROR "the contact template's neutral value is not listed:\n${run_output}")
 endif()
-# The tutorial's effect (docs/tutorial.md part 6) extends the seed's beam through the installed
+# The tutorial's effect (docs/tutorials/measurement-loop.md part 6) extends the seed's beam through the installed
 # header-only beam helpers; at its neutral value it must run the tiny beam exactly as beam_bond.
 set(tutorial "${WORK_DIR}/crushing_bond")
-run(${CMAKE_COMMAND} -S "${SHARD_SOURCE_DIR}/docs/tutorial/crushing_bond" -B "${tutorial}" -G Ninja
+run(${CMAKE_COMMAND} -S "${SHARD_SOURCE_DIR}/docs/tutorials/crushing_bond" -B "${tutorial}" -G Ninja
     "-DCMAKE_PREFIX_PATH=${prefix}" "-DCMAKE_CXX_FLAGS=${strict_flags}")
 run(${CMAKE_COMMAND} --build "${tutorial}")
 set(tiny "${SHARD_SOURCE_DIR}/scenes/measurements/tiny_bending.toml")

@@ -22,7 +22,7 @@ using test::same_bits;
 namespace {
 
 // The policy names `effects` accepts, read from the schema's doc of `effects` would be circular:
-// they are the four of docs/effects.md, and an unknown one is refused (test below).
+// they are the four of docs/reference/effects.md, and an unknown one is refused (test below).
 const std::vector<std::string> kPolicies{"weibull_strength", "softening", "viscosity", "compression_asymmetry"};
 
 }  // namespace

@@ -53,7 +53,7 @@ TEST_CASE("of two effects that both qualify, the lower chi^2 is named") {
 }
 
 TEST_CASE("a refit within 2 in chi^2 of the named one is a rival the data cannot tell apart") {
-  // The tutorial's hidden crushing (docs/tutorial.md part 6): base refit 76.0, asymmetry 15.0,
+  // The tutorial's hidden crushing (docs/tutorials/measurement-loop.md part 6): base refit 76.0, asymmetry 15.0,
   // crushing 15.8 (p after 0.045, so not named itself, but as good within 2), viscosity 64.5.
   const auto d = decide_from_refits(76.0, {{"viscosity", 64.5}, {"asymmetry", 15.0}, {"crushing", 15.8}}, 11, 2);
   CHECK(d.verdict == "asymmetry");
@@ -150,7 +150,7 @@ TEST_CASE("ConfirmationRule::earlier_refits widens the Bonferroni share to a who
 TEST_CASE("a later step's converged refits: a real second effect passes the path's level, a fit to noise does not") {
   // Step 2 of two stepwise diagnoses (10 components, 3 nuisance parameters: E_b, sigma_crit and
   // the kept effect), each after a first step that tried 2 nameable refits; converged refits
-  // (docs/measurements.md "Several effects at once").
+  // (docs/explanation/diagnosis.md "Which effect is missing").
   ConfirmationRule path;
   path.earlier_refits = 2;
   // Hidden compliance + softening: softening 14.877 -> 2.040 (p_drop 3.4e-4 < 0.05 / 4), Weibull
@@ -195,7 +195,7 @@ TEST_CASE("a stepwise path is named only when its last step leaves noise") {
 
 TEST_CASE("a rate effect refit on one loading rate is neither named nor kept, but reported") {
   // The hidden-softening data at one rate with the scaled viscosity trial: the viscosity refit fits
-  // as well as softening's (docs/measurements.md). m = 11, p = 2.
+  // as well as softening's (docs/explanation/diagnosis.md). m = 11, p = 2.
   const RefitOutcome viscosity{"bond_viscosity", 8.0, 0.06, false};
   const auto d = decide_from_refits({"base refit", 60, 0.12}, {{"bond_softening", 9.0, 0.065}, viscosity}, 11, 2);
   CHECK(d.verdict == "bond_softening");

@@ -58,7 +58,7 @@ TEST_CASE("the library's trial sizes scale with the scene's base run") {
   CHECK(named(at_tiny, "machine_compliance").plausible == doctest::Approx(1e-4));
   CHECK(named(at_tiny, "bond_viscosity").plausible == doctest::Approx(1e-3));
 
-  // The default beam at 20 mm/s: 49 N at 4.96 mm (docs/four_point_bending.md), 0.248 s to F_max.
+  // The default beam at 20 mm/s: 49 N at 4.96 mm (docs/explanation/four-point-bending.md), 0.248 s to F_max.
   const TestScales beam = base_run_scales({{base_run(49.0, 4.96e-3, 0.02)}});
   const auto at_beam = with_test_plausible(library, beam);
   // A quarter of its own secant compliance and a tenth of its own time to peak: the sizes move

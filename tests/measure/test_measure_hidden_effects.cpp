@@ -9,7 +9,7 @@
 //   - a seating toe no candidate models: say "unexplained structured residual".
 // The cases share one work folder: the model side of every diagnosis (base, +5 % steps, effect
 // signatures on seeds 1-3) is the same runs, simulated once and then read from the run cache.
-// Slow (~100 simulations of 3-6 s, two at a time): see docs/measurements.md for the time.
+// Slow (~100 simulations of 3-6 s, two at a time): see docs/explanation/diagnosis.md for the time.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -100,7 +100,7 @@ void check_found_and_calibrated(const Hidden& h) {
 
   const fs::path out = kWork / ("cal_" + h.tag);
   // Three evaluations: the linearised start (cached from the diagnosis) and two BOBYQA steps; the
-  // tutorial runs more (docs/tutorial.md).
+  // tutorial runs more (docs/tutorials/measurement-loop.md).
   // The issue's spelling, `shard calibrate --with`, routed to calibrate-effect (command_routing.hpp).
   shard("calibrate " + (kWork / ("meas_" + h.tag)).string() + " --scene " + kScene + " --work " + kWork.string() +
         kParams + " --with " + h.effect + " --max-evaluations " + std::to_string(h.evaluations) + " --out " + out.string());
@@ -126,7 +126,7 @@ TEST_CASE("null case: data from the base model itself are adequate and no effect
 
 TEST_CASE("time compression: the quasi-static tiny beam at half the data's rate compares as at the data's rate") {
   // Null data at 0.02 m/s; the model at 0.01 m/s (--time-compression 0.5). The beam is
-  // quasi-static at these rates (peak 2.547 / 2.540 N at 0.02 / 0.01 m/s, docs/measurements.md),
+  // quasi-static at these rates (peak 2.547 / 2.540 N at 0.02 / 0.01 m/s, docs/explanation/diagnosis.md),
   // so the comparison's NRMSE may move by the packing noise of the rate change only: 1 % point.
   diagnose_hidden("null", "");  // the data (cached when the null case ran first)
   const fs::path meas = kWork / "meas_null";
@@ -192,7 +192,7 @@ TEST_CASE("hidden compression asymmetry (bond stiffness ratio 4): named, sized, 
   // Granular and microcracked solids are bimodular: cracks and grain contacts close in
   // compression and open in tension; compressive/tensile modulus ratios 1.5-4 are reported for
   // sandstones and cemented sands. 4 is the upper end; at 2 the base refit of E_b and
-  // sigma_crit absorbs it (docs/measurements.md).
+  // sigma_crit absorbs it (docs/explanation/diagnosis.md).
   check_found_and_calibrated({"asymmetry", " --set bond.compression_stiffness_ratio=4",
                               "compression_asymmetry", 4, 1});
 }
@@ -201,7 +201,7 @@ TEST_CASE("hidden bond viscosity (tau_v 5 ms, data at 0.02 and 0.1 m/s): named, 
   // A binder whose stress relaxes over milliseconds on this beam's compressed time scale: at
   // 0.1 m/s the peak comes after ~10 ms, twice tau_v, so the beam is ~25 % stiffer than at
   // 0.02 m/s. One rate cannot show it (E_b absorbs a rate-independent stiffening,
-  // docs/measurements.md); two rates a factor 5 apart do. The arm saturates (maxwell_arm.hpp), so
+  // docs/explanation/diagnosis.md); two rates a factor 5 apart do. The arm saturates (maxwell_arm.hpp), so
   // the response is concave in tau_v and the signature, taken at the plausible 1 ms, extrapolates
   // 5x: the linearised size is biased low (measured 0.56 of the truth) and only its order is
   // asserted (1/2..3/2); the calibrated size must meet 2/3..3/2. BOBYQA needs more than three steps

@@ -153,7 +153,7 @@ TEST_CASE("the same data with Welch scores on 8 model packings: compliance named
   // are too heavy, and over ten draws of this truth the true model was rejected at p < 0.01 in 2
   // and a wrong effect (weibull_strength) named in 2. Read as Student t on its Welch-Satterthwaite
   // dof with 8 model packings, the ten draws gave machine_compliance in 8, nothing wrong
-  // (docs/measurements.md, "Welch scores"). On this draw: machine_compliance alone.
+  // (docs/explanation/diagnosis.md, "From curves to residuals"). On this draw: machine_compliance alone.
   const fs::path meas = kWork / "meas2", out = kWork / "diag_welch8";
   run_shard("synth --scene " + kScene + " --work " + kWork.string() + " --out " + meas.string() +
             " --scatter 0.02 --force-noise 0.01 --force-offset 0.005 --displacement-step 1e-6 --machine-compliance 1e-4"

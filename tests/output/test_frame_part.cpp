@@ -1,5 +1,5 @@
 // RunWriter::write_frame_part, the frame a run decomposed over MPI ranks writes from every rank at
-// once (docs/scaling-out.md), in one process: a part holding every row reads back through RunFile
+// once (docs/explanation/scaling.md), in one process: a part holding every row reads back through RunFile
 // exactly as write_frame's frame does, labels included; a part holding no row of an empty frame
 // leaves a complete empty frame. (The several-process case: tests/mpi, test_mpi_run_parallel_frames.)
 #include <doctest/doctest.h>

@@ -1,4 +1,4 @@
-# The installed plugin API is the plugin ABI alone (docs/plugins.md, "Installing the API"):
+# The installed plugin API is the plugin ABI alone (docs/how-to/write-a-plugin.md, "Installing the API"):
 #   1. include/shard in the prefix holds exactly the plugin headers, each compiling on its own
 #      against the package (find_package(Shard), shard::plugin_api);
 #   2. a source that includes a host header (shard/simulation.hpp) fails to compile against it;

@@ -1,4 +1,4 @@
-# `shard new-plugin --effect` as a user runs it (docs/plugins.md, "A bond effect"):
+# `shard new-plugin --effect` as a user runs it (docs/how-to/write-a-plugin.md, "A bond effect"):
 #   1. the installed shard writes the effect, its registration, a scaffold test and a CMakeLists.txt;
 #   2. they build against the installed prefix only (warnings as errors) and the scaffold test passes;
 #   3. the installed shard lists the effect and beam_bond's [bond] table gains its parameter, with

@@ -1,4 +1,4 @@
-// The bad-input catalogue (docs/errors.md): every file in bad_inputs/ is run through the real
+// The bad-input catalogue (docs/reference/errors.md): every file in bad_inputs/ is run through the real
 // `shard` binary and must fail with exit code 1 and one line on stderr holding each of the
 // file's "# expect:" fragments (file:line:column, what is wrong, what to do). Further cases need
 // command-line arguments rather than a scene file.

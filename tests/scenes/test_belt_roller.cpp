@@ -62,7 +62,7 @@ TEST_CASE("scenes/belt_roller: the belt carries the pile into the roller, and th
 }
 
 TEST_CASE("scenes/belt_roller's materials: the rubber belt (mu 0.9) gets the pile moving sooner than a steel one (mu 0.3)") {
-  // The same scene with the belt made of steel (docs/materials.md): only the cake-belt pair's
+  // The same scene with the belt made of steel (docs/reference/materials.md): only the cake-belt pair's
   // friction and restitution change. The pile starts at rest on the running belt; friction drags
   // its bottom layer up to the belt's 0.3 m/s within v / (mu g) = 34 ms on rubber, 102 ms on
   // steel, so early on the rubber belt has carried the pile further. (Later the roller holds both

@@ -95,7 +95,7 @@ TEST_CASE("scenes/belt_to_chute reduced: belt-thrown plates strike the chute as 
     CHECK(end[b].particles == start[b].particles);
     if (x0 + kBeltSpeed * kDuration < -0.05) {
       // The centre of mass never reached the head end: the plate rode the belt the whole run. The
-      // belt carries, it does not strike (docs/bodies.md): no impact, no broken bond, belt speed.
+      // belt carries, it does not strike (docs/reference/bodies.md): no impact, no broken bond, belt speed.
       ++on_belt;
       CHECK_FALSE(hit.hit);
       CHECK(end[b].bonds == start[b].bonds);

@@ -1,4 +1,4 @@
-// --set material.NAME.key and material_pair.A.B.key (docs/materials.md, "Overrides"): an override
+// --set material.NAME.key and material_pair.A.B.key (docs/reference/materials.md, "Overrides"): an override
 // changes the physics as the law predicts (the sliding deceleration mu g follows an overridden
 // friction, the particle mass an overridden density, the Rayleigh time step an overridden shear
 // modulus), a pair without its own row gets one, and bad overrides are refused naming the
@@ -227,7 +227,7 @@ TEST_CASE("bad material overrides are refused naming the override and the valid 
                  "keys: density, shear_modulus, poisson_ratio"));
   CHECK(contains(error_of({"material.cake.friction=0.3"}),
                  "--set 'material.cake.friction=0.3': hertz_mindlin takes friction per pair of materials "
-                 "(docs/materials.md): set it with --set material_pair.A.B.friction=..."));
+                 "(docs/reference/materials.md): set it with --set material_pair.A.B.friction=..."));
   CHECK(contains(error_of({"material_pair.cake.steel.poisson_ratio=0.3"}),
                  "set it with --set material.NAME.poisson_ratio=..."));
   CHECK(contains(error_of({"material.cake.name=\"dough\""}), "'name' names what the other entries refer to"));

@@ -1,4 +1,4 @@
-// Materials (docs/materials.md): [[material]] entries and [[material_pair]] rows, the bodies' and
+// Materials (docs/reference/materials.md): [[material]] entries and [[material_pair]] rows, the bodies' and
 // walls' materials, the per-pair laws through whole runs (sliding deceleration mu_pair g on two
 // walls, restitution per pair from head-on impacts), and the bad-input errors.
 #include <doctest/doctest.h>
@@ -104,7 +104,7 @@ std::size_t particle_of(const Simulation& sim, std::int32_t id) {
   return 0;
 }
 
-// Johnson's E* of two materials from G and nu (what docs/materials.md states).
+// Johnson's E* of two materials from G and nu (what docs/reference/materials.md states).
 double e_star(double g1, double nu1, double g2, double nu2) {
   const double e1 = 2 * g1 * (1 + nu1), e2 = 2 * g2 * (1 + nu2);
   return 1.0 / ((1 - nu1 * nu1) / e1 + (1 - nu2 * nu2) / e2);
@@ -238,7 +238,7 @@ TEST_CASE("materials: bad input names file:line, the key and the fix") {
     CHECK(e == "materials.toml:40:12: no [[material_pair]] gives friction [1] for materials 'cake' and 'steel', which "
                "meet (body 'a' of 'cake' can touch wall 'chute' of 'steel'); add a row [[material_pair]] materials = "
                "[\"cake\", \"steel\"] with friction = ..., or a default row materials = [\"*\", \"*\"] "
-               "(docs/materials.md)");
+               "(docs/reference/materials.md)");
   }
   SUBCASE("a default row fills every pair") {
     const std::string fallback = "\n[[material_pair]]\nmaterials = [\"*\", \"*\"]\nfriction = 0.3\nrestitution = 0.5\n";
@@ -262,7 +262,7 @@ TEST_CASE("materials: bad input names file:line, the key and the fix") {
   SUBCASE("a law parameter in the wrong place") {
     const std::string in_contact = simulation(0.01, "[0, 0, -9.81]") + kMaterials + "friction = 0.4\n" + chute + ok_body;
     CHECK(contains(error_of(in_contact), "[contact] friction is given per pair of materials in a scene with "
-                                         "[[material]] entries (docs/materials.md): move it to [[material_pair]]"));
+                                         "[[material]] entries (docs/reference/materials.md): move it to [[material_pair]]"));
     const std::string missing = simulation(0.01, "[0, 0, -9.81]") +
                                 "[[material]]\nname = \"cake\"\ndensity = 3720\nshear_modulus = 10e6\n"
                                 "[contact]\nplugin = \"hertz_mindlin\"\n" + chute + ok_body;
@@ -273,7 +273,7 @@ TEST_CASE("materials: bad input names file:line, the key and the fix") {
                                              "poisson_ratio = 0.25\nfriction = 0.3\n[contact]\nplugin = \"hertz_mindlin\"\n" +
                                              chute + ok_body;
     CHECK(contains(error_of(friction_in_material),
-                   "[material] friction is given per pair of materials for hertz_mindlin (docs/materials.md): move it "
+                   "[material] friction is given per pair of materials for hertz_mindlin (docs/reference/materials.md): move it "
                    "to [[material_pair]]"));
   }
   SUBCASE("a body outside every wall's reach") {

@@ -67,7 +67,7 @@ void on_root(F&& work) {
 // Runs `work` on every rank (a call of the run file's writer, which every rank makes alike), then
 // every rank learns whether one failed: a failure is thrown on every rank as an OutputError with
 // the lowest failing rank's message. An error inside one of HDF5's collective calls can still
-// leave the other ranks waiting in it (docs/scaling-out.md).
+// leave the other ranks waiting in it (docs/explanation/scaling.md).
 template <class F>
 void on_all(F&& work) {
   std::string error;
@@ -253,7 +253,7 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
   mpi::DistributedSimulation& dist = *dist_slot;
   Simulation& sim = dist.local();  // this rank's share: the run's step, time, dt and walls
   DistributedHealth health(*inst.simulation, scene.gravity);
-  DistributedImpacts impacts(inst.simulation->particles());  // first wall contact per body (docs/bodies.md)
+  DistributedImpacts impacts(inst.simulation->particles());  // first wall contact per body (docs/reference/bodies.md)
 
   RunResult result;
   result.particles = restart_point ? restart_point->simulation.particles.size() : inst.simulation->particles().size();
@@ -342,7 +342,7 @@ RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std
   }
   auto last_good = [&] { return last_good_state(result); };
   // Every frame is written by all ranks at once, each its own particles and bonds (nothing of it
-  // gathered: docs/scaling-out.md). A frame the fragment labeller labels (its cadence: [analysis]
+  // gathered: docs/explanation/scaling.md). A frame the fragment labeller labels (its cadence: [analysis]
   // fragments_every) gathers to rank 0 what the labels need, the particles' ids and masses and the
   // bonds' rows, in the frame's row order; rank 0 labels the whole bond graph and sends each rank
   // the labels of its rows.

@@ -1,5 +1,5 @@
 #pragma once
-// The first impact of every body of a scene (docs/bodies.md, "Impacts"): when one of its spheres
+// The first impact of every body of a scene (docs/reference/bodies.md, "Impacts"): when one of its spheres
 // first touched a wall that does not carry it, the body's centre-of-mass velocity then and the
 // wall's normal at the contact, from which the impact speed and angle follow. Read-only on the
 // simulation: recording changes no result.

@@ -1,6 +1,6 @@
 #pragma once
 // Out-of-tree bond effects: a policy a plugin adds to a bond law it does not own (e.g. beam_bond)
-// without copying the law (docs/plugins.md, "A bond effect"). The host composes it onto the law:
+// without copying the law (docs/how-to/write-a-plugin.md, "A bond effect"). The host composes it onto the law:
 //   1. the law computes the batch as usual (its lanes, its state, its breakage);
 //   2. each effect on in the scene then runs once over the same batch: it reads the particles and
 //      the law's loads, may scale or add to force, torques and energy, and may break a bond.

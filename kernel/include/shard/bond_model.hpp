@@ -53,7 +53,7 @@ class BondModel {
   virtual void compute(BondBatch& batch) const = 0;
   // True when compute() writes force, torque_i, torque_j and energy of every bond of the batch
   // (zeros for a broken one), so the kernel need not zero them first: ~8-10 % of a beam_bond
-  // step (docs/performance.md).
+  // step (docs/explanation/performance.md).
   virtual bool writes_every_output() const { return false; }
 };
 

@@ -15,7 +15,7 @@ struct Bonds {
   std::vector<double> state;     // stride * size()
   // Each bond's last force, torques and energy, kept only when `keeps_loads` (empty otherwise):
   // the step needs them only until they are added to the particles, and writing them out for
-  // every bond costs ~150 bytes of memory traffic per bond per step (docs/performance.md).
+  // every bond costs ~150 bytes of memory traffic per bond per step (docs/explanation/performance.md).
   bool keeps_loads = false;
   std::vector<Vec3> force, torque_i, torque_j;
   std::vector<double> energy;

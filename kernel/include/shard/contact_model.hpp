@@ -42,7 +42,7 @@ struct ContactBatch {
   const std::int32_t* material_pair = nullptr;
 };
 
-// The scene's materials as a contact law sees them (docs/materials.md): per material the law's
+// The scene's materials as a contact law sees them (docs/reference/materials.md): per material the law's
 // ParamScope::Material parameters, per pair of materials its ParamScope::Pair parameters, with
 // pair[a * count + b] == pair[b * count + a]. A pair no contact can have (two materials only
 // walls are made of) holds a copy of another pair's values.

@@ -1,6 +1,6 @@
 #pragma once
 // The two points of a step where a sub-domain of a decomposed run talks to its neighbours
-// (docs/scaling-out.md). The kernel knows nothing of MPI: a Simulation given a DomainExchange
+// (docs/explanation/scaling.md). The kernel knows nothing of MPI: a Simulation given a DomainExchange
 // calls it between the drift and the force pass, and after the pair and bond pass; the MPI build
 // (kernel/src/mpi/) implements it. Without one (the default), a Simulation is the whole world.
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// Generators fill a parent body with spheres and the bonds between them (docs/generators.md).
+// Generators fill a parent body with spheres and the bonds between them (docs/reference/generators.md).
 #include <cstdint>
 #include <functional>
 #include <map>

@@ -1,5 +1,5 @@
 #pragma once
-// One HDF5 file per run (layout in docs/output-format.md) and an XDMF index beside it so
+// One HDF5 file per run (layout in docs/reference/output-format.md) and an XDMF index beside it so
 // ParaView opens the run as a temporal collection. Every frame is flushed: a killed run leaves
 // a readable file holding every frame written before the kill.
 #include <cstdint>
@@ -57,7 +57,7 @@ class OutputError : public std::runtime_error {
 };
 
 // How a RunWriter opens its file when several processes share it (a run decomposed over MPI
-// ranks writing its frames in parallel: docs/scaling-out.md). The defaults are the serial writer.
+// ranks writing its frames in parallel: docs/explanation/scaling.md). The defaults are the serial writer.
 struct RunWriterAccess {
   // Given the file-access property list (an hid_t) before the file is created: the MPI build
   // selects the MPI-IO driver here. Every call of the writer is then collective: each process
@@ -98,7 +98,7 @@ class RunWriter {
                    const std::vector<Index>* fragment_labels = nullptr);
   // The same frame written by several processes at once (RunWriterAccess), each its own rows.
   void write_frame_part(std::int64_t step, double time, const FramePart& part);
-  // /body_impacts (docs/output-format.md): the first wall contact of every body. Once per run,
+  // /body_impacts (docs/reference/output-format.md): the first wall contact of every body. Once per run,
   // at its end (a frame's objects are never rewritten: see run_writer.cpp).
   void write_body_impacts(const std::vector<BodyImpact>& impacts);
   void flush();

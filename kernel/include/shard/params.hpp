@@ -15,7 +15,7 @@ namespace shard {
 
 enum class ParamType { Number, Integer, Boolean, String, Vector3 };
 
-// Where a contact law's parameter is given in a scene with several materials (docs/materials.md):
+// Where a contact law's parameter is given in a scene with several materials (docs/reference/materials.md):
 // once in [contact] (Model), per [[material]] (Material, e.g. a modulus), or per
 // [[material_pair]] (Pair, e.g. friction). With one material all come from [contact].
 enum class ParamScope { Model, Material, Pair };

@@ -17,7 +17,7 @@
 
 namespace shard {
 
-// Bump on any change to a header plugins compile against (the installed API, docs/plugins.md).
+// Bump on any change to a header plugins compile against (the installed API, docs/how-to/write-a-plugin.md).
 // 2: BondModel::writes_every_output; 3: bond effects (bond_effect.hpp, Registrar::add_bond_effect)
 // and the installed API reduced to the plugin headers; 4: materials (ParamSpec::scope,
 // ContactBatch::material_pair, ContactModel::set_materials and its per-material time step).

@@ -1,10 +1,10 @@
 #pragma once
-// The one reader of a run file (layout in docs/output-format.md): the metadata, the time series,
+// The one reader of a run file (layout in docs/reference/output-format.md): the metadata, the time series,
 // the bond-break log and the frames, for `shard run --restart`, `shard bending`, `shard fragments`
 // and the tests. Opens finished runs, running ones (what has been flushed when it is opened) and
 // killed ones: a frame is listed only when all of it was flushed, and the series columns are cut
 // to the rows every column holds. Opened for writing, it stores what the analysis adds: fragment
-// labels in a frame and tables under a group (docs/fragments.md).
+// labels in a frame and tables under a group (docs/reference/fragments.md).
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>

@@ -50,7 +50,7 @@ struct Grip {
   Vec3 velocity = Vec3::Zero();  // m/s; zero = clamped in place
 };
 
-// Where one body goes (docs/bodies.md). The generated packing is turned by
+// Where one body goes (docs/reference/bodies.md). The generated packing is turned by
 // `rotation_angle` degrees, right-handed about `rotation_axis` through its centre of mass, then
 // moved so that its centre of mass lies at `position`; it starts as a rigid body moving at
 // `velocity` and spinning at `angular_velocity` about that centre. Without a position and a
@@ -99,7 +99,7 @@ struct BodySpec {
 // at placement are refused: bodies start apart (or touching within 0.1 % of a radius).
 inline constexpr double kBodyOverlapTolerance = 1e-3;
 
-// One [[material]] entry, or the single [material] section (docs/materials.md).
+// One [[material]] entry, or the single [material] section (docs/reference/materials.md).
 struct Material {
   std::string name;
   std::string where;    // file:line:column of the entry
@@ -119,7 +119,7 @@ struct Scene {
   Vec3 gravity = Vec3::Zero();
   bool breakage = true;
   double density = 0;  // the first material's (what readers of one-material scenes take)
-  // Materials (docs/materials.md): one from [material], or the [[material]] entries; with
+  // Materials (docs/reference/materials.md): one from [material], or the [[material]] entries; with
   // material_table the contact law gets per-material and per-pair parameters
   // (material_pairs[a * count + b], symmetric), bodies and walls their material index.
   std::vector<Material> materials;

@@ -18,7 +18,7 @@ struct SceneOverride {
   // Both always: a lone "section.key=value" string is no key (parse it).
   SceneOverride(std::string key_, Value value_) : key(std::move(key_)), value(std::move(value_)) {}
   // "section.key", "wall.NAME.key", "body.NAME[.generator|.stream].key", "material.NAME.key" or
-  // "material_pair.A.B.key" (A = B = "*": the default row); docs/materials.md, "Overrides".
+  // "material_pair.A.B.key" (A = B = "*": the default row); docs/reference/materials.md, "Overrides".
   std::string key;
   Value value;
 

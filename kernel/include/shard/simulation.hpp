@@ -21,7 +21,7 @@ struct SimulationSetup {
   std::vector<std::pair<Index, Index>> bonds;
   const ContactModel* contact = nullptr;  // master model; may be null (bonds only)
   const BondModel* bond = nullptr;        // may be null when there are no bonds
-  // Materials (docs/materials.md): with more than one, the contact model has its table
+  // Materials (docs/reference/materials.md): with more than one, the contact model has its table
   // (ContactModel::set_materials) and every particle's `material` and wall's `material` lie in
   // [0, materials); with one, every contact uses the one law and the indices are not read.
   std::size_t materials = 1;

@@ -29,7 +29,7 @@ struct Wall {
   double radius = 0;
   double length = 0;
   std::vector<std::array<Vec3, 3>> triangles;
-  // The scene material it is made of (docs/materials.md); read only when the scene has several.
+  // The scene material it is made of (docs/reference/materials.md); read only when the scene has several.
   std::int32_t material = 0;
 
   // Prescribed motion. Without a ramp or table, `velocity` is constant and `displacement` the sum

@@ -1,4 +1,4 @@
-// DistributedSimulation::gather_frame: what a frame of the run file holds (docs/output-format.md),
+// DistributedSimulation::gather_frame: what a frame of the run file holds (docs/reference/output-format.md),
 // gathered to one rank, and nothing more: gather_state's particle records carry orientation, force,
 // torque, inertia and flags besides (22 doubles against 11), and its bonds their model state
 // (2 + stride doubles against two 32-bit ids), which a frame drops.

@@ -2,7 +2,7 @@
 // The per-step halo exchange of a sub-domain (shard::DomainExchange over MPI): owners send their
 // ghosts' copies the new position, velocity, orientation and spin after the drift; after the pair
 // and bond pass each ghost's force and torque go back to the owner, which adds them in rank order.
-// Between rebuilds only this is exchanged (docs/scaling-out.md).
+// Between rebuilds only this is exchanged (docs/explanation/scaling.md).
 #include <mpi.h>
 
 #include <vector>
@@ -28,7 +28,7 @@ class Halo final : public DomainExchange {
   void return_reactions(Particles& particles) override;
 
   double seconds() const { return seconds_; }  // wall time spent in both exchanges so far
-  // The same split by phase (bench_mpi's cost model, docs/scaling-out.md): copying into the send
+  // The same split by phase (bench_mpi's cost model, docs/explanation/scaling.md): copying into the send
   // buffers, the messages (post to Waitall), copying out; with `set_barriers(true)` a barrier
   // before each exchange takes the waiting for the slowest rank out of `exchange` into `barrier`.
   struct Times {

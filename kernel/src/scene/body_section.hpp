@@ -1,6 +1,6 @@
 #pragma once
 // The bodies of a scene: the single [generator] section (one body, placed as generated) or
-// [[body]] entries, each with a [body.generator] and an optional [body.stream] (docs/bodies.md).
+// [[body]] entries, each with a [body.generator] and an optional [body.stream] (docs/reference/bodies.md).
 #include <string>
 #include <vector>
 #include <toml++/toml.h>

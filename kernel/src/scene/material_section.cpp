@@ -48,7 +48,7 @@ ParamSet scoped_params(const std::map<std::string, RawParam>& raw, const LoadedP
     if (law)
       for (const auto& spec : law->info.params)
         if (spec.name == key)
-          throw SceneError(fmt::format("{}: [{}] {} is given {} for {} (docs/materials.md): move it to {}",
+          throw SceneError(fmt::format("{}: [{}] {} is given {} for {} (docs/reference/materials.md): move it to {}",
                                        value.where, section, key,
                                        spec.scope == ParamScope::Model ? "once" : (spec.scope == ParamScope::Pair
                                                                                        ? "per pair of materials"
@@ -143,7 +143,7 @@ void check_material_overrides(const SceneOverrides& overrides, const PluginHost&
                                        ? fmt::format("contact.{}", key)
                                        : (spec.scope == ParamScope::Pair ? fmt::format("material_pair.A.B.{}", key)
                                                                          : fmt::format("material.NAME.{}", key));
-          throw SceneError(fmt::format("--set '{}': {} takes {} {} (docs/materials.md): set it with --set {}=...",
+          throw SceneError(fmt::format("--set '{}': {} takes {} {} (docs/reference/materials.md): set it with --set {}=...",
                                        o.text(), law->info.name, key,
                                        spec.scope == ParamScope::Model
                                            ? "once, in [contact]"
@@ -184,7 +184,7 @@ void read_materials(const toml::table& root, const std::string& file, const Plug
     if (root.contains("material_pair"))
       throw SceneError(fmt::format("{}: [[material_pair]] rows need [[material]] entries (a scene of one [material] "
                                    "takes every contact parameter from [contact]); write the materials as "
-                                   "[[material]] (docs/materials.md)",
+                                   "[[material]] (docs/reference/materials.md)",
                                    where(file, root.get("material_pair")->source())));
     scene.materials = {Material{name, mat.at(), scene.density, {}}};
     for (auto& body : scene.bodies)
@@ -210,7 +210,7 @@ void read_materials(const toml::table& root, const std::string& file, const Plug
       for (const ParamSpec* spec : specs_of(law, scope))
         if (const toml::node* given = contact->get(spec->name))
           throw SceneError(fmt::format("{}: [contact] {} is given {} in a scene with [[material]] entries "
-                                       "(docs/materials.md): move it to {}",
+                                       "(docs/reference/materials.md): move it to {}",
                                        where(file, given->source()), spec->name,
                                        scope == ParamScope::Pair ? "per pair of materials" : "per material",
                                        scope_section(scope)));
@@ -337,7 +337,7 @@ void read_materials(const toml::table& root, const std::string& file, const Plug
           throw SceneError(fmt::format(
               "{}: no [[material_pair]] gives {} [{}] for materials '{}' and '{}', which meet ({}); add a row "
               "[[material_pair]] materials = [\"{}\", \"{}\"] with {} = ..., or a default row materials = "
-              "[\"*\", \"*\"] (docs/materials.md)",
+              "[\"*\", \"*\"] (docs/reference/materials.md)",
               needs[k]->where, spec->name, spec->unit, na, nb, needs[k]->what, na, nb, spec->name));
         } else {
           std::visit(

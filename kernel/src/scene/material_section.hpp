@@ -1,5 +1,5 @@
 #pragma once
-// The materials of a scene (docs/materials.md): the single [material] section, or [[material]]
+// The materials of a scene (docs/reference/materials.md): the single [material] section, or [[material]]
 // entries holding the contact law's per-material parameters and [[material_pair]] rows holding
 // its per-pair ones. Bodies and walls name their material; every pair of materials that can meet
 // (two bodies' or a body's and a wall's) must have its per-pair parameters, from its own row or

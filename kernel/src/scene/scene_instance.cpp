@@ -71,7 +71,7 @@ SceneInstance instantiate(const Scene& scene, const PluginHost& host,
   }
   scene_detail::check_body_overlaps(placed, scene.bodies);
   scene_detail::check_bodies_reach_walls(placed, scene.bodies, scene.walls, scene.gravity);
-  // With [[material]] entries every particle is of its body's material (docs/materials.md); a
+  // With [[material]] entries every particle is of its body's material (docs/reference/materials.md); a
   // one-material scene keeps the generator's material column as it is.
   std::vector<double> density(placed.all.position.size(), scene.density);
   for (std::size_t k = 0; k < density.size(); ++k) {

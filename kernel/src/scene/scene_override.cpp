@@ -87,9 +87,9 @@ toml::array& material_entries(toml::table& root, const SceneOverride& o) {
   if (root["material"].as_table())
     throw SceneError(fmt::format("--set '{}': the scene has one [material] section, not [[material]] entries: set "
                                  "its density with material.density=..., its contact parameters with contact.KEY=... "
-                                 "(docs/materials.md)",
+                                 "(docs/reference/materials.md)",
                                  o.text()));
-  throw SceneError(fmt::format("--set '{}': the scene has no [[material]] entries (docs/materials.md)", o.text()));
+  throw SceneError(fmt::format("--set '{}': the scene has no [[material]] entries (docs/reference/materials.md)", o.text()));
 }
 
 // A material's name and a pair's materials are how bodies, walls and rows find each other.

@@ -66,7 +66,7 @@ void check_bodies_reach_walls(const PlacedBodies& placed, const std::vector<Body
         "{}: [[body]] '{}' can never meet a wall: it reaches at most {:.4g} m up (along -gravity: its top plus the "
         "rise its upward speed allows), below the lowest point of every wall (the lowest, wall '{}', reaches "
         "{:.4g} m), and gravity pulls it away; place it above a wall (position, stream start or region) or add a "
-        "wall below it (docs/materials.md)",
+        "wall below it (docs/reference/materials.md)",
         spec.where, placed.body_names[b], top[b], walls[lowest].name, floor));
   }
 }

@@ -1,5 +1,5 @@
 #pragma once
-// The check that every body can meet a wall (docs/materials.md, "Bodies out of reach").
+// The check that every body can meet a wall (docs/reference/materials.md, "Bodies out of reach").
 #include <vector>
 
 #include "body_placement.hpp"

@@ -11,9 +11,9 @@ shard::PluginInfo beam_bond_info() {
   shard::PluginInfo info;
   info.kind = shard::PluginKind::Bond;
   info.name = "beam_bond";
-  info.version = "1.1.0";  // 1.1: the effect policies (docs/effects.md)
+  info.version = "1.1.0";  // 1.1: the effect policies (docs/reference/effects.md)
   info.doc = "Timoshenko beam bond, total quaternion formulation, von Mises breakage (seed eq. 3-12); effect policies "
-             "weibull_strength, softening, viscosity, compression_asymmetry (docs/effects.md)";
+             "weibull_strength, softening, viscosity, compression_asymmetry (docs/reference/effects.md)";
   info.params = shard::beam::beam_bond_params();
   return info;
 }

@@ -17,7 +17,7 @@
 //
 // The sums follow the order Eigen 3.4 evaluated the former per-bond helpers in (its SSE quaternion
 // product; rows 0-1 of a 3x3 product summed (a0 + a1) + a2, row 2 a0 + (a1 + a2)), which keeps
-// every result of the runs recorded before this law was written (docs/performance.md, state_hash).
+// every result of the runs recorded before this law was written (docs/explanation/performance.md, state_hash).
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -128,7 +128,7 @@ struct BondLoads {
 };
 
 // No criterion beyond the von Mises strength (beam_bond's own). An extra criterion (e.g. the
-// tutorial's crushing, docs/tutorial/crushing_bond) supplies a bound that is false only when it
+// tutorial's crushing, docs/tutorials/crushing_bond) supplies a bound that is false only when it
 // certainly does not break (any width) and the decision itself (width 1), both on Gamma, kappa.
 struct NoExtraCriterion {
   template <class T>

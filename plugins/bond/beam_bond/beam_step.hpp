@@ -1,7 +1,7 @@
 #pragma once
 // One bond of a batch through beam_law at width 1 (T = double): the scalar reference, what runs
 // the lanes the block step leaves, and what a plugin built on the beam calls with its own extra
-// break criterion (docs/tutorial/crushing_bond). Writes the bond's outputs in the batch's
+// break criterion (docs/tutorials/crushing_bond). Writes the bond's outputs in the batch's
 // orientation, its state (damage, the Maxwell arm) and, when it fails, its stresses.
 #include <cstddef>
 

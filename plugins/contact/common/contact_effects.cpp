@@ -76,7 +76,7 @@ ContactEffects ContactEffects::from(const ParamSet& p, const char* law, bool wit
       what += name;
       what += "', which is no effect policy of this law; valid: ";
       what += valid_names(with_cohesion);
-      what += " (docs/effects.md)";
+      what += " (docs/reference/effects.md)";
       throw std::invalid_argument(what);
     }
     e.named.push_back(name);

@@ -1,5 +1,5 @@
 #pragma once
-// The physical effects composed into a contact law (docs/effects.md), each a policy with a name,
+// The physical effects composed into a contact law (docs/reference/effects.md), each a policy with a name,
 // its parameter and ONE neutral value, declared in its schema here and nowhere else:
 //   cohesion          cohesion_stress sigma_c [Pa] (neutral 0): a pull sigma_c pi R* delta between
 //                     touching particles (not at walls), the linear simplification of JKR

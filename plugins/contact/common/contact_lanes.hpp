@@ -1,20 +1,20 @@
 #pragma once
 // The batch loop every contact law shares, written once for any lane type (shard/lanes/lanes.hpp): the law
 // gives the normal force and the tangential spring's stiffness and dashpot; this loop adds the
-// incremental tangential spring with Coulomb friction (docs/physics.md, "Forces") and the contact effect
+// incremental tangential spring with Coulomb friction (docs/explanation/physics.md, "Forces") and the contact effect
 // policies (contact_effects.hpp), switched on at compile time so that a law without effects
 // carries no trace of them.
 //
 // Tangential spring: its extension xi (3 history doubles) is a capped spring-dashpot
 // (capped_spring, turn_onto_plane below) stretched by v_t dt, F_t = -S_t xi - c_t v_t, |F_t| <= mu F_n.
 //
-// Rolling resistance (policy rolling_resistance, docs/effects.md): the same capped spring-dashpot
+// Rolling resistance (policy rolling_resistance, docs/reference/effects.md): the same capped spring-dashpot
 // acts on the relative rolling rotation, k_r = S_t R*^2 and c_r = c_t R*^2 (the tangential
 // element seen at the lever R*, so both have one damping ratio), capped at mu_r R* F_n (the
 // elastic-plastic spring-dashpot model, "model C" of Ai et al., Powder Technol. 206, 2011). Its
 // angle is 3 more history doubles, after the tangential spring's.
 //
-// Materials (docs/materials.md): a law's constants form a small dense table, one row per pair of
+// Materials (docs/reference/materials.md): a law's constants form a small dense table, one row per pair of
 // materials, and each block of lanes gathers its contacts' rows by ContactArrays::material_pair
 // (null with one material: row 0 broadcast once, as before there were materials). No per-pair
 // call, and the same IEEE operations per lane as the scalar instance.

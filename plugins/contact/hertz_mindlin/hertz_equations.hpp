@@ -22,7 +22,7 @@ inline double normal_elastic_force(double E_star, double R, double delta) {
   return 4.0 / 3.0 * E_star * std::sqrt(R) * delta * std::sqrt(delta);
 }
 
-// Two materials (docs/materials.md; Johnson, Contact Mechanics, 1985, eq. 4.22 for E*; Mindlin
+// Two materials (docs/reference/materials.md; Johnson, Contact Mechanics, 1985, eq. 4.22 for E*; Mindlin
 // 1949 as in Di Renzo and Di Maio, Chem. Eng. Sci. 59 (2004) 525, for G*): a wall's material
 // against the particles', or two kinds of particles.
 // 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2
@@ -53,7 +53,7 @@ inline double normal_elastic_energy(double E_star, double R, double delta) {
   return 8.0 / 15.0 * E_star * std::sqrt(R) * delta * delta * std::sqrt(delta);
 }
 
-// Rayleigh wave time across the smallest sphere (seed eq. 11, docs/physics.md "Time step"):
+// Rayleigh wave time across the smallest sphere (seed eq. 11, docs/explanation/physics.md "Time step"):
 // t_R = pi R sqrt(rho / G) / (0.1631 nu + 0.8766)
 inline double rayleigh_time(double R, double rho, double G, double nu) {
   return std::numbers::pi * R * std::sqrt(rho / G) / (0.1631 * nu + 0.8766);

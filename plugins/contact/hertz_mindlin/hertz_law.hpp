@@ -1,12 +1,12 @@
 #pragma once
 // The Hertz-Mindlin law for any lane type (shard/lanes/lanes.hpp): Hertz normal spring, restitution
-// dashpot, Mindlin no-slip tangential stiffness (README.md; docs/physics.md, "Forces"). The tangential spring, friction
+// dashpot, Mindlin no-slip tangential stiffness (README.md; docs/explanation/physics.md, "Forces"). The tangential spring, friction
 // and the effect policies are the shared loop's (../common/contact_lanes.hpp).
 //
 // The constant factors are formed as the equations of hertz_equations.hpp form them, left to
 // right, and each lane performs those equations' IEEE operations in the same order, so the result
 // does not depend on the lane width (and equals that of the per-contact Eigen code this replaced:
-// the state hashes in docs/performance.md are unchanged).
+// the state hashes in docs/explanation/performance.md are unchanged).
 #include "../common/contact_lanes.hpp"
 
 namespace shard::hertz {

@@ -30,7 +30,7 @@ class HertzMindlin final : public ContactModel {
   std::size_t history_size() const override;
   using ContactModel::time_step_limit;
   TimeStepLimit time_step_limit(double min_radius, double density) const override;
-  // Several materials (docs/materials.md): G and nu per material, mu and e per pair; E* and G* of
+  // Several materials (docs/reference/materials.md): G and nu per material, mu and e per pair; E* and G* of
   // a pair from both materials' moduli (hertz_equations.hpp), the Rayleigh time per material.
   void set_materials(const ContactMaterials& materials) override;
   TimeStepLimit time_step_limit(const std::vector<MaterialExtent>& per_material) const override;

@@ -21,11 +21,11 @@ shard::PluginInfo hertz_mindlin_info() {
   const ParamSpec restitution = cp::restitution(defaults.restitution);
   std::vector<ParamSpec> params{shear, poisson, friction, restitution};
   for (auto& spec : shard::contact::contact_effect_params(/*with_cohesion=*/true)) params.push_back(std::move(spec));
-  // 1.1: the effect policies cohesion and support_friction (docs/effects.md), which replace hertz_mindlin_plus;
-  // 1.2: materials, G and nu per material, friction and restitution per pair (docs/materials.md).
+  // 1.1: the effect policies cohesion and support_friction (docs/reference/effects.md), which replace hertz_mindlin_plus;
+  // 1.2: materials, G and nu per material, friction and restitution per pair (docs/reference/materials.md).
   return {shard::PluginKind::Contact, "hertz_mindlin", "1.2.0",
           "Hertz normal and Mindlin tangential spring with restitution damping and Coulomb friction; effect "
-          "policies cohesion, support_friction (docs/effects.md)",
+          "policies cohesion, support_friction (docs/reference/effects.md)",
           std::move(params)};
 }
 

@@ -51,7 +51,7 @@ std::size_t LinearSpring::history_size() const { return effects_.history_size();
 
 // The shortest contact in a scene is between the two lightest particles (m* = m/2), and the
 // stiffer of the normal and rolling-tangential oscillators sets its pace. The step is t_c / 20
-// (docs/physics.md, Time step): stable and accurate for the spring, but the kernel's velocity Verlet feeds
+// (docs/explanation/physics.md, Time step): stable and accurate for the spring, but the kernel's velocity Verlet feeds
 // the dashpot the half-step velocity, so the realised restitution comes out high by about
 // 5 % (e = 0.3), 3 % (e = 0.5), 1 % (e = 0.9); it falls in proportion to dt (tests/contact).
 TimeStepLimit LinearSpring::time_step_limit(double min_radius, double density) const {

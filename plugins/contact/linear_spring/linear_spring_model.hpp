@@ -30,7 +30,7 @@ class LinearSpring final : public ContactModel {
   std::size_t history_size() const override;
   using ContactModel::time_step_limit;
   TimeStepLimit time_step_limit(double min_radius, double density) const override;
-  // Several materials (docs/materials.md): every parameter is per pair (a spring has no mixing
+  // Several materials (docs/reference/materials.md): every parameter is per pair (a spring has no mixing
   // rule); the time step from the stiffest pair on its lightest particles.
   void set_materials(const ContactMaterials& materials) override;
   TimeStepLimit time_step_limit(const std::vector<MaterialExtent>& per_material) const override;

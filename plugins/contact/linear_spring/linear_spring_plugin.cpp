@@ -34,11 +34,11 @@ shard::PluginInfo linear_spring_info() {
   const ParamSpec restitution = shard::contact_params::restitution(defaults.restitution);
   std::vector<ParamSpec> params{normal, ratio, friction, restitution};
   for (auto& spec : shard::contact::contact_effect_params(/*with_cohesion=*/false)) params.push_back(std::move(spec));
-  // 1.1: the effect policy support_friction (docs/effects.md); 1.2: materials, every parameter per pair
-  // (docs/materials.md).
+  // 1.1: the effect policy support_friction (docs/reference/effects.md); 1.2: materials, every parameter per pair
+  // (docs/reference/materials.md).
   return {shard::PluginKind::Contact, "linear_spring", "1.2.0",
           "linear normal and tangential spring-dashpot with exact restitution and Coulomb friction; effect policy "
-          "support_friction (docs/effects.md)",
+          "support_friction (docs/reference/effects.md)",
           std::move(params)};
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // Reads the particles and bonds of one frame of a Shard run file (run.h5, layout in
-// docs/output-format.md) through shard::h5, the run-file layer under shard::RunFile as well: the
+// docs/reference/output-format.md) through shard::h5, the run-file layer under shard::RunFile as well: the
 // same opening checks, format version and rule for complete frames.
 #include <cstdint>
 #include <filesystem>

@@ -12,7 +12,7 @@ namespace shard::stl_fill {
 
 // Surface gap below which two spheres are bonded, relative to the pair's mean radius. 0.7 gives
 // a mean coordination of about 11 for the advancing-front packings (solid fraction ~0.56), like the seed's parent particle
-// (235,220 bonds on 41,788 spheres: 11.3); see docs/generators.md.
+// (235,220 bonds on 41,788 spheres: 11.3); see docs/reference/generators.md.
 inline constexpr double kDefaultGap = 0.7;
 
 struct StlFillSettings {

@@ -7,7 +7,7 @@
 #     `shard compare SET --sim null/curves/*.csv`; the reference, another draw of null, does not;
 #  3. the base model's form error is in the data: null against Shard's own tiny beam
 #     (scenes/measurements/tiny_bending.toml) is not adequate.
-# Prints each set's difference from null in %, the figures of docs/measurements.md "Foreign truth".
+# Prints each set's difference from null in %, the figures of docs/explanation/diagnosis.md "Foreign truth".
 #   check_foreign_sets.sh SHARD PLUGIN_DIR SETS WORK
 set -euo pipefail
 shard=$1 plugins=$2 sets=$3 work=$4

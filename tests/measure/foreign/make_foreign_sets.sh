@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Foreign-truth measurement sets (docs/measurements.md "Foreign truth", issue 15 item 8):
+# Foreign-truth measurement sets (docs/explanation/diagnosis.md "Foreign truth", issue 15 item 8):
 # `shard synth` on tests/measure/foreign/foreign_beam.toml, a base model of another form than
 # Shard's (foreign_spring_bond, linear_spring contacts, a finer packing), 4 specimens per set.
 #
@@ -26,7 +26,7 @@
 # Another beam (make_foreign_default_sets.sh) changes what has a unit through the environment:
 # FOREIGN_SCENE, FOREIGN_LABEL, FOREIGN_SENSOR (the sensor and lab options), FOREIGN_COMPLIANCE [m/N],
 # FOREIGN_TOE (the toe's synth options). FOREIGN_DRAW=k (default 0) moves every packing seed by
-# 10000 k and every noise seed by 100 k: another draw of the same sets (docs/measurements.md,
+# 10000 k and every noise seed by 100 k: another draw of the same sets (docs/explanation/diagnosis.md,
 # "Other draws of the foreign sets").
 set -euo pipefail
 if [[ $# -ne 4 ]]; then

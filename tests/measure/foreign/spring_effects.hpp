@@ -1,5 +1,5 @@
 #pragma once
-// The foreign spring bond's hidden effects (test-only): the library effects of docs/effects.md
+// The foreign spring bond's hidden effects (test-only): the library effects of docs/reference/effects.md
 // in another form, so a diagnosis is tested on an effect it must recognise by its signature, not
 // by its code.
 //   strength scatter: every critical force and torque of a bond times one Weibull draw with

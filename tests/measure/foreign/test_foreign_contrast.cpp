@@ -12,7 +12,7 @@
 //     factor of 2 of the truth, and calibrating both at once must cut its contrast NRMSE by half,
 //   - and `shard calibrate --reference --with` the named effect on a named set must cut that
 //     set's contrast NRMSE by at least 50 %.
-// Slow (the model's ~100 runs; the truth's 28 are test_foreign_sets'): see docs/measurements.md.
+// Slow (the model's ~100 runs; the truth's 28 are test_foreign_sets'): see docs/explanation/diagnosis.md.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -68,7 +68,7 @@ TEST_CASE("contrast diagnosis on foreign truth: null, four library effects, one 
   // Two effects at once: machine compliance 2e-4 m/N and the foreign softening 1.5. The closest
   // single effect (compliance) takes most of the difference and leaves a remainder; the pair with
   // bond_softening explains it (six draws of these sets: both named in 6, compliance 1.76-2.17e-4
-  // m/N; docs/measurements.md, "Two effects at once").
+  // m/N; docs/explanation/diagnosis.md, "Lab data: contrasts across sets").
   CHECK(verdict["both"] == "machine_compliance + bond_softening");
   const auto both_at = json.find(name_key("both"));
   const double both_compliance = number_after(json, "\"values\": [", json.find("\"pair\": {", both_at));
@@ -127,7 +127,7 @@ TEST_CASE("contrast diagnosis on foreign truth: null, four library effects, one 
 TEST_CASE("the base fit moves bond.poisson_ratio on foreign truth: the post-peak form error falls") {
   // E_b and sigma_crit fit the reference's stiffness, peak force and peak displacement; the
   // lattice's bonds are stiffer in shear relative to their normal stiffness than the scene's
-  // (poisson 0.25), which shows after the peak only (docs/measurements.md: poisson 0.4 by hand took
+  // (poisson 0.25), which shows after the peak only (docs/explanation/diagnosis.md: poisson 0.4 by hand took
   // the form error from 8.0 to 3.5 %, the post-peak regime from -4.2 to -0.1 sigma). With the
   // post-peak regime among its targets, a base fit of the three must find it.
   fs::create_directories(kWork);

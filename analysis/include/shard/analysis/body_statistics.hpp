@@ -1,5 +1,5 @@
 #pragma once
-// Statistics per parent body of a many-body run (docs/fragments.md, "Per body"): whether each
+// Statistics per parent body of a many-body run (docs/reference/fragments.md, "Per body"): whether each
 // body broke, into how many fragments, their mass-weighted size distribution, and the run's
 // breakage probability and pooled distribution.
 #include <cstddef>

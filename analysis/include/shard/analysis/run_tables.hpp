@@ -1,7 +1,7 @@
 #pragma once
 // The analysis on top of the run-file reader (shard/run_file.hpp): a frame as the fragment
 // analysis reads it, and the tables `shard fragments` stores back into the run file
-// (docs/fragments.md, docs/output-format.md).
+// (docs/reference/fragments.md, docs/reference/output-format.md).
 #include <cstddef>
 #include <vector>
 

@@ -26,7 +26,7 @@ struct RunOptions {
   int health_every = 10;               // steps between checks for a numerical blow-up
   std::int64_t interrupt_at_step = -1;  // >= 0: behave as if SIGINT arrived at that step (tests)
   // `shard run` under mpirun in a SHARD_WITH_MPI build: decompose the run over the job's ranks
-  // (docs/scaling-out.md). Off for the commands that run scenes one after another.
+  // (docs/explanation/scaling.md). Off for the commands that run scenes one after another.
   bool decompose_under_mpirun = false;
 };
 

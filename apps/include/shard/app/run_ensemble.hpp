@@ -1,7 +1,7 @@
 #pragma once
-// Which commands an MPI ensemble spreads over its ranks (docs/scaling-out.md, "Distributed
-// ensembles"): the measurement loop's (synth, compare, diagnose, calibrate-effect, ...), whose
-// simulations are independent runs. Under `mpirun -np N shard COMMAND ...` in a build with
+// Which commands an MPI ensemble spreads over its ranks (docs/how-to/run-on-a-cluster.md, "A
+// measurement ensemble over ranks"): the measurement loop's (synth, compare, diagnose,
+// calibrate-effect, ...), whose simulations are independent runs. Under `mpirun -np N shard COMMAND ...` in a build with
 // SHARD_WITH_MPI, rank 0 runs such a command and ranks 1..N-1 run its simulations.
 #include <string>
 #include <vector>

@@ -3,7 +3,7 @@
 // seed) run of a scene, in parallel and in-process through the run pool (run_in_parallel), then
 // all plates of all runs pooled: breakage probability and x50 against impact speed and against
 // the varied value, with 95 % bands (Wilson for the share, bootstrap for x50), as CSV, HDF5, PNG
-// and a report page (docs/process.md).
+// and a report page (docs/how-to/parameter-sweep.md).
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>

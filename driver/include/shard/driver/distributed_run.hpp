@@ -1,5 +1,5 @@
 #pragma once
-// One run of a scene decomposed in space over the MPI ranks of the job (docs/scaling-out.md):
+// One run of a scene decomposed in space over the MPI ranks of the job (docs/explanation/scaling.md):
 // `mpirun -np N shard run SCENE` in a build with -DSHARD_WITH_MPI=ON. Every rank calls
 // run_distributed with the same spec and observers; the observers see the run's step, time, walls
 // and load on every rank and the whole run's break counts and frames (RunState::whole), so the

@@ -7,7 +7,7 @@
 // held by threads that do not exist in it (malloc's, OpenMP's, HDF5's), so it may deadlock before
 // it runs anything. posix_spawn starts the worker from a clean image, which also gives each run
 // its own OpenMP runtime and HDF5 library state. The cost is the program's start and its plugin
-// loading, once per run (docs/driver.md, "Isolated runs", has the measured figure).
+// loading, once per run (docs/reference/driver.md, "Isolated runs", has the measured figure).
 #include <filesystem>
 #include <stdexcept>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// The seed's filling algorithm (sec. III; docs/generators.md): three mutually touching spheres as a
+// The seed's filling algorithm (sec. III; docs/reference/generators.md): three mutually touching spheres as a
 // seed, then an advancing front. Each next sphere, its radius drawn from the PSD, is placed tangent
 // to three already placed spheres as close as possible to the seed, and accepted only if it
 // overlaps no sphere and lies inside the body (signed distance <= -r).

@@ -1,5 +1,5 @@
 #pragma once
-// Bonds of a packing and the figures that say whether it is a good parent body (docs/generators.md):
+// Bonds of a packing and the figures that say whether it is a good parent body (docs/reference/generators.md):
 // density, coordination, PSD fidelity, bond-orientation isotropy, holes.
 #include <string>
 #include <utility>

@@ -63,7 +63,7 @@ T clamp_at_zero(const T& x) {
 
 // Eigen's order for a 3-vector dot product and squared norm: the first two terms as one packet.
 // The contact laws keep it so that their results equal those of the Eigen code they replaced
-// (same state hashes in docs/performance.md).
+// (same state hashes in docs/explanation/performance.md).
 template <class T>
 T dot3(const T& ax, const T& ay, const T& az, const T& bx, const T& by, const T& bz) {
   return (ax * bx + ay * by) + az * bz;

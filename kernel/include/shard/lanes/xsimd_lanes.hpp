@@ -44,7 +44,7 @@ struct Lanes<xsimd::batch<double, A>> {
   // out[c] lane l = base[offset[l] + c] for c < C: each lane's row of C contiguous doubles (a
   // particle's Vec3 or Quat, a bond's state). AVX-512 loads the rows and transposes them in
   // registers, three times faster than C gather instructions on the AMD EPYC host
-  // (docs/performance.md); the narrower sets gather.
+  // (docs/explanation/performance.md); the narrower sets gather.
   template <std::size_t C>
   [[gnu::always_inline]] static void load_rows(const double* base, const std::int64_t* offset, type* out) {
 #if defined(__AVX512F__)
@@ -104,7 +104,7 @@ xsimd::batch<double, A> negate(const xsimd::batch<double, A>& x) {
 // with SSE2's two lanes, bench_contact).
 #if defined(__AVX512F__)
 // With AVX-512 the 8 vectors' 24 doubles are three loads or stores and each component two
-// two-table permutes (vpermt2pd), no trip through memory: bench_kernel bonded, docs/performance.md.
+// two-table permutes (vpermt2pd), no trip through memory: bench_kernel bonded, docs/explanation/performance.md.
 
 inline void load3(const double* p, xsimd::batch<double, xsimd::avx512f>& x, xsimd::batch<double, xsimd::avx512f>& y,
                   xsimd::batch<double, xsimd::avx512f>& z) {

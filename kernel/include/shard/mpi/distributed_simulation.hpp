@@ -1,5 +1,5 @@
 #pragma once
-// A run decomposed in space over MPI ranks (docs/scaling-out.md). Each rank steps a Simulation of
+// A run decomposed in space over MPI ranks (docs/explanation/scaling.md). Each rank steps a Simulation of
 // the particles it owns plus ghost copies of its neighbours' particles near the border; pairs and
 // bonds are computed once, by the rank owning the end with the smaller stable id, and the reaction
 // on a ghost end goes back to its owner (halo.hpp). The partition is a cost-balanced cut of the
@@ -28,7 +28,7 @@ struct GatheredParticles {
   std::vector<Quat> orientation;
 };
 
-// A frame of the run file (docs/output-format.md) on one rank: the particles in ascending stable id
+// A frame of the run file (docs/reference/output-format.md) on one rank: the particles in ascending stable id
 // with the fields a frame stores filled (position, velocity, omega, radius, mass, material, body,
 // id; the others empty), and the surviving bonds as index pairs into them, in ascending
 // (smaller id, larger id), without model state.
@@ -98,7 +98,7 @@ class DistributedSimulation {
   std::size_t ghosts() const;
   double halo_seconds() const;      // wall time in the per-step ghost and reaction exchanges
   double partition_seconds() const { return partition_seconds_; }  // in re-partitions and migration
-  // Wall time by phase so far (bench_mpi's cost model, docs/scaling-out.md): the halo's packing
+  // Wall time by phase so far (bench_mpi's cost model, docs/explanation/scaling.md): the halo's packing
   // (and locating by id), messages (post to Waitall) and unpacking, the per-step reduction
   // (all-gather), re-partitions; `barrier` is the time in a barrier put before each exchange and
   // the reduction when `set_timing_barriers(true)`, which separates waiting for the slowest rank

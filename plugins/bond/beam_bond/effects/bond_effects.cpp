@@ -98,7 +98,7 @@ BondEffects BondEffects::from(const ParamSet& p) {
     const auto& policies = bond_effect_policies();
     if (std::none_of(policies.begin(), policies.end(), [&](const BondEffectPolicy& q) { return q.name == name; }))
       throw std::invalid_argument("beam_bond: effects names '" + name + "', which is no effect policy; valid: " +
-                                  valid_names() + " (docs/effects.md)");
+                                  valid_names() + " (docs/reference/effects.md)");
     e.named.push_back(name);
   }
   return e;

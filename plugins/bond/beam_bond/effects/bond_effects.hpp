@@ -1,5 +1,5 @@
 #pragma once
-// The physical effects composed into beam_bond's law (docs/effects.md), each a policy with a name,
+// The physical effects composed into beam_bond's law (docs/reference/effects.md), each a policy with a name,
 // its parameters and ONE neutral value per parameter, declared in its schema here and nowhere else:
 //   weibull_strength       strength_cv [1] (neutral 0) or strength_weibull_modulus m [1] (neutral 0), strength_seed
 //   softening              softening_ratio s [1] (neutral 0)

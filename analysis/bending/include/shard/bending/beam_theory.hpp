@@ -1,5 +1,5 @@
 #pragma once
-// Elastic beam theory of the four-point bending test (seed sec. V.2-3; docs/four_point_bending.md).
+// Elastic beam theory of the four-point bending test (seed sec. V.2-3; docs/explanation/four-point-bending.md).
 //
 // Two supports `span` apart, two loading pins `pin_distance` apart centred between them, the
 // total force F shared equally by the pins. With the shear span a = (span - pin_distance) / 2:

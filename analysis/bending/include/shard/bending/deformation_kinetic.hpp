@@ -5,7 +5,7 @@
 // particle spins included). A beam sliding along low-friction rollers, or sinking as a whole
 // onto its supports, moves without straining anything: counted in the total kinetic energy it
 // read as a dynamic test (a lubricated-roller run of the tiny beam at 0.02 m/s: kinetic/elastic
-// 6.9 from the total, docs/measurements.md "Dynamic at the data's rate"). The deformation's own
+// 6.9 from the total, docs/explanation/diagnosis.md "Lab rates and dynamics"). The deformation's own
 // motion, vibration and the quasi-static deflection velocity, stays.
 #include "shard/particles.hpp"
 

@@ -1,5 +1,5 @@
 #pragma once
-// The quasi-static check of docs/four_point_bending.md: the result must not change when the loading rate
+// The quasi-static check of docs/explanation/four-point-bending.md: the result must not change when the loading rate
 // is halved. Two runs of the same packing (same seed) at rate v and at v/2 are compared on the
 // figures calibration uses: F_max and the initial stiffness k (hence E by eq. 14).
 #include <string>

@@ -1,7 +1,7 @@
 #pragma once
 // The commands give the values they compute to a scene (a seated pin, a calibrated modulus, a
 // scaled duration) at a fixed number of significant digits: the precision these values always had,
-// so the figures measured with them (docs/measurements.md, docs/four_point_bending.md) reproduce
+// so the figures measured with them (docs/explanation/diagnosis.md, docs/explanation/four-point-bending.md) reproduce
 // bit for bit. A DEM fracture amplifies a change in the 13th digit into the 4th digit of the
 // post-peak curve; the loop's statistics then move. The value is rounded as its decimal text
 // would be read back (correctly rounded both ways), and passed on typed.

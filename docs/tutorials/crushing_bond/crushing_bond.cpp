@@ -1,6 +1,6 @@
 // crushing_bond: the seed's beam bond (eq. 3-10: Shard's installed beam law, not a copy) plus one
 // effect the shipped library lacks: a bond also fails when it is crushed. Written in the tutorial
-// (docs/tutorial.md part 6) from `shard new-plugin bond crushing_bond`.
+// (docs/tutorials/measurement-loop.md part 6) from `shard new-plugin bond crushing_bond`.
 //
 // Physics: a cemented contact is weaker in compression than its grains: the binder bridge crushes.
 // The bond's largest compressive fibre stress is
