@@ -6,10 +6,10 @@ set(CPACK_PACKAGE_NAME shard)
 set(CPACK_PACKAGE_VENDOR "Shard developers")
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "${PROJECT_DESCRIPTION}")
-set(CPACK_PACKAGE_DESCRIPTION
-    "Shard predicts if, where and how brittle, complex-shaped bodies break with the Discrete Element "
-    "Method and a bonded particle model: spheres joined by elastic beams that break. Every model is a "
-    "plugin loaded at run time.")
+string(CONCAT CPACK_PACKAGE_DESCRIPTION
+  "Shard predicts if, where and how brittle, complex-shaped bodies break with the Discrete Element "
+  "Method and a bonded particle model: spheres joined by elastic beams that break. Every model is a "
+  "plugin loaded at run time.")
 set(CPACK_RESOURCE_FILE_LICENSE "${PROJECT_SOURCE_DIR}/LICENSE")
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_GENERATOR DEB)
