@@ -2,8 +2,8 @@
 # moved to another folder, then the moved `shard` must list every plugin the build has, each from
 # the moved prefix (never from the build tree), find its templates, and run an installed scene.
 # The build tree is only read.
-# Run: cmake -DSHARD_BUILD_DIR=<build> -DWORK_DIR=<scratch> -P relocated_install.cmake
-set(required_vars SHARD_BUILD_DIR WORK_DIR)
+# Run: cmake -DSHARD_BUILD_DIR=<build> -DWORK_DIR=<scratch> -DVERSION=<x.y.z> -P relocated_install.cmake
+set(required_vars SHARD_BUILD_DIR WORK_DIR VERSION)
 include(${CMAKE_CURRENT_LIST_DIR}/command_line.cmake)
 
 file(REMOVE_RECURSE "${WORK_DIR}")
@@ -38,8 +38,11 @@ if(NOT build_path_at EQUAL -1)
 endif()
 message(STATUS "moved install lists all ${built_count} plugins of the build, from ${prefix}")
 
+# The release of the build (CMake's project version), and the checkout's git describe when the
+# source is a git checkout.
 run(${clean_env} "${shard}" --version)
-expect_match("shard --version" "${run_output}" "^shard [0-9]+\\.[0-9]+\\.[0-9]+")
+regex_escaped(version_pattern "${VERSION}")
+expect_match("shard --version" "${run_output}" "^shard ${version_pattern}( \\(git [^)]+\\))?\n$")
 
 # The templates of `shard new-plugin` are found beside the moved command.
 run(${clean_env} "${shard}" new-plugin contact moved_contact --dir "${WORK_DIR}/moved_contact")
