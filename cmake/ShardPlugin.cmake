@@ -10,7 +10,7 @@ function(shard_add_plugin NAME)
     LIBRARY_OUTPUT_DIRECTORY "${SHARD_BUILD_PLUGIN_DIR}"
     CXX_VISIBILITY_PRESET hidden
     VISIBILITY_INLINES_HIDDEN ON)
-  install(TARGETS ${NAME} LIBRARY DESTINATION lib/shard/plugins)
+  install(TARGETS ${NAME} LIBRARY DESTINATION ${SHARD_INSTALL_PLUGIN_DIR})
   if(NOT TARGET shard_all_plugins)
     add_custom_target(shard_all_plugins)
   endif()

@@ -9,6 +9,7 @@
 #include "shard/app/command_routing.hpp"
 #include "shard/app/commands.hpp"
 #include "shard/hdf5_quiet.hpp"
+#include "shard/version.hpp"
 #if SHARD_MPI_ENSEMBLE
 #include "run_job.hpp"
 #include "shard/app/run_ensemble.hpp"
@@ -22,10 +23,12 @@ int main(int argc, char** argv) {
   const shard::QuietHdf5Errors quiet_hdf5;
   CLI::App app{"Shard: bonded-particle DEM for the breakage of complex-shaped bodies"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", "shard " + shard::version_line());
   shard::CommandContext ctx;
   app.add_option("--plugin-dir", ctx.plugin_dirs, "extra folder to search for plugins (repeatable)")
       ->check(CLI::ExistingDirectory);
   shard::add_run_command(app, ctx);
+  shard::add_check_command(app, ctx);
   shard::add_plugins_command(app, ctx);
   shard::add_schema_command(app, ctx);
   shard::add_bending_command(app, ctx);  // bending, calibrate
@@ -35,6 +38,10 @@ int main(int argc, char** argv) {
   shard::add_sweep_command(app, ctx);
   shard::add_run_worker_command(app, ctx);
   std::vector<std::string> args(argv, argv + argc);
+  if (const auto help = shard::forms_help(app, args)) {
+    fmt::print("{}", *help);
+    return 0;
+  }
   shard::route_measurement_command(args);
 #if SHARD_MPI_ENSEMBLE
   // Under mpirun a measurement command's runs spread over the ranks: rank 0 runs the command, the

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "shard/app/commands.hpp"
+#include "shard/install_layout.hpp"
 
 namespace shard {
 namespace {
@@ -56,17 +57,12 @@ std::string class_name(const std::string& name) {
   return out;
 }
 
-// Installed: <prefix>/bin/shard -> <prefix>/share/shard/templates; in the build tree: the source.
+// Installed: <prefix>/share/shard/templates; in the build tree: the source's (install_layout.hpp).
 std::vector<fs::path> template_search_path(const fs::path& explicit_dir) {
   std::vector<fs::path> dirs;
   if (!explicit_dir.empty()) dirs.push_back(explicit_dir);
   if (const char* env = std::getenv("SHARD_TEMPLATE_DIR")) dirs.emplace_back(env);
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) dirs.push_back(exe.parent_path().parent_path() / "share" / "shard" / "templates");
-#ifdef SHARD_SOURCE_TEMPLATE_DIR
-  dirs.emplace_back(SHARD_SOURCE_TEMPLATE_DIR);
-#endif
+  dirs.push_back(install_layout().data_dir / "templates");
   return dirs;
 }
 

@@ -19,10 +19,12 @@
 #include "shard/checkpoint.hpp"
 #include "shard/driver/numerical_health.hpp"
 #include "shard/driver/output_folder.hpp"
+#include "shard/driver/time_step_report.hpp"
 #include "shard/output.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/run_file.hpp"
 #include "shard/scene.hpp"
+#include "shard/version.hpp"
 
 namespace shard::driver {
 // Shared with the decomposed run (mpi/distributed_run.cpp): run_loop_parts.hpp.
@@ -136,21 +138,20 @@ RunMetadata run_metadata(const Scene& scene, const SceneInstance& inst, const Pl
     if (log.info) log.info(line);
   };
   RunMetadata meta;
-  for (const auto& l : sim.time_step_limits()) {
-    const std::string line = fmt::format("time step limit {}: critical {:.4g} s, recommended {:.4g} s", l.name,
-                                         l.critical, l.recommended);
+  const TimeStepReport time_step = time_step_report(scene, sim);
+  for (const auto& [key, line] : time_step.limits) {
     info(line);
-    meta.notes.emplace_back("dt_" + l.name, line);
+    meta.notes.emplace_back(key, line);
   }
-  info(fmt::format("time step dt = {:.4g} s ({}), {} steps for {:.4g} s", sim.dt(), scene.dt > 0 ? "set" : "auto",
-                   static_cast<std::int64_t>(std::ceil(scene.duration / sim.dt())), scene.duration));
+  info(time_step.chosen);
   meta.notes.emplace_back("dt", fmt::format("{:.17g}", sim.dt()));
   for (const auto& [k, v] : inst.body.quality) info(fmt::format("packing {} = {:.6g}", k, v));
   meta.scene_text = scene.resolved_text;
   meta.scene_file = scene.file.string();
   meta.seed = scene.seed;
-  meta.shard_version = SHARD_VERSION;
-  meta.git_revision = SHARD_GIT_REVISION;
+  // The code that ran it (shard/version.hpp); git_revision is empty for a build outside git.
+  meta.shard_version = std::string(version());
+  meta.git_revision = std::string(git_describe());
   meta.generator_quality = inst.body.quality;
   auto record = [&](PluginKind kind, const char* label, const PluginChoice& c, const std::string& body = {}) {
     const auto& p = host.find(kind, c.name);

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "composed_bond.hpp"
+#include "shard/install_layout.hpp"
 
 namespace shard {
 
@@ -138,8 +139,8 @@ std::vector<std::filesystem::path> PluginHost::default_search_path(
     while (std::getline(ss, part, ':'))
       if (!part.empty()) dirs.emplace_back(part);
   }
-  dirs.emplace_back(SHARD_BUILD_PLUGIN_DIR);
-  dirs.emplace_back(SHARD_INSTALL_PLUGIN_DIR);
+  // The shipped plugins: the build tree's folder, or the installed one beside the library.
+  dirs.push_back(install_layout().plugin_dir);
   return dirs;
 }
 

@@ -18,6 +18,7 @@ struct CommandContext {
 void add_run_command(CLI::App& app, CommandContext& ctx);
 void add_plugins_command(CLI::App& app, CommandContext& ctx);
 void add_schema_command(CLI::App& app, CommandContext& ctx);  // the scene reference in Markdown
+void add_check_command(CLI::App& app, CommandContext& ctx);  // check: a scene validated, not run
 void add_bending_command(CLI::App& app, CommandContext& ctx);  // bending, calibrate
 void add_fragments_command(CLI::App& app, CommandContext& ctx);
 void add_measure_command(CLI::App& app, CommandContext& ctx);  // compare, synth, diagnose

@@ -1,0 +1,23 @@
+#pragma once
+// The time-step lines of a scene ready to run (docs/physics.md, "Time step"): each limit with its
+// critical and recommended step, then the step taken and how many steps the duration needs.
+// `shard run` prints them and stores the limits in run.h5's /notes; `shard check` prints them.
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace shard {
+struct Scene;
+class Simulation;
+}  // namespace shard
+
+namespace shard::driver {
+
+struct TimeStepReport {
+  std::vector<std::pair<std::string, std::string>> limits;  // ("dt_<limit>", line) per limit
+  std::string chosen;                                       // "time step dt = ... s (auto), N steps for T s"
+};
+
+TimeStepReport time_step_report(const Scene& scene, const Simulation& sim);
+
+}  // namespace shard::driver
