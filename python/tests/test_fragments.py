@@ -1,0 +1,74 @@
+"""Fragments and size distributions: a hand-made frame with known pieces, and a many-body scene
+whose six bodies are six fragments before they land."""
+import math
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+import shard
+
+
+def frame_of(radius, bonds, body=None):
+    n = len(radius)
+    radius = np.asarray(radius, dtype=float)
+    return SimpleNamespace(id=np.arange(n, dtype=np.int32), position=np.zeros((n, 3)) + np.arange(n)[:, None],
+                           velocity=np.zeros((n, 3)), radius=radius, mass=1000 * 4 / 3 * math.pi * radius ** 3,
+                           body=np.zeros(n, dtype=np.int32) if body is None else np.asarray(body, dtype=np.int32),
+                           bonds=np.asarray(bonds, dtype=np.int32).reshape(-1, 2))
+
+
+def test_connected_components_heaviest_first():
+    # Particles 0-1-2 bonded (three of radius 1), 3-4 bonded (radius 2): the pair is heavier.
+    frame = frame_of([1, 1, 1, 2, 2], [[0, 1], [1, 2], [3, 4]])
+    pieces = shard.fragments(frame)
+    assert len(pieces) == 2
+    np.testing.assert_array_equal(pieces.labels, [1, 1, 1, 0, 0])
+    np.testing.assert_array_equal(pieces.particles, [2, 3])
+    v_pair, v_chain = 2 * 4 / 3 * math.pi * 8, 3 * 4 / 3 * math.pi
+    np.testing.assert_allclose(pieces.volume, [v_pair, v_chain], rtol=1e-12)
+    np.testing.assert_allclose(pieces.d_eq, np.cbrt(6 / math.pi * np.array([v_pair, v_chain])), rtol=1e-12)
+    np.testing.assert_allclose(pieces.centre[0], [3.5, 3.5, 3.5], rtol=1e-12)
+
+
+def test_size_distribution_interpolates_in_mass_fraction():
+    # Two fragments of d = 1 and 3 m with masses 1 and 3 kg: Q = 0.25 at d = 1, 1 at d = 3.
+    fsd = shard.size_distribution([3.0, 1.0], [3.0, 1.0])
+    np.testing.assert_array_equal(fsd.d, [1.0, 3.0])
+    np.testing.assert_allclose(fsd.cumulative, [0.25, 1.0])
+    assert fsd.x10 == 1.0  # below the first point: the smallest size
+    assert fsd.x50 == pytest.approx(1 + (0.5 - 0.25) / 0.75 * 2)
+    assert fsd.characteristic_size(0.9) == pytest.approx(fsd.x90)
+    fines = shard.size_distribution([3.0, 1.0], [3.0, 1.0], fines_size=2.0)
+    assert fines.fines_fraction == pytest.approx(0.25)
+
+
+def test_bad_arrays_are_refused_with_the_reason():
+    frame = frame_of([1, 1], [[0, 5]])
+    with pytest.raises(ValueError, match="5"):
+        shard.fragments(frame)
+    with pytest.raises(ValueError, match="p must lie"):
+        shard.size_distribution([1.0], [1.0]).characteristic_size(0)
+
+
+def test_six_falling_bodies_are_six_unbroken_fragments(scenes, tmp_path):
+    # Stopped long before the first shard reaches the floor (~35 ms).
+    result = shard.run(scenes / "plates_drop.toml", out=tmp_path, overrides={"simulation.duration": 0.002})
+    with result.open() as f:
+        frame = f.frame(-1)
+    pieces = shard.fragments(frame)
+    assert len(pieces) == 6
+    assert sorted(pieces.body.tolist()) == [0, 1, 2, 3, 4, 5]
+    assert not pieces.mixed_bodies.any()
+    bodies = shard.body_statistics(frame)
+    np.testing.assert_array_equal(bodies.body, [0, 1, 2, 3, 4, 5])
+    np.testing.assert_array_equal(bodies.fragments, 1)
+    np.testing.assert_allclose(bodies.largest_fraction, 1.0)
+    assert bodies.broken_count == 0 and bodies.breakage_probability == 0
+    assert bodies.pooled.total_mass == pytest.approx(frame.total_mass, rel=1e-12)
+
+
+def test_plugins_are_searched_where_the_command_searches(tmp_path):
+    path = shard.plugin_search_path([tmp_path])
+    assert path[0] == tmp_path
+    assert any(sorted(p.glob("shard_*.so")) for p in path if p.is_dir())

@@ -1,0 +1,128 @@
+"""The measurement loop's results as Python objects: a real `shard compare` of two tiny-beam runs
+with themselves (through the CLI helper), and the loaders' tolerance of the file variants."""
+import json
+import math
+
+import numpy as np
+import pytest
+
+import shard
+
+SPECIMENS = "id,length,width,height,span,pin_distance,loading_rate\n"
+# The tiny beam of scenes/measurements/tiny_bending.toml: 40 x 8 x 8 mm, supports 36 mm apart,
+# pins 16 mm apart at 0.02 m/s.
+GEOMETRY = "0.040,0.008,0.008,0.036,0.016,0.02"
+
+
+def measurement_folder(folder, runs):
+    """A measurement folder (docs/measurements.md) whose specimens are the runs' load curves."""
+    (folder / "curves").mkdir(parents=True)
+    (folder / "metadata.toml").write_text(
+        'name = "tiny beam runs"\n[uncertainty]\nload_cell = 0.01\ndisplacement = 1e-6\n')
+    rows = []
+    for k, r in enumerate(runs):
+        name = f"seed{k + 1}"
+        table = np.column_stack([r.curve.time, r.curve.displacement, r.curve.load])
+        np.savetxt(folder / "curves" / f"{name}.csv", table, delimiter=",", header="time,displacement,force",
+                   comments="", fmt="%.17g")
+        rows.append(f"{name},{GEOMETRY}\n")
+    (folder / "specimens.csv").write_text(SPECIMENS + "".join(rows))
+    return folder
+
+
+@pytest.fixture(scope="module")
+def runs(scenes, tmp_path_factory):
+    scene = scenes / "measurements" / "tiny_bending.toml"
+    return [shard.run(scene, out=tmp_path_factory.mktemp(f"seed{s}"), overrides={"simulation.seed": s})
+            for s in (1, 2)]
+
+
+@pytest.fixture(scope="module")
+def self_comparison(runs, tmp_path_factory):
+    root = tmp_path_factory.mktemp("compare")
+    folder = measurement_folder(root / "meas", runs)
+    return shard.compare(folder, out=root / "cmp", sim=[r.curve_csv for r in runs])
+
+
+def test_a_model_compared_with_its_own_curves_is_adequate(self_comparison):
+    c = self_comparison
+    assert isinstance(c, shard.Comparison)
+    assert c.adequate
+    assert c.nrmse == pytest.approx(0, abs=1e-6)
+    for f in c.features.values():
+        if math.isfinite(f.measured):
+            assert f.simulated == pytest.approx(f.measured, rel=1e-6), f.name
+    assert {"toe", "elastic", "peak"} <= set(c.regimes)
+    assert not any(g.beyond_noise for g in c.regimes.values())
+
+
+def test_the_peak_force_feature_is_the_mean_of_the_curves_peaks(self_comparison, runs):
+    peak = self_comparison.features["peak_force"]
+    assert peak.unit == "N"
+    # compare.json prints 6 significant digits.
+    assert peak.measured == pytest.approx(np.mean([r.peak_load for r in runs]), rel=1e-5)
+
+
+def test_the_plot_data_comes_back_as_curves(self_comparison):
+    curves = self_comparison.curves
+    assert curves.individual.shape[0] == 4  # two specimens, then the same two as simulated replicates
+    measured, simulated = curves.split(2)
+    np.testing.assert_allclose(simulated, measured, rtol=1e-6, atol=1e-9)
+    np.testing.assert_allclose(curves.measured_mean, measured.mean(axis=0), rtol=1e-5, atol=1e-6)
+    assert np.all(np.diff(curves.w) > 0)
+    np.testing.assert_allclose(curves.residual, 0, atol=1e-6)
+
+
+def test_a_result_folder_is_loaded_by_its_file_name(self_comparison, tmp_path):
+    folder = tmp_path / "cmp"
+    folder.mkdir()
+    (folder / "compare.json").write_text(json.dumps(self_comparison.data))
+    assert shard.load_result(folder).verdict == self_comparison.verdict
+
+
+def test_non_finite_numbers_and_a_format_version_are_accepted(tmp_path):
+    path = tmp_path / "calibrate.json"
+    path.write_text('{"format_version": 1, "effect": "machine_compliance", "value": 2.9e-4, '
+                    '"nrmse_before": nan, "nrmse_after": null, "chi_square_before": inf, '
+                    '"chi_square_after": -inf, "regimes": {"toe": [0.5, null], "elastic": [1.5, -0.2]}, '
+                    '"note": "a nan in text stays"}')
+    cal = shard.load_result(path)
+    assert isinstance(cal, shard.Calibration)
+    assert cal.format_version == 1 and cal.effect == "machine_compliance"
+    assert math.isnan(cal.nrmse_before) and math.isnan(cal.nrmse_after)
+    assert cal.chi_square_before == math.inf and cal.chi_square_after == -math.inf
+    assert cal.note == "a nan in text stays"
+    names, before, after = cal.regime_residuals()
+    assert names == ["toe", "elastic"]
+    np.testing.assert_array_equal(before, [0.5, 1.5])
+    assert math.isnan(after[0]) and after[1] == -0.2
+
+
+def test_a_diagnosis_lists_its_tables_as_columns(tmp_path):
+    path = tmp_path / "diagnose.json"
+    path.write_text(json.dumps({
+        "verdict": "machine_compliance", "chi_square": 98.9, "p_value": None,
+        "ranking": [{"name": "machine_compliance", "score": 121.5, "explained": 0.78},
+                    {"name": "support_friction", "score": 95.8, "explained": None}],
+        "rivals": []}))
+    d = shard.load_result(path)
+    assert isinstance(d, shard.Diagnosis)
+    assert math.isnan(d.p_value)
+    ranking = d.table("ranking")
+    assert list(ranking["name"]) == ["machine_compliance", "support_friction"]
+    np.testing.assert_array_equal(ranking["score"], [121.5, 95.8])
+    assert math.isnan(ranking["explained"][1])
+    assert d.ranking[0].name == "machine_compliance"
+    with pytest.raises(AttributeError, match="verdict"):
+        d.no_such_field
+
+
+def test_a_file_of_another_kind_is_refused_by_name(tmp_path):
+    path = tmp_path / "compare.json"
+    path.write_text("{not json")
+    with pytest.raises(ValueError, match="compare.json:1"):
+        shard.load_result(path)
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    with pytest.raises(FileNotFoundError, match="compare.json, diagnose.json"):
+        shard.load_result(empty)
