@@ -2,7 +2,7 @@
 
 namespace shard::python {
 
-py::array_t<double> to_array(const std::vector<Vec3>& rows) {
+py::array_t<double> rows_array(const std::vector<Vec3>& rows) {
   py::array_t<double> out({static_cast<py::ssize_t>(rows.size()), py::ssize_t{3}});
   auto view = out.mutable_unchecked<2>();
   for (std::size_t r = 0; r < rows.size(); ++r)

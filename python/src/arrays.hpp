@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -18,6 +19,7 @@ namespace py = pybind11;
 // The vector's buffer becomes the array's: no copy.
 template <class T>
 py::array_t<T> to_array(std::vector<T>&& values) {
+  static_assert(std::is_arithmetic_v<T>, "rows of three go through rows_array");
   auto* owned = new std::vector<T>(std::move(values));
   py::capsule owner(owned, [](void* p) { delete static_cast<std::vector<T>*>(p); });
   return py::array_t<T>(static_cast<py::ssize_t>(owned->size()), owned->data(), owner);
@@ -29,7 +31,7 @@ py::array_t<T> to_array(const std::vector<T>& values) {
 }
 
 // Rows of three: an (n, 3) float64 array.
-py::array_t<double> to_array(const std::vector<Vec3>& rows);
+py::array_t<double> rows_array(const std::vector<Vec3>& rows);
 
 // Counts (std::size_t) as int64, numpy's default integer.
 py::array_t<std::int64_t> to_int64_array(const std::vector<std::size_t>& counts);

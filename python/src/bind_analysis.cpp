@@ -39,11 +39,11 @@ py::dict fragment_columns(const std::vector<analysis::Fragment>& fragments) {
   d["particles"] = to_array(std::move(particles));
   d["mass"] = to_array(std::move(mass));
   d["volume"] = to_array(std::move(volume));
-  d["centre"] = to_array(centre);
-  d["velocity"] = to_array(velocity);
+  d["centre"] = rows_array(centre);
+  d["velocity"] = rows_array(velocity);
   d["d_eq"] = to_array(std::move(d_eq));
-  d["box_min"] = to_array(box_min);
-  d["box_max"] = to_array(box_max);
+  d["box_min"] = rows_array(box_min);
+  d["box_max"] = rows_array(box_max);
   d["body"] = to_array(std::move(body));
   d["mixed_bodies"] = to_array(std::move(mixed)).attr("astype")("bool");
   d["smallest_id"] = to_array(std::move(smallest_id));

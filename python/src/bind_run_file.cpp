@@ -46,9 +46,9 @@ py::dict frame_dict(FrameData&& f) {
   d["step"] = f.step;
   d["time"] = f.time;
   d["id"] = to_array(std::move(f.id));
-  d["position"] = to_array(f.position);
-  d["velocity"] = to_array(f.velocity);
-  d["omega"] = to_array(f.omega);
+  d["position"] = rows_array(f.position);
+  d["velocity"] = rows_array(f.velocity);
+  d["omega"] = rows_array(f.omega);
   d["radius"] = to_array(std::move(f.radius));
   d["mass"] = to_array(std::move(f.mass));
   d["mass_source"] = f.mass_source;
@@ -87,7 +87,7 @@ py::dict break_events_dict(const std::vector<BondBreakEvent>& events) {
   d["step"] = to_array(std::move(step));
   d["id_i"] = to_array(std::move(id_i));
   d["id_j"] = to_array(std::move(id_j));
-  d["midpoint"] = to_array(midpoint);
+  d["midpoint"] = rows_array(midpoint);
   d["sigma_vm"] = to_array(std::move(sigma_vm));
   d["sigma_axial"] = to_array(std::move(sigma_axial));
   d["tau"] = to_array(std::move(tau));
@@ -121,8 +121,8 @@ py::dict body_impacts_dict(const std::vector<BodyImpact>& impacts) {
   d["hit"] = to_array(std::move(hit)).attr("astype")("bool");
   d["step"] = to_array(std::move(step));
   d["time"] = to_array(std::move(time));
-  d["velocity"] = to_array(velocity);
-  d["normal"] = to_array(normal);
+  d["velocity"] = rows_array(velocity);
+  d["normal"] = rows_array(normal);
   d["wall"] = to_array(std::move(wall));
   d["speed"] = to_array(std::move(speed));
   d["angle"] = to_array(std::move(angle));
@@ -150,7 +150,7 @@ void bind_run_file(py::module_& m) {
            [](const RunFile& f, const std::string& name) { return to_array(f.read_integer_series(name)); })
       .def("wall_names", &RunFile::wall_names)
       .def("read_wall_series", [](const RunFile& f, const std::string& wall,
-                                  const std::string& quantity) { return to_array(f.read_wall_series(wall, quantity)); })
+                                  const std::string& quantity) { return rows_array(f.read_wall_series(wall, quantity)); })
       .def("read_wall_impact_energy",
            [](const RunFile& f, const std::string& wall) { return to_array(f.read_wall_impact_energy(wall)); })
       .def("read_wall_impacts",

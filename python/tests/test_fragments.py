@@ -53,7 +53,7 @@ def test_bad_arrays_are_refused_with_the_reason():
 
 def test_six_falling_bodies_are_six_unbroken_fragments(scenes, tmp_path):
     # Stopped long before the first shard reaches the floor (~35 ms).
-    result = shard.run(scenes / "plates_drop.toml", out=tmp_path, overrides={"simulation.duration": 0.002})
+    result = shard.run(scenes / "plates_drop.toml", out=tmp_path, overrides={"simulation.duration": 0.002}, threads=1)
     with result.open() as f:
         frame = f.frame(-1)
     pieces = shard.fragments(frame)

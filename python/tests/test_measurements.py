@@ -14,18 +14,21 @@ SPECIMENS = "id,length,width,height,span,pin_distance,loading_rate\n"
 GEOMETRY = "0.040,0.008,0.008,0.036,0.016,0.02"
 
 
+def write_curve(path, curve):
+    """A curve file of the measurement format: time, displacement, force."""
+    table = np.column_stack([curve.time, curve.displacement, curve.load])
+    np.savetxt(path, table, delimiter=",", header="time,displacement,force", comments="", fmt="%.17g")
+    return path
+
+
 def measurement_folder(folder, runs):
     """A measurement folder (docs/measurements.md) whose specimens are the runs' load curves."""
     (folder / "curves").mkdir(parents=True)
     (folder / "metadata.toml").write_text(
         'name = "tiny beam runs"\n[uncertainty]\nload_cell = 0.01\ndisplacement = 1e-6\n')
-    rows = []
     for k, r in enumerate(runs):
-        name = f"seed{k + 1}"
-        table = np.column_stack([r.curve.time, r.curve.displacement, r.curve.load])
-        np.savetxt(folder / "curves" / f"{name}.csv", table, delimiter=",", header="time,displacement,force",
-                   comments="", fmt="%.17g")
-        rows.append(f"{name},{GEOMETRY}\n")
+        write_curve(folder / "curves" / f"seed{k + 1}.csv", r.curve)
+    rows = [f"seed{k + 1},{GEOMETRY}\n" for k in range(len(runs))]
     (folder / "specimens.csv").write_text(SPECIMENS + "".join(rows))
     return folder
 
@@ -33,7 +36,7 @@ def measurement_folder(folder, runs):
 @pytest.fixture(scope="module")
 def runs(scenes, tmp_path_factory):
     scene = scenes / "measurements" / "tiny_bending.toml"
-    return [shard.run(scene, out=tmp_path_factory.mktemp(f"seed{s}"), overrides={"simulation.seed": s})
+    return [shard.run(scene, out=tmp_path_factory.mktemp(f"seed{s}"), overrides={"simulation.seed": s}, threads=1)
             for s in (1, 2)]
 
 
@@ -41,7 +44,8 @@ def runs(scenes, tmp_path_factory):
 def self_comparison(runs, tmp_path_factory):
     root = tmp_path_factory.mktemp("compare")
     folder = measurement_folder(root / "meas", runs)
-    return shard.compare(folder, out=root / "cmp", sim=[r.curve_csv for r in runs])
+    sims = [write_curve(root / f"sim{k + 1}.csv", r.curve) for k, r in enumerate(runs)]
+    return shard.compare(folder, out=root / "cmp", sim=sims)
 
 
 def test_a_model_compared_with_its_own_curves_is_adequate(self_comparison):
