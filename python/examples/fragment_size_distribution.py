@@ -33,12 +33,11 @@ def main():
     pooled = bodies.pooled
     ax.step(1e3 * pooled.d, pooled.cumulative, where="post", color="k", lw=2,
             label=f"pooled: x10 {1e3 * pooled.x10:.1f}, x50 {1e3 * pooled.x50:.1f}, x90 {1e3 * pooled.x90:.1f} mm")
-    ax.set_xscale("log")
     ax.set_xlabel("equivalent diameter d (mm)")
     ax.set_ylabel("mass fraction Q(d)")
     ax.set_title(f"t = {1e3 * frame.time:.0f} ms: {bodies.broken_count} of {len(bodies)} shards broken "
                  f"(largest piece < 90 % of the shard)")
-    ax.grid(alpha=0.3, which="both")
+    ax.grid(alpha=0.3)
     ax.legend(fontsize=7, loc="upper left")
     fig.tight_layout()
     fig.savefig(args.png, dpi=110)

@@ -32,10 +32,11 @@ def cli_path() -> Path:
 
 
 def _arguments(options: dict) -> list[str]:
-    """{"work": "w", "param": ["a", "b"], "judge_fracture": True} -> --work w --param a --param b --judge-fracture."""
+    """{"work": "w", "param": ["a", "b"], "judge_fracture": True} -> --work w --param a --param b
+    --judge-fracture. A trailing underscore is dropped: with_="x" is --with x (`with` is a keyword)."""
     out = []
     for key, value in options.items():
-        flag = "--" + key.replace("_", "-")
+        flag = "--" + key.rstrip("_").replace("_", "-")
         if value is True:
             out.append(flag)
         elif value is False or value is None:
@@ -81,6 +82,7 @@ def diagnose(measurements, out="diagnose", **options):
     return _result_of("diagnose", measurements, out, options)
 
 
-def calibrate(measurements, out="calibrate", **options):
-    """`shard calibrate-effect MEASUREMENTS --out OUT ...`, then its calibrate.json as a Calibration."""
+def calibrate_effect(measurements, out="calibrate", **options):
+    """`shard calibrate-effect MEASUREMENTS --out OUT ...`, then its calibrate.json as a Calibration.
+    E.g. calibrate_effect("meas", scene=S, work="w", param=[...], with_="machine_compliance")."""
     return _result_of("calibrate-effect", measurements, out, options)

@@ -130,3 +130,12 @@ def test_a_file_of_another_kind_is_refused_by_name(tmp_path):
     empty.mkdir()
     with pytest.raises(FileNotFoundError, match="compare.json, diagnose.json"):
         shard.load_result(empty)
+
+
+def test_keyword_options_become_the_commands_options():
+    from shard.cli import _arguments
+    assert _arguments({"work": "w", "param": ["a", "b"], "with_": "machine_compliance", "judge_fracture": True,
+                       "quiet": False, "force_noise": 0.01}) == [
+        "--work", "w", "--param", "a", "--param", "b", "--with", "machine_compliance", "--judge-fracture",
+        "--force-noise", "0.01"]
+    assert shard.cli_path().name == "shard"
