@@ -131,14 +131,24 @@ class RunFile:
         speed, angle; empty arrays when the run wrote none."""
         return self._reader.read_body_impacts()
 
+    def body_statistics(self, index: int = -1, intact_fraction: float = 0.9, fines_size: float = 0.0,
+                        density: float | None = None):
+        """Per-body statistics of frame `index` with each body's first wall contact, as
+        `shard fragments --by-body` computes them (shard.BodyStatistics)."""
+        from .fragments import body_report
+        if not 0 < intact_fraction <= 1:
+            raise ValueError("intact_fraction must lie in (0, 1]: 1 counts a body broken once any piece broke off")
+        number = self._reader.frames()[index]
+        return body_report(self._reader.body_statistics(number, float(intact_fraction), float(fines_size), density))
+
     def table(self, group: str) -> dict:
         """A table the analysis stored under `group` (e.g. "fragments/000012", "bodies/000050"):
         one numpy array per column dataset, and the table's figures under "attributes"."""
         import h5py
         with h5py.File(self.path, "r") as f:
             if group not in f:
-                raise KeyError(f"{self.path}: no table '{group}'. Fix: run `shard fragments {self.path}` "
-                               "(add --by-body for bodies/) to store it")
+                raise KeyError(f"{self.path}: no table '{group}'. Fix: store it with `shard fragments "
+                               f"{self.path} --write-labels` (fragments/) or `--by-body` (bodies/)")
             g = f[group]
             columns = {name: g[name][()] for name in g if isinstance(g[name], h5py.Dataset)}
             columns["attributes"] = {k: _plain(v) for k, v in g.attrs.items()}

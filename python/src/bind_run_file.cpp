@@ -8,6 +8,8 @@
 
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "frame_arrays.hpp"
+#include "shard/analysis/plate_outcome.hpp"
 #include "shard/run_file.hpp"
 
 namespace shard::python {
@@ -156,7 +158,16 @@ void bind_run_file(py::module_& m) {
       .def("read_wall_impacts",
            [](const RunFile& f, const std::string& wall) { return to_array(f.read_wall_impacts(wall)); })
       .def("read_break_events", [](const RunFile& f) { return break_events_dict(f.read_break_events()); })
-      .def("read_body_impacts", [](const RunFile& f) { return body_impacts_dict(f.read_body_impacts()); });
+      .def("read_body_impacts", [](const RunFile& f) { return body_impacts_dict(f.read_body_impacts()); })
+      .def(
+          "body_statistics",
+          [](const RunFile& f, std::size_t k, double intact_fraction, double fines_size, std::optional<double> density) {
+            // The frame's bodies with each one's first wall contact, as `shard fragments --by-body`.
+            const analysis::RunBodies bodies = analysis::analyse_run_bodies(
+                f, static_cast<std::int64_t>(k), intact_fraction, fines_size, density);
+            return body_report_dict(bodies.report);
+          },
+          py::arg("k"), py::arg("intact_fraction"), py::arg("fines_size"), py::arg("density") = py::none());
 }
 
 }  // namespace shard::python

@@ -2,6 +2,9 @@
 
 #include <stdexcept>
 
+#include "run_table.hpp"
+#include "shard/analysis/run_tables.hpp"
+
 namespace shard::python {
 
 FrameArrays frame_arrays(const In<Index>& id, const In<double>& position, const In<double>& velocity,
@@ -44,6 +47,15 @@ py::dict distribution_dict(const analysis::SizeDistribution& fsd) {
   out["fines_size"] = fsd.fines_size;
   out["fines_mass"] = fsd.fines_mass;
   return out;
+}
+
+py::dict body_report_dict(const analysis::BodyReport& report) {
+  py::dict d = table_dict(analysis::body_run_table(report));
+  py::list distributions;
+  for (const auto& body : report.bodies) distributions.append(distribution_dict(body.fsd));
+  d["distributions"] = distributions;
+  d["pooled"] = distribution_dict(report.pooled);
+  return d;
 }
 
 }  // namespace shard::python

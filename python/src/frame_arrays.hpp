@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "arrays.hpp"
+#include "shard/analysis/body_statistics.hpp"
 #include "shard/analysis/components.hpp"
 #include "shard/analysis/fragment_table.hpp"
 #include "shard/analysis/size_distribution.hpp"
@@ -31,5 +32,8 @@ FrameArrays frame_arrays(const In<Index>& id, const In<double>& position, const 
 
 // points (as arrays d, cumulative), fragments, total_mass, x10, x50, x90, fines_size, fines_mass.
 py::dict distribution_dict(const analysis::SizeDistribution& fsd);
+
+// The per-body table as stored (columns, figures), each body's distribution and the pooled one.
+py::dict body_report_dict(const analysis::BodyReport& report);
 
 }  // namespace shard::python

@@ -51,21 +51,40 @@ def test_bad_arrays_are_refused_with_the_reason():
         shard.size_distribution([1.0], [1.0]).characteristic_size(0)
 
 
-def test_six_falling_bodies_are_six_unbroken_fragments(scenes, tmp_path):
+@pytest.fixture(scope="module")
+def falling(scenes, tmp_path_factory):
     # Stopped long before the first shard reaches the floor (~35 ms).
-    result = shard.run(scenes / "plates_drop.toml", out=tmp_path, overrides={"simulation.duration": 0.002}, threads=1)
-    with result.open() as f:
+    return shard.run(scenes / "plates_drop.toml", out=tmp_path_factory.mktemp("plates"),
+                     overrides={"simulation.duration": 0.002}, threads=1)
+
+
+def test_six_falling_bodies_are_six_unbroken_fragments(falling):
+    with falling.open() as f:
         frame = f.frame(-1)
+        from_file = f.body_statistics()
     pieces = shard.fragments(frame)
     assert len(pieces) == 6
     assert sorted(pieces.body.tolist()) == [0, 1, 2, 3, 4, 5]
-    assert not pieces.mixed_bodies.any()
     bodies = shard.body_statistics(frame)
     np.testing.assert_array_equal(bodies.body, [0, 1, 2, 3, 4, 5])
     np.testing.assert_array_equal(bodies.fragments, 1)
     np.testing.assert_allclose(bodies.largest_fraction, 1.0)
-    assert bodies.broken_count == 0 and bodies.breakage_probability == 0
+    assert bodies.broken_count == 0 and bodies.breakage_probability == 0 and not bodies.broken.any()
     assert bodies.pooled.total_mass == pytest.approx(frame.total_mass, rel=1e-12)
+    # Read from the run file, the same statistics, and no shard has touched the floor yet.
+    np.testing.assert_array_equal(from_file.mass, bodies.mass)
+    assert not from_file.impacted.any()
+
+
+def test_the_table_is_the_one_shard_fragments_stores(falling):
+    shard.run_cli("fragments", falling.run_file, write_labels=True)
+    with falling.open() as f:
+        frame = f.frame(-1)
+        stored = f.table(f"fragments/{frame.number:06d}")
+    pieces = shard.fragments(frame)
+    for name in ("particles", "mass", "volume", "d_eq", "centre", "velocity", "box_min", "box_max", "body"):
+        np.testing.assert_array_equal(stored[name], getattr(pieces, name), err_msg=name)
+    assert stored["attributes"]["x50"] == pieces.size_distribution().x50
 
 
 def test_plugins_are_searched_where_the_command_searches(tmp_path):
