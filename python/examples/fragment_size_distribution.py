@@ -1,5 +1,6 @@
 """Fragment size distributions of a many-body drop (scenes/plates_drop.toml, docs/bodies.md): the
-run's last frame split into fragments, each shard's mass-weighted Q(d) and the pooled one.
+run's last frame split into fragments, each shard's mass-weighted Q(d) with its impact speed, and
+the pooled one.
 
     PYTHONPATH=build/release/python python3 python/examples/fragment_size_distribution.py \
         --out out/py_plates --png plates_fsd.png
@@ -25,11 +26,11 @@ def main():
     run_file = args.run or shard.run(args.scene, out=args.out, progress=True).run_file
     with shard.RunFile(run_file) as f:
         frame = f.frame(-1)
-    bodies = shard.body_statistics(frame, intact_fraction=0.9)
+        bodies = f.body_statistics(-1, intact_fraction=0.9)
     fig, ax = plt.subplots(figsize=(7, 4.5))
-    for b, fsd in zip(bodies.body, bodies.distributions):
+    for b, speed, fsd in zip(bodies.body, bodies.impact_speed, bodies.distributions):
         ax.step(1e3 * fsd.d, fsd.cumulative, where="post", alpha=0.7,
-                label=f"shard {b}: {fsd.fragments} fragments, x50 = {1e3 * fsd.x50:.1f} mm")
+                label=f"shard {b} at {speed:.2f} m/s: {fsd.fragments} fragments, x50 = {1e3 * fsd.x50:.1f} mm")
     pooled = bodies.pooled
     ax.step(1e3 * pooled.d, pooled.cumulative, where="post", color="k", lw=2,
             label=f"pooled: x10 {1e3 * pooled.x10:.1f}, x50 {1e3 * pooled.x50:.1f}, x90 {1e3 * pooled.x90:.1f} mm")
