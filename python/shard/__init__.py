@@ -7,11 +7,11 @@ from .fragments import (BodyStatistics, Fragments, SizeDistribution, body_statis
 from .measurements import (Calibration, Comparison, Diagnosis, RateComparison, load_json,
                            load_result)
 from .run_file import Frame, RunFile
-from .runs import LoadCurve, RunResult, plugin_search_path, run
+from .runs import LoadCurve, RunInterrupted, RunResult, plugin_search_path, run
 
 __all__ = [
     "Calibration", "CheckpointError", "Comparison", "Diagnosis", "Frame", "Fragments", "LoadCurve",
-    "NumericalError", "OutputError", "PluginError", "RateComparison", "RunFile", "RunResult",
+    "NumericalError", "OutputError", "PluginError", "RateComparison", "RunFile", "RunInterrupted", "RunResult",
     "SceneError", "SizeDistribution", "BodyStatistics", "body_statistics", "calibrate_effect", "cli_path",
     "compare", "diagnose", "fragments", "load_json", "load_result", "plugin_search_path", "run",
     "run_cli", "size_distribution",

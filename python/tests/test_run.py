@@ -96,3 +96,19 @@ def test_key_value_strings_are_parsed_as_set_parses_them(scenes, tmp_path):
 def test_a_value_of_no_scene_type_is_refused_by_key(scenes, tmp_path):
     with pytest.raises(TypeError, match="bond.youngs_modulus"):
         shard.run(scenes / "four_point_bending_ci.toml", out=tmp_path, overrides={"bond.youngs_modulus": {"a": 1}})
+
+
+def test_a_run_continues_from_its_checkpoint(scenes, tmp_path):
+    first = shard.run(scenes / "four_point_bending_ci.toml", out=tmp_path, threads=1,
+                      overrides={**SHORT, "simulation.duration": 0.004})
+    assert first.stop == "duration" and first.checkpoint is not None
+    more = shard.run(restart=first.run_file, out=tmp_path, threads=1, overrides={"simulation.duration": 0.008})
+    assert more.restarted_from == first.checkpoint_step
+    assert more.steps > first.steps
+    straight = shard.run(scenes / "four_point_bending_ci.toml", out=tmp_path / "straight", threads=1,
+                         overrides={**SHORT, "simulation.duration": 0.008})
+    assert (more.steps, more.time) == (straight.steps, straight.time)
+    with more.open() as f:
+        time = f.series()["time"]
+    assert np.all(np.diff(time) > 0)  # one series, continued
+    assert time[-1] == more.time
