@@ -1,5 +1,10 @@
 """shard.run on the CI-size four-point bending beam, made short as the MPI run test makes it (pins
 ten times faster, weaker bonds, no damping): the result, the file and the CSV agree."""
+import os
+import signal
+import threading
+import time
+
 import numpy as np
 import pytest
 
@@ -112,3 +117,20 @@ def test_a_run_continues_from_its_checkpoint(scenes, tmp_path):
         time = f.series()["time"]
     assert np.all(np.diff(time) > 0)  # one series, continued
     assert time[-1] == more.time
+
+
+def test_ctrl_c_stops_the_run_with_a_checkpoint(scenes, tmp_path):
+    # The beam at its own rate runs ~100 000 steps; the signal comes once the run file exists. The
+    # thread that sends it runs only because the run released the GIL.
+    def interrupt_once_running():
+        while not (tmp_path / "run.h5").exists():
+            time.sleep(0.01)
+        os.kill(os.getpid(), signal.SIGINT)
+
+    threading.Thread(target=interrupt_once_running, daemon=True).start()
+    with pytest.raises(shard.RunInterrupted) as caught:
+        shard.run(scenes / "four_point_bending_ci.toml", out=tmp_path, threads=1)
+    r = caught.value.result
+    assert r.stop == "interrupted"
+    assert r.checkpoint.is_file() and r.checkpoint_step == r.steps
+    assert r.time < 1.2  # the scene's duration
