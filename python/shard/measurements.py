@@ -156,10 +156,12 @@ def load_comparison(path):
 
 class Record:
     """A JSON object with its keys as attributes: objects as Records, lists of numbers (null as nan)
-    as numpy arrays, lists of objects as lists of Records. `data` is the dict as read."""
+    as numpy arrays, lists of objects as lists of Records. `data` is the dict as read, `source` the
+    file it came from (None for a nested object); every other attribute is a field of the file."""
 
-    def __init__(self, data: dict):
+    def __init__(self, data: dict, source: Path | None = None):
         self.data = data
+        self.source = source
 
     def __getattr__(self, name):
         data = self.__dict__.get("data", {})
@@ -182,6 +184,8 @@ def _value(v):
         return Record(v)
     if isinstance(v, list) and v and all(isinstance(x, dict) for x in v):
         return [Record(x) for x in v]
+    if isinstance(v, list) and v and all(isinstance(x, bool) for x in v):
+        return np.array(v, dtype=bool)
     if isinstance(v, list) and all(x is None or (isinstance(x, (int, float)) and not isinstance(x, bool)) for x in v):
         return _numbers(v)
     return math.nan if v is None else v
@@ -191,6 +195,8 @@ def _column(records: list, name: str) -> np.ndarray:
     values = [r.get(name) for r in records]
     if all(isinstance(x, str) for x in values):
         return np.array(values, dtype=object)
+    if all(isinstance(x, bool) for x in values):
+        return np.array(values, dtype=bool)
     return _numbers(values)
 
 
@@ -215,6 +221,15 @@ class Calibration(Record):
         names = list(regimes)
         return (names, _numbers([regimes[n][0] for n in names]), _numbers([regimes[n][1] for n in names]))
 
+    def curves(self, which: str) -> ComparisonCurves:
+        """The comparison "before" or "after" the fit, from before.dat / after.dat beside the file."""
+        if which not in ("before", "after"):
+            raise ValueError(f"curves: which is 'before' or 'after', not '{which}'")
+        dat = Path(self.source or ".").parent / f"{which}.dat"
+        if not dat.exists():
+            raise FileNotFoundError(f"{dat}: missing. Fix: keep the --out folder calibrate-effect wrote whole")
+        return read_comparison_curves(dat)
+
 
 def load_result(path):
     """A result of the measurement loop by its file name: compare.json -> Comparison (or
@@ -227,8 +242,8 @@ def load_result(path):
             raise FileNotFoundError(f"{path}: holds no compare.json, diagnose.json or calibrate.json. "
                                     "Fix: give the --out folder of shard compare, diagnose or calibrate-effect")
         path = found[0]
-    kinds = {"compare": load_comparison, "diagnose": lambda p: Diagnosis(load_json(p)),
-             "calibrate": lambda p: Calibration(load_json(p))}
+    kinds = {"compare": load_comparison, "diagnose": lambda p: Diagnosis(load_json(p), p),
+             "calibrate": lambda p: Calibration(load_json(p), p)}
     for prefix, load in kinds.items():
         if path.name.startswith(prefix):
             return load(path)

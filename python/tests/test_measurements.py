@@ -2,6 +2,7 @@
 with themselves (through the CLI helper), and the loaders' tolerance of the file variants."""
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -41,11 +42,15 @@ def runs(scenes, tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
-def self_comparison(runs, tmp_path_factory):
-    root = tmp_path_factory.mktemp("compare")
-    folder = measurement_folder(root / "meas", runs)
+def measurements(runs, tmp_path_factory):
+    return measurement_folder(tmp_path_factory.mktemp("meas") / "meas", runs)
+
+
+@pytest.fixture(scope="module")
+def self_comparison(runs, measurements):
+    root = measurements.parent
     sims = [write_curve(root / f"sim{k + 1}.csv", r.curve) for k, r in enumerate(runs)]
-    return shard.compare(folder, out=root / "cmp", sim=sims)
+    return shard.compare(measurements, out=root / "cmp", sim=sims)
 
 
 def test_a_model_compared_with_its_own_curves_is_adequate(self_comparison):
@@ -75,6 +80,21 @@ def test_the_plot_data_comes_back_as_curves(self_comparison):
     np.testing.assert_allclose(curves.measured_mean, measured.mean(axis=0), rtol=1e-5, atol=1e-6)
     assert np.all(np.diff(curves.w) > 0)
     np.testing.assert_allclose(curves.residual, 0, atol=1e-6)
+
+
+def test_a_calibration_comes_back_with_its_curves(scenes, measurements, self_comparison):
+    root = measurements.parent
+    cal = shard.calibrate_effect(measurements, out=root / "cal", scene=scenes / "measurements" / "tiny_bending.toml",
+                                 work=root / "work", seeds=1, workers=1, with_="machine_compliance",
+                                 max_evaluations=2)
+    assert isinstance(cal, shard.Calibration)
+    assert cal.effect == "machine_compliance" and cal.evaluations == 2
+    assert cal.chi_square_before > 0 and 0 < cal.nrmse_before < 1
+    names, before, after = cal.regime_residuals()
+    assert set(names) <= {"toe", "elastic", "pre-peak", "peak", "post-peak"} and len(before) == len(after) > 0
+    # The same measurements on the same grid as the comparison's.
+    np.testing.assert_allclose(cal.curves("before").measured_mean, self_comparison.curves.measured_mean, rtol=1e-5)
+    assert cal.curves("after").individual.shape == (3, len(self_comparison.curves.w))  # 2 specimens, 1 seed
 
 
 def test_a_result_folder_is_loaded_by_its_file_name(self_comparison, tmp_path):
@@ -139,3 +159,18 @@ def test_keyword_options_become_the_commands_options():
         "--work", "w", "--param", "a", "--param", "b", "--with", "machine_compliance", "--judge-fracture",
         "--force-noise", "0.01"]
     assert shard.cli_path().name == "shard"
+
+
+def test_a_real_diagnosis_reads_as_columns():
+    # `shard diagnose` of the tiny beam's tutorial measurements (hidden machine compliance), with
+    # one packing seed and the base parameters E_b and sigma_crit.
+    d = shard.load_result(Path(__file__).parent / "data" / "diagnose.json")
+    assert d.verdict == "unexplained structured residual"
+    ranking = d.table("ranking")
+    assert list(ranking["name"][:3]) == ["bond_softening", "weibull_strength", "machine_compliance"]
+    assert np.all(np.diff(ranking["score"]) <= 0)  # ranked by the score test
+    assert ranking["at_bound"].dtype == bool and ranking["identifiable"].dtype == bool
+    assert d.chi_square_unabsorbed < d.chi_square
+    first = d.confirmations[0]
+    assert "regime:elastic" in first.residual.keys()
+    assert math.isnan(d.resized_p)  # null: no resized test was run
