@@ -1,4 +1,6 @@
-"""shard.RunFile on a settling box (unbonded spheres poured onto a floor): frames, series, walls."""
+"""shard.RunFile on a settling box (unbonded spheres poured onto a floor): frames, series, walls.
+The box is filled to 25 mm instead of 50 mm and run for 0.2 s instead of 0.3 s: 754 spheres that
+are at rest at the end (kinetic energy 8e-6 of its peak, the floor force 1.3 % above the weight)."""
 import math
 
 import numpy as np
@@ -12,7 +14,8 @@ GRAVITY = 9.81
 
 @pytest.fixture(scope="module")
 def box(scenes, tmp_path_factory):
-    result = shard.run(scenes / "settling_box.toml", out=tmp_path_factory.mktemp("box"), threads=1)
+    result = shard.run(scenes / "settling_box.toml", out=tmp_path_factory.mktemp("box"), threads=1,
+                       overrides={"generator.max_corner": [0.03, 0.03, 0.025], "simulation.duration": 0.2})
     with shard.RunFile(result.run_file) as f:
         yield result, f
 
