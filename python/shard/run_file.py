@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from . import _shard
+from .fragments import body_report, fragments
 
 # Series columns stored as integers; the others are float64.
 _INTEGER_SERIES = ("step", "bonds_intact", "bonds_broken", "contacts")
@@ -46,7 +47,6 @@ class Frame:
 
     def fragments(self):
         """The fragments of this frame (shard.fragments)."""
-        from .fragments import fragments
         return fragments(self)
 
 
@@ -135,7 +135,6 @@ class RunFile:
                         density: float | None = None):
         """Per-body statistics of frame `index` with each body's first wall contact, as
         `shard fragments --by-body` computes them (shard.BodyStatistics)."""
-        from .fragments import body_report
         if not 0 < intact_fraction <= 1:
             raise ValueError("intact_fraction must lie in (0, 1]: 1 counts a body broken once any piece broke off")
         number = self._reader.frames()[index]
@@ -144,7 +143,7 @@ class RunFile:
     def table(self, group: str) -> dict:
         """A table the analysis stored under `group` (e.g. "fragments/000012", "bodies/000050"):
         one numpy array per column dataset, and the table's figures under "attributes"."""
-        import h5py
+        import h5py  # only here: the rest of the package needs numpy alone
         with h5py.File(self.path, "r") as f:
             if group not in f:
                 raise KeyError(f"{self.path}: no table '{group}'. Fix: store it with `shard fragments "

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import numbers
+import os
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -64,8 +65,10 @@ class RunResult:
         return RunFile(self.run_file)
 
 
-def _scene_value(key: str, value):
-    """numpy scalars and arrays as the plain Python values the binding takes."""
+def _scene_value(value):
+    """numpy scalars and arrays, tuples and paths as the plain Python values the binding takes."""
+    if isinstance(value, os.PathLike):
+        return os.fspath(value)
     if isinstance(value, np.ndarray):
         return value.tolist()
     if isinstance(value, np.generic):
@@ -85,7 +88,7 @@ def _split_overrides(overrides) -> tuple[list[tuple[str, object]], list[str]]:
     if overrides is None:
         return [], []
     if isinstance(overrides, Mapping):
-        return [(str(k), _scene_value(str(k), v)) for k, v in overrides.items()], []
+        return [(str(k), _scene_value(v)) for k, v in overrides.items()], []
     if isinstance(overrides, str) or not isinstance(overrides, Iterable):
         raise TypeError("overrides: give a dict {'section.key': value} or a list of 'section.key=value' strings")
     return [], [str(text) for text in overrides]
