@@ -1,6 +1,9 @@
 """Fragments and size distributions: a hand-made frame with known pieces, and a many-body scene
 whose six bodies are six fragments before they land."""
 import math
+import subprocess
+import sys
+from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
@@ -91,3 +94,12 @@ def test_plugins_are_searched_where_the_command_searches(tmp_path):
     path = shard.plugin_search_path([tmp_path])
     assert path[0] == tmp_path
     assert any(sorted(p.glob("shard_*.so")) for p in path if p.is_dir())
+
+
+def test_the_size_distribution_example_draws_its_figure(falling, tmp_path):
+    example = Path(__file__).resolve().parents[1] / "examples" / "fragment_size_distribution.py"
+    png = tmp_path / "fsd.png"
+    done = subprocess.run([sys.executable, str(example), "--run", str(falling.run_file), "--png", str(png)],
+                          capture_output=True, text=True, check=True)
+    assert "1146 particles, 6 fragments" in done.stdout
+    assert png.stat().st_size > 10_000
