@@ -7,8 +7,8 @@
 #include "bindings.hpp"
 #include "frame_arrays.hpp"
 #include "run_table.hpp"
-#include "shard/analysis/run_tables.hpp"
 #include "shard/analysis/body_statistics.hpp"
+#include "shard/analysis/run_tables.hpp"
 
 namespace shard::python {
 namespace {
@@ -18,7 +18,8 @@ py::dict fragments(const In<Index>& id, const In<double>& position, const In<dou
                    const In<Index>& bonds) {
   const FrameArrays frame = frame_arrays(id, position, velocity, radius, mass, body, bonds);
   analysis::FragmentAnalysis result = analysis::analyse_fragments(frame.sample(), frame.bonds());
-  py::dict d = table_dict(analysis::fragment_run_table(result.fragments, analysis::size_distribution(result.fragments)));
+  const analysis::SizeDistribution fsd = analysis::size_distribution(result.fragments);
+  py::dict d = table_dict(analysis::fragment_run_table(result.fragments, fsd));
   d["labels"] = to_array(std::move(result.labels));
   return d;
 }

@@ -151,8 +151,10 @@ void bind_run_file(py::module_& m) {
       .def("read_integer_series",
            [](const RunFile& f, const std::string& name) { return to_array(f.read_integer_series(name)); })
       .def("wall_names", &RunFile::wall_names)
-      .def("read_wall_series", [](const RunFile& f, const std::string& wall,
-                                  const std::string& quantity) { return rows_array(f.read_wall_series(wall, quantity)); })
+      .def("read_wall_series",
+           [](const RunFile& f, const std::string& wall, const std::string& quantity) {
+             return rows_array(f.read_wall_series(wall, quantity));
+           })
       .def("read_wall_impact_energy",
            [](const RunFile& f, const std::string& wall) { return to_array(f.read_wall_impact_energy(wall)); })
       .def("read_wall_impacts",
@@ -161,7 +163,8 @@ void bind_run_file(py::module_& m) {
       .def("read_body_impacts", [](const RunFile& f) { return body_impacts_dict(f.read_body_impacts()); })
       .def(
           "body_statistics",
-          [](const RunFile& f, std::size_t k, double intact_fraction, double fines_size, std::optional<double> density) {
+          [](const RunFile& f, std::size_t k, double intact_fraction, double fines_size,
+             std::optional<double> density) {
             // The frame's bodies with each one's first wall contact, as `shard fragments --by-body`.
             const analysis::RunBodies bodies = analysis::analyse_run_bodies(
                 f, static_cast<std::int64_t>(k), intact_fraction, fines_size, density);
