@@ -10,8 +10,7 @@ ParticleSample particle_sample(const FrameData& frame) {
 
 BondList bond_list(const FrameData& frame) { return {frame.bond_i, frame.bond_j}; }
 
-void write_fragment_table(RunFile& file, std::size_t k, const std::vector<Fragment>& fragments,
-                          const SizeDistribution& fsd) {
+RunTable fragment_run_table(const std::vector<Fragment>& fragments, const SizeDistribution& fsd) {
   const std::size_t count = fragments.size();
   std::vector<std::int64_t> particles(count);
   std::vector<std::int32_t> body(count);
@@ -35,10 +34,15 @@ void write_fragment_table(RunFile& file, std::size_t k, const std::vector<Fragme
                    {"box_min", std::move(box_min)},     {"box_max", std::move(box_max)}, {"body", std::move(body)}};
   table.figures = {{"count", static_cast<std::int64_t>(count)}, {"x10", fsd.x10}, {"x50", fsd.x50},
                    {"x90", fsd.x90}, {"fines_size", fsd.fines_size}, {"fines_mass", fsd.fines_mass}};
-  file.write_table("fragments/" + frame_name(k), table);
+  return table;
 }
 
-void write_body_table(RunFile& file, std::size_t k, const BodyReport& report) {
+void write_fragment_table(RunFile& file, std::size_t k, const std::vector<Fragment>& fragments,
+                          const SizeDistribution& fsd) {
+  file.write_table("fragments/" + frame_name(k), fragment_run_table(fragments, fsd));
+}
+
+RunTable body_run_table(const BodyReport& report) {
   const std::size_t count = report.bodies.size();
   std::vector<std::int32_t> body(count), broken(count), impacted(count);
   std::vector<std::int64_t> particles(count), fragments(count);
@@ -85,7 +89,11 @@ void write_body_table(RunFile& file, std::size_t k, const BodyReport& report) {
                    {"x90", report.pooled.x90},
                    {"fines_size", report.pooled.fines_size},
                    {"fines_mass", report.pooled.fines_mass}};
-  file.write_table("bodies/" + frame_name(k), table);
+  return table;
+}
+
+void write_body_table(RunFile& file, std::size_t k, const BodyReport& report) {
+  file.write_table("bodies/" + frame_name(k), body_run_table(report));
 }
 
 }  // namespace shard::analysis

@@ -17,6 +17,11 @@ namespace shard::analysis {
 ParticleSample particle_sample(const FrameData& frame);
 BondList bond_list(const FrameData& frame);
 
+// The tables as they are stored (docs/fragments.md): one column per field of a fragment or a body,
+// the distribution's figures. The Python layer hands out the same columns.
+RunTable fragment_run_table(const std::vector<Fragment>& fragments, const SizeDistribution& fsd);
+RunTable body_run_table(const BodyReport& report);
+
 // Replaces /fragments/<k:06d>: one dataset per column of the table, the distribution's
 // characteristic sizes as attributes.
 void write_fragment_table(RunFile& file, std::size_t k, const std::vector<Fragment>& fragments,
