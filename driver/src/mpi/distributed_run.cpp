@@ -12,15 +12,6 @@
 #include "mpi_backend.hpp"
 
 namespace shard::driver {
-namespace {
-
-int world_rank() {
-  int r = 0;
-  MPI_Comm_rank(MPI_COMM_WORLD, &r);
-  return r;
-}
-
-}  // namespace
 
 bool launched_by_mpi() {
   for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE", "PMI_RANK"})
@@ -50,7 +41,8 @@ MpiSession::~MpiSession() {
 void abort_job(const std::string& message) {
   int initialised = 0;
   MPI_Initialized(&initialised);
-  const int rank = initialised ? world_rank() : 0;
+  int rank = 0;
+  if (initialised) MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   std::fprintf(stderr, "shard: error%s: %s\n", rank == 0 ? "" : fmt::format(" (rank {})", rank).c_str(),
                message.c_str());
   std::fflush(stderr);
