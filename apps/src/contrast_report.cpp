@@ -135,13 +135,13 @@ std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
                          "{:.1f}, the drop has p = {:.2g}) but leaves p = {:.2g} for what remains: {} in another form "
                          "than the library's, or {} and a second difference. `shard calibrate` this set `--with {}` and "
                          "look at what remains; a difference the library lacks is added as a plugin parameter with a "
-                         "neutral value (shard new-plugin, docs/plugins.md) and an [[effect]] entry.",
+                         "neutral value (shard new-plugin, docs/how-to/write-a-plugin.md) and an [[effect]] entry.",
                          f.name, fitted_value(r, d, 0), fitted_uncertainty(r, d, 0), e ? e->unit : "", 100 * share,
                          c.chi_square, f.chi_square, f.p_drop, f.p_after, f.name, f.name, f.name);
       } else {
         s += fmt::format(" The closest, {}, leaves chi^2 {:.1f} (p = {:.2g} for what remains): the missing physics is "
                          "not in the library. Add it as a plugin parameter with a neutral value (shard new-plugin, "
-                         "docs/plugins.md) and an [[effect]] entry, then diagnose again.",
+                         "docs/how-to/write-a-plugin.md) and an [[effect]] entry, then diagnose again.",
                          f.name, f.chi_square, f.p_after);
       }
     }
@@ -176,7 +176,7 @@ std::string contrast_markdown(const ContrastReport& r) {
                     "Effects tried: {}.\n\n",
                     fmt::join(names, ", "), r.result.dof, r.result.effects.size());
   if (!r.result.scaled_sizes.empty())
-    md += "Trial sizes from the fitted base run (plausible_from rules, docs/measurements.md):\n\n```\n" + r.result.scaled_sizes +
+    md += "Trial sizes from the fitted base run (plausible_from rules, docs/explanation/diagnosis.md):\n\n```\n" + r.result.scaled_sizes +
           "```\n\n";
   md += "## The base model and its form error\n\n";
   if (r.result.calibration.keys.empty())

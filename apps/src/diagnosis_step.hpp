@@ -26,7 +26,7 @@ namespace shard {
 // Own is the default: with three packing seeds the simulated variances are estimated to ~100 %,
 // the likelihood's log term is then noise of order 1 per component (it named support friction for
 // a seating toe and Weibull strength for hidden support friction), and the frozen band charges a
-// model's genuine extra scatter as error (it lost the hidden softening). docs/measurements.md.
+// model's genuine extra scatter as error (it lost the hidden softening). docs/explanation/diagnosis.md.
 enum class Scoring { Own, FrozenBand, Likelihood };
 Scoring scoring_from_name(const std::string& name);  // "own", "frozen" or "likelihood"; throws otherwise
 

@@ -66,7 +66,7 @@ void add_compare(CLI::App& app, CommandContext& ctx) {
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("compare", "compare measured curves with simulated ones: features, regimes, verdict, plot");
-  cmd->add_option("measurements", o->measurements, "measurement folder (docs/measurements.md)")->required();
+  cmd->add_option("measurements", o->measurements, "measurement folder (docs/how-to/bring-lab-data.md)")->required();
   cmd->add_option("--sim", o->simulated, "simulated curve CSV(s) (time,displacement,force), e.g. from shard run");
   cmd->add_option("--rate", o->rate, "compare the specimens at this loading rate (m/s)");
   cmd->add_option("--out", o->out, "folder for compare.md, compare.json, compare.png");

@@ -237,7 +237,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
             if (s.lin.signatures[e].identifiable) ++nameable;
           }
       run_confirmations(simulator, measured, set.metadata, o->model, keys, band, scoring, s.confirmations, m);
-      // Converged refits where the start is not a minimum (docs/measurements.md "Several effects
+      // Converged refits where the start is not a minimum (docs/explanation/diagnosis.md "Several effects
       // at once"). A kept effect's size is not identified by the step that kept it: the missing
       // second effect loads the same components, and the chi^2 is flat along it (two-effect test:
       // compliance 29.07 at 8.45e-5 m/N, 29.05 at 6.47e-5). The next step starts wherever that
@@ -371,7 +371,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
             "scatter estimated, sensor noise known), read as the normal score of equal tail probability "
             "(--score-reference welch).\n";
     if (!scaled.empty())
-      md += "Trial sizes from the base run (plausible_from rules, docs/measurements.md):\n\n```\n" + scaled + "```\n\n";
+      md += "Trial sizes from the base run (plausible_from rules, docs/explanation/diagnosis.md):\n\n```\n" + scaled + "```\n\n";
     for (const auto& e : effects)
       if (!e.identifiable_at(measured.rates.size()))
         md += fmt::format("{} is a rate effect: at {} loading rate{} it changes only the curve's shape, which "
@@ -441,7 +441,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
       for (std::size_t k = 0; k < bc.at.size(); ++k)
         md += fmt::format(" {}{}", bc.at.size() > 1 ? fmt::format("at {:g} m/s: ", bc.rates[k]) : "", bc.at[k].verdict);
       md += " To add an effect: `shard new-plugin` writes a one-file plugin whose new parameter has a neutral value "
-            "(docs/plugins.md); an [[effect]] entry for it in the library lets diagnose try it and `shard calibrate "
+            "(docs/how-to/write-a-plugin.md); an [[effect]] entry for it in the library lets diagnose try it and `shard calibrate "
             "--with` fit it.";
       md += "\n\n";
     } else if (path.size() > 1) {

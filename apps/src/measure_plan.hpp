@@ -34,7 +34,7 @@ struct SimulationOptions {
   int workers = 2;
   // Each run in a worker process of its own (`shard run-worker`), so a crash in a plugin fails
   // that run and not the command. Off by default: a worker's start and plugin loading cost
-  // 0.3-0.4 s of CPU per run, half a tiny-beam run (docs/driver.md, "Isolated runs").
+  // 0.3-0.4 s of CPU per run, half a tiny-beam run (docs/reference/driver.md, "Isolated runs").
   bool isolate = false;
   bool seat = true;
   // The model runs each specimen at this factor times its measured loading rate. Explicit DEM

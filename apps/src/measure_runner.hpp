@@ -4,7 +4,7 @@
 // cache keyed by that text, and otherwise run in-process through the run driver
 // (shard/driver/run_driver.hpp), several at a time (one OpenMP thread each): on worker threads,
 // or isolated, each in a worker process of its own (isolate_runs), or, in an MPI build started by
-// mpirun, on the other ranks (docs/scaling-out.md). A run that fails (bad input, a numerical
+// mpirun, on the other ranks (docs/explanation/scaling.md). A run that fails (bad input, a numerical
 // blow-up; with isolation also a crash, named by its signal) is reported as failed and the others
 // go on. However they run, the runs' outcomes come back as records (run_job.hpp) and this process
 // alone writes the cache, so no two writers meet on a cache file.

@@ -1,7 +1,6 @@
 #pragma once
-// The pieces of the run loop that the serial driver (run_driver.cpp) and the decomposed one
-// (mpi/distributed_run.cpp) share: the observed step loop itself, a point of the load curve,
-// what a checkpoint carries of the loop, the run file's metadata, and the closing figures.
+// The pieces of a scene's run (run_scene.cpp): the observed step loop itself, a point of the load
+// curve, what a checkpoint carries of the loop, the run file's metadata, and the closing figures.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -40,7 +39,13 @@ RunStart read_run_start(const RunSpec& spec, const PluginHost& host, const RunLo
 // The output folder of a new run, before the generator: an unusable --out must not cost the
 // packing's time.
 void prepare_run_output(const RunSpec& spec, const Scene& scene);
-RunMetadata run_metadata(const Scene& scene, const SceneInstance& inst, const PluginHost& host, const RunLog& log);
+// The run file's metadata of a new run, and the lines the run's log shows of it (time step,
+// packing quality), from the whole scene as instantiated.
+struct RunMetadataDraft {
+  RunMetadata meta;
+  std::vector<std::string> lines;
+};
+RunMetadataDraft run_metadata(const Scene& scene, const SceneInstance& inst, const PluginHost& host);
 double kinetic_to_elastic_up_to_peak(const RunResult& r);
 // Where a numerical error's message sends the user: the last checkpoint, if any.
 std::string last_good_state(const RunResult& r);

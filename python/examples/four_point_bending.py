@@ -1,4 +1,4 @@
-"""The four-point bending load curve (docs/four_point_bending.md) from Python: the beam run twice,
+"""The four-point bending load curve (docs/explanation/four-point-bending.md) from Python: the beam run twice,
 at the seed's bond stiffness and 25 % stiffer, and both curves drawn.
 
     PYTHONPATH=build/release/python python3 python/examples/four_point_bending.py \

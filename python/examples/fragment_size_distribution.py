@@ -1,4 +1,4 @@
-"""Fragment size distributions of a many-body drop (scenes/plates_drop.toml, docs/bodies.md): the
+"""Fragment size distributions of a many-body drop (scenes/plates_drop.toml, docs/reference/bodies.md): the
 run's last frame split into fragments, each shard's mass-weighted Q(d) with its impact speed, and
 the pooled one.
 

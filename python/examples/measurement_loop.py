@@ -1,4 +1,4 @@
-"""A measurement-loop result drawn from Python (docs/tutorial.md, section 1): synthetic
+"""A measurement-loop result drawn from Python (docs/tutorials/measurement-loop.md, section 1): synthetic
 measurements of the tiny beam with a hidden machine compliance, compared with the base model;
 the comparison's curves and residual from compare.json and compare.dat.
 

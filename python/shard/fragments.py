@@ -1,5 +1,5 @@
 """Fragments (connected components of the surviving bonds) and their size distribution, computed
-by the analysis library's functions (docs/fragments.md)."""
+by the analysis library's functions (docs/reference/fragments.md)."""
 from __future__ import annotations
 
 from dataclasses import dataclass, fields
@@ -27,7 +27,7 @@ class SizeDistribution:
         return self.fines_mass / self.total_mass if self.total_mass > 0 else 0.0
 
     def characteristic_size(self, p: float) -> float:
-        """x_p for p in (0, 1]: d interpolated linearly in Q (docs/fragments.md)."""
+        """x_p for p in (0, 1]: d interpolated linearly in Q (docs/reference/fragments.md)."""
         return _shard.characteristic_size(self.d, self.cumulative, float(p))
 
 

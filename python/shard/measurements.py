@@ -1,4 +1,4 @@
-"""The measurement loop's results (`shard compare`, `diagnose`, `calibrate-effect`; docs/measurements.md)
+"""The measurement loop's results (`shard compare`, `diagnose`, `calibrate-effect`; docs/explanation/diagnosis.md)
 as Python objects. Each class keeps the whole document in `data`; curves are numpy arrays.
 
 The files are read tolerantly: a `format_version` field is accepted (and kept), a number the writer

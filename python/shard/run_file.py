@@ -1,5 +1,5 @@
 """shard.RunFile: a run.h5 as numpy arrays, read by the kernel's own reader (the one place that knows
-the layout of docs/output-format.md)."""
+the layout of docs/reference/output-format.md)."""
 from __future__ import annotations
 
 from dataclasses import dataclass

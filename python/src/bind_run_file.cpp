@@ -1,6 +1,6 @@
 // shard._shard.RunFile: the kernel's reader of run.h5 (shard/run_file.hpp), the one place that
 // knows the layout. Frames, series, walls, break events and body impacts come back as dicts of
-// numpy arrays, one entry per dataset of docs/output-format.md.
+// numpy arrays, one entry per dataset of docs/reference/output-format.md.
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 

@@ -23,7 +23,7 @@ def write_curve(path, curve):
 
 
 def measurement_folder(folder, runs):
-    """A measurement folder (docs/measurements.md) whose specimens are the runs' load curves."""
+    """A measurement folder (docs/how-to/bring-lab-data.md) whose specimens are the runs' load curves."""
     (folder / "curves").mkdir(parents=True)
     (folder / "metadata.toml").write_text(
         'name = "tiny beam runs"\n[uncertainty]\nload_cell = 0.01\ndisplacement = 1e-6\n')

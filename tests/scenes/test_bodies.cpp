@@ -22,6 +22,8 @@
 #include "shard/scene.hpp"
 #include "shard/simulation.hpp"
 #include "shard/wall.hpp"
+#include "impact_tracker.hpp"
+#include "serial_backend.hpp"
 
 using namespace shard;
 
@@ -440,16 +442,20 @@ TEST_CASE("the impacts come from the kernel's begun wall contacts and equal a sc
     std::string text = kTwoBars;
     // The same floor as a belt: it carries, so the bars record no impact although they land on it.
     if (belt) text.replace(text.find("normal = [0, 0, 1]\n"), 19, "normal = [0, 0, 1]\nbelt_speed = 0.5\nbelt_direction = [1, 0, 0]\n");
-    const SceneInstance inst = instantiate(load(text), plugins(), {});
-    Simulation& sim = *inst.simulation;
-    BodyImpactRecorder recorder(sim.particles());
+    const Scene scene = load(text);
+    SceneInstance inst = instantiate(scene, plugins(), {});
+    // The run driver's tracker over a serial run, as `shard run` records /body_impacts.
+    driver::detail::SerialBackend run;
+    run.start(scene, inst, nullptr);
+    const Simulation& sim = run.local();
+    driver::detail::ImpactTracker recorder(sim.particles());
     std::map<std::pair<Index, std::int32_t>, Vec3> before = touching_now(sim);
     std::vector<std::int64_t> first_step(2, -1);
     std::vector<Vec3> first_velocity(2, Vec3::Zero()), first_normal(2, Vec3::Zero());
     std::size_t begun_total = 0;
     while (sim.time() < 0.012) {
-      sim.step();
-      recorder.update(sim);
+      run.step();
+      recorder.update(run);
       const auto now = touching_now(sim);
       std::map<std::pair<Index, std::int32_t>, Vec3> begun;
       for (const WallContactStart& c : sim.wall_contacts_begun())

@@ -1,4 +1,4 @@
-// Two effects at once in the contrast diagnosis (docs/measurements.md,
+// Two effects at once in the contrast diagnosis (docs/explanation/diagnosis.md,
 // "Contrasts: two effects at once"): keep the closest single effect, add the next, judge what it adds.
 #include <fmt/format.h>
 

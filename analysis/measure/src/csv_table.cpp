@@ -32,7 +32,7 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 CsvTable CsvTable::read(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file))
     throw MeasurementError(file, 0, 0, "the file cannot be opened",
-                           "check the path; see docs/measurements.md for the folder layout");
+                           "check the path; see docs/how-to/bring-lab-data.md for the folder layout");
   try {
     return CsvTable(file, io::CsvTable::read(file));
   } catch (const io::CsvError& e) {

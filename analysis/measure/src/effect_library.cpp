@@ -116,7 +116,7 @@ std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& fi
   }
   const auto* effects = root["effect"].as_array();
   if (!effects || effects->empty())
-    throw std::runtime_error(fmt::format("{}: no [[effect]] tables; see docs/measurements.md for the format", file.string()));
+    throw std::runtime_error(fmt::format("{}: no [[effect]] tables; see docs/reference/effects.md for the format", file.string()));
   std::vector<CandidateEffect> out;
   for (const auto& node : *effects) {
     const auto* t = node.as_table();

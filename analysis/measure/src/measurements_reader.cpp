@@ -113,7 +113,7 @@ Metadata read_metadata(const std::filesystem::path& file) {
   } catch (const toml::parse_error& e) {
     if (!std::filesystem::exists(file))
       throw MeasurementError(file, 0, 0, "the metadata file is missing",
-                             "create metadata.toml with an [uncertainty] table (docs/measurements.md)");
+                             "create metadata.toml with an [uncertainty] table (docs/how-to/bring-lab-data.md)");
     throw MeasurementError(file, static_cast<long>(e.source().begin.line), static_cast<long>(e.source().begin.column),
                            std::string(e.description()), "write valid TOML (key = value)");
   }
@@ -218,7 +218,7 @@ MeasurementSet read_measurements(const std::filesystem::path& folder) {
   MeasurementSet set;
   set.folder = folder;
   if (!std::filesystem::is_directory(folder))
-    throw MeasurementError(folder, 0, 0, "not a folder", "pass the measurement folder (docs/measurements.md)");
+    throw MeasurementError(folder, 0, 0, "not a folder", "pass the measurement folder (docs/how-to/bring-lab-data.md)");
   set.metadata = read_metadata(folder / "metadata.toml");
   const auto specimens_file = folder / "specimens.csv";
   const CsvTable t = CsvTable::read(specimens_file);

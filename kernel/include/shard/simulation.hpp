@@ -85,7 +85,7 @@ class Simulation {
   const std::vector<BondBreakEvent>& break_events() const { return events_; }
   Energies energies() const;
   // The wall contacts begun in the last force pass, in no fixed order (empty without a contact
-  // model: walls then touch nothing). BodyImpactRecorder takes the first impacts from them.
+  // model: walls then touch nothing). The run driver takes the bodies' first impacts from them.
   const std::vector<WallContactStart>& wall_contacts_begun() const { return wall_contacts_begun_; }
   std::int64_t neighbour_rebuilds() const;
   // Checkpoint/restart (simulation_state.cpp): import_state continues bit-identically from an

@@ -1,5 +1,5 @@
 #pragma once
-// The run file's layout (docs/output-format.md) as both of its readers see it: shard::RunFile in
+// The run file's layout (docs/reference/output-format.md) as both of its readers see it: shard::RunFile in
 // the kernel and the from_file generator plugin, which may not link the kernel. Opening a file,
 // its format version, and whether a frame was written completely are decided here once.
 //

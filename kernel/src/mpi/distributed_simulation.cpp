@@ -237,7 +237,7 @@ DistributedSimulation::~DistributedSimulation() = default;
 
 // Cuts the grid anew, sends every particle, bond and touching contact to its new owner and the
 // ghost copies to the ranks next to it, then builds (initial) or replaces this rank's Simulation.
-void DistributedSimulation::distribute(Owned owned, double longest_bond, const SimulationSetup* initial,
+void DistributedSimulation::distribute(Owned owned, double longest_bond, SimulationSetup* initial,
                                        const SimulationState* resumed) {
   const double start = MPI_Wtime();
   std::sort(owned.particles.begin(), owned.particles.end(), by_id);
@@ -371,17 +371,13 @@ void DistributedSimulation::distribute(Owned owned, double longest_bond, const S
   owned_ = mine.size();
 
   if (initial) {
-    SimulationSetup s;
+    // The scene's set-up as a serial run takes it (models, materials, walls, settings), with this
+    // rank's particles and bonds in place of the whole scene's.
+    SimulationSetup s = std::move(*initial);
     s.particles = resumed ? local : std::move(local);  // a resumed run imports them again below
     s.bonds = resumed ? bond_ends : std::move(bond_ends);
-    s.contact = initial->contact;
-    s.bond = initial->bond;
-    s.breakage = initial->breakage;
-    s.walls = initial->walls;
-    s.gravity = initial->gravity;
     s.skin = skin_;
-    s.global_damping = initial->global_damping;
-    s.dt = resumed ? resumed->dt : initial->dt;
+    s.dt = resumed ? resumed->dt : s.dt;
     if (!(s.dt > 0)) {
       // "auto": every rank's models state their limits over its particles and bonds (a probe
       // without the halo); the smallest over the ranks is the serial run's.

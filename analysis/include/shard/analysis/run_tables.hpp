@@ -17,7 +17,7 @@ namespace shard::analysis {
 ParticleSample particle_sample(const FrameData& frame);
 BondList bond_list(const FrameData& frame);
 
-// The tables as they are stored (docs/fragments.md): one column per field of a fragment or a body,
+// The tables as they are stored (docs/reference/fragments.md): one column per field of a fragment or a body,
 // the distribution's figures. The Python layer hands out the same columns.
 RunTable fragment_run_table(const std::vector<Fragment>& fragments, const SizeDistribution& fsd);
 RunTable body_run_table(const BodyReport& report);

@@ -1,11 +1,12 @@
 #pragma once
 // One run of a scene decomposed in space over the MPI ranks of the job (docs/explanation/scaling.md):
-// `mpirun -np N shard run SCENE` in a build with -DSHARD_WITH_MPI=ON. Every rank calls
+// `mpirun -np N shard run SCENE` in a build with -DSHARD_WITH_MPI=ON. It is driver::run's set-up
+// and loop over the MPI backend, so every scene feature runs as it does serially. Every rank calls
 // run_distributed with the same spec and observers; the observers see the run's step, time, walls
 // and load on every rank and the whole run's break counts and frames (RunState::whole), so the
-// stop rules decide alike everywhere. Rank 0 writes the run file (today's layout, read by the
-// serial RunFile), the checkpoints (restart on any rank count, or in the serial build) and the
-// fragment labels of the gathered frames. This header needs no mpi.h.
+// stop rules decide alike everywhere. Every rank writes its rows of the run file through MPI-IO
+// (the serial layout, read by RunFile); rank 0 writes the checkpoints (restart on any rank count,
+// or in the serial build) and labels the gathered frames' fragments. This header needs no mpi.h.
 #include <string>
 #include <vector>
 

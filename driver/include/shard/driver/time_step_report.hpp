@@ -1,5 +1,5 @@
 #pragma once
-// The time-step lines of a scene ready to run (docs/physics.md, "Time step"): each limit with its
+// The time-step lines of a scene ready to run (docs/explanation/physics.md, "Time step"): each limit with its
 // critical and recommended step, then the step taken and how many steps the duration needs.
 // `shard run` prints them and stores the limits in run.h5's /notes; `shard check` prints them.
 #include <string>

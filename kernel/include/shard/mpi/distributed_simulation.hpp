@@ -149,8 +149,8 @@ class DistributedSimulation {
  private:
   struct Owned;
   void repartition();
-  void distribute(Owned owned, double longest_bond, const SimulationSetup* initial,
-                  const SimulationState* resumed = nullptr);
+  // `initial`: the scene's set-up, taken over (moved from) to build this rank's Simulation.
+  void distribute(Owned owned, double longest_bond, SimulationSetup* initial, const SimulationState* resumed = nullptr);
   void start(const SimulationSetup& setup);
   void finish_step();
 

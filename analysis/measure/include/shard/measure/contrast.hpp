@@ -1,5 +1,5 @@
 #pragma once
-// Contrast diagnosis across measurement sets (issue 15, docs/measurements.md "Contrasts").
+// Contrast diagnosis across measurement sets (issue 15, docs/explanation/diagnosis.md "Lab data: contrasts across sets").
 //
 // A lab's beams are never Shard's model: grain size, contact and bond laws, fixture and preload
 // all differ, so the best base model leaves a structured residual (the form error) before any
@@ -89,7 +89,7 @@ struct ContrastOptions {
   // share of it: the remainder test adds (form_tolerance x a t_i)^2 to each component's variance.
   // 0 demands the library's shape exactly; on foreign truth whose preload-zeroed curves leave a
   // noise floor of 4 % contrast NRMSE, it called compliance, softening and Weibull sets
-  // "unexplained" although their effect removed 93-98 % of T^2 (docs/measurements.md).
+  // "unexplained" although their effect removed 93-98 % of T^2 (docs/explanation/diagnosis.md).
   double form_tolerance = 0.2;
   // A name must also reproduce the contrast as a curve, not only its summary components: the
   // named model's simulated contrast curve within curve_floor_factor times the curve's noise

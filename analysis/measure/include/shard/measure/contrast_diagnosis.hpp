@@ -1,5 +1,5 @@
 #pragma once
-// The contrast diagnosis (docs/measurements.md "Contrasts"): which library effect makes each
+// The contrast diagnosis (docs/explanation/diagnosis.md "Lab data: contrasts across sets"): which library effect makes each
 // measurement set differ from the reference (or from the consensus of the others), with the base
 // model's form error cancelled in the difference. Steps:
 // 1. the base parameters fitted to the reference on simulated runs; its form error reported;

@@ -1,5 +1,5 @@
 #pragma once
-// What the contrast diagnosis and the contrast calibration share (docs/measurements.md
+// What the contrast diagnosis and the contrast calibration share (docs/explanation/diagnosis.md
 // "Contrasts"): the sets read and checked against each other, the
 // base model calibrated on the reference, the model's contrasts simulated on common packing
 // seeds, and each set's measured contrast with its covariance. The statistics are

@@ -8,7 +8,7 @@
 // contact laws. A size with a unit of the test is not: 1e-4 m/N of machine compliance is a
 // quarter of the tiny beam's secant compliance w_peak / F_max (~4e-4 m/N) but all of the default
 // beam's (4.96 mm / 49 N), and 1 ms of bond viscosity is a tenth of the tiny beam's time to peak
-// at 0.1 m/s but 0.05 % of the default beam's at 2.5 mm/s (2 s). The rule (docs/measurements.md
+// at 0.1 m/s but 0.05 % of the default beam's at 2.5 mm/s (2 s). The rule (docs/explanation/diagnosis.md
 // "Candidate effects"):
 //
 //   an effect with a unit of the test names its scale in the library (plausible_from,

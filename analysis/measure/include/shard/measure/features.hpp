@@ -54,7 +54,7 @@ inline constexpr std::size_t kFeatureCount = 12;
 // failure displacement only when judge_fracture is set (CompareOptions): on a few-hundred-sphere
 // beam they scatter by the packing's chance, and three replicates underestimate that scatter
 // (judged by default, the failure displacement turned the hidden-softening diagnosis of the tiny
-// beam into "unexplained": the right refit left p = 0.017, docs/measurements.md). The oscillation
+// beam into "unexplained": the right refit left p = 0.017, docs/explanation/diagnosis.md). The oscillation
 // count is a warning (a dynamic test), never a score.
 bool judged_by_default(Feature f);
 bool fracture_feature(Feature f);

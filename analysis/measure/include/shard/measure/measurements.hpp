@@ -1,5 +1,5 @@
 #pragma once
-// The measurement folder (docs/measurements.md):
+// The measurement folder (docs/how-to/bring-lab-data.md):
 //   metadata.toml    name, load-cell and displacement uncertainty, how the test was run ([test]),
 //                    free-form [notes]
 //   specimens.csv    one row per specimen: id, geometry, loading rate, optional crack position and

@@ -1,6 +1,6 @@
 #pragma once
 // How the lab ran and recorded its tests, as metadata.toml's [test] table states it
-// (docs/measurements.md): the seating preload at which a curve's displacement is zeroed, the
+// (docs/how-to/bring-lab-data.md): the seating preload at which a curve's displacement is zeroed, the
 // load cell's known zero offset, the pins' acceleration ramp, the material's grain size and the
 // smallest fragment counted. The model is run and its curves recorded the same way.
 #include <string>

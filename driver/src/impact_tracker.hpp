@@ -1,29 +1,29 @@
 #pragma once
-// BodyImpactRecorder (shard/body_impacts.hpp) for a run decomposed over MPI ranks: each rank offers
-// the wall contacts its own spheres began (DistributedSimulation::wall_contacts_begun), the offers
-// of all ranks are gathered in rank order and the serial rule picks each body's contact alike on
-// every rank (the lowest wall index, then the lowest sphere id), and the body's centre-of-mass
-// velocity is summed over the ranks in rank order. Every rank holds the same table; state() is the
-// serial recorder's, so checkpoints continue in either build.
+// The first wall impact of every body (shard/body_impacts.hpp, docs/reference/bodies.md) over a run backend
+// (run_backend.hpp), serial or decomposed: each rank offers the wall contacts its own spheres
+// began, the offers of all ranks are gathered in rank order and one rule picks each body's contact
+// alike on every rank (the lowest wall index, then the lowest sphere id), and the body's
+// centre-of-mass velocity is summed over the ranks in rank order. Every rank holds the same table;
+// state() is BodyImpactRecorder's, so checkpoints continue in either build.
 #include <cstdint>
 #include <vector>
 
 #include "shard/body_impacts.hpp"
-#include "shard/mpi/distributed_simulation.hpp"
+#include "run_backend.hpp"
 
-namespace shard::driver {
+namespace shard::driver::detail {
 
-class DistributedImpacts {
+class ImpactTracker {
  public:
   // `whole` is the whole scene as instantiated (the same on every rank): one record per body.
-  explicit DistributedImpacts(const Particles& whole);
+  explicit ImpactTracker(const Particles& whole);
 
   // Collective; call after every step. A step in which no rank began a wall contact sends nothing
   // (the count travels with the step's own reduction); a step in which some did, one all-gather of
   // the offers (few) and, when a body got its impact, one sum of the new impacts' momenta. The
   // first call, and a call that does not follow the step of the last one (a restart), scans every
   // rank's own spheres against every wall instead, since the contacts begun earlier are not known.
-  void update(const mpi::DistributedSimulation& sim);
+  void update(const RunBackend& run);
 
   const std::vector<BodyImpact>& impacts() const { return impacts_; }
   std::vector<double> state() const { return impacts_state(impacts_); }
@@ -31,12 +31,12 @@ class DistributedImpacts {
 
  private:
   void offer(std::size_t body, std::int32_t wall, Index id, const Vec3& normal);
-  void scan(const mpi::DistributedSimulation& sim, std::vector<double>& offers) const;
-  void record(const mpi::DistributedSimulation& sim);
+  void scan(const RunBackend& run, std::vector<double>& offers) const;
+  void record(const RunBackend& run);
 
   struct Candidate {
     std::int32_t wall = -1;
-    Index id = -1;
+    Index id = -1;  // the sphere's stable id
     Vec3 normal = Vec3::Zero();
   };
   std::vector<BodyImpact> impacts_;
@@ -48,4 +48,4 @@ class DistributedImpacts {
   std::vector<std::size_t> slot_;     // per body: its place in pending_ while recording
 };
 
-}  // namespace shard::driver
+}  // namespace shard::driver::detail

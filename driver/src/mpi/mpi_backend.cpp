@@ -1,0 +1,261 @@
+#include "mpi_backend.hpp"
+
+#include <fmt/format.h>
+#include <hdf5.h>
+#include <mpi.h>
+
+#include <algorithm>
+#include <climits>
+
+#include "shard/output.hpp"
+
+namespace shard::driver::detail {
+namespace {
+
+int world_rank() {
+  int r = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+
+// Runs `work` on rank 0 only, then every rank learns whether it failed: a failure is thrown on
+// every rank as an OutputError with rank 0's message (the others would otherwise wait for rank 0
+// in the next collective call forever).
+void run_on_root(const std::function<void()>& work) {
+  std::string error;
+  if (world_rank() == 0) {
+    try {
+      work();
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  }
+  int size = static_cast<int>(error.size());
+  MPI_Bcast(&size, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  if (size == 0) return;
+  error.resize(static_cast<std::size_t>(size));
+  MPI_Bcast(error.data(), size, MPI_CHAR, 0, MPI_COMM_WORLD);
+  throw OutputError(error);
+}
+
+// Runs `work` on every rank (a call of the run file's writer, which every rank makes alike), then
+// every rank learns whether one failed: a failure is thrown on every rank as an OutputError with
+// the lowest failing rank's message. An error inside one of HDF5's collective calls can still
+// leave the other ranks waiting in it (docs/explanation/scaling.md).
+void run_on_all(const std::function<void()>& work) {
+  std::string error;
+  try {
+    work();
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  const int mine = error.empty() ? INT_MAX : world_rank();
+  int first = INT_MAX;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  if (first == INT_MAX) return;
+  int size = static_cast<int>(error.size());
+  MPI_Bcast(&size, 1, MPI_INT, first, MPI_COMM_WORLD);
+  error.resize(static_cast<std::size_t>(size));
+  MPI_Bcast(error.data(), size, MPI_CHAR, first, MPI_COMM_WORLD);
+  throw OutputError(error);
+}
+
+// The run file shared by the ranks: the MPI-IO driver, run.xmf kept by rank 0.
+RunWriterAccess shared_run_file(int rank) {
+  RunWriterAccess access;
+  access.configure = [](std::int64_t list) {
+    if (H5Pset_fapl_mpio(list, MPI_COMM_WORLD, MPI_INFO_NULL) < 0)
+      throw OutputError("cannot select HDF5's MPI-IO driver for the run file: is this build's HDF5 the parallel one?");
+  };
+  access.writes_index = rank == 0;
+  return access;
+}
+
+void collective_transfer(std::int64_t list) {
+  if (H5Pset_dxpl_mpio(list, H5FD_MPIO_COLLECTIVE) < 0)
+    throw OutputError("cannot ask HDF5 for collective MPI-IO transfers");
+}
+
+// bending::deformation_kinetic_energy over every rank's particles: the kinetic energy less that
+// of the rigid-body motion, from moments summed in rank order (about the origin, moved to the
+// centre of mass here) instead of a pass over all particles on one rank.
+double deformation_kinetic_energy_over_ranks(const mpi::DistributedSimulation& sim) {
+  const Particles& p = sim.local().particles();
+  std::vector<double> m(20, 0.0);  // mass, m x, m v, kinetic, m x × v + I w, inertia about the origin
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    if (!sim.owns(k)) continue;
+    const double mk = p.mass[k];
+    const Vec3& x = p.position[k];
+    const Vec3& v = p.velocity[k];
+    const Vec3 l = mk * x.cross(v) + p.inertia[k] * p.omega[k];
+    const Mat3 j = mk * (x.squaredNorm() * Mat3::Identity() - x * x.transpose()) + p.inertia[k] * Mat3::Identity();
+    m[0] += mk;
+    for (int a = 0; a < 3; ++a) {
+      m[1 + static_cast<std::size_t>(a)] += mk * x[a];
+      m[4 + static_cast<std::size_t>(a)] += mk * v[a];
+      m[8 + static_cast<std::size_t>(a)] += l[a];
+      for (int b = 0; b < 3; ++b) m[11 + static_cast<std::size_t>(3 * a + b)] += j(a, b);
+    }
+    m[7] += 0.5 * (mk * v.squaredNorm() + p.inertia[k] * p.omega[k].squaredNorm());
+  }
+  const std::vector<double> s = sim.sum_over_ranks(m);
+  const double mass = s[0];
+  if (!(mass > 0)) return 0;
+  const Vec3 centre = Vec3(s[1], s[2], s[3]) / mass;
+  const Vec3 v_centre = Vec3(s[4], s[5], s[6]) / mass;
+  // About the centre of mass: L_c = L_0 - M c × v_c; J_c = J_0 - M (|c|^2 1 - c c^T).
+  const Vec3 angular = Vec3(s[8], s[9], s[10]) - mass * centre.cross(v_centre);
+  Mat3 inertia;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) inertia(a, b) = s[11 + static_cast<std::size_t>(3 * a + b)];
+  inertia -= mass * (centre.squaredNorm() * Mat3::Identity() - centre * centre.transpose());
+  const Vec3 omega = inertia.ldlt().solve(angular);
+  const double rigid = 0.5 * mass * v_centre.squaredNorm() + 0.5 * omega.dot(angular);
+  return std::max(0.0, s[7] - rigid);
+}
+
+// A checkpoint this build can continue from on any rank count: particles named by unique ids.
+void require_ids(const Checkpoint& c, const std::filesystem::path& file) {
+  const Particles& p = c.simulation.particles;
+  std::vector<Index> ids = p.id;
+  std::sort(ids.begin(), ids.end());
+  const bool unique = std::adjacent_find(ids.begin(), ids.end()) == ids.end();
+  if (p.id.size() != p.size() || !unique)
+    throw CheckpointError(fmt::format(
+        "{}: the checkpoint's particles carry no unique ids (/particles/id), which a decomposed run needs to place "
+        "them on the ranks: continue it with the serial build (shard run --restart without mpirun), or start the "
+        "run again from its scene",
+        file.string()));
+}
+
+// Before read_checkpoint: a checkpoint without /particles/id is refused with what to do, not
+// with the HDF5 library's missing-dataset error.
+void require_id_dataset(const std::filesystem::path& file) {
+  if (!std::filesystem::is_regular_file(file)) return;  // read_checkpoint names a missing file
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) return;  // read_checkpoint names an unreadable file
+  const bool has = H5Lexists(f, "particles", H5P_DEFAULT) > 0 && H5Lexists(f, "particles/id", H5P_DEFAULT) > 0;
+  H5Fclose(f);
+  if (!has)
+    throw CheckpointError(fmt::format(
+        "{}: the checkpoint holds no particle ids (/particles/id), which a decomposed run needs to place the "
+        "particles on the ranks: continue it with the build that wrote it (without mpirun), or start the run again "
+        "from its scene",
+        file.string()));
+}
+
+}  // namespace
+
+MpiBackend::MpiBackend() {
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks_);
+  whole_.frame_particles = &no_particles_;
+  whole_.frame_bonds = &no_bonds_;
+}
+
+Checkpoint MpiBackend::read_restart(const std::filesystem::path& checkpoint) const {
+  require_id_dataset(checkpoint);
+  Checkpoint c = read_checkpoint(checkpoint);
+  require_ids(c, checkpoint);
+  return c;
+}
+
+void MpiBackend::on_root(const std::function<void()>& work) const { run_on_root(work); }
+void MpiBackend::on_all(const std::function<void()>& work) const { run_on_all(work); }
+void MpiBackend::barrier() const { MPI_Barrier(MPI_COMM_WORLD); }
+RunWriterAccess MpiBackend::run_file_access() const { return shared_run_file(rank_); }
+
+// Every rank places its part of the whole scene (or of the checkpoint), then lets the whole scene
+// go: it was needed for the baseline and the metadata only.
+void MpiBackend::start(const Scene& scene, SceneInstance& inst, const SimulationState* from) {
+  if (from)
+    dist_.emplace(MPI_COMM_WORLD, setup_of(scene, inst), *from);
+  else
+    dist_.emplace(MPI_COMM_WORLD, setup_of(scene, inst));
+  inst.simulation.reset();
+  events_written_ = from ? from->events_taken : 0;
+  whole_.bonds_broken = dist_->bonds_broken();
+  whole_.bonds_intact = dist_->bond_count();
+  whole_.all_slower_than = [this](double speed) { return dist_->all_slower_than(speed); };
+}
+
+void MpiBackend::add_notes(RunMetadata& meta, bool restarting) const {
+  if (restarting)
+    meta.notes.emplace_back("mpi_ranks_after_restart", fmt::format("{} from step {}", ranks_, dist_->step_count()));
+  else
+    meta.notes.emplace_back("mpi_ranks", fmt::format("{}", ranks_));
+}
+
+std::string MpiBackend::where() const { return fmt::format(", over {} MPI ranks", ranks_); }
+
+void MpiBackend::step() {
+  dist_->step();
+  whole_.bonds_broken = dist_->bonds_broken();
+  begun_.clear();
+  for (const auto& c : dist_->wall_contacts_begun()) begun_.push_back({c.id, c.body, c.wall, c.normal});
+}
+
+std::size_t MpiBackend::bond_count() {
+  whole_.bonds_intact = dist_->bond_count();
+  return whole_.bonds_intact;
+}
+
+std::vector<BondBreakEvent> MpiBackend::take_new_break_events() {
+  const auto& events = dist_->break_events();
+  std::vector<BondBreakEvent> fresh(events.begin() + static_cast<std::ptrdiff_t>(events_written_), events.end());
+  events_written_ = events.size();
+  return fresh;
+}
+
+SimulationState MpiBackend::whole_state() const {
+  SimulationState s = dist_->gather_state(0, true);
+  s.events_taken = events_written_;
+  return s;
+}
+
+double MpiBackend::deformation_kinetic_energy() const { return deformation_kinetic_energy_over_ranks(*dist_); }
+
+// Every frame is written by all ranks at once, each its own particles and bonds (nothing of it
+// gathered: docs/explanation/scaling.md). A frame the fragment labeller labels (its cadence: [analysis]
+// fragments_every) gathers to rank 0 what the labels need, the particles' ids and masses and the
+// bonds' rows, in the frame's row order; rank 0 labels the whole bond graph and sends each rank
+// the labels of its rows.
+void MpiBackend::write_frame(RunWriter& writer, RunState& state, const std::function<void()>& before_frame) {
+  const int every = state.scene.fragments_every;
+  const bool to_label = every > 0 && state.frames_written % every == 0;
+  const mpi::FrameShare share = dist_->frame_share();
+  Particles label_particles;
+  Bonds label_bonds;
+  if (to_label) {
+    label_particles.id = dist_->gather_to_root(share.particles.id);
+    label_particles.mass = dist_->gather_to_root(share.particles.mass);
+    const std::vector<Index> rows = dist_->gather_to_root(share.bond_rows);
+    for (std::size_t k = 0; k + 1 < rows.size(); k += 2) {
+      label_bonds.i.push_back(rows[k]);
+      label_bonds.j.push_back(rows[k + 1]);
+    }
+  }
+  whole_.frame_particles = &label_particles;
+  whole_.frame_bonds = &label_bonds;
+  state.frame_labels = nullptr;
+  before_frame();
+  FramePart part;
+  part.labelled = dist_->any_rank(state.frame_labels != nullptr);
+  std::vector<Index> labels;
+  if (part.labelled)
+    labels = dist_->scatter_from_root(rank_ == 0 && state.frame_labels ? *state.frame_labels : std::vector<Index>{},
+                                      share.particles.id.size());
+  part.fragment_labels = &labels;
+  part.configure_transfer = collective_transfer;
+  part.particles = &share.particles;
+  part.first_row = share.first_row;
+  part.total_rows = share.total_rows;
+  part.bond_rows = &share.bond_rows;
+  part.first_bond = share.first_bond;
+  part.total_bonds = share.total_bonds;
+  whole_.frame_particles = &no_particles_;  // the gathered ids and masses go out of scope below
+  whole_.frame_bonds = &no_bonds_;
+  on_all([&] { writer.write_frame_part(dist_->step_count(), dist_->time(), part); });
+}
+
+}  // namespace shard::driver::detail

@@ -1,0 +1,249 @@
+#include "run_scene.hpp"
+
+#include <fmt/format.h>
+#include <hdf5.h>
+#include <omp.h>
+
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+#include "health_watch.hpp"
+#include "impact_tracker.hpp"
+#include "run_loop_parts.hpp"
+#include "run_restart.hpp"
+#include "shard/driver/load_sensor.hpp"
+#include "shard/plugin_host.hpp"
+#include "shard/run_file.hpp"
+
+namespace shard::driver::detail {
+namespace {
+
+using Info = std::function<void(const std::string&)>;
+
+// The backend's simulation from the instantiated scene or the restart's checkpoint; a state it
+// cannot hold is the checkpoint's fault on a restart, the scene's otherwise.
+void start_backend(RunBackend& backend, const RunSpec& spec, const RunStart& start, SceneInstance& inst) {
+  try {
+    backend.start(start.scene, inst, start.restart_point ? &start.restart_point->simulation : nullptr);
+  } catch (const std::invalid_argument& e) {
+    if (start.restarting)
+      throw CheckpointError(fmt::format("cannot continue from {}: {}", checkpoint_path_for(spec.restart).string(),
+                                        e.what()));
+    throw SceneError(fmt::format("{}: {}", start.scene.file.string(), e.what()));
+  }
+}
+
+// Opens `writer` on the run file: a new one, or on a restart a new one holding the interrupted run's content up to
+// the checkpoint. A failed restart puts the interrupted run back as it was: it must not cost the
+// user the run.
+void open_run_file(std::optional<RunWriter>& writer, const RunSpec& spec, const RunStart& start,
+                   const RunMetadata& meta, const std::vector<std::string>& walls, const LoopCadence& every,
+                   const std::filesystem::path& output, const RunBackend& backend, const Info& info) {
+  if (!start.restarting) {
+    backend.on_all([&] { writer.emplace(output, meta, walls, backend.run_file_access()); });
+    return;
+  }
+  std::filesystem::path moved_aside = spec.restart;
+  moved_aside.replace_extension(".interrupted.h5");
+  backend.on_root([&] { std::filesystem::rename(spec.restart, moved_aside); });
+  try {
+    backend.on_all([&] {  // every rank reads the interrupted file and writes its prefix alike
+      writer.emplace(output, meta, walls, backend.run_file_access());
+      const auto copied =
+          copy_run_prefix(moved_aside, *writer, *start.restart_point, {every.series_every, every.frame_every}, walls);
+      writer->flush();
+      const Simulation& sim = backend.local();
+      info(fmt::format("restart: continuing {} from step {} (t = {:.6g} s){}; {} frames and the series up to it kept",
+                       output.string(), sim.step_count(), sim.time(), backend.where(), copied));
+    });
+  } catch (...) {
+    writer.reset();
+    backend.barrier();
+    if (backend.rank() == 0) {
+      std::error_code ignored;
+      std::filesystem::rename(moved_aside, spec.restart, ignored);
+    }
+    throw;
+  }
+  backend.on_root([&] { std::filesystem::remove(moved_aside); });
+}
+
+// The loop's work at each of its points (run_loop_parts.hpp's LoopHooks), over the backend.
+class SceneLoop {
+ public:
+  SceneLoop(RunBackend& backend, RunWriter& writer, RunState& state, NumericalHealth& health, ImpactTracker& impacts,
+            const std::vector<RunObserver*>& observers)
+      : backend_(backend), writer_(writer), state_(state), health_(health), impacts_(impacts), observers_(observers) {}
+
+  void step() {
+    backend_.step();
+    health_.after_step(backend_);
+    impacts_.update(backend_);
+  }
+  void check_health() { health_.check(backend_, last_good_state(state_.result)); }
+  void write_frame() {
+    backend_.write_frame(writer_, state_, [&] {
+      for (auto* o : observers_) o->before_frame(state_);
+    });
+    ++state_.frames_written;
+  }
+  Energies series_row();
+  // The stop rules read the run's walls and counts, the same on every rank: they stop alike. A
+  // signal reaches the ranks one by one (SIGINT sent to one, mpirun's SIGTERM to all at slightly
+  // different steps): a stop asked on one stops all here.
+  void agree_on_stop(std::int64_t step) {
+    if (backend_.any_rank(state_.stop_requested()) && !state_.stop_requested())
+      state_.request_stop(StopReason::Interrupted,
+                          fmt::format("interrupted (a signal reached another rank) at step {}: checkpoint written; "
+                                      "continue with shard run --restart {}",
+                                      step, state_.result.output.string()));
+  }
+
+ private:
+  RunBackend& backend_;
+  RunWriter& writer_;
+  RunState& state_;
+  NumericalHealth& health_;
+  ImpactTracker& impacts_;
+  const std::vector<RunObserver*>& observers_;
+};
+
+Energies SceneLoop::series_row() {
+  const Simulation& sim = backend_.local();
+  SeriesRow row;
+  row.step = sim.step_count();
+  row.time = sim.time();
+  const Energies e = backend_.energies();
+  row.kinetic_energy = e.kinetic;
+  row.bond_energy = e.bond;
+  row.contact_energy = e.contact;
+  row.bonds_intact = static_cast<std::int64_t>(backend_.bond_count());
+  row.bonds_broken = backend_.bonds_broken();
+  row.contacts = static_cast<std::int64_t>(backend_.contact_count());
+  // A wall's dissipated work and impacts are counted by each rank for its own contacts.
+  std::vector<double> own;
+  for (const Wall& w : sim.walls()) own.insert(own.end(), {w.contact_work, static_cast<double>(w.impacts)});
+  const std::vector<double> total = backend_.sum_over_ranks(own);
+  for (std::size_t w = 0; w < sim.walls().size(); ++w) {
+    Wall summed = sim.walls()[w];
+    summed.contact_work = total[2 * w];
+    summed.impacts = static_cast<std::int64_t>(total[2 * w + 1]);
+    row.add_wall(summed);
+  }
+  const std::vector<BondBreakEvent> events = backend_.take_new_break_events();
+  backend_.on_all([&] {
+    writer_.append_series(row);
+    writer_.append_break_events(events);
+  });
+  if (!std::isfinite(e.kinetic)) check_health();
+  // Less the rigid-body motion: a beam sliding on its rollers strains nothing.
+  record_curve_point(state_.result, sim.time(), state_.sensor.load(sim), state_.sensor.displacement(sim),
+                     backend_.bonds_broken() == 0, e.bond + e.contact,
+                     [&] { return backend_.deformation_kinetic_energy(); });
+  return e;
+}
+
+// A checkpoint of the simulation (gathered to rank 0) and of the loop.
+void save_checkpoint(const RunBackend& backend, RunState& state, const NumericalHealth& health,
+                      const ImpactTracker& impacts, const std::filesystem::path& file) {
+  Checkpoint c;
+  c.simulation = backend.whole_state();
+  save_loop_state(c, state.result, state.frames_written, health.state(backend));
+  backend.on_root([&] {
+    c.arrays.emplace_back("body_impacts", impacts.state());
+    write_checkpoint(file, c);
+  });
+  state.result.checkpoint = file;
+  state.result.checkpoint_step = backend.local().step_count();
+}
+
+// The closing figures of the result.
+void finish_result(RunResult& r, const RunBackend& backend, const LoadSensor& sensor,
+                   std::chrono::steady_clock::time_point wall_start) {
+  const Simulation& sim = backend.local();
+  r.steps = sim.step_count();
+  r.time = sim.time();
+  r.bonds_broken = backend.bonds_broken();
+  r.final_displacement = sensor.displacement(sim);
+  if (!sensor.empty()) r.max_kinetic_to_elastic = kinetic_to_elastic_up_to_peak(r);
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+}
+
+}  // namespace
+
+RunResult run_scene(const RunSpec& spec, const PluginHost& host, const std::vector<RunObserver*>& observers,
+                    const RunLog& log_all, RunBackend& backend) {
+  const auto wall_start = std::chrono::steady_clock::now();
+  if (spec.threads > 0) omp_set_num_threads(spec.threads);  // this thread's setting only
+  // HDF5 1.10 closes its open files again at exit; a file whose flush failed (disk full) then
+  // crashes that second close (measured: SIGSEGV in H5F__close_cb after the error was printed).
+  // Shard closes every file through RAII, so the library's exit handler is not needed. It can only
+  // be switched off before the library's first use and simply refuses afterwards.
+  H5dont_atexit();
+  const RunLog log = backend.rank() == 0 ? log_all : RunLog{};  // rank 0 speaks for the run
+  const Info info = [&](const std::string& line) {
+    if (log.info) log.info(line);
+  };
+  // Every rank reads the restart's files (read-only), so a bad one is refused alike everywhere.
+  const RunStart start =
+      read_run_start(spec, host, log, [&](const std::filesystem::path& c) { return backend.read_restart(c); });
+  const Scene& scene = start.scene;
+  if (!start.restarting) backend.on_root([&] { prepare_run_output(spec, scene); });
+  // The whole scene in every process (the generator's packing is not distributed): the backend
+  // keeps its part; the health watch, the impacts and the metadata read it first.
+  SceneInstance inst = instantiate(scene, host, info);
+  NumericalHealth health(*inst.simulation, scene.gravity);
+  ImpactTracker impacts(inst.simulation->particles());  // first wall contact per body (docs/reference/bodies.md)
+  const RunMetadataDraft draft = run_metadata(scene, inst, host);
+  RunResult result;
+  result.particles =
+      start.restart_point ? start.restart_point->simulation.particles.size() : inst.simulation->particles().size();
+  start_backend(backend, spec, start, inst);
+  Simulation& sim = backend.local();
+  // The network as the run began: a restart counts the bonds broken before it too, so the progress
+  // line's intact / initial and broken add up.
+  result.bonds_initial = backend.bond_count() + static_cast<std::size_t>(backend.bonds_broken());
+  result.dt = sim.dt();
+  info(fmt::format("scene {}: {} particles, {} bonds, {} walls{}", scene.file.string(), result.particles,
+                   result.bonds_initial, sim.walls().size(), backend.where()));
+  for (const auto& line : draft.lines) info(line);
+  RunMetadata meta = start.restarting ? start.old_meta : draft.meta;
+  backend.add_notes(meta, start.restarting);
+
+  std::vector<std::string> wall_names;
+  for (const auto& w : sim.walls()) wall_names.push_back(w.name);
+  const LoopCadence every{std::max<std::int64_t>(1, std::llround(scene.series_interval / sim.dt())),
+                          std::max<std::int64_t>(1, std::llround(scene.frame_interval / sim.dt())), spec.health_every};
+  result.output = start.restarting ? spec.restart : spec.out_dir / scene.output_file;
+  std::optional<RunWriter> writer;  // not movable: opened in place
+  open_run_file(writer, spec, start, meta, wall_names, every, result.output, backend, info);
+
+  const LoadSensor sensor(scene, sim);
+  const std::filesystem::path checkpoint_file = checkpoint_path_for(result.output);
+  RunState state(scene, sim, result, sensor,
+                 [&] { save_checkpoint(backend, state, health, impacts, checkpoint_file); });
+  state.whole = backend.whole();
+  state.wall_start = wall_start;
+  state.restarted = start.restarting;
+  if (start.restart_point) {
+    restore_loop_state(*start.restart_point, result, state.frames_written);
+    health.restore(start.restart_point->array("health"), backend.rank());
+    impacts.restore(start.restart_point->array("body_impacts"));
+    result.restarted_from = sim.step_count();
+  }
+  SceneLoop loop(backend, *writer, state, health, impacts, observers);
+  LoopHooks hooks{[&] { return backend.local().step_count(); }, [&] { loop.step(); }, [&] { loop.check_health(); },
+                  [&] { return loop.series_row(); }, [&] { loop.write_frame(); },
+                  [&](std::int64_t s) { loop.agree_on_stop(s); }};
+  run_observed_steps(state, observers, scene.duration, sim.dt(), start.restarting, every, hooks);
+  backend.on_all([&] {
+    writer->write_body_impacts(impacts.impacts());
+    writer->flush();
+  });
+  finish_result(result, backend, sensor, wall_start);
+  for (auto* o : observers) o->on_finish(state);
+  return result;
+}
+
+}  // namespace shard::driver::detail

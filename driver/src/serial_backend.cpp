@@ -1,0 +1,38 @@
+#include "serial_backend.hpp"
+
+#include "shard/bending/deformation_kinetic.hpp"
+
+namespace shard::driver::detail {
+
+Checkpoint SerialBackend::read_restart(const std::filesystem::path& checkpoint) const {
+  return read_checkpoint(checkpoint);
+}
+
+void SerialBackend::start(const Scene&, SceneInstance& inst, const SimulationState* from) {
+  sim_ = std::move(inst.simulation);
+  if (from) sim_->import_state(*from);
+}
+
+void SerialBackend::step() {
+  sim_->step();
+  begun_.clear();
+  const Particles& p = sim_->particles();
+  // A state from before particle ids names a sphere by its row, which a serial run keeps.
+  const bool ids = p.id.size() == p.size();
+  for (const WallContactStart& c : sim_->wall_contacts_begun()) {
+    const auto k = static_cast<std::size_t>(c.particle);
+    begun_.push_back({ids ? p.id[k] : c.particle, p.body.size() == p.size() ? p.body[k] : 0, c.wall, c.normal});
+  }
+}
+
+double SerialBackend::deformation_kinetic_energy() const {
+  return bending::deformation_kinetic_energy(sim_->particles());
+}
+
+void SerialBackend::write_frame(RunWriter& writer, RunState& state, const std::function<void()>& before_frame) {
+  state.frame_labels = nullptr;
+  before_frame();
+  writer.write_frame(sim_->step_count(), sim_->time(), sim_->particles(), sim_->bonds(), state.frame_labels);
+}
+
+}  // namespace shard::driver::detail
