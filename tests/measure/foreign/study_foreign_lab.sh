@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# The contrast diagnosis judged on the lab-scale foreign truth, over draws: for each draw k the
+# sets of make_foreign_lab_sets.sh (FOREIGN_DRAW=k) in DATA/draw_k/sets are diagnosed against
+# their reference with Shard's default beam and effect library, then foreign_confusion.py prints
+# truth x verdict over the draws with the wrong names counted.
+#
+#   study_foreign_lab.sh SHARD DATA DRAW...
+#     SHARD  the shard binary
+#     DATA   folder of the draws (DATA/draw_k/sets made by make_foreign_lab_sets.sh); each
+#            diagnosis goes to DATA/draw_k/diag (kept: a draw already diagnosed is not run again),
+#            the model's run cache to DATA/model (shared by the draws)
+#     DRAW   draw numbers, e.g. 0 1 2 3
+set -euo pipefail
+if [[ $# -lt 3 ]]; then
+  echo "usage: $0 SHARD DATA DRAW..." >&2
+  exit 2
+fi
+shard=$1 data=$2
+shift 2
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+source_dir=$(cd "$here/../../.." && pwd)
+folders=()
+for k in "$@"; do
+  draw=$data/draw_$k
+  [[ -f $draw/sets/reference/metadata.toml ]] ||
+    { echo "$0: $draw/sets/reference not found. Fix: FOREIGN_DRAW=$k bash $here/make_foreign_lab_sets.sh ... $draw/sets ..." >&2; exit 2; }
+  if [[ ! -f $draw/diag/diagnose.json ]]; then
+    start=$(date +%s)
+    "$shard" diagnose "$draw"/sets/* --reference reference --scene "$source_dir/scenes/four_point_bending.toml" \
+      --effects "$source_dir/scenes/measurements/effects.toml" --work "$data/model" \
+      --param bond.youngs_modulus --param bond.critical_stress --workers 2 --out "$draw/diag" > "$draw/diag.log" 2>&1 ||
+      { tail -20 "$draw/diag.log"; echo "$0: diagnose of draw $k failed (log: $draw/diag.log)" >&2; exit 1; }
+    echo "draw $k: diagnose $(( $(date +%s) - start )) s wall"
+  fi
+  folders+=("$draw")
+done
+python3 "$here/foreign_confusion.py" "${folders[@]}"
