@@ -13,6 +13,7 @@
 #     WORKERS     synth's worker processes (default 1)
 # FOREIGN_DRAW=k (default 0) moves every packing seed by 10000 k and every noise seed by 100 k:
 # another draw of the same sets (other specimens, as a lab tests new ones for every batch).
+# FOREIGN_SETS="name ..." makes only those sets (default: all), so two processes can share a draw.
 #
 # Each set's truth is written to its metadata.toml ([test] notes = "truth: ..."), library names
 # or "none" or "outside"; study_foreign_lab.sh reads it from there. Sets of 4 specimens at
@@ -58,9 +59,11 @@ sensor=(--scatter 0.02 --force-noise 0.05 --force-offset 0.02 --displacement-ste
 frame=(3e-5 1.15e-4)   # foreign_frame.py's C [m/N] and H [m/N^(2/3)]
 draw=${FOREIGN_DRAW:-0}
 
+wanted() { [[ -z ${FOREIGN_SETS:-} || " $FOREIGN_SETS " == *" $1 "* ]]; }
 synth() {  # name first_seed noise_seed truth [extra synth options...]
   local name=$1 first=$(( $2 + 10000 * draw )) noise=$(( $3 + 100 * draw )) truth=$4
   shift 4
+  wanted "$name" || return 0
   rm -rf "${out:?}/$name"
   echo "$(date -u +%T) $name"
   "$shard" --plugin-dir "$plugins" synth --scene "$scene" --work "$work" --out "$out/$name" \
@@ -71,13 +74,13 @@ synth() {  # name first_seed noise_seed truth [extra synth options...]
 synth reference 1001 1 reference
 synth null 1101 2 none
 synth compliance 1201 3 machine_compliance
-python3 "$here/foreign_frame.py" "$out/compliance" "${frame[@]}" "$step"
+! wanted compliance || python3 "$here/foreign_frame.py" "$out/compliance" "${frame[@]}" "$step"
 synth weibull 1301 4 weibull_strength --set bond.weibull_modulus=2
 synth softening 1401 5 bond_softening --set bond.softening_ratio=1.5
 synth asymmetry 1501 6 compression_asymmetry --set bond.compression_ratio=3
 synth toe 1601 7 outside --seating-gap 2.5e-3 --seating-half-force 15
 synth both 1701 8 machine_compliance,bond_softening --set bond.softening_ratio=1.5
-python3 "$here/foreign_frame.py" "$out/both" "${frame[@]}" "$step"
+! wanted both || python3 "$here/foreign_frame.py" "$out/both" "${frame[@]}" "$step"
 synth friction_high 1801 9 support_friction --set material_pair.grain.roller.friction=1.0
 synth friction_none 1901 10 support_friction --set material_pair.grain.roller.friction=0
 synth self_weight 2001 11 self_weight --set 'simulation.gravity=[0.0, 0.0, -19.62]'
