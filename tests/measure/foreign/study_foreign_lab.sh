@@ -24,10 +24,18 @@ source_dir=$(cd "$here/../../.." && pwd)
 # feature NAME FIELD FILE: one number of compare.json's feature line.
 feature() { grep "\"name\": \"$1\"" "$3" | sed -E "s/.*\"$2\": ([^,}]*).*/\1/"; }
 
+# The sets of a draw that synth finished (a set still being made has no specimens.csv yet).
+complete_sets() {
+  local set
+  for set in "$1"/sets/*; do
+    if [[ -f $set/specimens.csv ]]; then echo "$set"; else echo "draw $(basename "$1"): $(basename "$set") not finished, left out" >&2; fi
+  done
+}
+
 contrasts() {  # DRAW_FOLDER: each set against the reference, at 0.02 m/s
   local draw=$1 set json row
   printf '| set | peak force | peak displacement | stiffness |\n|---|---|---|---|\n'
-  for set in "$draw"/sets/*; do
+  for set in $(complete_sets "$draw"); do
     [[ $(basename "$set") == reference ]] && continue
     json=$draw/contrast/$(basename "$set")/compare.json
     "$shard" compare "$set" --sim "$draw"/sets/reference/curves/*.csv --rate 0.02 --out "$(dirname "$json")" \
@@ -50,7 +58,7 @@ for k in "$@"; do
   contrasts "$draw"
   if [[ ! -f $draw/diag/diagnose.json ]]; then
     start=$(date +%s)
-    "$shard" diagnose "$draw"/sets/* --reference reference --scene "$source_dir/scenes/four_point_bending.toml" \
+    "$shard" diagnose $(complete_sets "$draw" 2>/dev/null) --reference reference --scene "$source_dir/scenes/four_point_bending.toml" \
       --effects "$source_dir/scenes/measurements/effects.toml" --work "$data/model" \
       --param bond.youngs_modulus --param bond.critical_stress --workers 2 --out "$draw/diag" > "$draw/diag.log" 2>&1 ||
       { tail -20 "$draw/diag.log"; echo "$0: diagnose of draw $k failed (log: $draw/diag.log)" >&2; exit 1; }
