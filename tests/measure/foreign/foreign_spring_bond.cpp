@@ -92,6 +92,17 @@ std::vector<ParamSpec> spring_bond_params() {
                       d.softening_ratio, 0, false, 0.0));
   ps.push_back(number("compression_ratio", "1", "normal stiffness in compression / k_n", d.compression_ratio, 0, true,
                       1.0));
+  ps.push_back(number("fatigue_time", "s",
+                      "subcritical damage: a bond fails once the integral of c^n / t_0 dt reaches 1 (c: its load "
+                      "ratio), so it is weaker loaded slowly; 0 = none",
+                      d.fatigue_time, 0, false, 0.0));
+  ps.push_back(number("fatigue_exponent", "1", "n of the damage rate c^n / t_0", d.fatigue_exponent, 0, true));
+  ps.push_back(number("cohesion_force", "N",
+                      "a failed bond pulls its two particles together with this force until it is stretched past "
+                      "cohesion_range; 0 = none",
+                      d.cohesion_force, 0, false, 0.0));
+  ps.push_back(number("cohesion_range", "m", "stretch past rest at which a failed bond's pull ends", d.cohesion_range,
+                      0, true));
   return ps;
 }
 
@@ -111,17 +122,26 @@ SpringBondParams SpringBondParams::from(const ParamSet& p) {
   b.strength_seed = static_cast<std::uint64_t>(p.integer("strength_seed"));
   b.softening_ratio = p.number("softening_ratio");
   b.compression_ratio = p.number("compression_ratio");
+  b.fatigue_time = p.number("fatigue_time");
+  b.fatigue_exponent = p.number("fatigue_exponent");
+  b.cohesion_force = p.number("cohesion_force");
+  b.cohesion_range = p.number("cohesion_range");
   return b;
 }
 
 SpringBond::SpringBond(const SpringBondParams& params) : p_(params) {
   const double positive[] = {p_.normal_stiffness, p_.shear_stiffness, p_.bending_stiffness, p_.twisting_stiffness,
                              p_.normal_strength,  p_.shear_strength,  p_.bending_strength,  p_.twisting_strength,
-                             p_.compression_ratio};
+                             p_.compression_ratio, p_.fatigue_exponent, p_.cohesion_range};
   for (double v : positive)
-    if (!(v > 0)) throw std::invalid_argument("foreign_spring_bond: stiffnesses, strengths and compression_ratio must be > 0");
-  if (!(p_.damping_ratio >= 0) || !(p_.weibull_modulus >= 0) || !(p_.softening_ratio >= 0))
-    throw std::invalid_argument("foreign_spring_bond: damping_ratio, weibull_modulus and softening_ratio must be >= 0");
+    if (!(v > 0)) throw std::invalid_argument("foreign_spring_bond: stiffnesses, strengths, compression_ratio, fatigue_exponent and "
+                                  "cohesion_range must be > 0");
+  const double non_negative[] = {p_.damping_ratio, p_.weibull_modulus, p_.softening_ratio, p_.fatigue_time,
+                                 p_.cohesion_force};
+  for (double v : non_negative)
+    if (!(v >= 0))
+      throw std::invalid_argument("foreign_spring_bond: damping_ratio, weibull_modulus, softening_ratio, fatigue_time "
+                                  "and cohesion_force must be >= 0");
 }
 
 void SpringBond::initialize(BondBatch& batch) const {
@@ -142,6 +162,8 @@ void SpringBond::initialize(BondBatch& batch) const {
     s[kStrengthFactor] = strength_factor(p_.weibull_modulus, static_cast<std::uint64_t>(p.id[e.first]),
                                          static_cast<std::uint64_t>(p.id[e.second]), p_.strength_seed);
     s[kPeakRatio] = 0;
+    s[kDamage] = 0;
+    s[kCohesive] = 0;
   }
 }
 
@@ -185,6 +207,8 @@ void SpringBond::compute_bond(BondBatch& b, std::size_t k) const {
   double* s = b.state + k * kStateSize;
   const SpringMotion m =
       spring_motion(load(s), p.position[a], p.position[c], p.orientation[a], p.orientation[c]);
+  const Vec3 i_to_j = e.swapped ? Vec3(-m.normal) : m.normal;
+  if (s[kCohesive] != 0) return compute_cohesive(b, k, m.stretch, i_to_j);
 
   // Elastic loads, all as acting on the first particle: it is pulled towards the second in
   // tension and dragged along the second's shear offset.
@@ -203,13 +227,17 @@ void SpringBond::compute_bond(BondBatch& b, std::size_t k) const {
     const auto largest = std::max_element(terms, terms + 4) - terms;
     const BondFailureMode mode[4] = {BondFailureMode::Tension, BondFailureMode::Shear, BondFailureMode::Bending,
                                      BondFailureMode::Torsion};
+    if (p_.fatigue_time > 0)
+      s[kDamage] += b.dt * fatigue_rate(std::sqrt(criterion), p_.fatigue_exponent, p_.fatigue_time);
+    bool failed = s[kDamage] >= 1;
     if (p_.softening_ratio == 0) {
-      if (criterion >= 1) return write_broken(b, k, mode[largest]);
+      failed = failed || criterion >= 1;
     } else {
       s[kPeakRatio] = std::max(s[kPeakRatio], std::sqrt(criterion));
       scale = softening_factor(s[kPeakRatio], p_.softening_ratio);
-      if (scale <= 0) return write_broken(b, k, mode[largest]);
+      failed = failed || scale <= 0;
     }
+    if (failed) return fail(b, k, mode[largest], m.stretch, i_to_j);
   }
 
   // Damping on the relative velocity of the second particle seen from the pair's mean spin: zero
@@ -236,6 +264,23 @@ void SpringBond::compute_bond(BondBatch& b, std::size_t k) const {
   b.force[k] = e.swapped ? Vec3(-force_on_first) : force_on_first;
   b.torque_i[k] = e.swapped ? torque_second : torque_first;
   b.torque_j[k] = e.swapped ? torque_first : torque_second;
+}
+
+// Past its strength a bond breaks, or with a cohesion force it holds on as a pull alone.
+void SpringBond::fail(BondBatch& b, std::size_t k, BondFailureMode mode, double stretch, const Vec3& i_to_j) const {
+  if (p_.cohesion_force == 0) return write_broken(b, k, mode);
+  b.state[k * kStateSize + kCohesive] = 1;
+  compute_cohesive(b, k, stretch, i_to_j);
+}
+
+// A failed bond's cohesion: a constant pull along the bond (a bridge of binder or moisture left
+// between the grains) up to cohesion_range past rest, then nothing; no shear, bending or
+// twisting, no stored energy. Compression is the contact law's.
+void SpringBond::compute_cohesive(BondBatch& b, std::size_t k, double stretch, const Vec3& i_to_j) const {
+  if (stretch > p_.cohesion_range) return write_broken(b, k, BondFailureMode::Tension);
+  b.force[k] = p_.cohesion_force * i_to_j;
+  b.torque_i[k] = b.torque_j[k] = Vec3::Zero();
+  b.energy[k] = 0;
 }
 
 }  // namespace shard::foreign

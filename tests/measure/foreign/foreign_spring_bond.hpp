@@ -4,7 +4,7 @@
 // springs with stiffnesses given per bond type in N/m and N m/rad (not from a modulus and the
 // bond's section), a force-based breakage criterion as in LAMMPS bpm/rotational,
 //   (max(F_n, 0) / F_n,c)^2 + (|F_s| / F_s,c)^2 + (|T_b| / T_b,c)^2 + (|T_t| / T_t,c)^2 >= 1,
-// viscous damping on the objective relative velocities, and three hidden effects
+// viscous damping on the objective relative velocities, and five hidden effects
 // (spring_effects.hpp), each off at its neutral value.
 #include <cstddef>
 #include <cstdint>
@@ -30,6 +30,10 @@ struct SpringBondParams {
   std::uint64_t strength_seed = 0;
   double softening_ratio = 0;         // 0 = brittle (neutral)
   double compression_ratio = 1;       // k_n in compression / k_n, 1 = symmetric (neutral)
+  double fatigue_time = 0;            // t_0 of subcritical damage growth, s; 0 = none (neutral)
+  double fatigue_exponent = 16;       // n of the damage rate c^n / t_0
+  double cohesion_force = 0;          // pull of a failed bond, N; 0 = none (neutral)
+  double cohesion_range = 4e-4;       // stretch past which a failed bond's pull ends, m
 
   static SpringBondParams from(const ParamSet& p);
 };
@@ -37,7 +41,8 @@ struct SpringBondParams {
 std::vector<ParamSpec> spring_bond_params();
 
 // Per-bond state, in doubles: rest length, the two body-frame directions, the relative
-// orientation (x, y, z, w), the strength factor and the largest load ratio reached.
+// orientation (x, y, z, w), the strength factor, the largest load ratio reached, the fatigue
+// damage and whether the bond has failed into its cohesive pull (1) or is intact (0).
 enum StateSlot : std::size_t {
   kRestLength = 0,
   kDirectionFirst = 1,
@@ -45,7 +50,9 @@ enum StateSlot : std::size_t {
   kRelative = 7,
   kStrengthFactor = 11,
   kPeakRatio = 12,
-  kStateSize = 13
+  kDamage = 13,
+  kCohesive = 14,
+  kStateSize = 15
 };
 
 class SpringBond final : public BondModel {
@@ -59,6 +66,8 @@ class SpringBond final : public BondModel {
 
  private:
   void compute_bond(BondBatch& batch, std::size_t k) const;
+  void fail(BondBatch& batch, std::size_t k, BondFailureMode mode, double stretch, const Vec3& i_to_j) const;
+  void compute_cohesive(BondBatch& batch, std::size_t k, double stretch, const Vec3& i_to_j) const;
   SpringBondParams p_;
 };
 

@@ -9,6 +9,11 @@
 //     scale by 1 - (c_max - 1) / s until c_max = 1 + s, where the bond breaks: the force falls
 //     parabolically in the deformation (beam_bond's softening policy: linear in the von Mises strain).
 //   compression stiffening: the normal spring is ratio x k_n while shortened.
+//   rate-dependent strength: subcritical damage D grows at c^n / t_0 (Charles' law of stress
+//     corrosion; c the load ratio) and the bond fails at D = 1 or c = 1, so under a ramp its
+//     strength grows as rate^(1 / (n + 1)) (beam_bond's viscosity: a Maxwell arm, stiffness too).
+//   cohesion: a failed bond pulls its particles together with a constant force up to a range
+//     (hertz_mindlin's cohesion: a pull proportional to the contact area, only while touching).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -37,6 +42,11 @@ inline double strength_factor(double modulus, std::uint64_t a, std::uint64_t b, 
 // bond is broken when it returns <= 0.
 inline double softening_factor(double peak, double softening) {
   return peak <= 1 ? 1.0 : 1 - (peak - 1) / softening;
+}
+
+// Rate of subcritical damage at load ratio c (>= 0), 1/s: none when time = 0.
+inline double fatigue_rate(double load_ratio, double exponent, double time) {
+  return time > 0 ? std::pow(load_ratio, exponent) / time : 0.0;
 }
 
 }  // namespace shard::foreign

@@ -1,5 +1,6 @@
 // The foreign spring bond's hidden effects (spring_effects.hpp): a median-1 Weibull strength
-// factor, parabolic softening past the peak load ratio, a stiffer normal spring in compression;
+// factor, parabolic softening past the peak load ratio, a stiffer normal spring in compression,
+// subcritical damage (a rate-dependent strength), the pull of a failed bond (cohesion);
 // and, through the plugin file, each at its declared neutral value leaves every output unchanged.
 #include <doctest/doctest.h>
 
@@ -109,6 +110,73 @@ TEST_CASE("compression stiffening: ratio x k_n while shortened, k_n while stretc
   CHECK(stretched == doctest::Approx(p.normal_stiffness * dx).epsilon(1e-9));
 }
 
+TEST_CASE("subcritical damage: held at load ratio c a bond fails after t_0 / c^n") {
+  auto p = undamped();
+  p.fatigue_time = 0.5;
+  p.fatigue_exponent = 10;
+  const SpringBond model(p);
+  SpringPair pair(model);
+  pair.scene.dt = 1e-3;
+  const double c = 0.8;
+  pair.place(c * p.normal_strength / p.normal_stiffness);
+  const double steps = p.fatigue_time / std::pow(c, p.fatigue_exponent) / pair.scene.dt;  // 4657 steps
+  int failed_at = 0;
+  for (int t = 1; t <= 10000 && !failed_at; ++t) {
+    pair.compute(model);
+    if (pair.broken()) failed_at = t;
+  }
+  MESSAGE("failed at step ", failed_at, " of ", steps);
+  CHECK(std::abs(failed_at - steps) <= 1);
+}
+
+TEST_CASE("subcritical damage: pulled 5x faster, the strength grows as 5^(1 / (n + 1))") {
+  auto p = undamped();
+  p.fatigue_time = 2e-4;
+  p.fatigue_exponent = 16;
+  const SpringBond model(p);
+  // Ramp the stretch at a rate in units of the critical stretch per second; the load ratio at failure.
+  auto strength = [&](double rate) {
+    SpringPair pair(model);
+    pair.scene.dt = 1e-6;
+    const double critical = p.normal_strength / p.normal_stiffness;
+    for (int t = 1; t < 10000000; ++t) {
+      pair.place(rate * t * pair.scene.dt * critical);
+      pair.compute(model);
+      if (pair.broken()) return rate * t * pair.scene.dt;
+    }
+    return 0.0;
+  };
+  const double slow = strength(20), fast = strength(100);
+  // Ramp c = r t: D = r^n t^(n+1) / ((n + 1) t_0) = 1 at c = ((n + 1) t_0 r)^(1 / (n + 1)) below 1.
+  MESSAGE("load ratio at failure ", slow, " at 20/s, ", fast, " at 100/s");
+  CHECK(slow == doctest::Approx(std::pow(17 * 2e-4 * 20, 1.0 / 17)).epsilon(1e-3));
+  CHECK(fast / slow == doctest::Approx(std::pow(5.0, 1.0 / 17)).epsilon(1e-3));
+}
+
+TEST_CASE("cohesion: a failed bond pulls with F_coh up to the range, then breaks") {
+  auto p = undamped();
+  p.cohesion_force = 0.2;
+  p.cohesion_range = 1e-4;
+  const SpringBond model(p);
+  SpringPair pair(model);
+  const double critical = p.normal_strength / p.normal_stiffness;
+  pair.place(1.01 * critical);  // past the strength: fails into its pull
+  pair.compute(model);
+  CHECK_FALSE(pair.broken());
+  CHECK(pair.force_on_first().x() == doctest::Approx(p.cohesion_force).epsilon(1e-12));
+  CHECK(pair.force_on_first().y() == 0.0);
+  pair.place(-0.5 * critical);  // pushed together: the pull stays, compression is the contact's
+  pair.compute(model);
+  CHECK(pair.force_on_first().x() == doctest::Approx(p.cohesion_force).epsilon(1e-12));
+  pair.place(0.99 * p.cohesion_range);
+  pair.compute(model);
+  CHECK_FALSE(pair.broken());
+  pair.place(1.01 * p.cohesion_range);
+  pair.compute(model);
+  CHECK(pair.broken());
+  CHECK(pair.force_on_first().norm() == 0.0);
+}
+
 // Through the plugin file: the schema's neutral value of each effect, set explicitly against the
 // plain law (the defaults), on random stretched, sheared, bent, twisted, moving pairs, some past
 // their strength and some listed the other way round: every output bit-identical. And a size
@@ -118,11 +186,13 @@ TEST_CASE("each effect at its declared neutral value changes nothing, bit for bi
   host.load_file(FOREIGN_PLUGIN_FILE);
   const PluginInfo& info = host.find(PluginKind::Bond, "foreign_spring_bond").info;
   const std::map<std::string, double> off_neutral{
-      {"weibull_modulus", 3.0}, {"softening_ratio", 0.5}, {"compression_ratio", 2.0}};
+      {"weibull_modulus", 3.0}, {"softening_ratio", 0.5}, {"compression_ratio", 2.0}, {"fatigue_time", 1e-9},
+      {"cohesion_force", 0.1}};
   const auto plain = host.make_bond("foreign_spring_bond", host.params(PluginKind::Bond, "foreign_spring_bond", {}));
   // Bonds are recorded in the undeformed pairs, then every particle is moved, turned and set moving.
   auto bonded = [](const BondModel& model) {
     auto s = test::random_pairs<test::HandBonds>(2000, 21, {.swap_ids_every_seventh = true});
+    s.dt = 1e-6;  // subcritical damage grows by dt c^n / t_0
     s.initialize(model);
     test::deform(s, 4, 0.08, 1.0);
     s.compute(model);

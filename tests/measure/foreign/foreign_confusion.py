@@ -1,0 +1,72 @@
+#!/usr/bin/env python3
+"""Confusion matrix of the contrast diagnosis on foreign truth, over draws.
+
+    foreign_confusion.py DRAW_FOLDER...
+      each DRAW_FOLDER holds sets/ (make_foreign_lab_sets.sh: every set's metadata.toml carries
+      [test] notes = "truth: ...") and diag/diagnose.json (`shard diagnose` of those sets)
+
+Prints one row per set: its truth and how often each verdict came over the draws, then the wrong
+names: a named effect that is not in the set's truth ("no difference" and "unexplained
+difference" name nothing, so they are never wrong; every name given to a set whose truth is none
+or outside the library is wrong). Exits 2 on a folder without its sets or its diagnosis.
+"""
+import collections
+import json
+import os
+import re
+import sys
+
+UNNAMED = ("no difference", "unexplained difference")
+
+
+def truth_of(set_folder):
+    path = os.path.join(set_folder, "metadata.toml")
+    try:
+        with open(path) as f:
+            match = re.search(r'^\s*notes\s*=\s*"truth: ([^"]*)"', f.read(), re.MULTILINE)
+    except OSError:
+        sys.exit(f"{path}: not found; make the sets with make_foreign_lab_sets.sh")
+    if not match:
+        sys.exit(f'{path}: no [test] notes = "truth: ..."; make the sets with make_foreign_lab_sets.sh')
+    return match.group(1)
+
+
+def named_effects(verdict):
+    """The library names in a verdict: none, one, or a pair written 'A + B'."""
+    return [] if verdict in UNNAMED else [v.strip() for v in verdict.split("+")]
+
+
+def read_draw(folder):
+    path = os.path.join(folder, "diag", "diagnose.json")
+    try:
+        with open(path) as f:
+            report = json.load(f)
+    except (OSError, ValueError) as e:
+        sys.exit(f"{path}: {e}; run study_foreign_lab.sh on this draw")
+    return [(s["name"], truth_of(os.path.join(folder, "sets", s["name"])), s["verdict"]) for s in report["sets"]]
+
+
+def main():
+    if len(sys.argv) < 2:
+        sys.exit(__doc__)
+    rows = collections.OrderedDict()
+    wrong, verdicts = [], 0
+    for folder in sys.argv[1:]:
+        for name, truth, verdict in read_draw(folder):
+            rows.setdefault((name, truth), collections.Counter())[verdict] += 1
+            verdicts += 1
+            allowed = set(truth.split(","))
+            wrong += [(folder, name, effect) for effect in named_effects(verdict) if effect not in allowed]
+    print(f"| set | truth | verdicts over {len(sys.argv) - 1} draws |\n|---|---|---|")
+    for (name, truth), counts in rows.items():
+        cells = ", ".join(f"{v} {n}" for v, n in counts.most_common())
+        print(f"| {name} | {truth} | {cells} |")
+    right = sum(n for (name, truth), counts in rows.items() for v, n in counts.items()
+                if named_effects(v) and all(e in truth.split(",") for e in named_effects(v)))
+    print(f"\nverdicts: {verdicts}; naming only true effects: {right}; wrong names: {len(wrong)}")
+    for folder, name, effect in wrong:
+        print(f"  wrong: {folder}: set {name} named {effect}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# The contrast diagnosis judged on the lab-scale foreign truth, over draws: for each draw k the
+# sets of make_foreign_lab_sets.sh (FOREIGN_DRAW=k) in DATA/draw_k/sets are diagnosed against
+# their reference with Shard's default beam and effect library, then foreign_confusion.py prints
+# truth x verdict over the draws with the wrong names counted. Before each diagnosis, the size of
+# every set's difference from the reference at 20 mm/s (`shard compare SET --sim reference's
+# curves`): peak force, peak displacement and stiffness in % and in units of their uncertainty.
+#
+#   study_foreign_lab.sh SHARD DATA DRAW...
+#     SHARD  the shard binary
+#     DATA   folder of the draws (DATA/draw_k/sets made by make_foreign_lab_sets.sh); each
+#            diagnosis goes to DATA/draw_k/diag (kept: a draw already diagnosed is not run again),
+#            the model's run cache to DATA/model (shared by the draws)
+#     DRAW   draw numbers, e.g. 0 1 2 3
+set -euo pipefail
+if [[ $# -lt 3 ]]; then
+  echo "usage: $0 SHARD DATA DRAW..." >&2
+  exit 2
+fi
+shard=$1 data=$2
+shift 2
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+source_dir=$(cd "$here/../../.." && pwd)
+# feature NAME FIELD FILE: one number of compare.json's feature line.
+feature() { grep "\"name\": \"$1\"" "$3" | sed -E "s/.*\"$2\": ([^,}]*).*/\1/"; }
+
+# The sets of a draw that synth finished (a set still being made has no specimens.csv yet).
+complete_sets() {
+  local set
+  for set in "$1"/sets/*; do
+    if [[ -f $set/specimens.csv ]]; then echo "$set"; else echo "draw $(basename "$1"): $(basename "$set") not finished, left out" >&2; fi
+  done
+}
+
+contrasts() {  # DRAW_FOLDER: each set against the reference, at 0.02 m/s
+  local draw=$1 set json row
+  printf '| set | peak force | peak displacement | stiffness |\n|---|---|---|---|\n'
+  for set in $(complete_sets "$draw"); do
+    [[ $(basename "$set") == reference ]] && continue
+    json=$draw/contrast/$(basename "$set")/compare.json
+    "$shard" compare "$set" --sim "$draw"/sets/reference/curves/*.csv --rate 0.02 --out "$(dirname "$json")" \
+      > /dev/null 2>&1 || { echo "| $(basename "$set") | compare failed | | |"; continue; }
+    row="| $(basename "$set") |"
+    for f in peak_force peak_displacement stiffness; do
+      row+=$(awk -v m="$(feature $f measured "$json")" -v s="$(feature $f simulated "$json")" \
+        -v z="$(feature $f score "$json")" 'BEGIN { printf " %+.1f %% (%+.1f u) |", 100 * (m - s) / s, -z }')
+    done
+    echo "$row"
+  done
+}
+
+folders=()
+for k in "$@"; do
+  draw=$data/draw_$k
+  [[ -f $draw/sets/reference/metadata.toml ]] ||
+    { echo "$0: $draw/sets/reference not found. Fix: FOREIGN_DRAW=$k bash $here/make_foreign_lab_sets.sh ... $draw/sets ..." >&2; exit 2; }
+  echo "draw $k: each set against the reference"
+  contrasts "$draw"
+  if [[ ! -f $draw/diag/diagnose.json ]]; then
+    start=$(date +%s)
+    "$shard" diagnose $(complete_sets "$draw" 2>/dev/null) --reference reference --scene "$source_dir/scenes/four_point_bending.toml" \
+      --effects "$source_dir/scenes/measurements/effects.toml" --work "$data/model" \
+      --param bond.youngs_modulus --param bond.critical_stress --workers 2 --out "$draw/diag" > "$draw/diag.log" 2>&1 ||
+      { tail -20 "$draw/diag.log"; echo "$0: diagnose of draw $k failed (log: $draw/diag.log)" >&2; exit 1; }
+    echo "draw $k: diagnose $(( $(date +%s) - start )) s wall"
+  fi
+  folders+=("$draw")
+done
+python3 "$here/foreign_confusion.py" "${folders[@]}"
