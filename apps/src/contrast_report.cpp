@@ -70,8 +70,14 @@ std::string pair_text(const ContrastReport& r, const SetDiagnosis& d) {
                      ContrastOptions{}.drop_p / static_cast<double>(std::max<std::size_t>(1, d.seconds_tried)));
 }
 
+// The measurement that would tell whether the lead is the physics at work.
+std::string separating_text(const ContrastReport& r, const std::string& lead) {
+  const CandidateEffect* e = effect_named(r, lead);
+  return e && !e->separated_by.empty() ? fmt::format(" What would tell: {}.", e->separated_by) : "";
+}
+
 // A name the component statistics gave and the curve did not bear out: a lead, never a name.
-std::string withheld_text(const SetDiagnosis& d, const std::string& name) {
+std::string withheld_text(const ContrastReport& r, const SetDiagnosis& d, const std::string& name) {
   const ContrastDecision& c = d.decision;
   const bool curve_misses = d.after.rising_nrmse > ContrastOptions{}.curve_floor_factor * d.after.rising_floor;
   std::string why = curve_misses
@@ -86,7 +92,8 @@ std::string withheld_text(const SetDiagnosis& d, const std::string& name) {
                      "that physics in another form, or another physics. `shard calibrate` this set `--with {}` and "
                      "look at what remains before adding it to the model.",
                      name, c.chi_square, c.p_value, d.withheld, 100 * d.share, why,
-                     d.withheld.substr(0, d.withheld.find(" + ")));
+                     d.withheld.substr(0, d.withheld.find(" + "))) +
+         separating_text(r, d.withheld.substr(0, d.withheld.find(" + ")));
 }
 
 std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
@@ -109,7 +116,7 @@ std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
                        "p = {:.2g}); no library effect's contrast is significant.",
                        name, c.chi_square, c.p_value);
   if (c.verdict == kUnexplainedDifference && !d.withheld.empty())
-    return withheld_text(d, name);
+    return withheld_text(r, d, name);
   if (c.verdict == kUnexplainedDifference) {
     std::string s = fmt::format("{} differs from the reference (T^2 = {:.1f}, p = {:.2g}), and no library effect "
                                 "explains the difference.",

@@ -141,6 +141,7 @@ void add_calibrate_contrast_command(CLI::App& app, CommandContext& ctx) {
     options.decide = o->diagnosis.decide;
     options.max_evaluations = o->max_evaluations;
     options.scan = o->scan;
+    options.lab_grain_size = o->diagnosis.lab_grain_size;
     const ContrastCalibration c = calibrate_contrast(sets, target, simulator, o->model, chosen, options, std::cerr);
     const std::string md = calibration_markdown(sets, c);
     std::ofstream(o->out / "calibrate.md") << md;

@@ -27,7 +27,8 @@ inline const std::map<std::string, double>& defaults() {
   static const std::map<std::string, double> d{{"bond.youngs_modulus", 1e7}, {"bond.critical_stress", 2e5},
                                                {"fake.softening", 0},         {"fake.softening_twin", 0},
                                                {"support.friction", 0.3},     {"fake.compression_ratio", 1},
-                                               {"fake.toe", 0}};
+                                               {"fake.toe", 0},               {"generator.diameter_min", 0.005},
+                                               {"generator.diameter_max", 0.0065}};
   return d;
 }
 

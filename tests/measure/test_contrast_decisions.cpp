@@ -173,6 +173,22 @@ TEST_CASE("calibrating the named effect cuts the contrast NRMSE") {
   CHECK(c.after.nrmse < 0.5 * c.before.nrmse);
 }
 
+TEST_CASE("the model at the lab's reported grain size") {
+  Study s;
+  ModelPlan base;
+  std::ostringstream log;
+  // The reference reports no grain size: a clear error naming its metadata file and the key.
+  CHECK_THROWS_WITH_AS(base_at_grain_size(s.sets, s.simulator, base, true, log), doctest::Contains("grain_size"),
+                       std::runtime_error);
+  CHECK(base_at_grain_size(s.sets, s.simulator, base, false, log).overrides.empty());
+  s.sets.sets[0].metadata.test.grain_size = 0.004;
+  const ModelPlan lab = base_at_grain_size(s.sets, s.simulator, base, true, log);
+  // The scene's 5.0-6.5 mm (mean 5.75 mm) scaled by 4 / 5.75: 3.478-4.522 mm, mean 4 mm.
+  CHECK(s.simulator.parameter(lab, "generator.diameter_min") == doctest::Approx(0.005 * 4 / 5.75));
+  CHECK(s.simulator.parameter(lab, "generator.diameter_max") == doctest::Approx(0.0065 * 4 / 5.75));
+  CHECK(log.str().find("4.3x the cost") != std::string::npos);  // (5.75 / 4)^4 = 4.27
+}
+
 TEST_CASE("a name the curve does not bear out is withheld") {
   auto named = [](double rising_nrmse, double drop) {
     SetDiagnosis d;

@@ -82,7 +82,7 @@ ContrastCalibration calibrate_contrast(const ContrastSets& sets, std::size_t tar
                                        const ModelPlan& base, const std::vector<CandidateEffect>& chosen,
                                        const ContrastCalibrationOptions& options, std::ostream& log) {
   ContrastCalibration out;
-  ContrastStudy study(sets, simulator, base);
+  ContrastStudy study(sets, simulator, base_at_grain_size(sets, simulator, base, options.lab_grain_size, log));
   out.calibration = study.calibrate_base(options.params, options.params.empty() ? 0 : options.base_iterations, log);
   out.effects = scaled_to_base_run(chosen, study, out.scaled_sizes, log);
   const auto& effects = out.effects;

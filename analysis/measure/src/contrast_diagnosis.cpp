@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <ostream>
+#include <stdexcept>
 
-#include "shard/measure/significant_digits.hpp"
 
 namespace shard::measure {
 namespace {
@@ -13,10 +13,7 @@ namespace {
 // Does resolution explain the form error? The same base fit at a packing of finer diameters.
 BaseCalibration finer_calibration(const ContrastSets& sets, Simulator& simulator, const ModelPlan& base,
                                   const ContrastDiagnosisOptions& options, std::ostream& log) {
-  ModelPlan fine = base;
-  for (const char* key : {"generator.diameter_min", "generator.diameter_max"})
-    fine.overrides.push_back({key, significant(options.finer * simulator.parameter(base, key), 9)});
-  ContrastStudy fine_study(sets, simulator, fine);
+  ContrastStudy fine_study(sets, simulator, with_diameters_scaled(simulator, base, options.finer));
   log << fmt::format("diagnose: the base fit again with diameters x {:g}\n", options.finer);
   return fine_study.calibrate_base(options.params, options.params.empty() ? 0 : options.base_iterations, log);
 }
@@ -48,6 +45,19 @@ double share_of(const SetDiagnosis& d, const ContrastOptions& options) {
 
 }  // namespace
 
+ModelPlan base_at_grain_size(const ContrastSets& sets, const Simulator& simulator, const ModelPlan& base,
+                             bool lab_grain_size, std::ostream& log) {
+  if (!lab_grain_size) return base;
+  const MeasurementSet& reference = sets.sets[sets.reference.value_or(0)];
+  const double grain = reference.metadata.test.grain_size;
+  if (!(grain > 0))
+    throw std::runtime_error(fmt::format(
+        "{}/metadata.toml: no [test] grain_size, but the model is asked to run at the lab's grain size. Fix: add "
+        "grain_size = <mean grain diameter in m> under [test], or leave out --lab-grain-size",
+        reference.folder.string()));
+  return at_grain_size(simulator, base, grain, log);
+}
+
 bool names_a_pair(const SetDiagnosis& d, const ContrastOptions& options) {
   return d.pair && pair_is_named(*d.pair, d.seconds_tried, options) && d.withheld.empty();
 }
@@ -69,7 +79,7 @@ ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simula
                                      const std::vector<CandidateEffect>& library,
                                      const ContrastDiagnosisOptions& options, std::ostream& log) {
   ContrastDiagnosis out;
-  ContrastStudy study(sets, simulator, base);
+  ContrastStudy study(sets, simulator, base_at_grain_size(sets, simulator, base, options.lab_grain_size, log));
   out.calibration = study.calibrate_base(options.params, options.params.empty() ? 0 : options.base_iterations, log);
   if (options.finer > 0) {
     out.finer = finer_calibration(sets, simulator, base, options, log);

@@ -21,6 +21,7 @@ struct ContrastCalibrationOptions {
   // (which bond breaks first changes the peak), so a local optimiser started at the linear size
   // can settle in a pit next to it.
   bool scan = true;
+  bool lab_grain_size = false;  // the model at the reference's [test] grain_size
   ContrastOptions decide;
 };
 

@@ -63,6 +63,11 @@ struct SetDiagnosis {
   std::string withheld;
 };
 
+// The base model, at the reference's reported grain size when `lab_grain_size` (throws, naming the
+// metadata file, when the reference reports none).
+ModelPlan base_at_grain_size(const ContrastSets& sets, const Simulator& simulator, const ModelPlan& base,
+                             bool lab_grain_size, std::ostream& log);
+
 // The set is named as a pair of effects (the pair rule named it and the curve bore it out).
 bool names_a_pair(const SetDiagnosis& d, const ContrastOptions& options = {});
 
@@ -105,6 +110,7 @@ struct ContrastDiagnosisOptions {
   int pairs = 2;                    // pairs simulated per set (0: single effects only)
   int pair_iterations = 3;
   double finer = 0;                 // > 0: the base also fitted at diameters this factor smaller
+  bool lab_grain_size = false;      // the model at the reference's [test] grain_size
   ContrastOptions decide;
 };
 

@@ -41,6 +41,15 @@ class Simulator {
   }
 };
 
+// The model with its packing's diameters (generator.diameter_min and _max) scaled by `factor`: a
+// finer or coarser packing of the same body. A run costs about factor^-4 as much (factor^-3 the
+// spheres, factor^-1 the time steps).
+ModelPlan with_diameters_scaled(const Simulator& simulator, ModelPlan model, double factor);
+
+// The model at the lab's reported grain size: diameters scaled so that their mean is `grain`
+// (m). `log` gets the factor and the cost.
+ModelPlan at_grain_size(const Simulator& simulator, const ModelPlan& model, double grain, std::ostream& log);
+
 // A simulated run's curve recorded as the lab recorded its specimens: the machine's compliance in
 // series, zeroed at the seating preload, fragments no smaller than the lab counts. `what` names
 // the run in an error.
