@@ -23,6 +23,7 @@
 #include "measure_plan.hpp"
 #include "option_checks.hpp"
 #include "shard/driver/output_folder.hpp"
+#include "shard/io/json.hpp"
 #include "shard/app/commands.hpp"
 #include "shard/measure/confirmation.hpp"
 #include "shard/measure/report.hpp"
@@ -32,6 +33,9 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace measure;
+
+// calibrate.json's format (single-set form): raise it when a key changes meaning or disappears.
+constexpr int kCalibrationFormatVersion = 1;
 
 struct Fit {
   std::vector<std::string> keys;
@@ -243,7 +247,7 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
                         "model times; in the lab a bond.viscosity_time is {0:g} x the fitted value.\n",
                         o->sim.time_compression);
     md += "\n| regime | mean residual before | after |\n|---|---|---|\n";
-    std::string json_regimes;
+    io::Json json_regimes = io::Json::object();
     for (std::size_t k = 0; k < before.at.size(); ++k)
       for (std::size_t r = 0; r < kRegimeCount; ++r) {
         const auto& b = before.at[k].regimes[r];
@@ -252,8 +256,7 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
         const std::string name = before.at.size() > 1 ? fmt::format("{}@{:g}", regime_name(b.regime), before.rates[k])
                                                       : std::string(regime_name(b.regime));
         md += fmt::format("| {} | {:+.2f} | {:+.2f} |\n", name, b.mean_residual, a.mean_residual);
-        json_regimes += fmt::format("{}\"{}\": [{:.9g}, {:.9g}]", json_regimes.empty() ? "" : ", ", name, b.mean_residual,
-                                    a.mean_residual);
+        json_regimes[name] = {b.mean_residual, a.mean_residual};
       }
     for (std::size_t k = 0; k < after.at.size(); ++k)
       md += fmt::format("\nVerdict after{}: {}\n", after.at.size() > 1 ? fmt::format(" at {:g} m/s", after.rates[k]) : "",
@@ -261,15 +264,21 @@ void add_calibrate_effect_command(CLI::App& app, CommandContext& ctx) {
     const std::string dynamic = simulator.dynamic_warning();
     if (!dynamic.empty()) md += fmt::format("\n**Warning.** {}.\n", dynamic);
     std::ofstream(o->out / "calibrate.md") << md;
-    std::ofstream(o->out / "calibrate.json")
-        << fmt::format("{{\"effect\": \"{}\", \"value\": {:.9g}, \"nrmse_before\": {:.9g}, \"nrmse_after\": {:.9g}, "
-                       "\"chi_square_before\": {:.9g}, \"chi_square_after\": {:.9g}, \"evaluations\": {}, \"regimes\": {{{}}}, "
-                       "\"chi_square_base_only\": {}, \"gain_by_base\": {:.9g}, \"gain_by_effect\": {:.9g}, "
-                       "\"effect_supported\": {}, \"dynamic_warning\": \"{}\"}}\n",
-                       json_escape(o->effect), fit.effect ? fit.value_of(best) : 0.0, before.nrmse(), after.nrmse(),
-                       score(before), score(after), fit.evaluations, json_regimes,
-                       base_only ? fmt::format("{:.9g}", score(*base_only)) : std::string("null"), credit.by_base,
-                       credit.by_effect, credit.effect_supported, json_escape(dynamic));
+    io::Json json = io::json_document(kCalibrationFormatVersion);
+    json["effect"] = o->effect;
+    json["value"] = fit.effect ? fit.value_of(best) : 0.0;
+    json["nrmse_before"] = before.nrmse();
+    json["nrmse_after"] = after.nrmse();
+    json["chi_square_before"] = score(before);
+    json["chi_square_after"] = score(after);
+    json["evaluations"] = fit.evaluations;
+    json["regimes"] = std::move(json_regimes);
+    json["chi_square_base_only"] = base_only ? io::Json(score(*base_only)) : io::Json();
+    json["gain_by_base"] = credit.by_base;
+    json["gain_by_effect"] = credit.by_effect;
+    json["effect_supported"] = credit.effect_supported;
+    json["dynamic_warning"] = dynamic;
+    io::write_json(o->out / "calibrate.json", json);
     fmt::print("{}", md);
     ctx.exit_code = 0;
   });

@@ -16,6 +16,7 @@
 #include "measure_commands.hpp"
 #include "measure_plan.hpp"
 #include "shard/driver/output_folder.hpp"
+#include "shard/io/json.hpp"
 #include "shard/app/commands.hpp"
 #include "shard/measure/comparison.hpp"
 #include "shard/measure/measurements.hpp"
@@ -40,19 +41,24 @@ std::string rate_comparison_markdown(const RateComparison& rc, const std::string
   return md;
 }
 
-// compare.json: one rate, the comparison's object; several, {rates, nrmse, chi_square, at: [...]}.
+// compare.json's format: raise it when a key changes meaning or disappears.
+constexpr int kCompareFormatVersion = 1;
+
+// compare.json: one rate, the comparison's keys; several, {rates, nrmse, chi_square, at: [...]}.
 // Either carries "dynamic_warning" when the model is dynamic at the data's rate.
-std::string rate_comparison_json(const RateComparison& rc, const std::string& warning) {
-  const std::string field = warning.empty() ? "" : fmt::format(",\n  \"dynamic_warning\": \"{}\"", json_escape(warning));
+io::Json rate_comparison_json(const RateComparison& rc, const std::string& warning) {
+  io::Json j = io::json_document(kCompareFormatVersion);
   if (rc.at.size() == 1) {
-    std::string j = comparison_json(rc.at.front());
-    const auto close = j.rfind('}');
-    return j.insert(close == std::string::npos ? j.size() : j.rfind('\n', close), field);
+    j.update(comparison_json(rc.at.front()));
+  } else {
+    j["rates"] = rc.rates;
+    j["nrmse"] = rc.nrmse();
+    j["chi_square"] = rc.chi_square();
+    j["at"] = io::Json::array();
+    for (const auto& c : rc.at) j["at"].push_back(comparison_json(c));
   }
-  std::string j = fmt::format("{{\n  \"rates\": [{}],\n  \"nrmse\": {:.9g},\n  \"chi_square\": {:.9g}{},\n  \"at\": [\n",
-                              fmt::join(rc.rates, ", "), rc.nrmse(), rc.chi_square(), field);
-  for (std::size_t k = 0; k < rc.at.size(); ++k) j += (k ? ",\n" : "") + comparison_json(rc.at[k]);
-  return j + "]\n}\n";
+  if (!warning.empty()) j["dynamic_warning"] = warning;
+  return j;
 }
 
 void add_compare(CLI::App& app, CommandContext& ctx) {
@@ -108,7 +114,7 @@ void add_compare(CLI::App& app, CommandContext& ctx) {
     }
     const std::string md = rate_comparison_markdown(rc, warning);
     std::ofstream(o->out / "compare.md") << md;
-    std::ofstream(o->out / "compare.json") << rate_comparison_json(rc, warning);
+    io::write_json(o->out / "compare.json", rate_comparison_json(rc, warning));
     for (std::size_t k = 0; k < rc.at.size(); ++k)
       plot_comparison(rc.at[k],
                       o->out / (rc.at.size() > 1 ? fmt::format("compare_rate{:g}.png", rc.rates[k]) : "compare.png"),

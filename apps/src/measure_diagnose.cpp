@@ -24,6 +24,7 @@
 #include "measure_plan.hpp"
 #include "option_checks.hpp"
 #include "shard/driver/output_folder.hpp"
+#include "shard/io/json.hpp"
 #include "shard/app/commands.hpp"
 #include "shard/measure/confirmation.hpp"
 #include "shard/measure/report.hpp"
@@ -127,6 +128,54 @@ const CandidateEffect* find_effect(const std::vector<CandidateEffect>& effects, 
   for (const auto& e : effects)
     if (e.name == name) return &e;
   return nullptr;
+}
+
+// diagnose.json's format (single-set form): raise it when a key changes meaning or disappears.
+constexpr int kDiagnoseFormatVersion = 1;
+
+io::Json ranking_json(const Diagnosis& d, const std::vector<CandidateEffect>& effects) {
+  io::Json out = io::Json::array();
+  for (const auto& r : d.ranking)
+    out.push_back({{"name", r.name}, {"score", r.score}, {"p_value", r.p_value}, {"explained", r.explained},
+                   {"absorbed", r.absorbed}, {"value", find_effect(effects, r.name)->neutral + r.size},
+                   {"at_bound", r.at_bound}, {"identifiable", r.identifiable}});
+  return out;
+}
+
+io::Json confirmation_json(const Confirmation& cf, const ConfirmedEffect* ce, const ConfirmationDecision& decision,
+                           std::size_t step) {
+  io::Json residual = io::Json::object();
+  for (std::size_t i = 0; i < cf.residual.values.size(); ++i) residual[cf.residual.names[i]] = cf.residual.values[i];
+  // A refit that failed has null numbers (JSON has no infinity) and its error.
+  return {{"name", cf.name}, {"chi_square", cf.chi_square}, {"nrmse", cf.nrmse}, {"delta_aic", cf.delta_aic},
+          {"delta_bic", cf.delta_bic}, {"share_explained", ce ? ce->share_explained : 0.0},
+          {"p_after", ce ? ce->p_after : decision.base_p}, {"p_drop", ce ? ce->p_drop : 1.0}, {"value", cf.effect_value},
+          {"failure", cf.failure}, {"step", step}, {"at_bound", join(cf.plan.at_bound, "; ")},
+          {"nrmse_rose", ce && ce->nrmse_rose}, {"failure_point_chi_square", cf.failure_chi_square},
+          {"secant_steps", cf.secant_steps}, {"residual", std::move(residual)}};
+}
+
+// Every step's refits, the first step's first; a refit's confirmed effect is the decision's
+// (the base refit, first, has none).
+io::Json confirmations_json(const std::vector<StepRecord>& steps) {
+  io::Json out = io::Json::array();
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    const StepRecord& s = steps[k];
+    for (std::size_t c = 0; c < s.confirmations.size(); ++c) {
+      const ConfirmedEffect* ce = c > 0 && c - 1 < s.decision.effects.size() ? &s.decision.effects[c - 1] : nullptr;
+      out.push_back(confirmation_json(s.confirmations[c], ce, s.decision, k + 1));
+    }
+  }
+  return out;
+}
+
+io::Json path_json(const std::vector<DiagnosisStep>& path) {
+  io::Json out = io::Json::array();
+  for (const auto& st : path)
+    out.push_back({{"effect", st.effect}, {"value", st.value}, {"chi_square_before", st.chi_square_before},
+                   {"chi_square_after", st.chi_square_after}, {"nrmse_before", st.nrmse_before},
+                   {"nrmse_after", st.nrmse_after}, {"p_after", st.p_after}, {"named", st.named}});
+  return out;
 }
 
 }  // namespace
@@ -583,68 +632,28 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
     if (!dynamic.empty()) md += fmt::format("\n**Warning.** {}.\n", dynamic);
 
     // ---- JSON ----
-    auto number = [](double x) { return std::isfinite(x) ? fmt::format("{:.9g}", x) : std::string("null"); };
-    std::string json = fmt::format("{{\"verdict\": \"{}\", \"chi_square\": {:.9g}, \"chi_square_unabsorbed\": {:.9g}, "
-                                   "\"p_value\": {:.9g}, \"nrmse\": {:.9g}, \"ranking\": [",
-                                   json_escape(verdict), d0.chi_square, d0.chi_square_unabsorbed, d0.p_value,
-                                   first.lin.base_comparison.nrmse());
-    for (std::size_t k = 0; k < d0.ranking.size(); ++k) {
-      const auto& r = d0.ranking[k];
-      const CandidateEffect* e = find_effect(effects, r.name);
-      json += fmt::format("{}{{\"name\": \"{}\", \"score\": {:.9g}, \"p_value\": {:.9g}, \"explained\": {:.9g}, "
-                          "\"absorbed\": {:.9g}, \"value\": {:.9g}, \"at_bound\": {}, \"identifiable\": {}}}",
-                          k ? ", " : "", json_escape(r.name), r.score, r.p_value, r.explained, r.absorbed,
-                          e->neutral + r.size, r.at_bound, r.identifiable);
-    }
-    // Every step's refits, the first step's first (as before steps existed); a refit that failed
-    // has null numbers and its error (JSON has no infinity).
-    json += "], \"confirmations\": [";
-    std::string sep;
-    for (std::size_t k = 0; k < steps.size(); ++k) {
-      const StepRecord& s = steps[k];
-      for (std::size_t c = 0; c < s.confirmations.size(); ++c) {
-        const ConfirmedEffect* ce = c > 0 && c - 1 < s.decision.effects.size() ? &s.decision.effects[c - 1] : nullptr;
-        const auto& cf = s.confirmations[c];
-        json += fmt::format("{}{{\"name\": \"{}\", \"chi_square\": {}, \"nrmse\": {}, \"delta_aic\": {}, "
-                            "\"delta_bic\": {}, \"share_explained\": {}, \"p_after\": {}, \"p_drop\": {}, \"value\": {:.9g}, "
-                            "\"failure\": \"{}\", \"step\": {}, \"at_bound\": \"{}\", \"nrmse_rose\": {}, "
-                            "\"failure_point_chi_square\": {}, \"secant_steps\": {}, \"residual\": {{{}}}}}",
-                            sep, json_escape(cf.name), number(cf.chi_square), number(cf.nrmse), number(cf.delta_aic),
-                            number(cf.delta_bic), number(ce ? ce->share_explained : 0.0),
-                            number(ce ? ce->p_after : s.decision.base_p), number(ce ? ce->p_drop : 1.0), cf.effect_value,
-                            json_escape(cf.failure), k + 1, json_escape(join(cf.plan.at_bound, "; ")),
-                            ce && ce->nrmse_rose, number(cf.failure_chi_square), cf.secant_steps, [&] {
-                              std::string r;
-                              for (std::size_t i = 0; i < cf.residual.values.size(); ++i)
-                                r += fmt::format("{}\"{}\": {}", i ? ", " : "", json_escape(cf.residual.names[i]),
-                                                 number(cf.residual.values[i]));
-                              return r;
-                            }());
-        sep = ", ";
-      }
-    }
-    const ConfirmationDecision& last_decision = steps.back().decision;
-    std::string rivals;
-    for (const auto& r : last_decision.rivals) rivals += fmt::format("{}\"{}\"", rivals.empty() ? "" : ", ", json_escape(r));
-    std::string path_json;
-    for (const auto& st : path)
-      path_json += fmt::format("{}{{\"effect\": \"{}\", \"value\": {:.9g}, \"chi_square_before\": {}, \"chi_square_after\": {}, "
-                               "\"nrmse_before\": {}, \"nrmse_after\": {}, \"p_after\": {}, \"named\": {}}}",
-                               path_json.empty() ? "" : ", ", json_escape(st.effect), st.value, number(st.chi_square_before),
-                               number(st.chi_square_after), number(st.nrmse_before), number(st.nrmse_after),
-                               number(st.p_after), st.named);
-    std::string partial = first.decision.best_partial;
     std::string unidentifiable;
     for (const auto& st : steps)
       if (unidentifiable.empty()) unidentifiable = st.decision.unidentifiable;
-    json += fmt::format("], \"unidentifiable\": \"{}\"", json_escape(unidentifiable));
-    json += fmt::format(", \"excess\": {:.9g}, \"partial\": \"{}\", \"rivals\": [{}], \"path\": [{}], "
-                        "\"base_out_of_range\": {}, \"model\": \"{}\", \"resized_p\": {}, \"dynamic_warning\": \"{}\"}}\n",
-                        first.decision.excess, json_escape(partial), rivals, path_json, base_out_of_range,
-                        json_escape(path.empty() ? std::string() : values_text(keys, model)),
-                        resized_p >= 0 ? fmt::format("{:.9g}", resized_p) : std::string("null"), json_escape(dynamic));
+    io::Json json = io::json_document(kDiagnoseFormatVersion);
+    json["verdict"] = verdict;
+    json["chi_square"] = d0.chi_square;
+    json["chi_square_unabsorbed"] = d0.chi_square_unabsorbed;
+    json["p_value"] = d0.p_value;
+    json["nrmse"] = first.lin.base_comparison.nrmse();
+    json["ranking"] = ranking_json(d0, effects);
+    json["confirmations"] = confirmations_json(steps);
+    json["unidentifiable"] = unidentifiable;
+    json["excess"] = first.decision.excess;
+    json["partial"] = first.decision.best_partial;
+    json["rivals"] = steps.back().decision.rivals;
+    json["path"] = path_json(path);
+    json["base_out_of_range"] = base_out_of_range;
+    json["model"] = path.empty() ? std::string() : values_text(keys, model);
+    json["resized_p"] = resized_p >= 0 ? io::Json(resized_p) : io::Json();
+    json["dynamic_warning"] = dynamic;
     std::ofstream(o->out / "diagnose.md") << md;
-    std::ofstream(o->out / "diagnose.json") << json;
+    io::write_json(o->out / "diagnose.json", json);
     fmt::print("{}", md);
     ctx.exit_code = 0;
   });

@@ -9,8 +9,8 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
-#include <toml++/toml.h>
 
+#include "shard/io/json.hpp"
 #include "shard/measure/report.hpp"
 #include "shard/measure/synthetic.hpp"
 #include "run_job.hpp"
@@ -254,72 +254,78 @@ HistoryEntry history_entry(const std::string& command, const std::string& label,
 
 namespace {
 
-std::string json_map(const std::map<std::string, double>& m) {
-  std::string s = "{";
-  for (const auto& [k, v] : m) s += fmt::format("{}\"{}\": {:.9g}", s.size() > 1 ? ", " : "", json_escape(k), v);
-  return s + "}";
+// history.jsonl's record format: raise it when a key changes meaning or disappears.
+constexpr int kHistoryFormatVersion = 1;
+
+// A flat object of numbers ("parameters", "regimes", "features"); absent reads as empty.
+std::map<std::string, double> number_map(const io::JsonFields& row, const std::string& key) {
+  std::map<std::string, double> m;
+  if (!row.has(key)) return m;
+  const io::JsonFields object = row.object(key);
+  for (const auto& [name, value] : object.json().items()) m[name] = object.number(name);
+  return m;
 }
 
-std::map<std::string, double> map_of(const toml::table* t) {
-  std::map<std::string, double> m;
-  if (t)
-    for (const auto& [k, v] : *t)
-      if (auto d = v.value<double>()) m[std::string(k.str())] = *d;
-  return m;
+HistoryEntry history_row(const io::Json& line, const std::string& origin) {
+  const io::JsonFields row(line, origin);
+  if (row.has("format_version") && row.integer("format_version") > kHistoryFormatVersion)
+    throw io::JsonError(fmt::format("{}: format_version {} is newer than this shard reads ({}); read it with a newer "
+                                    "shard or start a new --work folder",
+                                    origin, row.integer("format_version"), kHistoryFormatVersion));
+  HistoryEntry h;
+  h.command = row.text("command");
+  h.label = row.text("label");
+  if (row.has("effects")) {
+    const io::Json& effects = row.json().at("effects");
+    if (!effects.is_array())
+      throw io::JsonError(fmt::format("{}: key 'effects' is not an array; expected the names of the effects", origin));
+    for (std::size_t i = 0; i < effects.size(); ++i) {
+      if (!effects[i].is_string())
+        throw io::JsonError(fmt::format("{}: key effects[{}]: expected the name of an effect (a string)", origin, i));
+      h.effects.push_back(effects[i].get<std::string>());
+    }
+  }
+  h.parameters = number_map(row, "parameters");
+  h.nrmse = row.number("nrmse");
+  h.chi_square = row.number("chi_square");
+  h.regimes = number_map(row, "regimes");
+  h.features = number_map(row, "features");
+  return h;
 }
 
 }  // namespace
 
 void append_history(const fs::path& work_dir, const HistoryEntry& h) {
   fs::create_directories(work_dir);
+  io::Json line = io::json_document(kHistoryFormatVersion);
+  line["time"] = static_cast<long long>(std::time(nullptr));
+  line["command"] = h.command;
+  line["label"] = h.label;
+  line["effects"] = h.effects;
+  line["parameters"] = h.parameters;
+  line["nrmse"] = h.nrmse;
+  line["chi_square"] = h.chi_square;
+  line["regimes"] = h.regimes;
+  line["features"] = h.features;
   std::ofstream out(work_dir / "history.jsonl", std::ios::app);
-  std::string effects = "[";
-  for (const auto& e : h.effects) effects += fmt::format("{}\"{}\"", effects.size() > 1 ? ", " : "", json_escape(e));
-  effects += "]";
-  out << fmt::format(
-      "{{\"time\": {}, \"command\": \"{}\", \"label\": \"{}\", \"effects\": {}, \"parameters\": {}, \"nrmse\": {:.9g}, "
-      "\"chi_square\": {:.9g}, \"regimes\": {}, \"features\": {}}}\n",
-      static_cast<long long>(std::time(nullptr)), json_escape(h.command), json_escape(h.label), effects,
-      json_map(h.parameters), h.nrmse, h.chi_square, json_map(h.regimes), json_map(h.features));
+  out << io::json_line(line);
+  if (!out) throw std::runtime_error(fmt::format("{}: cannot append the model version (disk full or read-only?)",
+                                                 (work_dir / "history.jsonl").string()));
 }
 
 std::vector<HistoryEntry> read_history(const fs::path& work_dir) {
-  std::ifstream in(work_dir / "history.jsonl");
+  const fs::path file = work_dir / "history.jsonl";
+  std::ifstream in(file);
   if (!in)
     throw std::runtime_error(fmt::format("{}: no history yet; `shard compare` and `shard calibrate-effect` with "
                                          "--work {} write it",
-                                         (work_dir / "history.jsonl").string(), work_dir.string()));
+                                         file.string(), work_dir.string()));
   std::vector<HistoryEntry> out;
   std::string line;
-  for (long n = 1; std::getline(in, line); ++n) {
+  for (std::size_t n = 1; std::getline(in, line); ++n) {
     if (line.empty()) continue;
-    // A JSON object of strings, numbers, arrays of strings and flat objects is valid TOML inline
-    // table syntax once ':' becomes '=': toml++ reads it without a JSON dependency.
-    std::string t;
-    bool in_string = false;
-    for (char ch : line) {
-      if (ch == '"' && (t.empty() || t.back() != '\\')) in_string = !in_string;
-      t += (!in_string && ch == ':') ? '=' : ch;
-    }
-    toml::table row;
-    try {
-      row = toml::parse("v = " + t);
-    } catch (const toml::parse_error& e) {
-      throw std::runtime_error(fmt::format("{}:{}: not a history line: {}", (work_dir / "history.jsonl").string(), n,
-                                           e.description()));
-    }
-    const auto* v = row["v"].as_table();
-    HistoryEntry h;
-    h.command = (*v)["command"].value_or(std::string());
-    h.label = (*v)["label"].value_or(std::string());
-    if (const auto* a = (*v)["effects"].as_array())
-      for (const auto& e : *a) h.effects.push_back(e.value_or(std::string()));
-    h.parameters = map_of((*v)["parameters"].as_table());
-    h.nrmse = (*v)["nrmse"].value_or(0.0);
-    h.chi_square = (*v)["chi_square"].value_or(0.0);
-    h.regimes = map_of((*v)["regimes"].as_table());
-    h.features = map_of((*v)["features"].as_table());
-    out.push_back(std::move(h));
+    const std::string origin = fmt::format("{}:{}", file.string(), n);
+    out.push_back(history_row(io::parse_json(line, file.string(), n), origin));
   }
   return out;
 }

@@ -45,6 +45,11 @@ std::string json_text(const Json& document) {
   return document.dump(2) + "\n";
 }
 
+std::string json_line(const Json& value) {
+  // dump() without indent escapes every newline inside strings, so the record stays on one line.
+  return value.dump() + "\n";
+}
+
 void write_json(const std::filesystem::path& file, const Json& document) {
   try {
     write_file_atomically(file, json_text(document));

@@ -2,6 +2,7 @@
 // write is atomic, and that every read error names the file and the line/column or key.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -63,6 +64,24 @@ TEST_CASE("non-finite numbers are written as null and text is escaped so a stric
   CHECK(back["small"].get<double>() == d["small"].get<double>());  // shortest round-trip digits
   const JsonFields f(back, "memory");
   CHECK(std::isnan(f.number("nan")));
+}
+
+TEST_CASE("a JSON Lines record is one line however its strings break, and parses back with its line number") {
+  Json d = shard::io::json_document(1);
+  d["label"] = "two\nlines";
+  d["nan"] = std::numeric_limits<double>::quiet_NaN();
+  const std::string line = shard::io::json_line(d);
+  CHECK(line.back() == '\n');
+  CHECK(std::count(line.begin(), line.end(), '\n') == 1);
+  const Json back = shard::io::parse_json(line.substr(0, line.size() - 1), "history.jsonl", 4);
+  CHECK(back["label"] == "two\nlines");
+  CHECK(back["nan"].is_null());
+  try {
+    (void)shard::io::parse_json("{\"a\": nan}", "history.jsonl", 4);
+    FAIL("nan is not JSON");
+  } catch (const shard::io::JsonError& e) {
+    CHECK(std::string(e.what()).find("history.jsonl:4:") == 0);
+  }
 }
 
 TEST_CASE("write_json replaces the file whole and leaves no temporary file") {

@@ -2,6 +2,7 @@
 // The measurement loop's end-to-end tests run the shard binary as a user does and read what it
 // wrote (diagnose.json, calibrate.json): these are the few helpers they share.
 #include <doctest/doctest.h>
+#include <nlohmann/json.hpp>
 
 #include <cstdlib>
 #include <filesystem>
@@ -25,6 +26,27 @@ inline std::string read_text(const std::filesystem::path& p) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+// A JSON document a command wrote, read with nlohmann's strict parser (a `nan` or a stray comma
+// fails the test), whose format_version must be the one the test was written for.
+inline nlohmann::json read_document(const std::filesystem::path& p, int format_version) {
+  const std::string text = read_text(p);
+  INFO(p.string() << ":\n" << text);
+  nlohmann::json document;
+  REQUIRE_NOTHROW(document = nlohmann::json::parse(text));
+  REQUIRE(document.contains("format_version"));
+  CHECK(document["format_version"] == format_version);
+  return document;
+}
+
+// The first element of an array of objects whose `key` is `value`; the test stops when none is.
+inline const nlohmann::json& element_with(const nlohmann::json& array, const std::string& key, const std::string& value) {
+  for (const auto& e : array)
+    if (e.value(key, std::string()) == value) return e;
+  INFO("no element with " << key << " = " << value << " in " << array.dump());
+  REQUIRE(false);
+  return array;
 }
 
 inline std::size_t find_key(const std::string& text, const std::string& key, std::size_t from = 0) {

@@ -30,19 +30,22 @@ const std::string kSensor = " --scatter 0.02 --force-noise 0.01 --force-offset 0
 const std::string kParams = " --param bond.youngs_modulus --param bond.critical_stress";
 
 void shard(const std::string& args) { shard_test::run_shard(args, kWork); }
-using shard_test::find_key;
-using shard_test::number_after;
+using nlohmann::json;
+using shard_test::element_with;
+using shard_test::read_document;
 using shard_test::read_text;
-using shard_test::string_after;
+
+// The documents' format versions this test reads (each command's kind of document).
+constexpr int kDiagnoseVersion = 1, kCalibrateVersion = 1, kCompareVersion = 1;
 
 // synth + diagnose; returns diagnose.json.
-std::string diagnose_hidden(const std::string& tag, const std::string& hidden, const std::string& rates = "") {
+json diagnose_hidden(const std::string& tag, const std::string& hidden, const std::string& rates = "") {
   const fs::path meas = kWork / ("meas_" + tag), out = kWork / ("diag_" + tag);
   shard("synth --scene " + kScene + " --work " + kWork.string() + " --out " + meas.string() + kSensor + hidden +
         (rates.empty() ? "" : " --rates " + rates));
   shard("diagnose " + meas.string() + " --scene " + kScene + " --work " + kWork.string() + kParams + " --refit 2 --out " +
         out.string());
-  return read_text(out / "diagnose.json");
+  return read_document(out / "diagnose.json", kDiagnoseVersion);
 }
 
 // A regime gets worse beyond noise when, after the calibration, its mean standardised residual
@@ -55,16 +58,10 @@ constexpr double kRegimeNoise = 2.58;
 
 // Every regime the calibration reports ("toe", ... at one rate; "toe@0.02", ... at several; a
 // regime empty on the grid is not listed), each entry "name": [before, after].
-void check_no_regime_worse(const std::string& calibrate_json) {
-  const auto regimes = find_key(calibrate_json, "\"regimes\": {");
-  const auto end = calibrate_json.find('}', regimes);
+void check_no_regime_worse(const json& calibration) {
   int checked = 0;
-  for (auto at = calibrate_json.find('[', regimes); at < end; at = calibrate_json.find('[', at + 1)) {
-    const auto name_end = calibrate_json.rfind('"', at);
-    const auto name_start = calibrate_json.rfind('"', name_end - 1) + 1;
-    const std::string name = calibrate_json.substr(name_start, name_end - name_start);
-    const double before = number_after(calibrate_json, "[", at);
-    const double after = number_after(calibrate_json, ", ", at);
+  for (const auto& [name, before_after] : calibration.at("regimes").items()) {
+    const double before = before_after.at(0), after = before_after.at(1);
     INFO("regime " << name << ": mean residual " << before << " -> " << after);
     CHECK_FALSE((std::abs(after) > kRegimeNoise && std::abs(after) > std::abs(before)));
     ++checked;
@@ -88,12 +85,11 @@ struct Hidden {
 // packing noise of three specimens moves it); calibrate-effect must halve the NRMSE, and its
 // fitted size must be within 2/3..3/2 of the truth.
 void check_found_and_calibrated(const Hidden& h) {
-  const std::string json = diagnose_hidden(h.tag, h.synth, h.rates);
-  INFO(h.tag << ": " << json);
-  CHECK(string_after(json, "\"verdict\": \"") == h.effect);  // implies "not adequate"
+  const json diagnosis = diagnose_hidden(h.tag, h.synth, h.rates);
+  INFO(h.tag << ": " << diagnosis.dump());
+  CHECK(diagnosis.at("verdict") == h.effect);  // implies "not adequate"
   // The estimate of the named effect's size from its confirmation refit.
-  const auto conf = find_key(json, "{\"name\": \"" + h.effect + "\", \"chi_square\"", find_key(json, "\"confirmations\""));
-  const double estimate = number_after(json, "\"value\": ", conf);
+  const double estimate = element_with(diagnosis.at("confirmations"), "name", h.effect).at("value");
   const double ratio = (estimate - h.neutral) / (h.truth - h.neutral);
   CHECK(ratio > h.size_low);
   CHECK(ratio < h.size_high);
@@ -104,11 +100,11 @@ void check_found_and_calibrated(const Hidden& h) {
   // The issue's spelling, `shard calibrate --with`, routed to calibrate-effect (command_routing.hpp).
   shard("calibrate " + (kWork / ("meas_" + h.tag)).string() + " --scene " + kScene + " --work " + kWork.string() +
         kParams + " --with " + h.effect + " --max-evaluations " + std::to_string(h.evaluations) + " --out " + out.string());
-  const std::string cal = read_text(out / "calibrate.json");
-  INFO(cal);
-  const double before = number_after(cal, "\"nrmse_before\": "), after = number_after(cal, "\"nrmse_after\": ");
+  const json cal = read_document(out / "calibrate.json", kCalibrateVersion);
+  INFO(cal.dump());
+  const double before = cal.at("nrmse_before"), after = cal.at("nrmse_after");
   CHECK(after <= 0.5 * before);
-  const double fitted = (number_after(cal, "\"value\": ") - h.neutral) / (h.truth - h.neutral);
+  const double fitted = (cal.at("value").get<double>() - h.neutral) / (h.truth - h.neutral);
   CHECK(fitted > 2.0 / 3.0);
   CHECK(fitted < 1.5);
   check_no_regime_worse(cal);
@@ -117,11 +113,11 @@ void check_found_and_calibrated(const Hidden& h) {
 }  // namespace
 
 TEST_CASE("null case: data from the base model itself are adequate and no effect is claimed") {
-  const std::string json = diagnose_hidden("null", "");
-  INFO(json);
-  CHECK(string_after(json, "\"verdict\": \"") == "adequate");
-  CHECK(number_after(json, "\"p_value\": ") > 0.05);
-  CHECK(json.find("\"confirmations\": []") != std::string::npos);  // nothing refit, nothing named
+  const json diagnosis = diagnose_hidden("null", "");
+  INFO(diagnosis.dump());
+  CHECK(diagnosis.at("verdict") == "adequate");
+  CHECK(diagnosis.at("p_value").get<double>() > 0.05);
+  CHECK(diagnosis.at("confirmations").empty());  // nothing refit, nothing named
 }
 
 TEST_CASE("time compression: the quasi-static tiny beam at half the data's rate compares as at the data's rate") {
@@ -134,8 +130,8 @@ TEST_CASE("time compression: the quasi-static tiny beam at half the data's rate 
         (kWork / "cmp_rate").string());
   shard("compare " + meas.string() + " --scene " + kScene + " --work " + kWork.string() +
         " --time-compression 0.5 --out " + (kWork / "cmp_half").string());
-  const double at_rate = number_after(read_text(kWork / "cmp_rate" / "compare.json"), "\"nrmse\": ");
-  const double at_half = number_after(read_text(kWork / "cmp_half" / "compare.json"), "\"nrmse\": ");
+  const double at_rate = read_document(kWork / "cmp_rate" / "compare.json", kCompareVersion).at("nrmse");
+  const double at_half = read_document(kWork / "cmp_half" / "compare.json", kCompareVersion).at("nrmse");
   CHECK(std::abs(at_half - at_rate) < 0.01);
   CHECK(read_text(kWork / "log.txt").find("time compression 0.5: the model loads at 0.01 m/s") != std::string::npos);
 }
@@ -162,9 +158,9 @@ TEST_CASE("data of another test geometry are refused, naming both set-ups") {
   // truth runs' own, from shard::bending), reported by compare but not judged by default.
   CHECK(specimens.find(",0.02,,") == std::string::npos);
   CHECK(fs::exists(kWork / "meas_null" / "fragments" / "sim_seed1001.csv"));
-  const std::string cmp = read_text(kWork / "cmp_rate" / "compare.json");
-  CHECK(cmp.find("\"crack_position\"") != std::string::npos);
-  CHECK(cmp.find("\"fragment_x50\"") != std::string::npos);
+  const json cmp = read_document(kWork / "cmp_rate" / "compare.json", kCompareVersion);
+  element_with(cmp.at("features"), "name", "crack_position");
+  element_with(cmp.at("features"), "name", "fragment_x50");
 }
 
 TEST_CASE("hidden machine compliance 1e-4 m/N: named, sized, calibrated") {
@@ -173,10 +169,9 @@ TEST_CASE("hidden machine compliance 1e-4 m/N: named, sized, calibrated") {
   // crosshead adds. The specimen's own compliance is ~4e-4 m/N: the frame is a quarter of it.
   check_found_and_calibrated({"compliance", " --machine-compliance 1e-4", "machine_compliance", 1e-4, 0});
   // The confirmation refit alone (linearised sizes, simulated) halves the base refit's NRMSE.
-  const std::string json = read_text(kWork / "diag_compliance" / "diagnose.json");
-  const auto conf = find_key(json, "\"confirmations\"");
-  const double base_nrmse = number_after(json, "\"nrmse\": ", conf);
-  const double with_nrmse = number_after(json, "\"nrmse\": ", find_key(json, "machine_compliance\", \"chi", conf));
+  const json diagnosis = read_document(kWork / "diag_compliance" / "diagnose.json", kDiagnoseVersion);
+  const double base_nrmse = element_with(diagnosis.at("confirmations"), "name", "base refit").at("nrmse");
+  const double with_nrmse = element_with(diagnosis.at("confirmations"), "name", "machine_compliance").at("nrmse");
   CHECK(with_nrmse <= 0.5 * base_nrmse);
 }
 
@@ -227,8 +222,8 @@ TEST_CASE("a seating toe outside the library is an unexplained structured residu
   // Rough sawn faces: the pins and rollers first close a gap of loose surface grains, a
   // hyperbolic closure w + g F / (F + F_h) (synthetic.hpp). g = 0.3 mm, F_h = 0.3 N (15 % of the
   // peak): the toe ASTM D790 tells the tester to compensate, on a soft 8 mm beam.
-  const std::string json = diagnose_hidden("toe", " --seating-gap 3e-4 --seating-half-force 0.3");
-  INFO(json);
-  CHECK(number_after(json, "\"p_value\": ") < 0.05);  // the model does fail ...
-  CHECK(string_after(json, "\"verdict\": \"") == "unexplained structured residual");  // ... and nothing is named
+  const json diagnosis = diagnose_hidden("toe", " --seating-gap 3e-4 --seating-half-force 0.3");
+  INFO(diagnosis.dump());
+  CHECK(diagnosis.at("p_value").get<double>() < 0.05);  // the model does fail ...
+  CHECK(diagnosis.at("verdict") == "unexplained structured residual");  // ... and nothing is named
 }

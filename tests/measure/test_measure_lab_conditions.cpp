@@ -14,6 +14,8 @@
 #include <sstream>
 #include <string>
 
+#include "shard_cli.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -46,18 +48,27 @@ void shard_ok(const std::string& args) {
   REQUIRE(status == 0);
 }
 
-double number_after(const std::string& text, const std::string& key) {
-  const auto at = text.find(key);
-  INFO("missing " << key << " in " << text);
-  REQUIRE(at != std::string::npos);
-  return std::stod(text.substr(at + key.size()));
-}
-
 std::size_t lines(const fs::path& p) {
   std::ifstream in(p);
   std::size_t n = 0;
   for (std::string line; std::getline(in, line);) n += !line.empty();
   return n;
+}
+
+// compare.json's and history.jsonl's format versions this test reads.
+constexpr int kCompareVersion = 1, kHistoryVersion = 1;
+
+// The last model version of history.jsonl, one JSON object a line, read with the strict parser.
+nlohmann::json last_history_entry(const fs::path& p) {
+  std::ifstream in(p);
+  std::string last;
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) last = line;
+  INFO(p.string() << ": " << last);
+  nlohmann::json entry;
+  REQUIRE_NOTHROW(entry = nlohmann::json::parse(last));
+  CHECK(entry.at("format_version") == kHistoryVersion);
+  return entry;
 }
 
 // A copy of the measurement folder `from` with metadata.toml's lines that start with `key` removed.
@@ -108,29 +119,33 @@ TEST_CASE("compare runs the model as the lab ran it, every rate in one go, and w
   synth_lab();
   const std::size_t before = fs::exists(kWork / "history.jsonl") ? lines(kWork / "history.jsonl") : 0;
   shard_ok("compare " + kLab.string() + kModel + " --out " + (kWork / "cmp_lab").string());
-  const std::string json = read(kWork / "cmp_lab" / "compare.json");
-  INFO(json);
-  CHECK(json.find("\"rates\": [0.02, 0.04]") != std::string::npos);
+  const nlohmann::json json = shard_test::read_document(kWork / "cmp_lab" / "compare.json", kCompareVersion);
+  INFO(json.dump());
+  CHECK(json.at("rates") == nlohmann::json::array({0.02, 0.04}));
   // The truth's own runs: zero to rounding (the curves are written to 9 digits, NRMSE < 1e-6).
-  CHECK(number_after(json, "\"nrmse\": ") < 1e-6);
+  CHECK(json.at("nrmse").get<double>() < 1e-6);
   CHECK(lines(kWork / "history.jsonl") == before + 1);  // both rates, one model version
+  const nlohmann::json entry = last_history_entry(kWork / "history.jsonl");
+  CHECK(entry.at("command") == "compare");
+  CHECK(entry.at("nrmse").get<double>() == doctest::Approx(json.at("nrmse").get<double>()));
   // 0.04 m/s is twice the scene's 0.02 m/s pin speed.
   // "is dynamic" only when the energy ratio is above the bound; a faster rate alone says "may be".
-  const bool energetic = json.find("(above the quasi-static bound") != std::string::npos;
-  CHECK(json.find(std::string("\"dynamic_warning\": \"the model ") + (energetic ? "is" : "may be") +
-                  " dynamic at the data's rate") != std::string::npos);
-  CHECK(json.find("2x faster than the 20 mm/s the scene was checked at") != std::string::npos);
+  const std::string warning = json.at("dynamic_warning");
+  const bool energetic = warning.find("(above the quasi-static bound") != std::string::npos;
+  CHECK(warning.rfind(std::string("the model ") + (energetic ? "is" : "may be") + " dynamic at the data's rate", 0) == 0);
+  CHECK(warning.find("2x faster than the 20 mm/s the scene was checked at") != std::string::npos);
   CHECK(read(kWork / "cmp_lab" / "compare.md").find(std::string("**Warning.** the model ") +
                                                      (energetic ? "is" : "may be") + " dynamic") != std::string::npos);
 
   // Without the ramp the model's pins start at full speed: a different curve (4.3 % measured).
   const fs::path no_ramp = without(kLab, "no_ramp", "ramp");
   shard_ok("compare " + no_ramp.string() + kModel + " --out " + (kWork / "cmp_no_ramp").string());
-  CHECK(number_after(read(kWork / "cmp_no_ramp" / "compare.json"), "\"nrmse\": ") > 0.01);
+  CHECK(shard_test::read_document(kWork / "cmp_no_ramp" / "compare.json", kCompareVersion).at("nrmse").get<double>() > 0.01);
   // Without the preload the model's curves keep their toe below 0.2 N and another zero.
   const fs::path no_preload = without(kLab, "no_preload", "seating_preload");
   shard_ok("compare " + no_preload.string() + kModel + " --out " + (kWork / "cmp_no_preload").string());
-  CHECK(number_after(read(kWork / "cmp_no_preload" / "compare.json"), "\"nrmse\": ") > 0.01);
+  CHECK(shard_test::read_document(kWork / "cmp_no_preload" / "compare.json", kCompareVersion).at("nrmse").get<double>() >
+        0.01);
 }
 
 TEST_CASE("a specimen of another width is refused, and a scene without effects.toml says what the file is") {

@@ -13,25 +13,6 @@
 extern char** environ;  // POSIX: the child gets this process's environment
 
 namespace shard::measure {
-namespace {
-
-std::string number(double x) { return std::isfinite(x) ? fmt::format("{:.6g}", x) : "null"; }
-
-}  // namespace
-
-std::string json_escape(const std::string& s) {
-  std::string out;
-  for (char ch : s) {
-    if (ch == '"' || ch == '\\') out += '\\';
-    if (ch == '\n') {
-      out += "\\n";
-      continue;
-    }
-    out += ch;
-  }
-  return out;
-}
-
 std::string comparison_markdown(const Comparison& c) {
   std::string md = fmt::format("**Verdict.** {}\n\n", c.verdict);
   md += fmt::format("Reference displacement w_ref = {:.4g} m, measured F_max (mean curve) = {:.4g} N, NRMSE = {:.2f} %.\n\n",
@@ -58,34 +39,30 @@ std::string comparison_markdown(const Comparison& c) {
   return md;
 }
 
-std::string comparison_json(const Comparison& c) {
-  std::string j = "{\n";
-  j += fmt::format("  \"verdict\": \"{}\",\n  \"adequate\": {},\n  \"nrmse\": {},\n", json_escape(c.verdict),
-                   c.adequate ? "true" : "false", number(c.nrmse));
-  j += fmt::format("  \"reference_displacement\": {},\n  \"measured_peak_force\": {},\n  \"features\": [\n",
-                   number(c.reference_displacement), number(c.measured_peak_force));
-  for (std::size_t i = 0; i < c.features.size(); ++i) {
-    const auto& f = c.features[i];
-    j += fmt::format(
-        "    {{\"name\": \"{}\", \"unit\": \"{}\", \"measured\": {}, \"u_measured\": {}, \"simulated\": {}, "
-        "\"u_simulated\": {}, \"error\": {}, \"relative_error\": {}, \"score\": {}, \"beyond_noise\": {}, "
-        "\"judged\": {}}}{}\n",
-        feature_name(f.feature), feature_unit(f.feature), number(f.measured), number(f.u_measured),
-        number(f.simulated), number(f.u_simulated), number(f.error), number(f.relative_error), number(f.score),
-        f.beyond_noise ? "true" : "false", f.judged ? "true" : "false", i + 1 < c.features.size() ? "," : "");
-  }
-  j += "  ],\n  \"regimes\": [\n";
-  for (std::size_t r = 0; r < kRegimeCount; ++r) {
-    const auto& g = c.regimes[r];
+io::Json comparison_json(const Comparison& c) {
+  io::Json j;
+  j["verdict"] = c.verdict;
+  j["adequate"] = c.adequate;
+  j["nrmse"] = c.nrmse;
+  j["reference_displacement"] = c.reference_displacement;
+  j["measured_peak_force"] = c.measured_peak_force;
+  j["features"] = io::Json::array();
+  for (const auto& f : c.features)
+    j["features"].push_back({{"name", std::string(feature_name(f.feature))},
+                             {"unit", std::string(feature_unit(f.feature))}, {"measured", f.measured},
+                             {"u_measured", f.u_measured}, {"simulated", f.simulated}, {"u_simulated", f.u_simulated},
+                             {"error", f.error}, {"relative_error", f.relative_error}, {"score", f.score},
+                             {"beyond_noise", f.beyond_noise}, {"judged", f.judged}});
+  j["regimes"] = io::Json::array();
+  for (const auto& g : c.regimes) {
     const bool any = g.points() > 0;
-    j += fmt::format(
-        "    {{\"name\": \"{}\", \"xi_first\": {}, \"xi_last\": {}, \"points\": {}, \"mean_residual\": {}, "
-        "\"rms_residual\": {}, \"chi_square\": {}, \"relative_error\": {}, \"beyond_noise\": {}}}{}\n",
-        regime_name(g.regime), any ? number(c.xi[g.first]) : "null", any ? number(c.xi[g.last - 1]) : "null",
-        g.points(), number(g.mean_residual), number(g.rms_residual), number(g.chi_square), number(g.relative_error),
-        g.beyond_noise ? "true" : "false", r + 1 < kRegimeCount ? "," : "");
+    j["regimes"].push_back({{"name", std::string(regime_name(g.regime))},
+                            {"xi_first", any ? io::Json(c.xi[g.first]) : io::Json()},
+                            {"xi_last", any ? io::Json(c.xi[g.last - 1]) : io::Json()}, {"points", g.points()},
+                            {"mean_residual", g.mean_residual}, {"rms_residual", g.rms_residual},
+                            {"chi_square", g.chi_square}, {"relative_error", g.relative_error},
+                            {"beyond_noise", g.beyond_noise}});
   }
-  j += "  ]\n}\n";
   return j;
 }
 

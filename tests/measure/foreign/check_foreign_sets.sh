@@ -19,9 +19,9 @@ bash "$here/make_foreign_sets.sh" "$shard" "$plugins" "$sets" "$work/synth" > "$
   { cat "$work/synth.log"; exit 1; }
 echo "make_foreign_sets.sh: $(( $(date +%s) - start )) s wall"
 
-# feature NAME FIELD FILE: one number of compare.json's feature line.
+# feature NAME FIELD FILE: one number of a feature of compare.json (null when not finite).
 feature() {
-  grep "\"name\": \"$1\"" "$3" | sed -E "s/.*\"$2\": ([^,}]*).*/\1/"
+  jq -r --arg name "$1" --arg field "$2" '.features[] | select(.name == $name) | .[$field]' "$3"
 }
 
 failures=0
@@ -32,7 +32,8 @@ for set in reference null compliance weibull softening asymmetry toe both; do
   folder=$sets/$set
   "$shard" --plugin-dir "$plugins" compare "$folder" --scene "$here/foreign_beam.toml" --work "$work/model" \
     --out "$work/compare_$set" > "$work/compare_$set.log" 2>&1 || { cat "$work/compare_$set.log"; fail "$set: compare"; continue; }
-  [[ -s $work/compare_$set/compare.json ]] || fail "$set: no compare.json"
+  jq -e '.format_version == 1' "$work/compare_$set/compare.json" > /dev/null ||
+    fail "$set: compare.json is not a version-1 JSON document"
   [[ $set == null ]] && continue
   json=$work/vs_null_$set/compare.json
   "$shard" compare "$folder" --sim "$sets"/null/curves/*.csv --out "$work/vs_null_$set" > /dev/null 2>&1 ||
@@ -55,8 +56,7 @@ done
 "$shard" compare "$sets/null" --scene "$source_dir/scenes/measurements/tiny_bending.toml" --work "$work/shard_model" \
   --out "$work/null_vs_tiny" > "$work/null_vs_tiny.log" 2>&1 || { cat "$work/null_vs_tiny.log"; fail "null vs tiny_bending"; }
 json=$work/null_vs_tiny/compare.json
-echo "null against tiny_bending.toml: NRMSE $(grep '"nrmse"' "$json" | sed -E 's/.*: ([^,]*),/\1/')," \
-     "$(grep '"verdict"' "$json" | sed -E 's/.*"verdict": "(.*)",/\1/')"
-grep -q '"adequate": false' "$json" || fail "the foreign null set is adequate against Shard's tiny beam"
+echo "null against tiny_bending.toml: NRMSE $(jq -r .nrmse "$json"), $(jq -r .verdict "$json")"
+jq -e '.adequate == false' "$json" > /dev/null || fail "the foreign null set is adequate against Shard's tiny beam"
 echo "total: $(( $(date +%s) - start )) s wall"
 exit $(( failures > 0 ))

@@ -40,6 +40,9 @@ Json json_document(int format_version);
 // The document as text: indented by two spaces, one key a line, ending in a newline.
 std::string json_text(const Json& document);
 
+// The value as one line of a JSON Lines file: compact, no newline inside, one newline at the end.
+std::string json_line(const Json& value);
+
 // Writes json_text(document) to `file` atomically (temp file + flush + rename). Throws JsonError
 // naming the file when it cannot be written.
 void write_json(const std::filesystem::path& file, const Json& document);

@@ -5,13 +5,15 @@
 #include <filesystem>
 #include <string>
 
+#include "shard/io/json.hpp"
 #include "shard/measure/comparison.hpp"
 
 namespace shard::measure {
 
 std::string comparison_markdown(const Comparison& c);
-std::string comparison_json(const Comparison& c);
-std::string json_escape(const std::string& s);
+// The comparison's features, regimes and verdict as a JSON object (compare.json holds one per
+// loading rate); non-finite numbers are written as null by shard::io.
+io::Json comparison_json(const Comparison& c);
 
 // Writes <image>.dat and <image>.gp next to the image and runs gnuplot (pngcairo for .png,
 // svg for .svg). Throws when gnuplot is missing or fails.
