@@ -1,5 +1,5 @@
 #pragma once
-// The complex test body of issue 4: the filter-cake shard (scenes/geometry/filter_cake_shard.stl,
+// The complex test body: the filter-cake shard (scenes/geometry/filter_cake_shard.stl,
 // mm) filled at d = 1.42..1.92 mm, which holds ~4e4 spheres (41,132 at seed 1), the size of the
 // seed's 41,788-sphere parent (1.5..2.0 mm gave 35,720). Shared by the benchmark and the picture.
 #include <string>

@@ -1,4 +1,4 @@
-// Step-loop benchmarks of issue 8 (docs/explanation/performance.md). One summary line per benchmark, so a
+// Step-loop benchmarks (docs/explanation/performance.md). One summary line per benchmark, so a
 // later change can be compared line by line:
 //   bench_kernel bonded  [particles=20000] [pull_speed=0.2] [max_steps=20000]
 //   bench_kernel bonded_effects [same] [policies=all]  (the bond's effect policies on at the

@@ -1,4 +1,4 @@
-// Eight lanes' rows of doubles into one vector per component (docs/explanation/performance.md, issue 17): the
+// Eight lanes' rows of doubles into one vector per component (docs/explanation/performance.md): the
 // gather instruction per component against the row loads and in-register transposition of
 // shard/lanes/avx512_rows.hpp that the beam block step uses. Rows of 4 (a Quat) and of 3 (a Vec3)
 // from an 18 000-particle array at bond-like indices (sorted, neighbours within ~200 places).

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Seven measurement sets on the default beam (scenes/four_point_bending.toml: 180 x 30 x 35 mm,
 # 865 spheres of 5.0-6.5 mm), for the cost of the contrast diagnosis at the default resolution
-# (issue 15 item 10, docs/explanation/diagnosis.md "Contrasts", Cost). Made by Shard's own model on other
+# (docs/explanation/diagnosis.md "Contrasts", Cost). Made by Shard's own model on other
 # packing seeds (not a foreign form: the foreign_spring_bond stiffnesses are tuned to the tiny
 # beam), with the lab's test conditions of the foreign sets scaled to this beam: 20 mm/s reached
 # along a 1-cos ramp over 25 ms, a 0.5 N seating preload (1 % of F_max ~ 49 N), a 0.05 N zero

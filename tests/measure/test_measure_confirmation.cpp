@@ -103,7 +103,7 @@ TEST_CASE("the drop of a named refit must be significant for the number of refit
 }
 
 TEST_CASE("a refit that lowers chi^2 but raises the NRMSE is neither named nor kept") {
-  // The support-friction calibration of issue 15: chi^2 fell from 732 to 260 while the NRMSE rose
+  // The support-friction calibration: chi^2 fell from 732 to 260 while the NRMSE rose
   // from 30.1 % to 39.9 % (the replicates scattered more, widening the band). Here a refit to a
   // chi^2 within noise with the NRMSE up is refused; the same chi^2 with the NRMSE down is named.
   const auto up = decide_from_refits(RefitOutcome{"base refit", 60, 0.301}, {{"support_friction", 9.5, 0.399}}, 11, 2);
@@ -123,7 +123,7 @@ TEST_CASE("a refit that lowers chi^2 but raises the NRMSE is neither named nor k
 }
 
 TEST_CASE("a refit that explains most of the excess but leaves structure is kept for the next step") {
-  // The main beam with two hidden effects (issue 15): machine compliance took the NRMSE from 25.6 %
+  // The main beam with two hidden effects: machine compliance took the NRMSE from 25.6 %
   // to 11.4 %, 80 % of the excess, but left structure. Base refit 60 (excess 51) -> 20: 78 %, p_drop
   // ~ 6e-10, but p after = P(chi^2(8) > 20) = 0.010: kept, not named.
   const auto d = decide_from_refits(RefitOutcome{"base refit", 60, 0.256},

@@ -1,4 +1,4 @@
-// Plausible effect sizes follow from the scene's base run (issue 15 item 5,
+// Plausible effect sizes follow from the scene's base run (
 // shard/measure/effect_scaling.hpp): the shipped library's rules give the tiny beam the fixed
 // sizes its tests were first tuned with and another beam sizes in proportion to its own
 // compliance and time to peak.

@@ -1,4 +1,4 @@
-// The measurement loop judged on hidden effects (issue 7), end to end through the shard binary on
+// The measurement loop judged on hidden effects, end to end through the shard binary on
 // the tiny bending beam. Each case hides something in synthetic measurements (packing seeds
 // 1001-1003, not the model's 1-3; 2 % specimen scatter, 0.01 N load-cell noise, 0.005 N tare,
 // 1 um displacement steps), then `shard diagnose` with the whole effect library must

@@ -1,4 +1,4 @@
-// Two library effects hidden at once (issue 15): a diagnosis that names one effect at a time
+// Two library effects hidden at once: a diagnosis that names one effect at a time
 // must go on stepwise. Synthetic data on the tiny bending beam (packing seeds 1001-1003, the
 // model's 1-3; the sensor model of test_measure_hidden_effects) with machine compliance 1e-4 m/N
 // and bond softening ratio 3 hidden together; `shard diagnose --max-effects 2` must name both in

@@ -1,6 +1,6 @@
 #pragma once
-// A bond law of another form than Shard's beam_bond, for the foreign-truth test only (issue 15
-// item 8, docs/explanation/diagnosis.md "Foreign truth"): linear normal, shear, bending and twisting
+// A bond law of another form than Shard's beam_bond, for the foreign-truth test only
+// (docs/explanation/diagnosis.md "Foreign truth"): linear normal, shear, bending and twisting
 // springs with stiffnesses given per bond type in N/m and N m/rad (not from a modulus and the
 // bond's section), a force-based breakage criterion as in LAMMPS bpm/rotational,
 //   (max(F_n, 0) / F_n,c)^2 + (|F_s| / F_s,c)^2 + (|T_b| / T_b,c)^2 + (|T_t| / T_t,c)^2 >= 1,

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Foreign-truth measurement sets at the default beam's size (docs/explanation/diagnosis.md "Checked on
-# foreign truth", issue 15 items 8 and 10): `shard synth` on
+# foreign truth"): `shard synth` on
 # tests/measure/foreign/foreign_default_beam.toml (foreign_spring_bond on an hcp lattice of
 # 4.4-4.8 mm spheres, 180 x 30 x 35 mm, 20 mm/s), to be diagnosed with scenes/four_point_bending.toml.
 # The sets of make_foreign_sets.sh (which makes them), sizes scaled to this beam where they have a unit.

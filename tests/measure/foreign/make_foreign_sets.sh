@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Foreign-truth measurement sets (docs/explanation/diagnosis.md "Foreign truth", issue 15 item 8):
+# Foreign-truth measurement sets (docs/explanation/diagnosis.md "Foreign truth"):
 # `shard synth` on tests/measure/foreign/foreign_beam.toml, a base model of another form than
 # Shard's (foreign_spring_bond, linear_spring contacts, a finer packing), 4 specimens per set.
 #

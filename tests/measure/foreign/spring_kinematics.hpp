@@ -1,5 +1,5 @@
 #pragma once
-// Kinematics of the foreign spring bond (test-only, issue 15 item 8): what LAMMPS bpm/rotational
+// Kinematics of the foreign spring bond (test-only): what LAMMPS bpm/rotational
 // and YADE's cohesive law measure, written here without Shard's beam code. The pair's relative
 // motion since bonding is split into a normal stretch, a shear offset of the second particle from
 // the bond direction the two particles' frames agree on, and a relative rotation split into

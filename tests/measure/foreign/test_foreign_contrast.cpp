@@ -1,4 +1,4 @@
-// The contrast diagnosis judged on foreign truth (issue 15 item 8): measurement sets made by a
+// The contrast diagnosis judged on foreign truth: measurement sets made by a
 // model of another form than Shard's (tests/measure/foreign: linear-spring bonds with a force
 // criterion, linear contacts, a finer packing; make_foreign_sets.sh), diagnosed with Shard's own
 // tiny beam and effect library. Eight sets of 4 specimens: the reference, a null set (nothing
@@ -8,7 +8,7 @@
 //   - say "no difference" for the null set (no confident alarm),
 //   - name the hidden effect in at least 3 of the 4 library cases,
 //   - say "unexplained difference" for the toe,
-//   - name both effects of the two-effect set (issue 15 item 6), compliance sized within a
+//   - name both effects of the two-effect set, compliance sized within a
 //     factor of 2 of the truth, and calibrating both at once must cut its contrast NRMSE by half,
 //   - and `shard calibrate --reference --with` the named effect on a named set must cut that
 //     set's contrast NRMSE by at least 50 %.

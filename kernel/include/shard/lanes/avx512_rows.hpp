@@ -2,7 +2,7 @@
 // AVX-512 row loads: eight lanes' rows of contiguous doubles (a particle's Vec3 or Quat, a bond's
 // state), each loaded whole and transposed in registers into one vector per component. On the
 // AMD EPYC host this is three times faster than one gather instruction per component
-// (docs/explanation/performance.md, issue 17). Pure data movement: the values are the stored bits.
+// (docs/explanation/performance.md). Pure data movement: the values are the stored bits.
 // Used by the SIMD lanes (xsimd_lanes.hpp) and the kernel's AVX-512 contact geometry.
 #include <cstddef>
 #include <cstdint>

@@ -1,5 +1,5 @@
 #pragma once
-// Measured against simulated four-point bending curves (issue 7, `shard compare`).
+// Measured against simulated four-point bending curves (`shard compare`).
 //
 // Common grid. Every curve is sampled at the same loading-pin displacements w = xi w_ref, with
 // w_ref the mean measured displacement at peak, xi in [0, xi_end] (xi_end: the shortest measured

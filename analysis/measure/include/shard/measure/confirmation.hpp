@@ -1,5 +1,5 @@
 #pragma once
-// The decision of `shard diagnose` once the refits have been simulated (issue 7): which effect,
+// The decision of `shard diagnose` once the refits have been simulated: which effect,
 // if any, is named. The score test (diagnosis.hpp) ranks on a linearisation; the refit runs are
 // the real model, so they decide. With m residual components, p base parameters and chi^2_0 the
 // base refit's chi-square:

@@ -1,5 +1,5 @@
 #pragma once
-// Contrast diagnosis across measurement sets (issue 15, docs/explanation/diagnosis.md "Lab data: contrasts across sets").
+// Contrast diagnosis across measurement sets (docs/explanation/diagnosis.md "Lab data: contrasts across sets").
 //
 // A lab's beams are never Shard's model: grain size, contact and bond laws, fixture and preload
 // all differ, so the best base model leaves a structured residual (the form error) before any
@@ -122,7 +122,7 @@ ContrastDecision decide_contrast(const std::vector<double>& difference, const st
                                  const std::vector<EffectSignature>& effects, double dof,
                                  const ContrastOptions& options = {});
 
-// Two effects at once (issue 15 item 6): when the best single effect takes a significant share of
+// Two effects at once: when the best single effect takes a significant share of
 // a set's difference but leaves a remainder beyond noise, the next is sought as a pair with it.
 // The pair's sizes are the two-column generalised least squares of d on (t_first, t_second), each
 // kept in its range (a size at a bound is held there and the other refit); the second is judged

@@ -1,5 +1,5 @@
 #pragma once
-// The statistics of `shard diagnose` (issue 7), on standardised residual vectors r (Comparison::
+// The statistics of `shard diagnose`, on standardised residual vectors r (Comparison::
 // residual_vector: regime mean residuals and feature scores, each ~ N(0, 1) when the model is
 // right).
 //

@@ -1,5 +1,5 @@
 #pragma once
-// Plausible effect sizes from the scene, not from one test beam (issue 15 item 5).
+// Plausible effect sizes from the scene, not from one test beam.
 //
 // An effect's `plausible` size is the trial run whose difference from the base is its signature,
 // and the signature must stand above the packing noise without leaving the range where the
