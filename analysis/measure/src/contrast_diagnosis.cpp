@@ -7,6 +7,7 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "shard/measure/reference_state.hpp"
 
 namespace shard::measure {
 namespace {
@@ -139,13 +140,14 @@ ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simula
                                      const std::vector<CandidateEffect>& library,
                                      const ContrastDiagnosisOptions& options, std::ostream& log) {
   ContrastDiagnosis out;
+  check_effects_reach(library, base);
   ContrastStudy study(sets, simulator, base_at_grain_size(sets, simulator, base, options.lab_grain_size, log));
   out.calibration = study.calibrate_base(options.params, options.params.empty() ? 0 : options.base_iterations, log);
   if (options.finer > 0) {
     out.finer = finer_calibration(sets, simulator, base, options, log);
     out.finer_factor = options.finer;
   }
-  out.effects = scaled_to_base_run(library, study, out.scaled_sizes, log);
+  out.effects = centred_on_reference(scaled_to_base_run(library, study, out.scaled_sizes, log), study.base(), log);
   const Trials plan = trial_models(study.base(), out.effects);
   out.rates = study.rates();
   log << fmt::format("diagnose: base and {} effects ({} of them both ways) at {} rate(s)\n", out.effects.size(),
