@@ -162,13 +162,28 @@ TEST_CASE("a size beyond the effect's range is held at the bound and flagged") {
 
 TEST_CASE("two effects at once are named as a pair") {
   Study s;
-  s.add("both", measured({{"fake.softening", 1.5}}, 7000, 5e-5));
+  s.add("both", measured({{"fake.softening", 1.5}}, 7000, 2e-5));
   const ContrastDiagnosis d = s.run();
   const SetDiagnosis& both = diagnosis_of(d, s, "both");
   REQUIRE(both.pair.has_value());
   CHECK(pair_is_named(*both.pair, both.seconds_tried));
   const std::set<std::string> named{both.pair->first, both.pair->second};
   CHECK(named == std::set<std::string>{"bond_softening", kMachineCompliance});
+}
+
+TEST_CASE("a pair whose second effect lies on the other side of the reference than its trial") {
+  // Softening with rollers gripping more than the reference's: the library's friction trial is
+  // the lubricated side, so the pair's second column must come from the mirror trial.
+  Study s;
+  s.add("both", measured({{"fake.softening", 1.0}, {"support.friction", 0.5}}, 7100));
+  const ContrastDiagnosis d = s.run();
+  const SetDiagnosis& both = diagnosis_of(d, s, "both");
+  REQUIRE(both.pair.has_value());
+  CHECK(pair_is_named(*both.pair, both.seconds_tried));
+  const std::set<std::string> named{both.pair->first, both.pair->second};
+  CHECK(named == std::set<std::string>{"bond_softening", "support_friction"});
+  const double friction = both.pair->first == "support_friction" ? both.pair_values[0] : both.pair_values[1];
+  CHECK(friction == doctest::Approx(0.5).epsilon(0.15));
 }
 
 TEST_CASE("calibrating the named effect cuts the contrast NRMSE") {

@@ -100,10 +100,13 @@ void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>&
 // (two-column fit on the simulated contrasts), the best `count` pairs simulated with both effects
 // on, re-sized once by a Gauss-Newton step when `iterations` > 1; "A + B" when the second's drop
 // is significant over the seconds tried and the remainder is noise.
-// `trials`: the library's runs at their plausible sizes (index e + 1; 0 is the base).
+// `trials`: the library's runs at their plausible sizes (index e + 1; 0 is the base), and at
+// index mirror[e] (0: none) effect e's run one trial step the other way, for effects that move
+// both ways from the reference.
 void confirm_contrast_pairs(ContrastStudy& study,
                             const std::vector<CandidateEffect>& effects,
-                            const std::vector<ContrastStudy::Simulated>& trials, std::vector<SetDiagnosis>& sets,
+                            const std::vector<ContrastStudy::Simulated>& trials, const std::vector<std::size_t>& mirror,
+                            std::vector<SetDiagnosis>& sets,
                             int count, int iterations, ContrastOptions decide, std::ostream& log);
 
 // What the diagnosis is asked to do beyond the decision rules (`decide`).
