@@ -307,4 +307,24 @@ TEST_CASE("bad input: clear errors before a single run") {
   }
 }
 
+TEST_CASE("what a verdict rests on: a base assumption moved, each shown model rerun there") {
+  // Grippier rollers than assumed stiffen the base (k x 1.24 at 0.6): a series compliance then
+  // takes a larger share of the recorded displacement, so the measured contrast asks for a smaller
+  // compliance (ln(1 + 0.5) / ln(1 + 0.62) = 0.84); the softening's form is independent of it.
+  Study s;
+  s.add("softening", measured({{"fake.softening", 1.5}}, 3000));
+  s.add("compliance", measured({}, 4000, 5e-5));
+  s.options.assumptions = parse_overrides({"support.friction=0.6"});
+  const ContrastDiagnosis d = s.run();
+  const SetDiagnosis& soft = diagnosis_of(d, s, "softening");
+  const SetDiagnosis& comp = diagnosis_of(d, s, "compliance");
+  REQUIRE(soft.assumptions.size() == 1);
+  REQUIRE(comp.assumptions.size() == 1);
+  CHECK(soft.assumptions[0].assumption == "support.friction=0.6");
+  CHECK(soft.assumptions[0].size_ratio == doctest::Approx(1).epsilon(0.05));
+  CHECK(soft.assumptions[0].curve_agrees);
+  CHECK(comp.assumptions[0].size_ratio == doctest::Approx(0.84).epsilon(0.06));
+  CHECK(diagnosis_of(d, s, "null").assumptions.empty());  // nothing shown, nothing to rerun
+}
+
 }  // namespace shard::measure

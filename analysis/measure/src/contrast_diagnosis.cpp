@@ -166,6 +166,8 @@ ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simula
                            options.decide, log);
     require_curve_agreement(out.sets, options.decide);
   }
+  if (!options.assumptions.empty())
+    assess_assumptions(study, out.effects, out.sets, options.assumptions, options.decide, log);
   out.dof = study.dof();
   out.health = simulator.health();
   return out;
