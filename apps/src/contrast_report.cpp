@@ -158,6 +158,11 @@ std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
                               fitted_value(r, d, 0), fitted_uncertainty(r, d, 0), e ? e->unit : "",
                               c.fits.front().chi_square, c.fits.front().p_after, c.fits.front().p_drop);
   if (c.fits.front().at_bound) s += " The size sits at the bound of its physical range.";
+  if (d.named_by_curve)
+    s += fmt::format(" The components at and after the peak differ beyond noise, so the name rests on the contrast "
+                     "curve, which the model reproduces before the peak ({:.1f} % against a floor of {:.1f} %), and on "
+                     "the {:.0f} % of T^2 it explains: the lab's crack runs in another form than the model's.",
+                     100 * d.after.rising_nrmse, 100 * naming_floor(d.after), 100 * d.share);
   for (const auto& rival : c.rivals) {
     const CandidateEffect* x = effect_named(r, rival);
     s += fmt::format(" {} explains it almost as well (within {:g} in chi^2): these data cannot tell them apart{}.", rival,
@@ -367,6 +372,7 @@ io::Json set_json(const ContrastReport& r, const SetDiagnosis& d) {
           {"p_value", c.p_value},
           {"verdict", c.verdict},
           {"withheld", d.withheld},
+          {"named_by_curve", d.named_by_curve},
           {"share_explained", d.share},
           {"nrmse_base", d.before.nrmse},
           {"nrmse_effect", shown ? d.after.nrmse : d.before.nrmse},

@@ -136,6 +136,29 @@ void require_curve_agreement(std::vector<SetDiagnosis>& sets, const ContrastOpti
   }
 }
 
+void name_by_curve(std::vector<SetDiagnosis>& sets, std::size_t tried, const ContrastOptions& options) {
+  const double level = options.drop_p / static_cast<double>(std::max<std::size_t>(1, tried));
+  for (auto& d : sets) {
+    ContrastDecision& c = d.decision;
+    if (c.verdict != kUnexplainedDifference || names_a_pair(d, options) || c.fits.empty()) continue;
+    const ContrastFit& closest = c.fits.front();
+    const double share = c.chi_square > 0 ? closest.drop / c.chi_square : 0.0;
+    const bool curve_agrees = d.after_effect == closest.name &&
+                              d.after.rising_nrmse <= options.curve_floor_factor * naming_floor(d.after, options);
+    if (!(closest.scale != 0 && closest.identifiable && closest.p_drop < level && share >= options.curve_name_share &&
+          curve_agrees))
+      continue;
+    c.verdict = closest.name;
+    c.rivals.clear();
+    for (const auto& f : c.fits)
+      if (&f != &closest && f.scale != 0 && f.p_drop < level && f.chi_square - closest.chi_square < options.rival_chi_square)
+        c.rivals.push_back(f.name);
+    d.withheld.clear();
+    d.share = share;
+    d.named_by_curve = true;
+  }
+}
+
 ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simulator, const ModelPlan& base,
                                      const std::vector<CandidateEffect>& library,
                                      const ContrastDiagnosisOptions& options, std::ostream& log) {
@@ -166,6 +189,7 @@ ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simula
                            options.decide, log);
     require_curve_agreement(out.sets, options.decide);
   }
+  name_by_curve(out.sets, out.effects.size(), options.decide);
   if (!options.assumptions.empty())
     assess_assumptions(study, out.effects, out.sets, options.assumptions, options.decide, log);
   out.dof = study.dof();

@@ -72,6 +72,8 @@ struct SetDiagnosis {
   // pair's), and the name the statistics gave but the curve did not bear out (empty otherwise).
   double share = 0;
   std::string withheld;
+  // Named by its curve (name_by_curve): the components beyond the rising branch differ beyond noise.
+  bool named_by_curve = false;
   // How the shown model (named, or the closest) fares when a condition the base assumes is moved
   // (ContrastDiagnosisOptions::assumptions), one per assumption.
   std::vector<AssumptionSensitivity> assumptions;
@@ -94,6 +96,12 @@ double naming_floor(const ContrastStudy::CurveContrast& c, const ContrastOptions
 // component statistics whose named model does not reproduce the contrast curve to within its
 // noise floor, or explains less than min_share of T^2, becomes an unexplained difference.
 void require_curve_agreement(std::vector<SetDiagnosis>& sets, const ContrastOptions& options);
+
+// The other way round: a set left unexplained (no pair named) whose closest single effect has a
+// significant drop over the `tried` effects, explains at least curve_name_share of T^2 and
+// reproduces the contrast curve within the curve rule is named by it (named_by_curve), with the
+// rivals the component rule would list.
+void name_by_curve(std::vector<SetDiagnosis>& sets, std::size_t tried, const ContrastOptions& options);
 
 // One batch of models; when a run fails (a size the plugin refuses, or an unstable one) the models
 // are run one by one (finished runs are cached) and a failed one is left out (empty) with its
