@@ -84,6 +84,9 @@ TEST_CASE("data the base model fits need no effect") {
   const SetDiagnosisResult d = s.diagnose();
   CHECK(d.verdict == kAdequate);
   CHECK(d.path.empty());
+  // The score test already finds noise, so no refit run is spent on it.
+  REQUIRE(d.steps.size() == 1);
+  CHECK(d.steps.front().refits.empty());
 }
 
 TEST_CASE("an effect outside the library is unexplained, and no effect is named for it") {
