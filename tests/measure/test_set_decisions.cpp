@@ -138,6 +138,11 @@ TEST_CASE("a size beyond the effect's range is held at its bound and flagged, no
   CHECK(d.verdict != "bond_softening");
 }
 
+TEST_CASE("a diagnosis without candidates is refused") {
+  SetStudy s(fake::measured_set({}, 2000));
+  CHECK_THROWS_AS(s.diagnose({}), std::invalid_argument);
+}
+
 TEST_CASE("calibrating the effect in the data cuts the error and credits the effect") {
   fake::FakeSimulator simulator;
   const MeasurementSet set = fake::measured_set({{"fake.softening", 1.5}}, 3000);

@@ -288,6 +288,8 @@ StepwiseDiagnoser::Next StepwiseDiagnoser::follow_decision(DiagnosisStepRecord& 
 SetDiagnosisResult diagnose_set(Simulator& simulator, const MeasuredRates& data, const ModelPlan& scene,
                                 std::vector<CandidateEffect> library, const SetDiagnosisOptions& options,
                                 std::ostream& log) {
+  // Every report starts from the first step, which needs a candidate to linearise.
+  if (library.empty()) throw std::invalid_argument("diagnose: no candidate effects to try (the library is empty)");
   SetDiagnosisResult out;
   out.keys = options.params;
   for (const auto& k : out.keys) out.model.parameters.push_back(simulator.parameter(scene, k));

@@ -93,6 +93,7 @@ struct SetDiagnosisResult {
   const CandidateEffect* effect(const std::string& name) const;
 };
 
+// Throws std::invalid_argument when `library` is empty.
 SetDiagnosisResult diagnose_set(Simulator& simulator, const MeasuredRates& data, const ModelPlan& scene,
                                 std::vector<CandidateEffect> library, const SetDiagnosisOptions& options,
                                 std::ostream& log);
