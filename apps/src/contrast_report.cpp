@@ -167,6 +167,30 @@ std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
   return s;
 }
 
+// What the verdicts rest on: each moved base assumption, per set with a model shown.
+std::string assumptions_markdown(const ContrastReport& r) {
+  bool any = false;
+  for (const auto& d : r.result.sets) any = any || !d.assumptions.empty();
+  if (!any)
+    return "\nBase assumptions not checked: the base model holds the scene's roller friction, damping, gravity and "
+           "grain size. To see how much each verdict leans on one, move it with --assumption section.key=value "
+           "(e.g. --assumption simulation.global_damping=0.1): the base and each set's shown model are run again "
+           "there.\n";
+  std::string md =
+      "\n## What the verdicts rest on\n\nEach base assumption moved in turn, the shown model (named, or the closest) "
+      "run again on the moved base at its confirmed size. Size needed: the effect size the measured contrast asks "
+      "for there, per the size it asks for on the base (1: the verdict does not lean on the assumption). A name "
+      "holds when the curve still agrees within 1.5x its floor.\n\n| set | model shown | assumption | size needed | "
+      "contrast NRMSE | before the peak / floor | name holds |\n|---|---|---|---|---|---|---|\n";
+  for (const auto& d : r.result.sets)
+    for (const auto& a : d.assumptions)
+      md += fmt::format("| {} | {} | {} | {:.2f} x | {:.2f} % (base: {:.2f} %) | {:.2f} % / {:.2f} % | {} |\n",
+                        r.sets.names[d.set], d.after_effect, a.assumption, a.size_ratio, 100 * a.after.nrmse,
+                        100 * d.after.nrmse, 100 * a.after.rising_nrmse, 100 * naming_floor(a.after),
+                        a.curve_agrees ? "yes" : "no");
+  return md;
+}
+
 }  // namespace
 
 std::string contrast_markdown(const ContrastReport& r) {
@@ -278,6 +302,7 @@ std::string contrast_markdown(const ContrastReport& r) {
                         f.chi_square_form, f.p_after, f.at_bound ? "yes" : "");
     }
   }
+  md += assumptions_markdown(r);
   md += fmt::format("\nLargest kinetic/elastic energy ratio before breakage (deformation, less the rigid-body motion): "
                     "{:.2g} over the base and the effects at their fitted sizes; {:.2g} over the effects' trials at their "
                     "library sizes (not judged: a probe, not a model of the data).\n",
@@ -322,6 +347,18 @@ io::Json pair_json(const SetDiagnosis& d) {
           {"at_bound", d.pair->at_bound},     {"named", names_a_pair(d)}};
 }
 
+io::Json assumptions_json(const SetDiagnosis& d) {
+  io::Json out = io::Json::array();
+  for (const auto& a : d.assumptions)
+    out.push_back({{"assumption", a.assumption},
+                   {"size_ratio", a.size_ratio},
+                   {"nrmse_effect", a.after.nrmse},
+                   {"rising_nrmse_effect", a.after.rising_nrmse},
+                   {"rising_nrmse_floor", naming_floor(a.after)},
+                   {"curve_agrees", a.curve_agrees}});
+  return out;
+}
+
 io::Json set_json(const ContrastReport& r, const SetDiagnosis& d) {
   const ContrastDecision& c = d.decision;
   const bool shown = !d.after_effect.empty();
@@ -341,7 +378,8 @@ io::Json set_json(const ContrastReport& r, const SetDiagnosis& d) {
           {"fits", fits_json(r, d)},
           {"pair", pair_json(d)},
           {"unidentifiable", c.unidentifiable},
-          {"rivals", c.rivals}};
+          {"rivals", c.rivals},
+          {"assumptions", assumptions_json(d)}};
 }
 
 }  // namespace

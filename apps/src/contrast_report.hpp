@@ -24,6 +24,7 @@ struct ContrastOptionsCli {
   ModelPlan model;
   SimulationOptions sim;
   std::vector<std::string> only;
+  std::vector<std::string> assumptions;  // --assumption section.key=value (diagnose-sets)
   measure::ContrastDiagnosisOptions diagnosis;  // base fit, confirmation, pairs, decision rules
 };
 

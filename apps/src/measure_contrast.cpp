@@ -41,8 +41,13 @@ void add_diagnose_sets_command(CLI::App& app, CommandContext& ctx) {
   cmd->add_option("--pair-iterations", o->diagnosis.pair_iterations,
                   "runs per pair: the first at the linear sizes, later ones a Gauss-Newton step each")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--assumption", o->assumptions,
+                  "a condition the base model assumes, moved to this value (section.key=value, repeatable): the base "
+                  "and each set's shown model are run again there, and the report says how much each verdict leans "
+                  "on it");
   cmd->add_option("--out", o->out, "folder for diagnose.md, diagnose.json and contrasts.png")->default_val("diagnose");
   cmd->callback([o, &ctx] {
+    o->diagnosis.assumptions = parse_overrides(o->assumptions);
     const ContrastSets sets = read_contrast_sets(o->sets, o->reference);
     const auto library = contrast_effects(*o);
     prepare_output_folder(o->out, "--out");  // after the cheap reads, before the simulations

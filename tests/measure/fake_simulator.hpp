@@ -10,7 +10,7 @@
 // no mirror image either way), c: fake.compression_ratio, and the library's
 // machine compliance through recorded_as_tested. fake.softening_twin acts as fake.softening (a
 // rival with the same signature); fake.toe (outside any library) adds slack before the rise.
-// Each packing seed scatters k and F_p by ~1 %, as a random packing does.
+// Each packing seed scatters k, F_p, n and d by ~1 %, as a random packing does.
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -69,7 +69,11 @@ inline Curve curve_of(const Parameters& p, std::uint64_t seed, double scatter, d
   const double k = 1e-3 * p.at("bond.youngs_modulus") * (1 + 0.8 * restraint) * std::exp(scatter * normal_draw(seed, 1));
   const double f_p = 2.5e-4 * p.at("bond.critical_stress") * (1 + 0.5 * restraint) *
                      (1 + 0.15 * (p.at("fake.compression_ratio") - 1)) * std::exp(scatter * normal_draw(seed, 2));
-  const double n = 0.08 + 0.1 * s, d = 0.15 + 0.4 * s, toe = p.at("fake.toe");
+  // The curve's form scatters too (a packing's weakest bonds are its own), so no component of a
+  // contrast is free of noise and its covariance is not singular.
+  const double n = (0.08 + 0.1 * s) * std::exp(0.25 * scatter * normal_draw(seed, 3));
+  const double d = (0.15 + 0.4 * s) * std::exp(0.25 * scatter * normal_draw(seed, 4));
+  const double toe = p.at("fake.toe");
   const double w_p = f_p * (1 + n) / k;
   Curve c;
   const double w_end = toe + w_p * (1.3 + d);

@@ -11,6 +11,7 @@
 #include "fake_simulator.hpp"
 #include "shard/measure/contrast_calibration.hpp"
 #include "shard/measure/contrast_diagnosis.hpp"
+#include "shard/measure/reference_state.hpp"
 
 namespace shard::measure {
 namespace {
@@ -34,21 +35,23 @@ struct Study {
   ContrastDiagnosisOptions options;
   std::ostringstream log;
 
-  Study() {
+  ModelPlan base;
+
+  // `lab`: the conditions of the lab's reference batch (and of the null batch made like it).
+  explicit Study(const std::map<std::string, double>& lab = {}) {
     options.params = {"bond.youngs_modulus", "bond.critical_stress"};
     // A lab's study holds several batches: their pooled scatter gives Hotelling's test its
     // degrees of freedom (two sets of four specimens leave no degree of freedom for 8 components: no power).
-    add("reference", measured({}, 1000));
-    add("null", measured({}, 2000));
+    add("reference", measured(lab, 1000));
+    add("null", measured(lab, 2000));
     sets.reference = 0;
+    base.scene = "fake.toml";
   }
   void add(const std::string& name, MeasurementSet set) {
     sets.names.push_back(name);
     sets.sets.push_back(std::move(set));
   }
   ContrastDiagnosis run(const std::vector<CandidateEffect>& effects = library()) {
-    ModelPlan base;
-    base.scene = "fake.toml";
     return diagnose_contrasts(sets, simulator, base, effects, options, log);
   }
 };
@@ -145,13 +148,28 @@ TEST_CASE("a size beyond the effect's range is held at the bound and flagged") {
 
 TEST_CASE("two effects at once are named as a pair") {
   Study s;
-  s.add("both", measured({{"fake.softening", 1.5}}, 7000, 5e-5));
+  s.add("both", measured({{"fake.softening", 1.5}}, 7000, 2e-5));
   const ContrastDiagnosis d = s.run();
   const SetDiagnosis& both = diagnosis_of(d, s, "both");
   REQUIRE(both.pair.has_value());
   CHECK(pair_is_named(*both.pair, both.seconds_tried));
   const std::set<std::string> named{both.pair->first, both.pair->second};
   CHECK(named == std::set<std::string>{"bond_softening", kMachineCompliance});
+}
+
+TEST_CASE("a pair whose second effect lies on the other side of the reference than its trial") {
+  // Softening with rollers gripping more than the reference's: the library's friction trial is
+  // the lubricated side, so the pair's second column must come from the mirror trial.
+  Study s;
+  s.add("both", measured({{"fake.softening", 1.0}, {"support.friction", 0.5}}, 7100));
+  const ContrastDiagnosis d = s.run();
+  const SetDiagnosis& both = diagnosis_of(d, s, "both");
+  REQUIRE(both.pair.has_value());
+  CHECK(pair_is_named(*both.pair, both.seconds_tried));
+  const std::set<std::string> named{both.pair->first, both.pair->second};
+  CHECK(named == std::set<std::string>{"bond_softening", "support_friction"});
+  const double friction = both.pair->first == "support_friction" ? both.pair_values[0] : both.pair_values[1];
+  CHECK(friction == doctest::Approx(0.5).epsilon(0.15));
 }
 
 TEST_CASE("calibrating the named effect cuts the contrast NRMSE") {
@@ -213,6 +231,86 @@ TEST_CASE("a name the curve does not bear out is withheld") {
   CHECK(sets[1].withheld == "bond_softening");
   CHECK(sets[1].decision.rivals.empty());
   CHECK(sets[2].decision.verdict == kUnexplainedDifference);  // 40 % of T^2 is not most of it
+}
+
+TEST_CASE("an effect moves the model from the reference's state, not from the library's neutral") {
+  // The lab's rollers grip at 0.6 and the scene says so; a batch tested on rollers of 0.3 has less
+  // friction than the reference, which a trial from the library's neutral 0.3 could not express.
+  Study s({{"support.friction", 0.6}});
+  s.base.overrides.push_back(SceneOverride::parse("support.friction=0.6"));
+  s.add("less friction", measured({{"support.friction", 0.3}}, 5000));
+  const ContrastDiagnosis d = s.run();
+  CHECK(d.effects[1].neutral == doctest::Approx(0.6));
+  CHECK(d.effects[1].plausible == doctest::Approx(0.4));  // the library's step of -0.2 kept
+  CHECK(diagnosis_of(d, s, "null").decision.verdict == kNoDifference);
+  const SetDiagnosis& slip = diagnosis_of(d, s, "less friction");
+  REQUIRE(slip.decision.verdict == "support_friction");
+  CHECK(value_of(slip, "support_friction") == doctest::Approx(0.3).epsilon(0.1));
+  CHECK(s.log.str().find("support_friction moves from the reference's support.friction = 0.6") != std::string::npos);
+}
+
+TEST_CASE("the state of an effect in a model: overrides, then the scene; the moved component of a vector") {
+  CandidateEffect gravity = effect("self_weight", "simulation.gravity", 0, -9.81, -1e3, 0);
+  gravity.value_format = "[0.0, 0.0, {}]";
+  ModelPlan m;
+  CHECK_FALSE(effect_state(m, gravity).has_value());  // set nowhere: the plugin's default, the neutral
+  m = with_effect(m, gravity, -4.9);
+  REQUIRE(effect_state(m, gravity).has_value());
+  CHECK(*effect_state(m, gravity) == doctest::Approx(-4.9));
+  const CandidateEffect compliance = effect(kMachineCompliance, kMachineCompliance, 0, 3e-5, 0, 1e-2);
+  m.machine_compliance = 2e-5;
+  CHECK(*effect_state(m, compliance) == doctest::Approx(2e-5));
+}
+
+TEST_CASE("bad input: clear errors before a single run") {
+  SUBCASE("an effect whose range excludes the reference's state") {
+    Study s({{"support.friction", 0.6}});
+    s.base.overrides.push_back(SceneOverride::parse("support.friction=0.6"));
+    auto effects = library();
+    effects[1].max = 0.5;  // only lubricated rollers: the reference's 0.6 is out of reach
+    effects[1].origin = "effects.toml:30:1";
+    CHECK_THROWS_WITH_AS(s.run(effects), doctest::Contains("effects.toml:30:1: effect 'support_friction'"),
+                         std::runtime_error);
+    CHECK(s.simulator.models_simulated() == 0);  // refused before the base fit
+    std::ostream quiet(nullptr);
+    CHECK_THROWS_WITH_AS(centred_on_reference(effects, s.base, quiet), doctest::Contains("widen the effect's min/max"),
+                         std::runtime_error);
+  }
+  SUBCASE("a set of one specimen") {
+    Study s;
+    s.sets.sets[1].specimens.resize(1);
+    CHECK_THROWS_WITH_AS(check_contrast_sets(s.sets), doctest::Contains("at least two specimens"), std::runtime_error);
+  }
+  SUBCASE("a set that shares no loading rate with the reference") {
+    Study s;
+    fake::Parameters p;
+    MeasurementSet fast;
+    fast.folder = "fast";
+    for (std::uint64_t k = 0; k < 4; ++k) fast.specimens.push_back(fake::specimen_of(p, 9000 + k, 0.02, 0.1));
+    s.add("fast", std::move(fast));
+    CHECK_THROWS_WITH_AS(check_contrast_sets(s.sets), doctest::Contains("no loading rate in common"),
+                         std::runtime_error);
+  }
+}
+
+TEST_CASE("what a verdict rests on: a base assumption moved, each shown model rerun there") {
+  // Grippier rollers than assumed stiffen the base (k x 1.24 at 0.6): a series compliance then
+  // takes a larger share of the recorded displacement, so the measured contrast asks for a smaller
+  // compliance (ln(1 + 0.5) / ln(1 + 0.62) = 0.84); the softening's form is independent of it.
+  Study s;
+  s.add("softening", measured({{"fake.softening", 1.5}}, 3000));
+  s.add("compliance", measured({}, 4000, 5e-5));
+  s.options.assumptions = parse_overrides({"support.friction=0.6"});
+  const ContrastDiagnosis d = s.run();
+  const SetDiagnosis& soft = diagnosis_of(d, s, "softening");
+  const SetDiagnosis& comp = diagnosis_of(d, s, "compliance");
+  REQUIRE(soft.assumptions.size() == 1);
+  REQUIRE(comp.assumptions.size() == 1);
+  CHECK(soft.assumptions[0].assumption == "support.friction=0.6");
+  CHECK(soft.assumptions[0].size_ratio == doctest::Approx(1).epsilon(0.05));
+  CHECK(soft.assumptions[0].curve_agrees);
+  CHECK(comp.assumptions[0].size_ratio == doctest::Approx(0.84).epsilon(0.06));
+  CHECK(diagnosis_of(d, s, "null").assumptions.empty());  // nothing shown, nothing to rerun
 }
 
 }  // namespace shard::measure

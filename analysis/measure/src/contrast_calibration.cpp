@@ -8,6 +8,8 @@
 #include <limits>
 #include <ostream>
 
+#include "shard/measure/reference_state.hpp"
+
 namespace shard::measure {
 namespace {
 
@@ -82,9 +84,10 @@ ContrastCalibration calibrate_contrast(const ContrastSets& sets, std::size_t tar
                                        const ModelPlan& base, const std::vector<CandidateEffect>& chosen,
                                        const ContrastCalibrationOptions& options, std::ostream& log) {
   ContrastCalibration out;
+  check_effects_reach(chosen, base);
   ContrastStudy study(sets, simulator, base_at_grain_size(sets, simulator, base, options.lab_grain_size, log));
   out.calibration = study.calibrate_base(options.params, options.params.empty() ? 0 : options.base_iterations, log);
-  out.effects = scaled_to_base_run(chosen, study, out.scaled_sizes, log);
+  out.effects = centred_on_reference(scaled_to_base_run(chosen, study, out.scaled_sizes, log), study.base(), log);
   const auto& effects = out.effects;
   const std::size_t n = effects.size();
   std::vector<ModelPlan> trial_models{study.base()};

@@ -26,6 +26,22 @@ EffectSignature in_units(const CandidateEffect& e, std::vector<double> signature
   return {e.name, e.value_at(unit) - e.neutral, std::move(signature), lo, hi, true};
 }
 
+// A second effect's columns: its trial per trial size, and for an effect that moves both ways
+// from the reference its mirror trial as well, each over its own side of neutral (the response
+// is seldom symmetric); the pair's fit takes the side that leaves the smaller chi^2.
+std::vector<EffectSignature> second_columns(const ContrastStudy& study, const SetDiagnosis& d, const CandidateEffect& e,
+                                            const std::vector<ContrastStudy::Simulated>& trials, std::size_t plus,
+                                            std::size_t mirror) {
+  const ContrastStudy::Simulated& base = trials.front();
+  EffectSignature up = in_units(e, study.model_contrast(d.contrast, trials[plus], base), 1.0, true);
+  if (mirror == 0) return {up};
+  EffectSignature down = up;
+  down.signature = study.model_contrast(d.contrast, trials[mirror], base);
+  for (double& x : down.signature) x = -x;  // per step towards plausible, read on the other side
+  up.scale_min = 0, down.scale_max = 0;
+  return {up, down};
+}
+
 struct PairTrial {
   std::size_t set = 0, second = 0;
   // The two columns of the linear fit: the first's confirmed contrast per confirmed size, the
@@ -46,7 +62,8 @@ ModelPlan pair_model(const ModelPlan& base, const std::vector<CandidateEffect>& 
 }  // namespace
 
 void confirm_contrast_pairs(ContrastStudy& study, const std::vector<CandidateEffect>& effects,
-                            const std::vector<ContrastStudy::Simulated>& trials, std::vector<SetDiagnosis>& sets,
+                            const std::vector<ContrastStudy::Simulated>& trials, const std::vector<std::size_t>& mirror,
+                            std::vector<SetDiagnosis>& sets,
                             int count, int iterations, ContrastOptions decide, std::ostream& log) {
   const ContrastStudy::Simulated& base = trials.front();
   const double n = static_cast<double>(effects.size());
@@ -67,10 +84,13 @@ void confirm_contrast_pairs(ContrastStudy& study, const std::vector<CandidateEff
     for (std::size_t e = 0; e < effects.size(); ++e) {
       if (e == f || !effects[e].identifiable_at(study.rate_count(d.contrast))) continue;
       ++d.seconds_tried;
-      const EffectSignature second =
-          in_units(effects[e], study.model_contrast(d.contrast, trials[1 + e], base), 1.0, true);
-      const ContrastPairFit fit = fit_contrast_pair(d.contrast.difference, d.contrast.weight, first, second,
-                                                    closest.chi_square, study.dof(), decide);
+      EffectSignature second;
+      ContrastPairFit fit;
+      for (const EffectSignature& column : second_columns(study, d, effects[e], trials, 1 + e, mirror[e])) {
+        const ContrastPairFit f2 = fit_contrast_pair(d.contrast.difference, d.contrast.weight, first, column,
+                                                     closest.chi_square, study.dof(), decide);
+        if (second.name.empty() || f2.chi_square < fit.chi_square) second = column, fit = f2;
+      }
       if (fit.scale_second == 0 || !(fit.drop > 0)) continue;
       mine.push_back({s, e, first, second, fit.scale_first * d.closest->scale, fit.scale_second, fit, std::nullopt});
     }
@@ -180,6 +200,7 @@ void confirm_contrast_pairs(ContrastStudy& study, const std::vector<CandidateEff
     d.pair_values[1] = second.value_at(best->scale_second);
     if (!pair_is_named(best->fit, d.seconds_tried, decide)) continue;
     d.decision.verdict = first.name + " + " + second.name;
+    d.withheld.clear();  // the single name the curve withheld is now half of the pair's
     d.decision.rivals.clear();
     for (const auto& p : pairs)
       if (p.set == s && p.second != best->second && pair_is_named(p.fit, d.seconds_tried, decide) &&

@@ -75,6 +75,32 @@ void check_test_conditions(const ContrastSets& s) {
   }
 }
 
+std::string rates_text(const std::vector<double>& rates) {
+  std::string out;
+  for (double r : rates) out += fmt::format("{}{:g} mm/s", out.empty() ? "" : ", ", 1e3 * r);
+  return out;
+}
+
+// A set with no loading rate in common with the reference differs from it by its batch and by its
+// rate at once, and only the model's rate response (which holds no rate effect) could part them:
+// a batch difference would be named a rate effect, or the reverse.
+void check_shared_rates(const ContrastSets& s) {
+  if (!s.reference) return;
+  const std::vector<double> ref = s.sets[*s.reference].loading_rates();
+  for (std::size_t k = 0; k < s.sets.size(); ++k) {
+    const std::vector<double> rates = s.sets[k].loading_rates();
+    const bool shared = std::any_of(rates.begin(), rates.end(), [&](double r) {
+      return std::any_of(ref.begin(), ref.end(), [&](double q) { return same_rate(r, q); });
+    });
+    if (!shared)
+      throw std::runtime_error(fmt::format(
+          "{}/specimens.csv: tested at {} only, the reference {} at {}: no loading rate in common, so this set's "
+          "difference from the reference mixes the batch with the loading rate. Fix: test some of its specimens at "
+          "the reference's rate (or the reference at this set's), or diagnose it on its own (shard diagnose SET)",
+          s.sets[k].folder.string(), rates_text(rates), s.names[*s.reference], rates_text(ref)));
+  }
+}
+
 // Mean and sample variance over the seeds of a - b (paired on the seed: common random numbers).
 void paired(const std::vector<std::vector<double>>& a, const std::vector<std::vector<double>>& b, std::vector<double>& mean,
             std::vector<double>& var_of_mean) {
@@ -126,6 +152,21 @@ void summarise(ContrastStudy::CurveContrast& c) {
 
 }  // namespace
 
+void check_contrast_sets(const ContrastSets& s) {
+  for (std::size_t k = 0; k < s.sets.size(); ++k) {
+    const RateGroups g = rate_groups(s.sets[k], 0);
+    for (std::size_t r = 0; r < g.rates.size(); ++r)
+      if (g.specimens[r].size() < 2)
+        throw std::runtime_error(fmt::format(
+            "{}/specimens.csv: {} specimen at {:g} m/s; a contrast needs at least two specimens per set and rate (their scatter "
+            "is the noise a difference is judged against). Fix: add replicates, or leave this set out",
+            s.sets[k].folder.string(), g.specimens[r].size(), g.rates[r]));
+  }
+  check_geometry(s);
+  check_test_conditions(s);
+  check_shared_rates(s);
+}
+
 ContrastSets read_contrast_sets(const std::vector<fs::path>& folders, const std::string& reference) {
   if (folders.size() < 2)
     throw std::runtime_error(fmt::format("a contrast needs at least two measurement sets, got {}: give the reference "
@@ -154,17 +195,7 @@ ContrastSets read_contrast_sets(const std::vector<fs::path>& folders, const std:
                                            reference, names));
     }
   }
-  for (std::size_t k = 0; k < s.sets.size(); ++k) {
-    const RateGroups g = rate_groups(s.sets[k], 0);
-    for (std::size_t r = 0; r < g.rates.size(); ++r)
-      if (g.specimens[r].size() < 2)
-        throw std::runtime_error(fmt::format(
-            "{}: {} specimen at {:g} m/s; a contrast needs at least two specimens per set and rate (their scatter "
-            "is the noise a difference is judged against). Fix: add replicates, or leave this set out",
-            s.sets[k].folder.string(), g.specimens[r].size(), g.rates[r]));
-  }
-  check_geometry(s);
-  check_test_conditions(s);
+  check_contrast_sets(s);
   return s;
 }
 

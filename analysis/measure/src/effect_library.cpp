@@ -122,6 +122,7 @@ std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& fi
     const auto* t = node.as_table();
     if (!t) throw std::runtime_error(fmt::format("{}: [[effect]] must be a table", where(file, node)));
     CandidateEffect e;
+    e.origin = where(file, node);
     bool has_neutral = false;
     for (const auto& [key, value] : *t) {
       const std::string k(key.str());

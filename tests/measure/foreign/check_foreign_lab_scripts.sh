@@ -5,7 +5,9 @@
 #     H = 1.15e-4 m/N^(2/3), preload 0.5 N: 2 mm + 3.3757 mm - 0.0990 mm = 5.376 mm (1 um steps).
 #  2. foreign_confusion.py counts a name as wrong only when it is not in the set's truth: a pair
 #     with one true and one false name is one wrong name; "unexplained difference" on an outside
-#     effect is none.
+#     effect is none. Its targets: the outside set never named (met), the pair given a wrong name
+#     (not met), a single effect named in 1 of the 1 draws with p < 1e-3 (met), a null set named
+#     (not met).
 #   check_foreign_lab_scripts.sh WORK
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -23,18 +25,27 @@ first=$(sed -n 2p "$work/set/curves/a.csv" | cut -d, -f2) last=$(sed -n 3p "$wor
 [[ $last == 0.005376 ]] || fail "at 58 N the frame gave $last m, expected 0.005376 m"
 
 draw=$work/draw
-for s in reference outside pair; do mkdir -p "$draw/sets/$s"; done
+for s in reference outside pair softening null; do mkdir -p "$draw/sets/$s"; done
 printf '[test]\nnotes = "truth: reference"\n' > "$draw/sets/reference/metadata.toml"
 printf '[test]\nnotes = "truth: outside"\n' > "$draw/sets/outside/metadata.toml"
 printf '[test]\nnotes = "truth: machine_compliance,bond_softening"\n' > "$draw/sets/pair/metadata.toml"
+printf '[test]\nnotes = "truth: bond_softening"\n' > "$draw/sets/softening/metadata.toml"
+printf '[test]\nnotes = "truth: none"\n' > "$draw/sets/null/metadata.toml"
 mkdir -p "$draw/diag"
 cat > "$draw/diag/diagnose.json" <<'JSON'
 {"reference": "reference", "sets": [
- {"name": "outside", "verdict": "unexplained difference"},
- {"name": "pair", "verdict": "machine_compliance + support_friction"}]}
+ {"name": "outside", "verdict": "unexplained difference", "p_value": 1e-9},
+ {"name": "pair", "verdict": "machine_compliance + support_friction", "p_value": 1e-12},
+ {"name": "softening", "verdict": "bond_softening", "p_value": 2e-4},
+ {"name": "null", "verdict": "weibull_strength", "p_value": 0.02}]}
 JSON
 out=$(python3 "$here/foreign_confusion.py" "$draw")
 echo "$out"
-grep -q "wrong names: 1$" <<<"$out" || fail "expected one wrong name"
-grep -q "set pair named support_friction" <<<"$out" || fail "the wrong name is support_friction on pair"
+grep -q "wrong names: 2$" <<<"$out" || fail "expected two wrong names"
+grep -q "set pair named support_friction" <<<"$out" || fail "a wrong name is support_friction on pair"
+grep -q "set null named weibull_strength" <<<"$out" || fail "a wrong name is weibull_strength on null"
+grep -q "| outside | never named: 1 of 1 | yes |" <<<"$out" || fail "the outside set's target is met"
+grep -q "| pair | both named or unexplained: 0 of 1 | no |" <<<"$out" || fail "the pair's target is not met"
+grep -q "| softening | named in 1 of 1 draws with p < 1e-3 | yes |" <<<"$out" || fail "softening's target is met"
+grep -q "| null | no difference in every draw: 0 of 1 | no |" <<<"$out" || fail "the null set's target is not met"
 exit $(( failures > 0 ))

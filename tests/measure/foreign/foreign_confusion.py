@@ -8,7 +8,10 @@
 Prints one row per set: its truth and how often each verdict came over the draws, then the wrong
 names: a named effect that is not in the set's truth ("no difference" and "unexplained
 difference" name nothing, so they are never wrong; every name given to a set whose truth is none
-or outside the library is wrong). Exits 2 on a folder without its sets or its diagnosis.
+or outside the library is wrong), then each set against its target: a library effect whose
+contrast is clear (p < 1e-3) named in at least 3 of 4 such draws, a set with nothing hidden "no
+difference" in every draw, an effect outside the library never named, two effects at once both
+named or unexplained. Exits 2 on a folder without its sets or its diagnosis.
 """
 import collections
 import json
@@ -43,17 +46,38 @@ def read_draw(folder):
             report = json.load(f)
     except (OSError, ValueError) as e:
         sys.exit(f"{path}: {e}; run study_foreign_lab.sh on this draw")
-    return [(s["name"], truth_of(os.path.join(folder, "sets", s["name"])), s["verdict"]) for s in report["sets"]]
+    return [(s["name"], truth_of(os.path.join(folder, "sets", s["name"])), s["verdict"], s["p_value"])
+            for s in report["sets"]]
+
+
+def target(truth, verdicts):
+    """(what the set must show, met?) over its verdicts [(verdict, p), ...]."""
+    effects = truth.split(",")
+    if truth == "none":
+        met = sum(v == "no difference" for v, _ in verdicts)
+        return f"no difference in every draw: {met} of {len(verdicts)}", met == len(verdicts)
+    if truth == "outside":
+        met = sum(not named_effects(v) for v, _ in verdicts)
+        return f"never named: {met} of {len(verdicts)}", met == len(verdicts)
+    clear = [v for v, p in verdicts if p < 1e-3]
+    if len(effects) > 1:
+        met = sum(sorted(named_effects(v)) == sorted(effects) or v == "unexplained difference" for v, _ in verdicts)
+        return f"both named or unexplained: {met} of {len(verdicts)}", met == len(verdicts)
+    named = sum(named_effects(v) == effects for v in clear)
+    need = -(-3 * len(clear) // 4)  # 3 of 4, rounded up
+    return f"named in {named} of {len(clear)} draws with p < 1e-3", named >= need
 
 
 def main():
     if len(sys.argv) < 2:
         sys.exit(__doc__)
     rows = collections.OrderedDict()
+    per_set = collections.OrderedDict()
     wrong, verdicts = [], 0
     for folder in sys.argv[1:]:
-        for name, truth, verdict in read_draw(folder):
+        for name, truth, verdict, p in read_draw(folder):
             rows.setdefault((name, truth), collections.Counter())[verdict] += 1
+            per_set.setdefault((name, truth), []).append((verdict, p))
             verdicts += 1
             allowed = set(truth.split(","))
             wrong += [(folder, name, effect) for effect in named_effects(verdict) if effect not in allowed]
@@ -66,6 +90,10 @@ def main():
     print(f"\nverdicts: {verdicts}; naming only true effects: {right}; wrong names: {len(wrong)}")
     for folder, name, effect in wrong:
         print(f"  wrong: {folder}: set {name} named {effect}")
+    print("\n| set | target | met |\n|---|---|---|")
+    for (name, truth), vs in per_set.items():
+        text, met = target(truth, vs)
+        print(f"| {name} | {text} | {'yes' if met else 'no'} |")
 
 
 if __name__ == "__main__":

@@ -36,6 +36,17 @@ std::vector<CandidateEffect> scaled_to_base_run(std::vector<CandidateEffect> eff
 // plausible value misjudges by more is a different effect.
 inline constexpr double kFarthestTrialSteps = 8.0;
 
+// One base assumption moved (roller friction, damping, self-weight, ...): the shown model rerun
+// on the moved base, its simulated contrast against the measured one.
+struct AssumptionSensitivity {
+  std::string assumption;  // "section.key=value", the moved condition
+  // The effect size the measured contrast asks for on the moved base, per the size it asks for on
+  // the base (linear projection on the model's contrast): 1 when the verdict does not lean on it.
+  double size_ratio = 1;
+  ContrastStudy::CurveContrast after;  // the shown model's contrast curve on the moved base
+  bool curve_agrees = false;           // within curve_floor_factor x naming_floor, as a name needs
+};
+
 struct SetDiagnosis {
   std::size_t set = 0;
   ContrastStudy::Contrast contrast;
@@ -61,6 +72,9 @@ struct SetDiagnosis {
   // pair's), and the name the statistics gave but the curve did not bear out (empty otherwise).
   double share = 0;
   std::string withheld;
+  // How the shown model (named, or the closest) fares when a condition the base assumes is moved
+  // (ContrastDiagnosisOptions::assumptions), one per assumption.
+  std::vector<AssumptionSensitivity> assumptions;
 };
 
 // The base model, at the reference's reported grain size when `lab_grain_size` (throws, naming the
@@ -100,11 +114,20 @@ void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>&
 // (two-column fit on the simulated contrasts), the best `count` pairs simulated with both effects
 // on, re-sized once by a Gauss-Newton step when `iterations` > 1; "A + B" when the second's drop
 // is significant over the seconds tried and the remainder is noise.
-// `trials`: the library's runs at their plausible sizes (index e + 1; 0 is the base).
+// `trials`: the library's runs at their plausible sizes (index e + 1; 0 is the base), and at
+// index mirror[e] (0: none) effect e's run one trial step the other way, for effects that move
+// both ways from the reference.
 void confirm_contrast_pairs(ContrastStudy& study,
                             const std::vector<CandidateEffect>& effects,
-                            const std::vector<ContrastStudy::Simulated>& trials, std::vector<SetDiagnosis>& sets,
+                            const std::vector<ContrastStudy::Simulated>& trials, const std::vector<std::size_t>& mirror,
+                            std::vector<SetDiagnosis>& sets,
                             int count, int iterations, ContrastOptions decide, std::ostream& log);
+
+// Each assumption moved on the fitted base: every set's shown model (the named effect or pair, or
+// the closest) rerun there at its confirmed size, and its contrast held against the measured one.
+void assess_assumptions(ContrastStudy& study, const std::vector<CandidateEffect>& effects,
+                        std::vector<SetDiagnosis>& sets, const SceneOverrides& assumptions,
+                        const ContrastOptions& decide, std::ostream& log);
 
 // What the diagnosis is asked to do beyond the decision rules (`decide`).
 struct ContrastDiagnosisOptions {
@@ -116,6 +139,9 @@ struct ContrastDiagnosisOptions {
   int pair_iterations = 3;
   double finer = 0;                 // > 0: the base also fitted at diameters this factor smaller
   bool lab_grain_size = false;      // the model at the reference's [test] grain_size
+  // Conditions the base assumes, each moved in turn to report how much every verdict leans on it
+  // (one base run and one run of each set's shown model per assumption).
+  SceneOverrides assumptions;
   ContrastOptions decide;
 };
 

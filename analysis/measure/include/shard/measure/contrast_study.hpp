@@ -24,9 +24,12 @@ struct ContrastSets {
 };
 
 // Reads the folders; throws (naming them) when a set has fewer than two specimens at a rate, when
-// the sets' specimen geometry differs by more than 2 %, when `reference` is not among them, or
+// the sets' specimen geometry or test conditions differ, when `reference` is not among them, or
 // when fewer than two sets are given.
 ContrastSets read_contrast_sets(const std::vector<std::filesystem::path>& folders, const std::string& reference);
+// What read_contrast_sets checks once the sets are read, and that a set shares at least one
+// loading rate with the reference (otherwise its batch and its rate are one difference).
+void check_contrast_sets(const ContrastSets& sets);
 
 // One (set, loading rate) group: its specimens' components and the reference it is held against.
 struct ContrastGroup {

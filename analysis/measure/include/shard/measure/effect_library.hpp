@@ -60,6 +60,7 @@ struct CandidateEffect {
   std::string plausible_from;  // "" or a scale of the measurements (above)
   double plausible_factor = 0;
   int rates_needed = 1;  // loading rates the data need before the effect can be named (above)
+  std::string origin;    // "file:line:column" of its [[effect]] table, for messages
 
   // Can the effect be told apart on data tested at `rates` loading rates?
   bool identifiable_at(std::size_t rates) const { return rates >= static_cast<std::size_t>(rates_needed); }
