@@ -56,6 +56,13 @@ void add_simulation_options(CLI::App* cmd, ModelPlan& model, SimulationOptions& 
       ->check(CLI::PositiveNumber);
 }
 
+CompareOptions compare_options(const SimulationOptions& options) {
+  CompareOptions c;
+  c.judge_fracture = options.judge_fracture;
+  c.score_reference = options.score_reference;
+  return c;
+}
+
 EnsembleSimulator::EnsembleSimulator(const SimulationOptions& options, const std::vector<fs::path>& plugin_dirs)
     : options_(options), plugin_dirs_(plugin_dirs), pool_(options.work_dir, plugin_dirs, options.workers) {
   if (options_.isolate) pool_.isolate_runs(shard_run_worker());
@@ -167,62 +174,9 @@ ParameterRange EnsembleSimulator::parameter_range(const std::string& key) const 
 
 RunHealth EnsembleSimulator::health() const { return {max_ke_, max_probe_ke_, dynamic_warning()}; }
 
-ResidualVector RateComparison::residual_vector() const {
-  ResidualVector v;
-  for (std::size_t k = 0; k < at.size(); ++k) {
-    const ResidualVector r = at[k].residual_vector();
-    for (std::size_t i = 0; i < r.values.size(); ++i) {
-      v.names.push_back(at.size() > 1 ? fmt::format("{}@{:g}", r.names[i], rates[k]) : r.names[i]);
-      v.values.push_back(r.values[i]);
-    }
-  }
-  return v;
-}
-
-double RateComparison::nrmse() const {
-  double s = 0;
-  for (const auto& c : at) s += c.nrmse * c.nrmse;
-  return at.empty() ? 0 : std::sqrt(s / static_cast<double>(at.size()));
-}
-
-double RateComparison::noise_nrmse() const {
-  double s = 0;
-  for (const auto& c : at) s += c.noise_nrmse() * c.noise_nrmse();
-  return at.empty() ? std::numeric_limits<double>::quiet_NaN() : std::sqrt(s / static_cast<double>(at.size()));
-}
-
-double RateComparison::chi_square() const {
-  double x = 0;
-  for (double r : residual_vector().values) x += r * r;
-  return x;
-}
-
 std::vector<RateComparison> simulate_and_compare(EnsembleSimulator& simulator, const RateGroups& groups, const Metadata& metadata,
                                                  const std::vector<ModelPlan>& models, std::ostream& log) {
-  // With one rate the model runs at the scene's own speed unless the data are at another one.
-  if (!models.empty()) {
-    std::vector<Specimen> every_rate;
-    for (const auto& at : groups.specimens) every_rate.insert(every_rate.end(), at.begin(), at.end());
-    simulator.check_inputs(models.front(), every_rate, metadata);
-  }
-  std::vector<ModelPlan> runs;
-  for (const auto& m : models)
-    for (double r : groups.rates) {
-      ModelPlan at = m;
-      at.loading_rate = r;
-      runs.push_back(std::move(at));
-    }
-  const auto sims = simulator.simulate(runs, log);
-  measure::CompareOptions compare_options;
-  compare_options.judge_fracture = simulator.options().judge_fracture;
-  compare_options.score_reference = simulator.options().score_reference;
-  std::vector<RateComparison> out(models.size());
-  for (std::size_t m = 0; m < models.size(); ++m) {
-    out[m].rates = groups.rates;
-    for (std::size_t k = 0; k < groups.rates.size(); ++k)
-      out[m].at.push_back(compare(groups.specimens[k], metadata, sims[m * groups.rates.size() + k], compare_options));
-  }
-  return out;
+  return measure::simulate_and_compare(simulator, {groups, metadata, compare_options(simulator.options())}, models, log);
 }
 
 HistoryEntry history_entry(const std::string& command, const std::string& label, const Comparison& c) {
@@ -328,52 +282,6 @@ std::vector<HistoryEntry> read_history(const fs::path& work_dir) {
     out.push_back(history_row(io::parse_json(line, file.string(), n), origin));
   }
   return out;
-}
-
-}  // namespace shard
-
-namespace shard {
-
-double chi_square(const Comparison& c) {
-  double x = 0;
-  for (double r : c.residual_vector().values) x += r * r;
-  return x;
-}
-
-Linearisation linearise(EnsembleSimulator& simulator, const RateGroups& measured, const Metadata& metadata,
-                        const ModelPlan& base, const std::vector<std::string>& keys, const std::vector<double>& values,
-                        const std::vector<CandidateEffect>& effects, std::ostream& log) {
-  constexpr double kStep = 0.05;  // relative step of the base parameters
-  std::vector<ModelPlan> models{with_parameters(base, keys, values)};
-  for (std::size_t i = 0; i < keys.size(); ++i) {
-    std::vector<double> stepped = values;
-    stepped[i] *= 1 + kStep;
-    models.push_back(with_parameters(base, keys, stepped));
-  }
-  for (const auto& e : effects) {
-    models.push_back(with_effect(models.front(), e, e.plausible));
-    models.back().probe = true;  // a signature's trial, not a model of the data
-  }
-  const auto comparisons = simulate_and_compare(simulator, measured, metadata, models, log);
-  Linearisation l;
-  l.base_comparison = comparisons[0];
-  l.base = l.base_comparison.residual_vector();
-  auto difference = [&](std::size_t m, const std::string& what, double scale) {
-    const ResidualVector r = comparisons[m].residual_vector();
-    if (r.names != l.base.names)
-      throw std::runtime_error(fmt::format("{} changed which residual components exist (a regime or feature vanished); "
-                                           "use a smaller size",
-                                           what));
-    std::vector<double> d(r.values.size());
-    for (std::size_t i = 0; i < d.size(); ++i) d[i] = (r.values[i] - l.base.values[i]) / scale;
-    return d;
-  };
-  for (std::size_t i = 0; i < keys.size(); ++i) l.jacobian.push_back(difference(1 + i, keys[i], kStep));
-  for (std::size_t e = 0; e < effects.size(); ++e)
-    l.signatures.push_back({effects[e].name, effects[e].plausible - effects[e].neutral,
-                            difference(1 + keys.size() + e, effects[e].name, 1.0), effects[e].scale_min(),
-                            effects[e].scale_max()});
-  return l;
 }
 
 }  // namespace shard

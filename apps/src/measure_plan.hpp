@@ -15,6 +15,7 @@
 #include "shard/measure/comparison.hpp"
 #include "shard/measure/measurements.hpp"
 #include "shard/measure/model_plan.hpp"
+#include "shard/measure/rate_comparison.hpp"
 #include "shard/measure/rate_groups.hpp"
 #include "shard/measure/simulator.hpp"
 #include "shard/scene_override.hpp"
@@ -51,6 +52,8 @@ struct SimulationOptions {
 };
 
 void add_simulation_options(CLI::App* cmd, ModelPlan& model, SimulationOptions& options);
+// How the command's options score each residual component (--judge-fracture, --score-reference).
+measure::CompareOptions compare_options(const SimulationOptions& options);
 
 // The DEM ensemble as the measurement science's simulator: every model's packing-seed replicates
 // run through the RunPool (cached, on threads, worker processes or MPI ranks), at the data's rate
@@ -107,19 +110,10 @@ using measure::RateGroups;
 using measure::rate_groups;
 using measure::specimens_at_rate;
 
-// One model against every rate group: the joint residual vector is the per-rate vectors one
-// after the other (components named "<name>@<rate>" when there are several rates); the NRMSE
-// is the RMS of the per-rate NRMSEs.
-struct RateComparison {
-  std::vector<double> rates;
-  std::vector<measure::Comparison> at;
-  measure::ResidualVector residual_vector() const;
-  double nrmse() const;
-  double noise_nrmse() const;  // RMS of the per-rate Comparison::noise_nrmse
-  double chi_square() const;
-};
+using measure::RateComparison;
 
-// Simulates every model at every rate of `groups` (one parallel batch) and compares.
+// Simulates every model at every rate of `groups` (one parallel batch) and compares, scored as the
+// command's options ask (measure::simulate_and_compare).
 std::vector<RateComparison> simulate_and_compare(EnsembleSimulator& simulator, const RateGroups& groups,
                                                  const measure::Metadata& metadata, const std::vector<ModelPlan>& models,
                                                  std::ostream& log);
@@ -139,36 +133,5 @@ HistoryEntry history_entry(const std::string& command, const std::string& label,
 HistoryEntry history_entry(const std::string& command, const std::string& label, const RateComparison& c);
 void append_history(const std::filesystem::path& work_dir, const HistoryEntry& entry);
 std::vector<HistoryEntry> read_history(const std::filesystem::path& work_dir);
-
-}  // namespace shard
-
-#include "shard/measure/diagnosis.hpp"
-#include "shard/measure/effect_library.hpp"
-
-namespace shard {
-
-// The model linearised around `base` (section.key parameters `keys` at `values`): the residual,
-// the Jacobian per relative step (+5 % runs) and each effect's signature at its plausible size,
-// all on the same packing seeds, in one parallel batch.
-struct Linearisation {
-  measure::ResidualVector base;
-  RateComparison base_comparison;
-  std::vector<std::vector<double>> jacobian;
-  std::vector<measure::EffectSignature> signatures;
-};
-Linearisation linearise(EnsembleSimulator& simulator, const RateGroups& measured,
-                        const measure::Metadata& metadata, const ModelPlan& base, const std::vector<std::string>& keys,
-                        const std::vector<double>& values, const std::vector<measure::CandidateEffect>& effects,
-                        std::ostream& log);
-
-// Chi-square of a comparison's residual vector.
-double chi_square(const measure::Comparison& c);
-
-// Where a linearised refit may take the model: base parameters within 0.55..1.9 x their start,
-// an effect within 0.05..3.9 plausible sizes above neutral (inside calibrate-effect's BOBYQA
-// bounds 0.5..2 and 0..4). A long linear step can reach a stiffness whose run is unstable; the
-// diagnosis's refit and calibrate-effect's start use the same clamps so that the start is cached.
-inline double clamp_base_factor(double factor) { return std::clamp(factor, 0.55, 1.9); }
-inline double clamp_effect_scale(double scale) { return std::clamp(scale, 0.05, 3.9); }
 
 }  // namespace shard

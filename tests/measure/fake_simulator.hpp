@@ -100,6 +100,30 @@ inline Specimen specimen_of(const Parameters& p, std::uint64_t seed, double scat
   return s;
 }
 
+// A library entry for one of the fake's parameters (or kMachineCompliance).
+inline CandidateEffect effect(const std::string& name, const std::string& parameter, double neutral, double plausible,
+                              double min, double max) {
+  CandidateEffect e;
+  e.name = name, e.parameter = parameter, e.neutral = neutral, e.plausible = plausible, e.min = min, e.max = max;
+  return e;
+}
+
+// A measured set: four specimens of the truth (parameters by key; the defaults elsewhere) at
+// 0.02 m/s, each with its own 2 % scatter (a lab's batch), recorded through the load frame's
+// `compliance`. Seeds from `first_seed` on, apart from the model's packing seeds 1, 2, 3.
+inline MeasurementSet measured_set(const std::map<std::string, double>& truth, std::uint64_t first_seed,
+                                   double compliance = 0) {
+  Parameters p;
+  for (const auto& [k, v] : truth) p.values.at(k) = v;
+  MeasurementSet set;
+  set.folder = "set" + std::to_string(first_seed);
+  ModelPlan as_tested;
+  as_tested.machine_compliance = compliance;
+  for (std::uint64_t k = 0; k < 4; ++k)
+    set.specimens.push_back(recorded_as_tested(specimen_of(p, first_seed + k, 0.02, 0.02), as_tested, {}, "lab"));
+  return set;
+}
+
 class FakeSimulator final : public Simulator {
  public:
   explicit FakeSimulator(int seeds = 3) : seeds_(seeds) {}

@@ -16,12 +16,7 @@
 namespace shard::measure {
 namespace {
 
-CandidateEffect effect(const std::string& name, const std::string& parameter, double neutral, double plausible,
-                       double min, double max) {
-  CandidateEffect e;
-  e.name = name, e.parameter = parameter, e.neutral = neutral, e.plausible = plausible, e.min = min, e.max = max;
-  return e;
-}
+using fake::effect;
 
 std::vector<CandidateEffect> library() {
   return {effect("bond_softening", "fake.softening", 0, 1, 0, 10),
@@ -30,17 +25,8 @@ std::vector<CandidateEffect> library() {
           effect(kMachineCompliance, kMachineCompliance, 0, 3e-5, 0, 1e-2)};
 }
 
-// A measured set: four specimens of the truth, each with its own 2 % scatter (a lab's batch).
 MeasurementSet measured(const std::map<std::string, double>& truth, std::uint64_t first_seed, double compliance = 0) {
-  fake::Parameters p;
-  for (const auto& [k, v] : truth) p.values.at(k) = v;
-  MeasurementSet set;
-  set.folder = "set" + std::to_string(first_seed);
-  ModelPlan as_tested;
-  as_tested.machine_compliance = compliance;
-  for (std::uint64_t k = 0; k < 4; ++k)
-    set.specimens.push_back(recorded_as_tested(fake::specimen_of(p, first_seed + k, 0.02, 0.02), as_tested, {}, "lab"));
-  return set;
+  return fake::measured_set(truth, first_seed, compliance);
 }
 
 struct Study {

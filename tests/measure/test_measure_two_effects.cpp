@@ -14,7 +14,7 @@
 #include <filesystem>
 #include <string>
 
-#include "../../apps/src/diagnosis_step.hpp"
+#include "shard/measure/diagnosis_step.hpp"
 #include "shard_cli.hpp"
 
 namespace fs = std::filesystem;
@@ -55,7 +55,7 @@ TEST_CASE("a secant iteration takes a refit on where an effect's bent response s
   const LinearRefit linear = linear_refit(r0.values, {j}, {sig});
   const double a1 = linear.effect_scale.front(), d1 = linear.base_step.front();
   CHECK(a1 < 2.0);  // short of 2.4
-  const auto secant = shard::secant_refit(r0, {j}, &sig, {d1, a1}, model(d1, a1));
+  const auto secant = shard::measure::secant_refit(r0, {j}, &sig, {d1, a1}, model(d1, a1));
   REQUIRE(secant.has_value());
   const double a2 = secant->effect_scale.front(), d2 = secant->base_step.front();
   CHECK(std::abs(a2 - 2.4) < 0.5 * std::abs(a1 - 2.4));
@@ -63,7 +63,7 @@ TEST_CASE("a secant iteration takes a refit on where an effect's bent response s
   // A run whose components differ from the linearisation's (a regime vanished) is not iterated.
   ResidualVector other = model(d1, a1);
   other.names[0] = "regime:toe";
-  CHECK_FALSE(shard::secant_refit(r0, {j}, &sig, {d1, a1}, other).has_value());
+  CHECK_FALSE(shard::measure::secant_refit(r0, {j}, &sig, {d1, a1}, other).has_value());
 }
 
 TEST_CASE("iterated to convergence, a refit no longer depends on the trial size its signature was taken at") {
@@ -90,7 +90,7 @@ TEST_CASE("iterated to convergence, a refit no longer depends on the trial size 
     LinearRefit lr = linear_refit(r0.values, {j}, {sig});
     for (int k = 0; k < iterations; ++k) {
       const double d = lr.base_step.front(), a = lr.effect_scale.front();
-      const auto next = shard::secant_refit(r0, {j}, &sig, {d, a}, model(d, a * trial));
+      const auto next = shard::measure::secant_refit(r0, {j}, &sig, {d, a}, model(d, a * trial));
       REQUIRE(next.has_value());
       lr = *next;
     }

@@ -100,12 +100,12 @@ class ContrastStudy {
   // The rising branch (up to the earlier of the set's and the model's mean peak) is where an
   // effect's form shows: after the peak a brittle curve drops in a step whose position moves with
   // the effect's fitted size, and the pointwise difference there measures that position (judged
-  // by the components), not the form. rising_nrmse and rising_floor are taken over it.
+  // by the components), not the form. rising_nrmse is taken over it (its floor: naming_floor).
   struct CurveContrast {
     std::vector<double> xi, measured, u_measured, simulated, u_simulated;
     std::vector<char> rising;  // the point lies on the rising branch
     double nrmse = 0, floor = 0;
-    double rising_nrmse = 0, rising_floor = 0;
+    double rising_nrmse = 0;
   };
   CurveContrast curve_contrast(const Contrast& c, const Simulated& model, const Simulated& base) const;
 

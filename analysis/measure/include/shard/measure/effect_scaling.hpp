@@ -20,7 +20,7 @@
 //
 // Every command resolves them on the model's base run: the contrast commands (diagnose-sets,
 // calibrate-contrast) on the base fitted to the reference, diagnose and calibrate-effect on the
-// base at the scene's values (plausible_on_base_run, apps/src/diagnosis_step.hpp). The shipped
+// base at the scene's values (plausible_on_base_run, diagnosis_step.hpp). The shipped
 // library uses both rules (scenes/measurements/effects.toml).
 #include <string>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// One step of `shard diagnose` (measure_diagnose.cpp): the model so far (base parameters and the
+// One step of the single-set diagnosis (set_diagnosis.hpp): the model so far (base parameters and the
 // effects kept by earlier steps, each at a value), linearised around itself, every run scored
 // against one frozen simulated band.
 //
@@ -7,15 +7,25 @@
 // (+1/4 of a trial size, or -1/4 at the top of the range): the candidates' score test and refits
 // profile them out, so a second effect is judged on what the first leaves, with the first
 // re-sized along.
+#include <algorithm>
 #include <iosfwd>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "measure_plan.hpp"
+#include "shard/measure/diagnosis.hpp"
+#include "shard/measure/effect_library.hpp"
+#include "shard/measure/rate_comparison.hpp"
 
-namespace shard {
+namespace shard::measure {
+
+// Where a linearised refit may take the model: base parameters within 0.55..1.9 x their start,
+// an effect within 0.05..3.9 plausible sizes above neutral (inside calibrate_effect's BOBYQA
+// bounds 0.5..2 and 0..4). A long linear step can reach a stiffness whose run is unstable; the
+// diagnosis's refit and the calibration's start use the same clamps so that the start is cached.
+inline double clamp_base_factor(double factor) { return std::clamp(factor, 0.55, 1.9); }
+inline double clamp_effect_scale(double scale) { return std::clamp(scale, 0.05, 3.9); }
 
 // How a model's runs are scored against the data (--scoring):
 //   Own         chi^2 with the model's own band; scattering more is stopped by the NRMSE rule
@@ -32,13 +42,13 @@ Scoring scoring_from_name(const std::string& name);  // "own", "frozen" or "like
 
 struct StepModel {
   std::vector<double> parameters;  // values of the base parameters (keys)
-  std::vector<std::pair<const measure::CandidateEffect*, double>> kept;  // effect, value
+  std::vector<std::pair<const CandidateEffect*, double>> kept;  // effect, value
 };
 
 ModelPlan step_plan(const ModelPlan& scene, const std::vector<std::string>& keys, const StepModel& model);
 
 // The model's trial-size units of a kept effect's value.
-double effect_scale(const measure::CandidateEffect& e, double value);
+double effect_scale(const CandidateEffect& e, double value);
 
 // `c` with every rate's simulated band replaced by `reference`'s (with_simulated_band).
 RateComparison with_band(const RateComparison& c, const RateComparison& reference);
@@ -53,20 +63,20 @@ double failure_point_chi_square(const RateComparison& c);
 double model_score(const RateComparison& c, const RateComparison& reference, Scoring scoring);
 
 struct StepLinearisation {
-  measure::ResidualVector base;
+  ResidualVector base;
   RateComparison base_comparison;                 // own band (its NRMSE and verdict text)
   std::vector<std::vector<double>> jacobian;      // base parameters, then kept effects
   std::vector<double> kept_scale_step;            // per kept effect, the trial sizes stepped
-  std::vector<measure::EffectSignature> signatures;  // candidates, as `candidates`
+  std::vector<EffectSignature> signatures;  // candidates, as `candidates`
 };
 
 // `band`: the reference band; empty: the step's base comparison is the reference (the first
 // step). With FrozenBand every run's residual vector is scored against it; otherwise each keeps
 // its own band (the Jacobian and signatures are differences of standardised residuals).
-StepLinearisation linearise_step(EnsembleSimulator& simulator, const RateGroups& measured, const measure::Metadata& metadata,
-                                 const ModelPlan& scene, const std::vector<std::string>& keys, const StepModel& model,
-                                 const std::vector<const measure::CandidateEffect*>& candidates,
-                                 const RateComparison* band, Scoring scoring, std::ostream& log);
+StepLinearisation linearise_step(Simulator& simulator, const MeasuredRates& data, const ModelPlan& scene,
+                                 const std::vector<std::string>& keys, const StepModel& model,
+                                 const std::vector<const CandidateEffect*>& candidates, const RateComparison* band,
+                                 Scoring scoring, std::ostream& log);
 
 // The effects with their plausible_from rules resolved on the base run (effect_scaling.hpp): the
 // model `base` at every rate of the data, on the command's packing seeds, recorded as the lab
@@ -74,10 +84,9 @@ StepLinearisation linearise_step(EnsembleSimulator& simulator, const RateGroups&
 // not the measured curves': a hidden compliance, a seating toe, a preload or the lab's noise do
 // not move the probe, and the tiny beam at its scene values gets the sizes its tests were tuned
 // with. `described` receives one line per resolved effect (empty when none has a rule).
-std::vector<measure::CandidateEffect> plausible_on_base_run(std::vector<measure::CandidateEffect> effects,
-                                                            EnsembleSimulator& simulator, const RateGroups& measured,
-                                                            const measure::Metadata& metadata, const ModelPlan& base,
-                                                            std::string& described, std::ostream& log);
+std::vector<CandidateEffect> plausible_on_base_run(std::vector<CandidateEffect> effects, Simulator& simulator,
+                                                   const MeasuredRates& data, const ModelPlan& base,
+                                                   std::string& described, std::ostream& log);
 
 // Where a linearised refit takes a step's model: base factors and effect sizes clamped as
 // clamp_base_factor / clamp_effect_scale and the effect's physical range; `at_bound` lists what
@@ -88,14 +97,14 @@ struct RefitPlan {
   bool base_at_bound = false;  // a base parameter (not an effect) was clamped
 };
 // lr: base steps (relative) then kept effects' steps (trial sizes), as the step's Jacobian.
-RefitPlan refit_plan(const std::vector<std::string>& keys, const StepModel& start, const measure::LinearRefit& lr,
-                     const measure::CandidateEffect* added);
+RefitPlan refit_plan(const std::vector<std::string>& keys, const StepModel& start, const LinearRefit& lr,
+                     const CandidateEffect* added);
 
 // The step a refit's model took from the step's start, in the linearisation's units: relative
 // changes of the base parameters, then trial sizes of the kept effects, then (with `added`) the
 // added effect's trial sizes from neutral.
 std::vector<double> refit_step(const std::vector<std::string>& keys, const StepModel& start, const StepModel& refit,
-                               const measure::CandidateEffect* added);
+                               const CandidateEffect* added);
 
 // One secant iteration of a refit (Broyden's rank-one update): the linearisation [J | s] is
 // corrected along the step `step` so that it reproduces the refit's simulated residual
@@ -104,9 +113,9 @@ std::vector<double> refit_step(const std::vector<std::string>& keys, const StepM
 // bends the curve less than 2.4 times the trial does), so the first linear refit of a
 // several-effect model can stop short, and the kept effect's size with it. nullopt when the step
 // is empty or the simulated components differ from the linearisation's.
-std::optional<measure::LinearRefit> secant_refit(const measure::ResidualVector& r0,
+std::optional<LinearRefit> secant_refit(const ResidualVector& r0,
                                                  const std::vector<std::vector<double>>& jacobian,
-                                                 const measure::EffectSignature* added, const std::vector<double>& step,
-                                                 const measure::ResidualVector& simulated);
+                                                 const EffectSignature* added, const std::vector<double>& step,
+                                                 const ResidualVector& simulated);
 
-}  // namespace shard
+}  // namespace shard::measure

@@ -1,18 +1,16 @@
-#include "diagnosis_step.hpp"
+#include "shard/measure/diagnosis_step.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <ostream>
 #include <stdexcept>
 
 #include "shard/measure/effect_scaling.hpp"
 
-namespace shard {
-
-using namespace measure;
-
+namespace shard::measure {
 namespace {
 
 constexpr double kParameterStep = 0.05;  // relative step of the base parameters (as linearise)
@@ -75,8 +73,8 @@ RateComparison with_band(const RateComparison& c, const RateComparison& referenc
   return out;
 }
 
-StepLinearisation linearise_step(EnsembleSimulator& simulator, const RateGroups& measured, const Metadata& metadata,
-                                 const ModelPlan& scene, const std::vector<std::string>& keys, const StepModel& model,
+StepLinearisation linearise_step(Simulator& simulator, const MeasuredRates& data, const ModelPlan& scene,
+                                 const std::vector<std::string>& keys, const StepModel& model,
                                  const std::vector<const CandidateEffect*>& candidates, const RateComparison* band,
                                  Scoring scoring, std::ostream& log) {
   StepLinearisation l;
@@ -98,7 +96,7 @@ StepLinearisation linearise_step(EnsembleSimulator& simulator, const RateGroups&
     models.push_back(step_plan(scene, keys, stepped));
   }
   for (const auto* e : candidates) models.push_back(with_effect(models.front(), *e, e->plausible));
-  auto comparisons = simulate_and_compare(simulator, measured, metadata, models, log);
+  auto comparisons = simulate_and_compare(simulator, data, models, log);
   l.base_comparison = comparisons[0];
   const RateComparison& reference = band ? *band : comparisons[0];
   if (scoring == Scoring::FrozenBand)
@@ -114,20 +112,21 @@ StepLinearisation linearise_step(EnsembleSimulator& simulator, const RateGroups&
     // The candidate switched on from its neutral value: one trial step.
     l.signatures.push_back({e->name, e->plausible - e->neutral,
                             difference(comparisons[m++].residual_vector(), l.base, e->name, 1.0), e->scale_min(),
-                            e->scale_max(), e->identifiable_at(measured.rates.size())});
+                            e->scale_max(), e->identifiable_at(data.groups.rates.size())});
   }
   return l;
 }
 
-std::vector<CandidateEffect> plausible_on_base_run(std::vector<CandidateEffect> effects, EnsembleSimulator& simulator,
-                                                const RateGroups& measured, const Metadata& metadata, const ModelPlan& base,
-                                                std::string& described, std::ostream& log) {
+std::vector<CandidateEffect> plausible_on_base_run(std::vector<CandidateEffect> effects, Simulator& simulator,
+                                                   const MeasuredRates& data, const ModelPlan& base,
+                                                   std::string& described, std::ostream& log) {
+  const RateGroups& measured = data.groups;
   described.clear();
   if (std::none_of(effects.begin(), effects.end(), [](const CandidateEffect& e) { return !e.plausible_from.empty(); }))
     return effects;
   std::vector<Specimen> every_rate;
   for (const auto& at : measured.specimens) every_rate.insert(every_rate.end(), at.begin(), at.end());
-  simulator.check_inputs(base, every_rate, metadata);
+  simulator.check_inputs(base, every_rate, data.metadata);
   std::vector<ModelPlan> runs;
   for (double r : measured.rates) {
     ModelPlan at = base;
@@ -219,4 +218,4 @@ std::optional<LinearRefit> secant_refit(const ResidualVector& r0, const std::vec
   return linear_refit(r0.values, columns, {updated});
 }
 
-}  // namespace shard
+}  // namespace shard::measure

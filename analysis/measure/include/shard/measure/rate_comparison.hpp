@@ -1,0 +1,39 @@
+#pragma once
+// One model held against every loading rate of one measurement set: the single-set diagnosis
+// (set_diagnosis.hpp) and calibration (effect_calibration.hpp) score their runs this way.
+#include <iosfwd>
+#include <vector>
+
+#include "shard/measure/comparison.hpp"
+#include "shard/measure/model_plan.hpp"
+#include "shard/measure/rate_groups.hpp"
+#include "shard/measure/simulator.hpp"
+
+namespace shard::measure {
+
+// One model against every rate group: the joint residual vector is the per-rate vectors one
+// after the other (components named "<name>@<rate>" when there are several rates); the NRMSE
+// is the RMS of the per-rate NRMSEs.
+struct RateComparison {
+  std::vector<double> rates;
+  std::vector<Comparison> at;
+  ResidualVector residual_vector() const;
+  double nrmse() const;
+  double noise_nrmse() const;  // RMS of the per-rate Comparison::noise_nrmse
+  double chi_square() const;
+};
+
+// What a model of one set is held against: the measured specimens by rate, the set's metadata
+// (its test conditions), and how each component is scored.
+struct MeasuredRates {
+  RateGroups groups;
+  Metadata metadata;
+  CompareOptions compare;
+};
+
+// Simulates every model at every rate of the data (one batch) and compares. The first call takes
+// the data's test conditions (Simulator::check_inputs).
+std::vector<RateComparison> simulate_and_compare(Simulator& simulator, const MeasuredRates& data,
+                                                 const std::vector<ModelPlan>& models, std::ostream& log);
+
+}  // namespace shard::measure
