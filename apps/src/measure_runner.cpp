@@ -186,11 +186,10 @@ std::string RunPool::resolved_text(const RunRequest& request) const {
   return load_scene(request.scene, *host_, o).resolved_text;
 }
 
-std::vector<RunOutcome> RunPool::try_run(const std::vector<RunRequest>& requests, std::ostream& log) {
-  std::vector<std::string> keys(requests.size());
+std::vector<RunJob> RunPool::jobs_to_run(const std::vector<RunRequest>& requests, const RunCache& cache,
+                                         std::vector<std::string>& keys, std::map<std::string, RunOutcome>& found,
+                                         std::ostream& log) const {
   std::map<std::string, RunJob> pending;  // one job per distinct key
-  std::map<std::string, RunOutcome> found;  // by key: the cached runs, then the runs made
-  const RunCache cache(work_dir_ / "cache");
   for (std::size_t i = 0; i < requests.size(); ++i) {
     const RunRequest& r = requests[i];
     SceneOverrides o = full_overrides(r);
@@ -211,9 +210,16 @@ std::vector<RunOutcome> RunPool::try_run(const std::vector<RunRequest>& requests
     job.isolated = worker_.has_value();
     pending.emplace(keys[i], std::move(job));
   }
-
   std::vector<RunJob> queue;
   for (auto& [k, j] : pending) queue.push_back(std::move(j));
+  return queue;
+}
+
+std::vector<RunOutcome> RunPool::try_run(const std::vector<RunRequest>& requests, std::ostream& log) {
+  std::vector<std::string> keys(requests.size());
+  std::map<std::string, RunOutcome> found;  // by key: the cached runs, then the runs made
+  const RunCache cache(work_dir_ / "cache");
+  const std::vector<RunJob> queue = jobs_to_run(requests, cache, keys, found, log);
   runs_started_ += queue.size();
   std::size_t done = 0;
   std::map<std::string, std::string> failures;  // key -> why

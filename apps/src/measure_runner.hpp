@@ -29,6 +29,7 @@
 namespace shard {
 
 class PluginHost;
+class RunCache;
 
 struct RunRequest {
   std::filesystem::path scene;
@@ -86,6 +87,11 @@ class RunPool {
 
  private:
   SceneOverrides full_overrides(const RunRequest& request) const;
+  // The jobs of the requests not in `cache`, one per distinct key; fills the requests' `keys` and
+  // the cached outcomes by key (`found`).
+  std::vector<RunJob> jobs_to_run(const std::vector<RunRequest>& requests, const RunCache& cache,
+                                  std::vector<std::string>& keys, std::map<std::string, RunOutcome>& found,
+                                  std::ostream& log) const;
   // The outcomes in the order of the requests: failed, or cached / run (`outcomes` by key).
   static std::vector<RunOutcome> collect(const std::vector<RunRequest>& requests, const std::vector<std::string>& keys,
                                          const std::map<std::string, RunOutcome>& outcomes,
