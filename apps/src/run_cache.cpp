@@ -62,15 +62,16 @@ std::optional<RunOutcome> RunCache::find(const std::string& key, std::ostream& l
 }
 
 RunOutcome RunCache::store(const std::string& key, const RunOutcome& outcome) const {
-  RunOutcome kept = at_cache_precision(outcome);
-  kept.key = key;
-  kept.cached = false;
+  const std::string record = encode_outcome(at_cache_precision(outcome));
   ByteWriter out;
   out.number(kRunCacheMagic);
   out.number(kRunCacheFormat);
   out.text(key);
-  out.text(encode_outcome(kept));
+  out.text(record);
   io::write_file_atomically(entry(key), out.bytes());
+  // What find() will give back (the record decoded: zero uncertainties the length of the curve).
+  RunOutcome kept = decode_outcome(record);
+  kept.key = key;
   return kept;
 }
 

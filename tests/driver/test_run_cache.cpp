@@ -56,6 +56,7 @@ TEST_CASE("a cache entry gives back its outcome at nine significant digits, mark
   CHECK_FALSE(kept.cached);
   CHECK(kept.curve.force[1] == 12.3456789);  // the value {:.9g} writes, read back
   CHECK(kept.kinetic_to_elastic == 0.00123457);
+  CHECK(kept.curve.u_force == std::vector<double>(3, 0.0));  // as the entry gives it back
   std::ostringstream log;
   const auto found = cache.find("00ab", log);
   REQUIRE(found.has_value());
