@@ -1,6 +1,6 @@
 #pragma once
 // A flat binary record: what a run job and its result are sent as between processes (a pipe to a
-// worker process, an MPI message to another rank). Numbers travel as their bytes, so a double
+// worker process, an MPI message to another rank) and kept as in the run cache (run_cache.hpp). Numbers travel as their bytes, so a double
 // arrives bit for bit (printed text would round it); the order is the machine's own, which the
 // processes of one job share (an MPI ensemble of mixed byte orders is not supported).
 #include <cstdint>
@@ -71,7 +71,8 @@ class ByteReader {
     return p;
   }
   [[noreturn]] void truncated() const {
-    throw std::runtime_error(what_ + ": the record is cut short (a worker of another build, or one that died while writing)");
+    throw std::runtime_error(what_ + ": the record is cut short (written by another build of shard, or by a process "
+                                     "that died while writing it)");
   }
   std::string_view bytes_;
   std::string what_;

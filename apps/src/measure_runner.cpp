@@ -1,20 +1,17 @@
 #include "measure_runner.hpp"
 
-#include <unistd.h>
-
 #include <fmt/format.h>
-#include <fmt/os.h>
 #include <fmt/ostream.h>
 
 #include <algorithm>
 #include <cmath>
 #include <csignal>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
 
+#include "run_cache.hpp"
 #include "run_job.hpp"
 #include "shard/app/run_command.hpp"
 #include "shard/bending/test_setup.hpp"
@@ -53,72 +50,6 @@ bool is_load_wall(const Scene& scene, const Wall& w) {
   return std::find(scene.stop.load_walls.begin(), scene.stop.load_walls.end(), w.name) != scene.stop.load_walls.end();
 }
 
-// "<name>=<number>" in a cache file's header line.
-double header_number(const std::string& header, const std::string& before, double fallback) {
-  const auto at = header.rfind(before);
-  if (at == std::string::npos) return fallback;
-  try {
-    return std::stod(header.substr(at + before.size()));
-  } catch (const std::exception&) {
-    return fallback;
-  }
-}
-
-// A cached curve (time, displacement, force), with comment lines skipped.
-measure::Curve read_cached_curve(const fs::path& file) {
-  std::ifstream in(file);
-  if (!in) throw std::runtime_error(fmt::format("cannot read the run's curve {}", file.string()));
-  measure::Curve c;
-  std::string line;
-  bool header = true;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    if (header) {
-      header = false;
-      continue;
-    }
-    double t = 0, w = 0, f = 0;
-    char c1 = 0, c2 = 0;
-    std::istringstream row(line);
-    if (!(row >> t >> c1 >> w >> c2 >> f)) throw std::runtime_error(fmt::format("{}: unreadable row '{}'", file.string(), line));
-    c.time.push_back(t);
-    c.displacement.push_back(w);
-    c.force.push_back(f);
-  }
-  c.u_force.assign(c.size(), 0.0);
-  c.u_displacement.assign(c.size(), 0.0);
-  return c;
-}
-
-// The run's outcome as a cache entry: <key>.csv, the curve with a "# kinetic_to_elastic=...
-// wall_seconds=..." line, and beside it <key>.fracture.csv: "# crack_position=<m or nan>", then
-// one fragment size (m) per line (only for a four-point bending run). Written under names of this
-// process, then renamed into place: a killed diagnosis leaves no torn entry, and two processes
-// that share the work folder never write into one file.
-void write_cache(const fs::path& cache, const std::string& key, const RunOutcome& r) {
-  const std::string tmp_suffix = fmt::format(".{}.tmp", ::getpid());
-  const fs::path tmp = cache / (key + tmp_suffix);
-  {
-    auto out = fmt::output_file(tmp.string());
-    out.print("# kinetic_to_elastic={:.6g} wall_seconds={:.3f}\ntime,displacement,force\n", r.kinetic_to_elastic,
-              r.wall_seconds);
-    // Nine significant digits, the curves' precision in every figure measured so far
-    // (significant_digits.hpp); far below the force noise of any testing machine.
-    for (std::size_t k = 0; k < r.time.size(); ++k)
-      out.print("{:.9g},{:.9g},{:.9g}\n", r.time[k], r.displacement[k], r.load[k]);
-  }
-  if (r.fracture_analysed) {
-    const fs::path fracture_tmp = cache / (key + ".fracture" + tmp_suffix);
-    {
-      auto out = fmt::output_file(fracture_tmp.string());
-      out.print("# crack_position={:.9g}\nsize\n", r.crack_position);
-      for (double d : r.fragment_sizes) out.print("{:.9g}\n", d);
-    }
-    fs::rename(fracture_tmp, cache / (key + ".fracture.csv"));
-  }
-  fs::rename(tmp, cache / (key + ".csv"));  // last: the curve's presence marks a complete entry
-}
-
 // "seed 3, with bond.x=1 wall.pin.velocity=[...]": the request as the user can repeat it.
 std::string describe_request(const RunRequest& r) {
   std::string text = fmt::format("seed {}", r.seed);
@@ -127,32 +58,6 @@ std::string describe_request(const RunRequest& r) {
     for (const auto& o : r.overrides) text += fmt::format(" {}", o.text());
   }
   return text;
-}
-
-void read_fracture(const fs::path& file, RunResult& r) {
-  std::ifstream in(file);
-  if (!in) return;  // a run cached before fracture outcomes were recorded
-  std::string line;
-  std::getline(in, line);
-  const double crack = header_number(line, "crack_position=", std::numeric_limits<double>::quiet_NaN());
-  if (std::isfinite(crack)) r.crack_position = crack;
-  std::getline(in, line);  // header
-  while (std::getline(in, line))
-    if (!line.empty()) r.fragment_sizes.push_back(std::stod(line));
-}
-
-RunResult read_cached(const fs::path& file, const std::string& key) {
-  RunResult r;
-  r.curve = read_cached_curve(file);
-  read_fracture(fs::path(file).replace_extension(".fracture.csv"), r);
-  r.key = key;
-  r.cached = true;
-  std::ifstream in(file);
-  std::string first;
-  std::getline(in, first);
-  r.kinetic_to_elastic = header_number(first, "kinetic_to_elastic=", 0);
-  r.wall_seconds = header_number(first, "wall_seconds=", 0);
-  return r;
 }
 
 }  // namespace
@@ -281,18 +186,21 @@ std::string RunPool::resolved_text(const RunRequest& request) const {
   return load_scene(request.scene, *host_, o).resolved_text;
 }
 
-std::vector<RunResult> RunPool::try_run(const std::vector<RunRequest>& requests, std::ostream& log) {
-  std::vector<std::string> keys(requests.size());
+std::vector<RunJob> RunPool::jobs_to_run(const std::vector<RunRequest>& requests, const RunCache& cache,
+                                         std::vector<std::string>& keys, std::map<std::string, RunOutcome>& found,
+                                         std::ostream& log) const {
   std::map<std::string, RunJob> pending;  // one job per distinct key
-  const fs::path cache = work_dir_ / "cache";
-  fs::create_directories(cache);
   for (std::size_t i = 0; i < requests.size(); ++i) {
     const RunRequest& r = requests[i];
     SceneOverrides o = full_overrides(r);
     if (r.seat)
       for (auto& s : seating_overrides(r)) o.push_back(std::move(s));
     keys[i] = fnv1a_hex(load_scene(r.scene, *host_, o).resolved_text);
-    if (fs::exists(cache / (keys[i] + ".csv")) || pending.count(keys[i])) continue;
+    if (found.count(keys[i]) || pending.count(keys[i])) continue;
+    if (auto cached = cache.find(keys[i], log)) {
+      found.emplace(keys[i], std::move(*cached));
+      continue;
+    }
     RunJob job;
     job.key = keys[i];
     job.scene = r.scene;
@@ -302,12 +210,21 @@ std::vector<RunResult> RunPool::try_run(const std::vector<RunRequest>& requests,
     job.isolated = worker_.has_value();
     pending.emplace(keys[i], std::move(job));
   }
-
   std::vector<RunJob> queue;
   for (auto& [k, j] : pending) queue.push_back(std::move(j));
+  return queue;
+}
+
+std::vector<RunOutcome> RunPool::try_run(const std::vector<RunRequest>& requests, std::ostream& log) {
+  std::vector<std::string> keys(requests.size());
+  std::map<std::string, RunOutcome> found;  // by key: the cached runs, then the runs made
+  const RunCache cache(work_dir_ / "cache");
+  const std::vector<RunJob> queue = jobs_to_run(requests, cache, keys, found, log);
   runs_started_ += queue.size();
   std::size_t done = 0;
   std::map<std::string, std::string> failures;  // key -> why
+  // Each run's outcome as the cache keeps it: written by its own thread, read after its report.
+  std::vector<RunOutcome> finished(queue.size());
   // A full disk or a file-size limit must surface as a write error, not kill the process.
   void (*previous_xfsz)(int) = std::signal(SIGXFSZ, SIG_IGN);
   auto report = [&](std::size_t j, const std::string& error) {
@@ -318,9 +235,9 @@ std::vector<RunResult> RunPool::try_run(const std::vector<RunRequest>& requests,
       return;
     }
     ++done;
-    const RunResult cached = read_cached(cache / (queue[j].key + ".csv"), queue[j].key);
-    fmt::print(log, "  run {}/{} done ({:.1f} s, kinetic/elastic {:.2g})\n", done, queue.size(), cached.wall_seconds,
-               cached.kinetic_to_elastic);
+    fmt::print(log, "  run {}/{} done ({:.1f} s, kinetic/elastic {:.2g})\n", done, queue.size(),
+               finished[j].wall_seconds, finished[j].kinetic_to_elastic);
+    found.emplace(queue[j].key, std::move(finished[j]));
   };
 #if SHARD_MPI_ENSEMBLE
   if (driver::ranks_available()) {
@@ -335,14 +252,14 @@ std::vector<RunResult> RunPool::try_run(const std::vector<RunRequest>& requests,
           try {
             const RunOutcome outcome = decode_outcome(record);
             if (!outcome.failure.empty()) error = outcome.failure;
-            else write_cache(cache, queue[j].key, outcome);
+            else finished[j] = cache.store(queue[j].key, outcome);
           } catch (const std::exception& e) {
             error = e.what();
           }
           report(j, error);
         });
     std::signal(SIGXFSZ, previous_xfsz);
-    return collect(requests, keys, pending, failures);
+    return collect(requests, keys, found, failures);
   }
 #endif
   // One OpenMP thread per run, on its own thread or in its own worker process. Runs on threads of
@@ -350,7 +267,7 @@ std::vector<RunResult> RunPool::try_run(const std::vector<RunRequest>& requests,
   // does not survive (the MPI build's): there they go one at a time.
   auto run_one = [&](std::size_t j) {
     const RunJob& job = queue[j];
-    write_cache(cache, job.key, worker_ ? execute_run_job_isolated(job, *worker_) : execute_run_job(job, *host_));
+    finished[j] = cache.store(job.key, worker_ ? execute_run_job_isolated(job, *worker_) : execute_run_job(job, *host_));
   };
   const int at_once = worker_ ? workers_ : driver::in_process_workers(workers_, queue.size());
   if (at_once < workers_) {
@@ -361,14 +278,13 @@ std::vector<RunResult> RunPool::try_run(const std::vector<RunRequest>& requests,
   }
   driver::run_in_parallel(queue.size(), at_once, run_one, report);
   std::signal(SIGXFSZ, previous_xfsz);
-  return collect(requests, keys, pending, failures);
+  return collect(requests, keys, found, failures);
 }
 
-std::vector<RunResult> RunPool::collect(const std::vector<RunRequest>& requests, const std::vector<std::string>& keys,
-                                        const std::map<std::string, RunJob>& started,
-                                        const std::map<std::string, std::string>& failures) const {
-  const fs::path cache = work_dir_ / "cache";
-  std::vector<RunResult> results(requests.size());
+std::vector<RunOutcome> RunPool::collect(const std::vector<RunRequest>& requests, const std::vector<std::string>& keys,
+                                         const std::map<std::string, RunOutcome>& outcomes,
+                                         const std::map<std::string, std::string>& failures) {
+  std::vector<RunOutcome> results(requests.size());
   for (std::size_t i = 0; i < requests.size(); ++i) {
     if (const auto f = failures.find(keys[i]); f != failures.end()) {
       results[i].key = keys[i];
@@ -376,13 +292,12 @@ std::vector<RunResult> RunPool::collect(const std::vector<RunRequest>& requests,
                                        describe_request(requests[i]), f->second);
       continue;
     }
-    results[i] = read_cached(cache / (keys[i] + ".csv"), keys[i]);
-    results[i].cached = !started.count(keys[i]);
+    results[i] = outcomes.at(keys[i]);
   }
   return results;
 }
 
-std::vector<RunResult> RunPool::run(const std::vector<RunRequest>& requests, std::ostream& log) {
+std::vector<RunOutcome> RunPool::run(const std::vector<RunRequest>& requests, std::ostream& log) {
   auto results = try_run(requests, log);
   for (const auto& r : results)
     if (r.failed()) throw std::runtime_error(r.failure);

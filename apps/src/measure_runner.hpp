@@ -7,7 +7,7 @@
 // mpirun, on the other ranks (docs/explanation/scaling.md). A run that fails (bad input, a numerical
 // blow-up; with isolation also a crash, named by its signal) is reported as failed and the others
 // go on. However they run, the runs' outcomes come back as records (run_job.hpp) and this process
-// alone writes the cache, so no two writers meet on a cache file.
+// alone writes the cache (run_cache.hpp), so no two writers meet on a cache file.
 //
 // Seating: a testing machine brings the pins into contact before it records. With `seat`, the
 // loading walls ([stop] load_walls) and the resting cylinders (supports) are moved along the
@@ -22,14 +22,14 @@
 #include <string>
 #include <vector>
 
+#include "run_job.hpp"
 #include "shard/driver/worker_process.hpp"
-#include "shard/measure/curve.hpp"
 #include "shard/scene_override.hpp"
 
 namespace shard {
 
 class PluginHost;
-struct RunJob;
+class RunCache;
 
 struct RunRequest {
   std::filesystem::path scene;
@@ -44,21 +44,6 @@ struct RunRequest {
 struct SpecimenSetup {
   double length = 0, width = 0, height = 0, span = 0, pin_distance = 0;
   double particle_diameter = 0;  // the largest sphere's, m
-};
-
-struct RunResult {
-  measure::Curve curve;
-  double kinetic_to_elastic = 0;  // max before breakage (quasi-static check)
-  double wall_seconds = 0;        // of the run itself (0 for a cached run that did not record it)
-  bool cached = false;
-  std::string key;
-  // The fracture the run ended with (shard::bending's analysis of its run.h5): the crack's
-  // distance from the centre between the pins along the beam, and every fragment's equivalent
-  // diameter. Unset / empty when the run is not a four-point bending test or no bond broke.
-  std::optional<double> crack_position;
-  std::vector<double> fragment_sizes;
-  std::string failure;  // why the run failed (empty: it ran)
-  bool failed() const { return !failure.empty(); }
 };
 
 class RunPool {
@@ -88,9 +73,9 @@ class RunPool {
   // Runs every request that is not cached, `workers` at a time on threads; results in the order
   // of the requests. A failed run leaves the others running (and cached); failed() is then set on
   // its result and `failure` says why.
-  std::vector<RunResult> try_run(const std::vector<RunRequest>& requests, std::ostream& log);
+  std::vector<RunOutcome> try_run(const std::vector<RunRequest>& requests, std::ostream& log);
   // The same, but throws (after every run ended) with the first failed run's message.
-  std::vector<RunResult> run(const std::vector<RunRequest>& requests, std::ostream& log);
+  std::vector<RunOutcome> run(const std::vector<RunRequest>& requests, std::ostream& log);
 
   // From now on each run goes to a worker process started by `worker` (shard_run_worker() in
   // run_job.hpp): a crash ends that run only. Without this call the runs are threads of this process.
@@ -102,10 +87,15 @@ class RunPool {
 
  private:
   SceneOverrides full_overrides(const RunRequest& request) const;
-  // The results in the order of the requests: failed, or read from the cache.
-  std::vector<RunResult> collect(const std::vector<RunRequest>& requests, const std::vector<std::string>& keys,
-                                 const std::map<std::string, RunJob>& started,
-                                 const std::map<std::string, std::string>& failures) const;
+  // The jobs of the requests not in `cache`, one per distinct key; fills the requests' `keys` and
+  // the cached outcomes by key (`found`).
+  std::vector<RunJob> jobs_to_run(const std::vector<RunRequest>& requests, const RunCache& cache,
+                                  std::vector<std::string>& keys, std::map<std::string, RunOutcome>& found,
+                                  std::ostream& log) const;
+  // The outcomes in the order of the requests: failed, or cached / run (`outcomes` by key).
+  static std::vector<RunOutcome> collect(const std::vector<RunRequest>& requests, const std::vector<std::string>& keys,
+                                         const std::map<std::string, RunOutcome>& outcomes,
+                                         const std::map<std::string, std::string>& failures);
 
   std::filesystem::path work_dir_;
   std::vector<std::filesystem::path> plugin_dirs_;

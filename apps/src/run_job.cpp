@@ -4,9 +4,11 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
 #include <cstdint>
 #include <iostream>
 #include <iterator>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -22,9 +24,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Record kinds and their layout version: a worker of another build is refused, not misread.
+// Record kinds and their layout version (the last letter): a worker of another build is refused,
+// not misread; so is a run cache entry of another layout (run_cache.hpp).
 constexpr std::uint32_t kJobRecord = 0x314a4853;      // "SHJ1"
-constexpr std::uint32_t kOutcomeRecord = 0x31524853;  // "SHR1"
+constexpr std::uint32_t kOutcomeRecord = 0x32524853;  // "SHR2"
 
 void check_kind(ByteReader& in, std::uint32_t kind, const char* what) {
   if (in.number<std::uint32_t>() != kind)
@@ -118,14 +121,11 @@ RunOutcome execute_run_job(const RunJob& job, const PluginHost& host) {
   driver::SceneRules scene_rules;
   const driver::RunResult r = driver::run(spec, host, scene_rules.observers());
   RunOutcome out;
-  out.time = r.curve.time;
-  out.displacement = r.curve.displacement;
-  out.load = r.curve.load;
+  out.curve = r.curve;
   out.kinetic_to_elastic = r.max_kinetic_to_elastic;
   out.wall_seconds = r.wall_seconds;
   try {
     const bending::BendingReport report = bending::analyse_bending_run(r.output);
-    out.fracture_analysed = true;
     if (report.crack.found) out.crack_position = report.crack.position;
     out.fragment_sizes = report.fragments.sizes;
   } catch (const std::exception&) {
@@ -215,13 +215,12 @@ std::string encode_outcome(const RunOutcome& o) {
   ByteWriter out;
   out.number(kOutcomeRecord);
   out.text(o.failure);
-  out.numbers(o.time);
-  out.numbers(o.displacement);
-  out.numbers(o.load);
+  out.numbers(o.curve.time);
+  out.numbers(o.curve.displacement);
+  out.numbers(o.curve.force);
   out.number(o.kinetic_to_elastic);
   out.number(o.wall_seconds);
-  out.number<std::uint8_t>(o.fracture_analysed ? 1 : 0);
-  out.number(o.crack_position);
+  out.number(o.crack_position.value_or(std::numeric_limits<double>::quiet_NaN()));
   out.numbers(o.fragment_sizes);
   return out.bytes();
 }
@@ -231,17 +230,20 @@ RunOutcome decode_outcome(std::string_view record) {
   check_kind(in, kOutcomeRecord, "run outcome record");
   RunOutcome o;
   o.failure = in.text();
-  o.time = in.numbers();
-  o.displacement = in.numbers();
-  o.load = in.numbers();
+  o.curve.time = in.numbers();
+  o.curve.displacement = in.numbers();
+  o.curve.force = in.numbers();
   o.kinetic_to_elastic = in.number<double>();
   o.wall_seconds = in.number<double>();
-  o.fracture_analysed = in.number<std::uint8_t>() != 0;
-  o.crack_position = in.number<double>();
+  if (const double crack = in.number<double>(); !std::isnan(crack)) o.crack_position = crack;
   o.fragment_sizes = in.numbers();
   if (!in.at_end()) throw std::runtime_error("run outcome record: longer than its fields (another build of shard?)");
-  if (o.displacement.size() != o.time.size() || o.load.size() != o.time.size())
+  if (o.curve.displacement.size() != o.curve.time.size() || o.curve.force.size() != o.curve.time.size())
     throw std::runtime_error("run outcome record: the curve's columns differ in length");
+  // A simulated curve carries no measurement noise; the measurement workflow reads every curve
+  // with its uncertainties (shard/measure/curve.hpp).
+  o.curve.u_displacement.assign(o.curve.size(), 0.0);
+  o.curve.u_force.assign(o.curve.size(), 0.0);
   return o;
 }
 

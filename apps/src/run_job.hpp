@@ -4,11 +4,12 @@
 // another MPI rank. The job and its outcome travel as binary records (byte_record.hpp), never as
 // printed text: the curve arrives bit for bit.
 #include <filesystem>
-#include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "shard/analysis/load_curve.hpp"
 #include "shard/driver/worker_process.hpp"
 #include "shard/scene_override.hpp"
 
@@ -25,16 +26,22 @@ struct RunJob {
   bool isolated = false;            // on another MPI rank: run it there in a worker process
 };
 
-// What the loop keeps of a run: the load-displacement curve, the quasi-static check and the
-// fracture (shard::bending's analysis of the run file).
+// What the measurement loop keeps of a run: the load-displacement curve, the quasi-static check
+// and the fracture (shard::bending's analysis of the run file). A worker sends it as a record
+// (encode_outcome), the run cache keeps that record (run_cache.hpp), and the pool returns it.
 struct RunOutcome {
-  std::vector<double> time, displacement, load;
-  double kinetic_to_elastic = 0;  // max before breakage
-  double wall_seconds = 0;
-  bool fracture_analysed = false;  // false: not a four-point bending run
-  double crack_position = std::numeric_limits<double>::quiet_NaN();  // m from the centre; NaN: no crack
-  std::vector<double> fragment_sizes;                                // equivalent diameters, m
-  std::string failure;  // set by a worker whose run threw; empty: it ran
+  analysis::LoadCurve curve;  // uncertainties zero: a simulated curve has no measurement noise
+  double kinetic_to_elastic = 0;  // max before breakage (quasi-static check)
+  double wall_seconds = 0;        // of the run itself
+  // The crack's distance from the centre between the pins along the beam, and every fragment's
+  // equivalent diameter. Unset / empty when the run is not a four-point bending test or no bond broke.
+  std::optional<double> crack_position;
+  std::vector<double> fragment_sizes;
+  std::string failure;  // why the run failed (empty: it ran)
+  // Set by the pool, not recorded: the run cache's key, and whether the run was found there.
+  std::string key;
+  bool cached = false;
+  bool failed() const { return !failure.empty(); }
 };
 
 // Runs the job here, on the calling thread with one OpenMP thread; throws what the run throws.

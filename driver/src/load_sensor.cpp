@@ -8,17 +8,10 @@ LoadSensor::LoadSensor(const Scene& scene, const Simulation& sim) : direction_(s
       if (sim.walls()[w].name == name) walls_.push_back(w);
 }
 
-double LoadSensor::load(const Simulation& sim) const {
-  double f = 0;
-  for (auto w : walls_) f -= sim.walls()[w].force.dot(direction_);
-  return f;
-}
-
-double LoadSensor::displacement(const Simulation& sim) const {
-  if (walls_.empty()) return 0;
-  double d = 0;
-  for (auto w : walls_) d += sim.walls()[w].displacement.dot(direction_);
-  return d / static_cast<double>(walls_.size());
+analysis::PinReading LoadSensor::read(const Simulation& sim) const {
+  analysis::PinReading reading(direction_);
+  for (auto w : walls_) reading.add_wall(sim.walls()[w].force, sim.walls()[w].displacement);
+  return reading;
 }
 
 }  // namespace shard::driver

@@ -71,7 +71,7 @@ class RunBackend {
   virtual std::vector<BondBreakEvent> take_new_break_events() = 0;
   // The whole state for a checkpoint, on rank 0 (empty elsewhere).
   virtual SimulationState whole_state() const = 0;
-  // bending::deformation_kinetic_energy of the whole run's particles.
+  // analysis::deformation_kinetic_energy of the whole run's particles.
   virtual double deformation_kinetic_energy() const = 0;
   // Writes a frame of the whole run; `before_frame` lets the observers label it.
   virtual void write_frame(RunWriter& writer, RunState& state, const std::function<void()>& before_frame) = 0;

@@ -10,7 +10,7 @@
 #include "run_loop_parts.hpp"
 #include "run_scene.hpp"
 #include "serial_backend.hpp"
-#include "shard/bending/quasi_static.hpp"
+#include "shard/analysis/quasi_static.hpp"
 #include "shard/checkpoint.hpp"
 #include "shard/driver/output_folder.hpp"
 #include "shard/driver/time_step_report.hpp"
@@ -30,7 +30,7 @@ void save_loop_state(Checkpoint& c, const RunResult& r, int frames_written, cons
                {"peak_load", r.peak_load},
                {"displacement_at_peak", r.displacement_at_peak},
                {"max_kinetic_to_elastic", r.max_kinetic_to_elastic}};
-  c.arrays = {{"load", r.curve.load},
+  c.arrays = {{"load", r.curve.force},
               {"displacement", r.curve.displacement},
               {"time_series", r.curve.time},
               {"kinetic_before_break", r.kinetic_before_break},
@@ -43,7 +43,7 @@ void restore_loop_state(const Checkpoint& c, RunResult& r, int& frames_written) 
   r.peak_load = c.number("peak_load");
   r.displacement_at_peak = c.number("displacement_at_peak");
   r.max_kinetic_to_elastic = c.number("max_kinetic_to_elastic");
-  r.curve.load = c.array("load");
+  r.curve.force = c.array("load");
   r.curve.displacement = c.array("displacement");
   r.curve.time = c.array("time_series");
   r.kinetic_before_break = c.array("kinetic_before_break");
@@ -167,12 +167,12 @@ RunMetadataDraft run_metadata(const Scene& scene, const SceneInstance& inst, con
 // keep breakage away past the peak: the tiny beam at softening ratio 6.4 (seed 3) read 0.0051
 // over all rows before the first break, 0.00028 up to the peak.
 double kinetic_to_elastic_up_to_peak(const RunResult& r) {
-  const auto& load = r.curve.load;
+  const auto& load = r.curve.force;
   const auto peak = static_cast<std::size_t>(std::max_element(load.begin(), load.end()) - load.begin());
   const std::size_t rows = std::min({peak + 1, r.kinetic_before_break.size(), r.elastic_before_break.size()});
-  return bending::max_kinetic_to_elastic(std::span(load).first(std::min(rows, load.size())),
-                                         std::span(r.kinetic_before_break).first(rows),
-                                         std::span(r.elastic_before_break).first(rows), r.peak_load);
+  return analysis::max_kinetic_to_elastic(std::span(load).first(std::min(rows, load.size())),
+                                          std::span(r.kinetic_before_break).first(rows),
+                                          std::span(r.elastic_before_break).first(rows), r.peak_load);
 }
 
 }  // namespace detail

@@ -56,7 +56,7 @@ std::string last_good_state(const RunResult& r);
 template <class DeformationKinetic>
 void record_curve_point(RunResult& r, double time, double load, double displacement, bool intact, double elastic,
                         DeformationKinetic&& kinetic) {
-  r.curve.load.push_back(load);
+  r.curve.force.push_back(load);
   r.curve.displacement.push_back(displacement);
   r.curve.time.push_back(time);
   if (load > r.peak_load) {

@@ -24,7 +24,7 @@ void CurveCsvWriter::on_finish(RunState& run) {
   std::ofstream out(csv);
   out << "time_s,displacement_m,force_N\n";
   for (std::size_t k = 0; k < r.curve.size(); ++k)
-    out << fmt::format("{:.9g},{:.9g},{:.9g}\n", r.curve.time[k], r.curve.displacement[k], r.curve.load[k]);
+    out << fmt::format("{:.9g},{:.9g},{:.9g}\n", r.curve.time[k], r.curve.displacement[k], r.curve.force[k]);
   out.close();
   if (!out)
     throw OutputError(fmt::format("cannot write the load curve '{}' (disk full or folder not writable); the run "

@@ -138,9 +138,9 @@ Energies SceneLoop::series_row() {
   });
   if (!std::isfinite(e.kinetic)) check_health();
   // Less the rigid-body motion: a beam sliding on its rollers strains nothing.
-  record_curve_point(state_.result, sim.time(), state_.sensor.load(sim), state_.sensor.displacement(sim),
-                     backend_.bonds_broken() == 0, e.bond + e.contact,
-                     [&] { return backend_.deformation_kinetic_energy(); });
+  const analysis::PinReading pins = state_.sensor.read(sim);
+  record_curve_point(state_.result, sim.time(), pins.force(), pins.displacement(), backend_.bonds_broken() == 0,
+                     e.bond + e.contact, [&] { return backend_.deformation_kinetic_energy(); });
   return e;
 }
 

@@ -1,6 +1,6 @@
 #include "serial_backend.hpp"
 
-#include "shard/bending/deformation_kinetic.hpp"
+#include "shard/analysis/deformation_kinetic.hpp"
 
 namespace shard::driver::detail {
 
@@ -26,7 +26,7 @@ void SerialBackend::step() {
 }
 
 double SerialBackend::deformation_kinetic_energy() const {
-  return bending::deformation_kinetic_energy(sim_->particles());
+  return analysis::deformation_kinetic_energy(sim_->particles());
 }
 
 void SerialBackend::write_frame(RunWriter& writer, RunState& state, const std::function<void()>& before_frame) {

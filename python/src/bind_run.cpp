@@ -74,7 +74,7 @@ py::dict result_dict(driver::RunResult&& r, std::vector<std::string>&& log) {
   d["bonds_broken"] = r.bonds_broken;
   d["curve_time"] = to_array(std::move(r.curve.time));
   d["curve_displacement"] = to_array(std::move(r.curve.displacement));
-  d["curve_load"] = to_array(std::move(r.curve.load));
+  d["curve_load"] = to_array(std::move(r.curve.force));
   d["peak_load"] = r.peak_load;
   d["displacement_at_peak"] = r.displacement_at_peak;
   d["final_displacement"] = r.final_displacement;

@@ -8,7 +8,7 @@
 
 #include "shard/bending/beam_theory.hpp"
 #include "shard/bending/curve_analysis.hpp"
-#include "shard/bending/quasi_static.hpp"
+#include "shard/analysis/quasi_static.hpp"
 
 using namespace shard::bending;
 
@@ -135,8 +135,8 @@ TEST_CASE("quasi-static figure: largest kinetic/elastic over the rows loaded to 
   const std::vector<double> load{0.1, 3.0, 10.0, 5.0};
   const std::vector<double> kinetic{5.0, 0.3, 0.1, 1.0};
   const std::vector<double> elastic{0.1, 1.0, 10.0, 0.0};
-  CHECK(max_kinetic_to_elastic(load, kinetic, elastic, 10.0) == doctest::Approx(0.3));
+  CHECK(shard::analysis::max_kinetic_to_elastic(load, kinetic, elastic, 10.0) == doctest::Approx(0.3));
   // Only the rows the caller passes: before the first break, the kinetic series may be shorter.
-  CHECK(max_kinetic_to_elastic(load, std::span(kinetic).first(1), elastic, 10.0) == 0.0);
-  CHECK(max_kinetic_to_elastic(load, kinetic, elastic, 0.0) == 0.0);  // nothing loaded
+  CHECK(shard::analysis::max_kinetic_to_elastic(load, std::span(kinetic).first(1), elastic, 10.0) == 0.0);
+  CHECK(shard::analysis::max_kinetic_to_elastic(load, kinetic, elastic, 0.0) == 0.0);  // nothing loaded
 }

@@ -1,5 +1,5 @@
 // The quasi-static check's kinetic energy is the deformation's, not the rigid-body motion's
-// (shard/bending/deformation_kinetic.hpp): a beam sliding on its rollers is not a dynamic test,
+// (shard/analysis/deformation_kinetic.hpp): a beam sliding on its rollers is not a dynamic test,
 // a beam loaded ten times faster than its scene's rate is.
 #include <doctest/doctest.h>
 
@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "shard/app/run_command.hpp"
-#include "shard/bending/deformation_kinetic.hpp"
+#include "shard/analysis/deformation_kinetic.hpp"
 
 using shard::Particles;
 using shard::Vec3;
@@ -50,7 +50,7 @@ TEST_CASE("rigid-body motion carries no deformation kinetic energy; a strain rat
   Particles p = cloud(400, 7);
   add_rigid_motion(p, {0.02, -0.01, 0.005}, {1.5, -0.7, 3.0});
   // Rounding of sums of ~400 terms: relative 1e-12 of the total is far below any physical motion.
-  CHECK(shard::bending::deformation_kinetic_energy(p) < 1e-12 * total_kinetic(p));
+  CHECK(shard::analysis::deformation_kinetic_energy(p) < 1e-12 * total_kinetic(p));
 
   // A breathing motion v = a (x - c) about the centre of mass c has no momentum and no angular
   // momentum: all of its kinetic energy is deformation, with or without a rigid motion on top.
@@ -61,11 +61,11 @@ TEST_CASE("rigid-body motion carries no deformation kinetic energy; a strain rat
   c /= m;
   for (std::size_t k = 0; k < q.size(); ++k) q.velocity[k] = 0.5 * (q.position[k] - c);
   const double breathing = total_kinetic(q);
-  CHECK(shard::bending::deformation_kinetic_energy(q) == doctest::Approx(breathing).epsilon(1e-9));
+  CHECK(shard::analysis::deformation_kinetic_energy(q) == doctest::Approx(breathing).epsilon(1e-9));
   add_rigid_motion(q, {0.3, 0.0, -0.1}, {0.0, 2.0, 0.0});
   CHECK(total_kinetic(q) > 2 * breathing);
-  CHECK(shard::bending::deformation_kinetic_energy(q) == doctest::Approx(breathing).epsilon(1e-9));
-  CHECK(shard::bending::deformation_kinetic_energy(cloud(1, 9)) == 0.0);
+  CHECK(shard::analysis::deformation_kinetic_energy(q) == doctest::Approx(breathing).epsilon(1e-9));
+  CHECK(shard::analysis::deformation_kinetic_energy(cloud(1, 9)) == 0.0);
 }
 
 TEST_CASE("the tiny beam is quasi-static at its own rate and dynamic at ten times it") {

@@ -60,21 +60,21 @@ TEST_CASE("an isolated pool: the segfaulting run fails alone, named by its signa
   REQUIRE(results.size() == 4);
   CHECK(isolated.runs_started() == 4);
 
-  const RunResult& crashed = results[2];
+  const RunOutcome& crashed = results[2];
   REQUIRE(crashed.failed());
   CAPTURE(crashed.failure);
   CHECK(crashed.failure.find("SIGSEGV") != std::string::npos);
   CHECK(crashed.failure.find("tiny_bending.toml") != std::string::npos);
   CHECK(crashed.failure.find("seed 1") != std::string::npos);
   CHECK(crashed.failure.find("bond.segfault_after=200") != std::string::npos);
-  CHECK_FALSE(fs::exists(isolated.work_dir() / "cache" / (crashed.key + ".csv")));
+  CHECK_FALSE(fs::exists(isolated.work_dir() / "cache" / (crashed.key + ".run")));
 
   RunPool threads(fresh("thread_pool"), plugin_dirs, 2);
   const auto reference = threads.try_run(without, log);
   const std::size_t pool_index[] = {0, 1, 3};
   for (std::size_t k = 0; k < reference.size(); ++k) {
-    const RunResult& r = results[pool_index[k]];
-    const RunResult& ref = reference[k];
+    const RunOutcome& r = results[pool_index[k]];
+    const RunOutcome& ref = reference[k];
     CAPTURE(k);
     REQUIRE_FALSE(r.failed());
     REQUIRE_FALSE(ref.failed());

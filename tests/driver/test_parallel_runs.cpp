@@ -57,7 +57,7 @@ TEST_CASE("a pool of runs: the blown-up one is reported failed, the others finis
   CHECK(errors[1].find("the run blew up") != std::string::npos);
   // Determinism across threads: the pool's seed-2 run is the lone run, bit for bit.
   CHECK(results[2].steps == alone.steps);
-  CHECK(results[2].curve.load == alone.curve.load);
+  CHECK(results[2].curve.force == alone.curve.force);
   CHECK(results[2].curve.displacement == alone.curve.displacement);
   CHECK(results[0].steps > 0);
   CHECK(results[3].steps > 0);

@@ -148,10 +148,10 @@ TEST_CASE("the result is what the run file holds: the curve, the breaks, the fra
   const Vec3 down(0, 0, -1);
   for (std::size_t k = 0; k < rows; ++k) {
     CHECK(r.curve.time[k] == time[k]);
-    CHECK(r.curve.load[k] == (0.0 - fl[k].dot(down)) - fr[k].dot(down));
+    CHECK(r.curve.force[k] == (0.0 - fl[k].dot(down)) - fr[k].dot(down));
     CHECK(r.curve.displacement[k] == (dl[k].dot(down) + dr[k].dot(down)) / 2.0);
   }
-  CHECK(r.peak_load == *std::max_element(r.curve.load.begin(), r.curve.load.end()));
+  CHECK(r.peak_load == *std::max_element(r.curve.force.begin(), r.curve.force.end()));
   // The fragments of the last frame, from its stored labels.
   const FrameData last = file.read_frame(file.frame_count() - 1);
   REQUIRE(last.fragment.has_value());

@@ -84,7 +84,7 @@ TEST_CASE("interrupted at step k and restarted: final state and run file bit-ide
     CHECK(resumed.bonds_broken == reference.bonds_broken);
     CHECK(resumed.bonds_initial == reference.bonds_initial);  // also when bonds broke before the stop
     CHECK(resumed.peak_load == reference.peak_load);
-    CHECK(same_bits(resumed.curve.load, reference.curve.load));
+    CHECK(same_bits(resumed.curve.force, reference.curve.force));
     require_identical(read_checkpoint(dir / "run.checkpoint.h5").simulation, final_reference.simulation);
     require_same_run_files(dir / "run.h5", reference_dir / "run.h5");
     CHECK_FALSE(std::filesystem::exists(dir / "run.interrupted.h5"));

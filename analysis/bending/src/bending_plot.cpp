@@ -9,7 +9,7 @@
 
 namespace shard::bending {
 
-std::filesystem::path write_bending_plot_script(const Curve& curve, const CurveAnalysis& a,
+std::filesystem::path write_bending_plot_script(const analysis::LoadCurve& curve, const CurveAnalysis& a,
                                                 const std::filesystem::path& image, const std::string& title) {
   using analysis::PlotError;
   std::string terminal;
@@ -55,7 +55,7 @@ std::filesystem::path write_bending_plot_script(const Curve& curve, const CurveA
   return script;
 }
 
-void plot_bending_curve(const Curve& curve, const CurveAnalysis& a, const std::filesystem::path& image,
+void plot_bending_curve(const analysis::LoadCurve& curve, const CurveAnalysis& a, const std::filesystem::path& image,
                         const std::string& title) {
   const auto script = write_bending_plot_script(curve, a, image, title);
   const auto gnuplot = analysis::find_program("gnuplot");

@@ -1,5 +1,5 @@
 #include "shard/bending/bending_run.hpp"
-#include "shard/bending/quasi_static.hpp"
+#include "shard/analysis/quasi_static.hpp"
 #include "shard/bending/test_setup.hpp"
 
 #include <fmt/format.h>
@@ -72,6 +72,26 @@ double interpolate(const std::vector<double>& t, const std::vector<double>& y, d
   const auto k = static_cast<std::size_t>(it - t.begin());
   const double f = (at - t[k - 1]) / std::max(1e-300, t[k] - t[k - 1]);
   return y[k - 1] + f * (y[k] - y[k - 1]);
+}
+
+// The load curve as the run's load sensor saw it: its [stop] load walls' stored force and
+// displacement series read by the one load rule (PinReading), row by row.
+analysis::LoadCurve pin_curve(const RunFile& file, const std::vector<std::string>& load_walls, const Vec3& down) {
+  analysis::LoadCurve curve;
+  curve.time = file.read_series("time");
+  std::vector<std::vector<Vec3>> forces, displacements;
+  for (const auto& name : load_walls) {
+    forces.push_back(file.read_wall_series(name, "force"));
+    displacements.push_back(file.read_wall_series(name, "displacement"));
+  }
+  for (std::size_t k = 0; k < curve.time.size(); ++k) {
+    analysis::PinReading pins(down);
+    for (std::size_t w = 0; w < load_walls.size(); ++w)
+      if (k < forces[w].size() && k < displacements[w].size()) pins.add_wall(forces[w][k], displacements[w][k]);
+    curve.force.push_back(pins.force());
+    curve.displacement.push_back(pins.displacement());
+  }
+  return curve;
 }
 
 }  // namespace
@@ -148,19 +168,8 @@ BendingReport analyse_bending_run(const std::filesystem::path& path, const Bendi
   r.geometry_source = source;
   g.check();
 
-  // The load curve, as the run's load sensor sees it.
-  const auto time = file.read_series("time");
-  r.curve.time = time;
-  r.curve.force.assign(time.size(), 0.0);
-  r.curve.displacement.assign(time.size(), 0.0);
-  for (const auto& name : load_walls) {
-    const auto f = file.read_wall_series(name, "force");
-    const auto d = file.read_wall_series(name, "displacement");
-    for (std::size_t k = 0; k < time.size() && k < f.size() && k < d.size(); ++k) {
-      r.curve.force[k] -= f[k].dot(r.down);
-      r.curve.displacement[k] += d[k].dot(r.down) / static_cast<double>(load_walls.size());
-    }
-  }
+  r.curve = pin_curve(file, load_walls, r.down);
+  const auto& time = r.curve.time;
   r.analysis = analyse_curve(r.curve.displacement, r.curve.force, g, options.curve);
 
   // Crack.
@@ -253,8 +262,8 @@ BendingReport analyse_bending_run(const std::filesystem::path& path, const Bendi
   std::vector<double> elastic(loading_rows);
   for (std::size_t k = 0; k < loading_rows; ++k) elastic[k] = eb[k] + ec[k];
   r.quasi_static.max_kinetic_to_elastic =
-      max_kinetic_to_elastic(std::span(r.curve.force).first(std::min(loading_rows, r.curve.force.size())),
-                             std::span(ke).first(loading_rows), elastic, r.analysis.force_max);
+      analysis::max_kinetic_to_elastic(std::span(r.curve.force).first(std::min(loading_rows, r.curve.force.size())),
+                                       std::span(ke).first(loading_rows), elastic, r.analysis.force_max);
   if (time.size() >= 2 && time.back() > time.front())
     r.quasi_static.loading_speed = (r.curve.displacement.back() - r.curve.displacement.front()) / (time.back() - time.front());
   if (r.quasi_static.loading_speed > 0)

@@ -46,7 +46,7 @@ std::optional<std::size_t> find_column(const io::CsvTable& t, std::initializer_l
 
 }  // namespace
 
-Curve read_curve_csv(const std::string& path) {
+analysis::LoadCurve read_curve_csv(const std::string& path) {
   const auto t = io::CsvTable::read(path);
   const auto cw = find_column(t, {"displacement", "deflection", "w", "standardweg", "extension", "deformation"});
   const auto cf = find_column(t, {"force", "load", "f", "standardkraft", "kraft"});
@@ -58,7 +58,7 @@ Curve read_curve_csv(const std::string& path) {
                                          path, t.header_line()));
   // A units row converts each value to SI itself; without one, a name ending in _mm or _kN does.
   auto factor = [&](std::size_t c) { return t.units().empty() ? name_unit_factor(t.header()[c]) : 1.0; };
-  Curve curve;
+  analysis::LoadCurve curve;
   for (const auto& row : t.rows()) {
     curve.displacement.push_back(factor(*cw) * t.number(row, *cw, "displacement"));
     curve.force.push_back(factor(*cf) * t.number(row, *cf, "force"));
@@ -82,7 +82,7 @@ std::map<std::string, std::string> read_curve_metadata(const std::string& path) 
   return out;
 }
 
-void write_curve_csv(const std::string& path, const Curve& curve) {
+void write_curve_csv(const std::string& path, const analysis::LoadCurve& curve) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error(fmt::format("{}: cannot write the load curve", path));
   const bool has_time = curve.time.size() == curve.force.size();

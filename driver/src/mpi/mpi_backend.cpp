@@ -76,7 +76,7 @@ void collective_transfer(std::int64_t list) {
     throw OutputError("cannot ask HDF5 for collective MPI-IO transfers");
 }
 
-// bending::deformation_kinetic_energy over every rank's particles: the kinetic energy less that
+// analysis::deformation_kinetic_energy over every rank's particles: the kinetic energy less that
 // of the rigid-body motion, from moments summed in rank order (about the origin, moved to the
 // centre of mass here) instead of a pass over all particles on one rank.
 double deformation_kinetic_energy_over_ranks(const mpi::DistributedSimulation& sim) {

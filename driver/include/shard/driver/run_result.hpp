@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "shard/analysis/load_curve.hpp"
+
 namespace shard::driver {
 
 enum class StopReason {
@@ -17,15 +19,6 @@ enum class StopReason {
   Rest,             // [stop] rest_speed, rest_time: every particle stayed slower than rest_speed for rest_time
 };
 
-// The load sensor's record: the [stop] load walls' force against their motion and their mean
-// displacement along the loading direction, one row per series row.
-struct LoadCurve {
-  std::vector<double> time;          // s
-  std::vector<double> displacement;  // m
-  std::vector<double> load;          // N
-  std::size_t size() const { return load.size(); }
-};
-
 struct RunResult {
   std::filesystem::path output;  // the run file
   std::int64_t steps = 0;
@@ -34,16 +27,17 @@ struct RunResult {
   std::size_t particles = 0;
   std::size_t bonds_initial = 0;  // at the start of the run (a restart counts bonds broken before it)
   std::int64_t bonds_broken = 0;
-  LoadCurve curve;
+  // The load sensor's record (load_sensor.hpp), one row per series row; no id or uncertainties.
+  analysis::LoadCurve curve;
   double peak_load = 0;             // N
   double displacement_at_peak = 0;  // m
   double final_displacement = 0;    // m
-  // Kinetic energy less the rigid-body motion's (shard/bending/deformation_kinetic.hpp) and
+  // Kinetic energy less the rigid-body motion's (shard/analysis/deformation_kinetic.hpp) and
   // elastic (bond + contact) energy of the series rows before the first bond broke.
   std::vector<double> kinetic_before_break, elastic_before_break;
   // Quasi-static check: the largest kinetic / elastic energy ratio over the rows up to the peak
   // and before the first break whose load is at least 20 % of the run's peak load
-  // (shard/bending/quasi_static.hpp).
+  // (shard/analysis/quasi_static.hpp).
   double max_kinetic_to_elastic = 0;
   // Particle count of each fragment (connected set of bonded particles) at the last labelled
   // frame, largest first; empty when no frame was labelled (FragmentLabeller not composed).

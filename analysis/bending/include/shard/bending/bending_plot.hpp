@@ -11,10 +11,10 @@ namespace shard::bending {
 
 // Writes <image>.dat and <image>.gp and returns the script path (terminal from the extension:
 // .png pngcairo, .svg svg). Throws analysis::PlotError for another extension.
-std::filesystem::path write_bending_plot_script(const Curve& curve, const CurveAnalysis& a,
+std::filesystem::path write_bending_plot_script(const analysis::LoadCurve& curve, const CurveAnalysis& a,
                                                 const std::filesystem::path& image, const std::string& title);
 // ... and runs gnuplot; throws analysis::PlotError when gnuplot is missing or fails.
-void plot_bending_curve(const Curve& curve, const CurveAnalysis& a, const std::filesystem::path& image,
+void plot_bending_curve(const analysis::LoadCurve& curve, const CurveAnalysis& a, const std::filesystem::path& image,
                         const std::string& title);
 
 }  // namespace shard::bending

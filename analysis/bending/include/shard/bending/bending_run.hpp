@@ -63,13 +63,13 @@ struct BendingReport {
   double length = 0;              // m, extent of the spheres along the beam axis
   BeamBondParameters bond;
   bool breakage = true;           // [simulation] breakage and the bond's own flag
-  Curve curve;
+  analysis::LoadCurve curve;
   CurveAnalysis analysis;
   CrackLocation crack;
   std::size_t breaks_before_peak = 0;  // bonds broken up to the F_max row (damage before failure)
   FragmentSummary fragments;
   VoigtEstimate voigt;
-  Curve local_curve;              // every frame after the first: F against the beam's own deflection
+  analysis::LoadCurve local_curve;  // every frame after the first: F against the beam's own deflection
   LocalInstrumentation gauges;    // the beam's own deflection and curvature over the elastic frames
   double predicted_local_stiffness = 0;  // N/m, beam theory (eq. 14 + Timoshenko) on the curvature E
   QuasiStaticCheck quasi_static;

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "shard/analysis/load_curve.hpp"
 #include "shard/bending/beam_theory.hpp"
 
 namespace shard::bending {
@@ -70,20 +71,16 @@ struct CurveAnalysis {
 CurveAnalysis analyse_curve(std::span<const double> displacement, std::span<const double> force,
                             const BendingGeometry& geometry, const CurveOptions& options = {});
 
-struct Curve {
-  std::vector<double> time, displacement, force;  // time may be empty
-};
-
 // Reads a CSV with a header naming its columns (shard/io/csv.hpp: Shard's files and lab exports
 // with ';', decimal commas and a units row): the displacement column is the first whose name starts
 // with "displacement", "w", "Standardweg" or "Extension", the force column the first starting with
 // "force", "F", "Standardkraft" or "Load" (any case). Units: a units row under the header is
 // applied; without one, m and N, or mm and kN for a name ending in "_mm" or "_kN". Lines starting
 // with '#' are comments. Throws std::runtime_error naming file:line:column on bad input.
-Curve read_curve_csv(const std::string& path);
+analysis::LoadCurve read_curve_csv(const std::string& path);
 // The file's "#! key = value" lines (a measurement file's set-up: span_mm, pin_distance_mm,
 // width_mm, height_mm, and displacement = local | pins, what the displacement column measured).
 std::map<std::string, std::string> read_curve_metadata(const std::string& path);
-void write_curve_csv(const std::string& path, const Curve& curve);
+void write_curve_csv(const std::string& path, const analysis::LoadCurve& curve);
 
 }  // namespace shard::bending

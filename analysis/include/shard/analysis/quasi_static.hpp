@@ -10,7 +10,7 @@
 #include <cstddef>
 #include <span>
 
-namespace shard::bending {
+namespace shard::analysis {
 
 inline constexpr double kQuasiStaticLoadFraction = 0.2;
 
@@ -26,4 +26,4 @@ inline double max_kinetic_to_elastic(std::span<const double> load, std::span<con
   return ratio;
 }
 
-}  // namespace shard::bending
+}  // namespace shard::analysis

@@ -9,9 +9,9 @@
 // motion, vibration and the quasi-static deflection velocity, stays.
 #include "shard/particles.hpp"
 
-namespace shard::bending {
+namespace shard::analysis {
 
 // 0.5 Σ (m v² + I ω²) minus the rigid-body part; 0 for fewer than two particles, never negative.
 double deformation_kinetic_energy(const Particles& p);
 
-}  // namespace shard::bending
+}  // namespace shard::analysis

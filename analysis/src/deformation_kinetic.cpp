@@ -1,10 +1,10 @@
-#include "shard/bending/deformation_kinetic.hpp"
+#include "shard/analysis/deformation_kinetic.hpp"
 
 #include <Eigen/Dense>
 
 #include <algorithm>
 
-namespace shard::bending {
+namespace shard::analysis {
 
 double deformation_kinetic_energy(const Particles& p) {
   const std::size_t n = p.size();
@@ -36,4 +36,4 @@ double deformation_kinetic_energy(const Particles& p) {
   return std::max(0.0, total - rigid);
 }
 
-}  // namespace shard::bending
+}  // namespace shard::analysis
