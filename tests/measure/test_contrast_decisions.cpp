@@ -260,6 +260,14 @@ TEST_CASE("the state of an effect in a model: overrides, then the scene; the mov
   const CandidateEffect compliance = effect(kMachineCompliance, kMachineCompliance, 0, 3e-5, 0, 1e-2);
   m.machine_compliance = 2e-5;
   CHECK(*effect_state(m, compliance) == doctest::Approx(2e-5));
+  // A compliance effect adds to the model's own: it is not moved, or it would count the
+  // reference's compliance twice.
+  std::ostringstream log;
+  const auto centred = centred_on_reference({compliance, gravity}, m, log);
+  CHECK(centred[0].neutral == 0);
+  CHECK(centred[0].plausible == doctest::Approx(3e-5));
+  CHECK(centred[1].neutral == doctest::Approx(-4.9));  // the gravity the model already has
+  CHECK(centred[1].plausible == doctest::Approx(-14.71));
 }
 
 TEST_CASE("bad input: clear errors before a single run") {

@@ -79,8 +79,11 @@ std::optional<double> effect_state(const ModelPlan& model, const CandidateEffect
 
 std::vector<CandidateEffect> centred_on_reference(std::vector<CandidateEffect> effects, const ModelPlan& reference,
                                                   std::ostream& log) {
-  for (auto& e : effects)
+  for (auto& e : effects) {
+    // A machine compliance is added to the model's own (with_effect), so it starts at the reference.
+    if (e.post_processing()) continue;
     if (const auto state = effect_state(reference, e)) e = centred(std::move(e), *state, log);
+  }
   return effects;
 }
 

@@ -18,7 +18,8 @@ namespace shard::measure {
 // (the plugin's default, which the library's neutral is).
 std::optional<double> effect_state(const ModelPlan& model, const CandidateEffect& effect);
 
-// The effects re-centred on `reference`'s state: an effect whose parameter the reference sets
+// The effects re-centred on `reference`'s state (a machine compliance, which adds to the
+// model's own, already starts there): an effect whose parameter the reference sets
 // away from neutral gets that value as its neutral and keeps its trial step (turned the other way
 // where the step would leave [min, max]). Throws, naming the effect's [[effect]] table, when the
 // reference's value lies outside the effect's [min, max]: no size of the effect gives back the
