@@ -17,9 +17,7 @@ using namespace measure;
 namespace {
 
 const CandidateEffect* effect_named(const ContrastReport& r, const std::string& name) {
-  for (const auto& e : r.result.effects)
-    if (e.name == name) return &e;
-  return nullptr;
+  return find_effect(r.result.effects, name);
 }
 
 // The fitted value of a fit: the confirmed run's value when the decision came from runs,
@@ -79,7 +77,7 @@ std::string separating_text(const ContrastReport& r, const std::string& lead) {
 // A name the component statistics gave and the curve did not bear out: a lead, never a name.
 std::string withheld_text(const ContrastReport& r, const SetDiagnosis& d, const std::string& name) {
   const ContrastDecision& c = d.decision;
-  const bool curve_misses = d.after.rising_nrmse > ContrastOptions{}.curve_floor_factor * naming_floor(d.after);
+  const bool curve_misses = !curve_agrees(d.after);
   std::string why = curve_misses
                         ? fmt::format("its simulated contrast curve misses the measured one before the peak (NRMSE "
                                       "{:.1f} % against a noise floor of {:.1f} %; a name needs at most {:g}x the floor)",

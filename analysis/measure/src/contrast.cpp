@@ -230,11 +230,17 @@ ContrastDecision decide_contrast(const std::vector<double>& difference, const st
   }
   out.verdict = named->name;
   out.unidentifiable.clear();  // a better fit that cannot be named is a rival (below)
-  for (const auto& f : out.fits)
-    if (&f != named && f.scale != 0 && f.p_drop < options.drop_p / n &&
-        f.chi_square - named->chi_square < options.rival_chi_square)
-      out.rivals.push_back(f.name);
+  out.rivals = rivals_of(out.fits, *named, options.drop_p / n, options);
   return out;
+}
+
+std::vector<std::string> rivals_of(const std::vector<ContrastFit>& fits, const ContrastFit& named, double level,
+                                   const ContrastOptions& options) {
+  std::vector<std::string> rivals;
+  for (const auto& f : fits)
+    if (&f != &named && f.scale != 0 && f.p_drop < level && f.chi_square - named.chi_square < options.rival_chi_square)
+      rivals.push_back(f.name);
+  return rivals;
 }
 
 }  // namespace shard::measure

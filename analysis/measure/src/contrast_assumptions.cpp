@@ -9,12 +9,6 @@
 namespace shard::measure {
 namespace {
 
-const CandidateEffect* find_effect(const std::vector<CandidateEffect>& effects, const std::string& name) {
-  for (const auto& e : effects)
-    if (e.name == name) return &e;
-  return nullptr;
-}
-
 // The effects of the model a set's report shows, at their confirmed values; empty when none.
 std::vector<std::pair<const CandidateEffect*, double>> shown_model(const SetDiagnosis& d,
                                                                    const std::vector<CandidateEffect>& effects) {
@@ -66,7 +60,7 @@ void assess_assumptions(ContrastStudy& study, const std::vector<CandidateEffect>
       a.assumption = assumption.text();
       a.size_ratio = here != 0 ? projection(study.model_contrast(contrast, runs[1 + k], runs[0]), contrast) / here : 0;
       a.after = study.curve_contrast(contrast, runs[1 + k], runs[0]);
-      a.curve_agrees = a.after.rising_nrmse <= decide.curve_floor_factor * naming_floor(a.after, decide);
+      a.curve_agrees = curve_agrees(a.after, decide);
       d.assumptions.push_back(std::move(a));
     }
   }

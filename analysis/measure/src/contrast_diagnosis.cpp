@@ -119,6 +119,10 @@ double naming_floor(const ContrastStudy::CurveContrast& c, const ContrastOptions
   return n == 0 ? 0.0 : std::sqrt(sum / static_cast<double>(n));
 }
 
+bool curve_agrees(const ContrastStudy::CurveContrast& c, const ContrastOptions& options) {
+  return c.rising_nrmse <= options.curve_floor_factor * naming_floor(c, options);
+}
+
 bool names_a_pair(const SetDiagnosis& d, const ContrastOptions& options) {
   return d.pair && pair_is_named(*d.pair, d.seconds_tried, options) && d.withheld.empty();
 }
@@ -128,8 +132,7 @@ void require_curve_agreement(std::vector<SetDiagnosis>& sets, const ContrastOpti
     d.share = share_of(d, options);
     const std::string& verdict = d.decision.verdict;
     if (verdict == kNoDifference || verdict == kUnexplainedDifference) continue;
-    const bool curve_agrees = d.after.rising_nrmse <= options.curve_floor_factor * naming_floor(d.after, options);
-    if (curve_agrees && d.share >= options.min_share) continue;
+    if (curve_agrees(d.after, options) && d.share >= options.min_share) continue;
     d.withheld = verdict;
     d.decision.verdict = kUnexplainedDifference;
     d.decision.rivals.clear();
@@ -143,16 +146,12 @@ void name_by_curve(std::vector<SetDiagnosis>& sets, std::size_t tried, const Con
     if (c.verdict != kUnexplainedDifference || names_a_pair(d, options) || c.fits.empty()) continue;
     const ContrastFit& closest = c.fits.front();
     const double share = c.chi_square > 0 ? closest.drop / c.chi_square : 0.0;
-    const bool curve_agrees = d.after_effect == closest.name &&
-                              d.after.rising_nrmse <= options.curve_floor_factor * naming_floor(d.after, options);
+    const bool curve_of_closest_agrees = d.after_effect == closest.name && curve_agrees(d.after, options);
     if (!(closest.scale != 0 && closest.identifiable && closest.p_drop < level && share >= options.curve_name_share &&
-          curve_agrees))
+          curve_of_closest_agrees))
       continue;
     c.verdict = closest.name;
-    c.rivals.clear();
-    for (const auto& f : c.fits)
-      if (&f != &closest && f.scale != 0 && f.p_drop < level && f.chi_square - closest.chi_square < options.rival_chi_square)
-        c.rivals.push_back(f.name);
+    c.rivals = rivals_of(c.fits, closest, level, options);
     d.withheld.clear();
     d.share = share;
     d.named_by_curve = true;

@@ -72,6 +72,12 @@ ParameterRange plugin_parameter_range(const std::string& parameter, const std::v
   return range;
 }
 
+const CandidateEffect* find_effect(const std::vector<CandidateEffect>& effects, const std::string& name) {
+  for (const auto& e : effects)
+    if (e.name == name) return &e;
+  return nullptr;
+}
+
 std::string CandidateEffect::scene_value(double value) const {
   const std::string number = fmt::format("{:.12g}", value);
   if (value_format.empty()) return number;

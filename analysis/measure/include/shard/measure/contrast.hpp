@@ -124,6 +124,11 @@ inline constexpr const char* kUnexplainedDifference = "unexplained difference";
 
 // `difference` d, its inverse covariance `weight` (m x m), the effects' simulated contrasts t_e
 // (EffectSignature::signature, same components) with their admissible scales, and nu.
+// The fits other than `named` whose drop beats `level` and whose chi^2 lies within
+// rival_chi_square of the named one's: effects these data cannot tell from it.
+std::vector<std::string> rivals_of(const std::vector<ContrastFit>& fits, const ContrastFit& named, double level,
+                                   const ContrastOptions& options);
+
 ContrastDecision decide_contrast(const std::vector<double>& difference, const std::vector<std::vector<double>>& weight,
                                  const std::vector<EffectSignature>& effects, double dof,
                                  const ContrastOptions& options = {});

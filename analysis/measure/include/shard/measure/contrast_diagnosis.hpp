@@ -92,6 +92,9 @@ bool names_a_pair(const SetDiagnosis& d, const ContrastOptions& options = {});
 // component test adds it): the library's effect and the lab's are the same physics in two forms.
 double naming_floor(const ContrastStudy::CurveContrast& c, const ContrastOptions& options = {});
 
+// The curve rule: the contrast's rising branch within curve_floor_factor x naming_floor.
+bool curve_agrees(const ContrastStudy::CurveContrast& c, const ContrastOptions& options = {});
+
 // The last word on a name (ContrastOptions::curve_floor_factor, min_share): a set named by the
 // component statistics whose named model does not reproduce the contrast curve to within its
 // noise floor, or explains less than min_share of T^2, becomes an unexplained difference.

@@ -99,6 +99,9 @@ struct ParameterRange {
 ParameterRange plugin_parameter_range(const std::string& parameter,
                                       const std::vector<std::filesystem::path>& extra_dirs = {});
 
+// The effect of that name among `effects`; nullptr when there is none.
+const CandidateEffect* find_effect(const std::vector<CandidateEffect>& effects, const std::string& name);
+
 // Reads the library; errors name the file, line and column. An entry for a plugin parameter
 // leaves out `neutral`: it is the one the plugin's schema declares (`schema`), so that a neutral
 // value is declared once, in the policy's schema. An entry that gives a `neutral` the schema
