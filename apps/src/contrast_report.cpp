@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <stdexcept>
@@ -194,6 +195,30 @@ std::string assumptions_markdown(const ContrastReport& r) {
   return md;
 }
 
+std::string group_name(const ContrastReport& r, const ContrastDiagnosis::GroupScatterLine& g) {
+  return fmt::format("{} at {:g} mm/s", r.sets.names[g.set], 1e3 * g.rate);
+}
+
+// The scatter the contrasts are weighed with, and the sets that carry their own.
+std::string scatter_markdown(const ContrastReport& r) {
+  const auto& lines = r.result.scatter;
+  const auto widest = std::max_element(lines.begin(), lines.end(), [](auto& a, auto& b) { return a.ratio < b.ratio; });
+  const bool any_own = std::any_of(lines.begin(), lines.end(), [](auto& g) { return g.own; });
+  if (!any_own)
+    return fmt::format("Specimen scatter pooled over all sets ({:g} degrees of freedom); the widest, {}, scatters "
+                       "{:.2f} x the others (p {:.2g}).\n\n",
+                       r.result.dof, widest == lines.end() ? "none" : group_name(r, *widest),
+                       widest == lines.end() ? 1.0 : widest->ratio, widest == lines.end() ? 1.0 : widest->p_value);
+  std::string md = fmt::format(
+      "Specimen scatter pooled over the sets that scatter alike ({:g} degrees of freedom). These scatter beyond the "
+      "others and carry their own (their contrasts are weighed with it, which can only make a name less likely):\n\n"
+      "| set | scatter against the others | p |\n| --- | --- | --- |\n",
+      r.result.dof);
+  for (const auto& g : lines)
+    if (g.own) md += fmt::format("| {} | {:.2f} x | {:.2g} |\n", group_name(r, g), g.ratio, g.p_value);
+  return md + "\n";
+}
+
 }  // namespace
 
 std::string contrast_markdown(const ContrastReport& r) {
@@ -201,9 +226,9 @@ std::string contrast_markdown(const ContrastReport& r) {
   std::string md = fmt::format("# Contrast diagnosis: {} sets against {}\n\n", r.sets.sets.size(),
                                r.sets.reference ? "the reference " + r.sets.names[*r.sets.reference]
                                                 : std::string("the consensus of the others"));
-  md += fmt::format("Components per curve: {}. Specimen scatter pooled over all sets: {:g} degrees of freedom. "
-                    "Effects tried: {}.\n\n",
-                    fmt::join(names, ", "), r.result.dof, r.result.effects.size());
+  md += fmt::format("Components per curve: {}. Effects tried: {}.\n\n", fmt::join(names, ", "),
+                    r.result.effects.size());
+  md += scatter_markdown(r);
   if (!r.result.scaled_sizes.empty())
     md += "Trial sizes from the fitted base run (plausible_from rules, docs/explanation/diagnosis.md):\n\n```\n" + r.result.scaled_sizes +
           "```\n\n";
@@ -392,6 +417,10 @@ io::Json contrast_json(const ContrastReport& r) {
   io::Json j = io::json_document(kDiagnoseFormatVersion);
   j["reference"] = r.sets.reference ? r.sets.names[*r.sets.reference] : "";
   j["dof"] = r.result.dof;
+  j["scatter"] = io::Json::array();
+  for (const auto& g : r.result.scatter)
+    j["scatter"].push_back({{"set", r.sets.names[g.set]}, {"rate", g.rate}, {"ratio", g.ratio}, {"p_value", g.p_value},
+                            {"own", g.own}});
   j["form_error_nrmse"] = r.result.calibration.form_error.nrmse;
   j.update(base_json(r.result.calibration));
   j["dynamic_warning"] = r.result.health.dynamic_warning;

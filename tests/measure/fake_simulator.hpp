@@ -109,10 +109,10 @@ inline CandidateEffect effect(const std::string& name, const std::string& parame
 }
 
 // A measured set: four specimens of the truth (parameters by key; the defaults elsewhere) at
-// 0.02 m/s, each with its own 2 % scatter (a lab's batch), recorded through the load frame's
+// 0.02 m/s, each with its own `scatter` (2 %: a lab's batch), recorded through the load frame's
 // `compliance`. Seeds from `first_seed` on, apart from the model's packing seeds 1, 2, 3.
 inline MeasurementSet measured_set(const std::map<std::string, double>& truth, std::uint64_t first_seed,
-                                   double compliance = 0) {
+                                   double compliance = 0, double scatter = 0.02) {
   Parameters p;
   for (const auto& [k, v] : truth) p.values.at(k) = v;
   MeasurementSet set;
@@ -120,7 +120,7 @@ inline MeasurementSet measured_set(const std::map<std::string, double>& truth, s
   ModelPlan as_tested;
   as_tested.machine_compliance = compliance;
   for (std::uint64_t k = 0; k < 4; ++k)
-    set.specimens.push_back(recorded_as_tested(specimen_of(p, first_seed + k, 0.02, 0.02), as_tested, {}, "lab"));
+    set.specimens.push_back(recorded_as_tested(specimen_of(p, first_seed + k, scatter, 0.02), as_tested, {}, "lab"));
   return set;
 }
 

@@ -5,6 +5,7 @@
 // Every path runs in milliseconds, so a change of a decision rule is tested without a DEM run.
 #include <doctest/doctest.h>
 
+#include <memory>
 #include <set>
 #include <sstream>
 
@@ -106,6 +107,28 @@ TEST_CASE("one library effect: named with its size; a null set: no difference") 
     if (f.name == "support_friction") CHECK(library()[1].value_at(f.scale) == doctest::Approx(0.45).epsilon(0.15));
   // The named effect's simulated contrast reproduces the measured contrast curve.
   CHECK(soft.after.nrmse < 0.5 * soft.before.nrmse);
+}
+
+TEST_CASE("a set that scatters seven times wider carries its own scatter and leaves the others' contrasts as they were") {
+  auto study = [](bool with_wild) {
+    auto s = std::make_unique<Study>();
+    s->add("softening", measured({{"fake.softening", 1.5}}, 3000));
+    s->add("null 2", measured({}, 6000));
+    s->add("null 3", measured({}, 7000));
+    s->add("null 4", measured({}, 9000));
+    if (with_wild) s->add("wild", fake::measured_set({}, 11000, 0, 0.14));
+    return s;
+  };
+  auto calm = study(false), wild = study(true);
+  const ContrastDiagnosis without = calm->run(), with = wild->run();
+  for (const auto& g : with.scatter) CHECK(g.own == (wild->sets.names[g.set] == "wild"));
+  // Pooled in, the wild set's variance (49 x) would weigh 3 of 21 degrees of freedom: the pool
+  // ~7 x wider and T^2 ~7 x smaller. Set apart, the softening's T^2 is its T^2 without the wild set.
+  const SetDiagnosis& soft = diagnosis_of(with, *wild, "softening");
+  CHECK(soft.decision.chi_square == doctest::Approx(diagnosis_of(without, *calm, "softening").decision.chi_square).epsilon(1e-9));
+  CHECK(soft.decision.verdict == "bond_softening");
+  const std::string wild_verdict = diagnosis_of(with, *wild, "wild").decision.verdict;
+  CHECK((wild_verdict == kNoDifference || wild_verdict == kUnexplainedDifference));
 }
 
 TEST_CASE("an effect outside the library: unexplained difference, no name") {

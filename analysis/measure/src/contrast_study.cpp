@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "shard/measure/effect_library.hpp"
+#include "shard/measure/group_scatter.hpp"
 #include "shard/measure/rate_groups.hpp"
 #include "shard/measure/statistics.hpp"
 
@@ -23,6 +24,7 @@ namespace {
 
 constexpr double kGeometryTolerance = 0.02;  // as Simulator::check_inputs: 2 % is a different fixture
 constexpr double kShrinkage = 0.1;           // off-diagonal shrinkage of the pooled covariance
+constexpr double kScatterAlpha = 0.01;       // a group's scatter set apart below this p over the groups
 constexpr double kBaseStep = 0.05;           // relative step of a base parameter for its Jacobian
 constexpr std::size_t kCurvePoints = 60;
 
@@ -233,7 +235,7 @@ ContrastStudy::ContrastStudy(const ContrastSets& sets, Simulator& simulator, Mod
       groups_.push_back(std::move(group));
     }
   }
-  covariance_ = pooled_covariance(pooled, kShrinkage, dof_);
+  scatter_ = group_scatter(pooled, kShrinkage, kScatterAlpha);
 }
 
 std::vector<double> ContrastStudy::rates() const {
@@ -308,17 +310,22 @@ BaseCalibration ContrastStudy::calibrate_base(const std::vector<std::string>& ke
   constexpr std::size_t kScaleTargets = 3;
   cal.form_targets = keys.size() > 2;
   std::vector<std::vector<double>> means, rows;
-  for (const auto& g : groups_)
+  // The reference's own scatter when it carries one (GroupScatter::own), else the pool's.
+  const std::vector<std::vector<double>>* scatter = &scatter_.pooled;
+  for (std::size_t gi = 0; gi < groups_.size(); ++gi) {
+    const ContrastGroup& g = groups_[gi];
     if (same_rate(g.rate, scale_rate_) && (!sets_.reference || g.set == *sets_.reference)) {
       means.push_back(component_mean(g.components));
       rows.insert(rows.end(), g.components.begin(), g.components.end());
+      if (sets_.reference) scatter = &scatter_.covariance[gi];
     }
+  }
   const std::vector<double> target = median_of(means);
   // Each scale target in units of its standard uncertainty: the pooled specimen scatter over the
   // reference's specimens (the post-peak residual is standardised by the comparison itself).
   std::vector<double> u_target(kScaleTargets);
   for (std::size_t i = 0; i < kScaleTargets; ++i)
-    u_target[i] = std::sqrt(covariance_[i][i] / static_cast<double>(rows.size()));
+    u_target[i] = std::sqrt((*scatter)[i][i] / static_cast<double>(rows.size()));
   std::vector<Specimen> reference;
   for (std::size_t k = 0; k < sets_.sets.size(); ++k)
     if (!sets_.reference || *sets_.reference == k)
@@ -431,22 +438,29 @@ ContrastStudy::Contrast ContrastStudy::contrast(std::size_t set, const Simulated
     std::string shared_key;
   };
   std::vector<Block> blocks;
-  Eigen::MatrixXd sigma(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
-  for (std::size_t i = 0; i < m; ++i)
-    for (std::size_t j = 0; j < m; ++j) sigma(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = covariance_[i][j];
+  auto sigma_of = [&](const std::vector<std::vector<double>>& a) {
+    Eigen::MatrixXd sigma(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
+    for (std::size_t i = 0; i < m; ++i)
+      for (std::size_t j = 0; j < m; ++j) sigma(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = a[i][j];
+    return sigma;
+  };
   for (std::size_t gi = 0; gi < groups_.size(); ++gi) {
     const ContrastGroup& g = groups_[gi];
     if (g.set != set) continue;
     Block b;
     const std::vector<double> mean = component_mean(g.components);
     std::vector<double> ref_mean;
-    double ref_weight = 0;  // the reference mean's covariance is ref_weight * Sigma
+    double ref_weight = 0;  // the reference mean's covariance is ref_weight * ref_sigma
+    const std::vector<std::vector<double>>* ref_sigma = &scatter_.pooled;
     if (sets_.reference) {
-      for (const auto& h : groups_)
+      for (std::size_t hi = 0; hi < groups_.size(); ++hi) {
+        const ContrastGroup& h = groups_[hi];
         if (h.set == *sets_.reference && same_rate(h.rate, g.reference_rate)) {
           ref_mean = component_mean(h.components);
           ref_weight = 1.0 / static_cast<double>(h.components.size());
+          ref_sigma = &scatter_.covariance[hi];
         }
+      }
       b.shared_key = fmt::format("reference@{}", g.reference_rate);
     } else {
       // The consensus: the median of the other sets' means at this rate. Its variance is taken
@@ -471,8 +485,8 @@ ContrastStudy::Contrast ContrastStudy::contrast(std::size_t set, const Simulated
       paired(components(base, g.rate), components(base, g.reference_rate), base_shift, base_var);
     for (std::size_t i = 0; i < m; ++i) b.d.push_back(mean[i] - ref_mean[i] - base_shift[i]);
     b.var_base = base_var;
-    b.own = sigma / static_cast<double>(g.components.size());
-    b.shared = sigma * ref_weight;
+    b.own = sigma_of(scatter_.covariance[gi]) / static_cast<double>(g.components.size());
+    b.shared = sigma_of(*ref_sigma) * ref_weight;
     for (std::size_t i = 0; i < m; ++i) {
       c.names.push_back(fmt::format("{}@{:g}", contrast_component_names()[i], g.rate));
       c.difference.push_back(b.d[i]);

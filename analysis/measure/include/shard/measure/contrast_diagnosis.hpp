@@ -164,6 +164,15 @@ struct ContrastDiagnosis {
   std::optional<BaseCalibration> finer;  // the base fitted at a finer packing, when asked for
   double finer_factor = 0;
   double dof = 0;                         // of the pooled specimen covariance
+  // Each (set, rate) group's scatter against the others' (group_scatter.hpp), the reference's too.
+  struct GroupScatterLine {
+    std::size_t set = 0;
+    double rate = 0;     // m/s
+    double ratio = 1;    // its scatter in units of the others' pooled scatter
+    double p_value = 1;  // of that ratio under one common scatter
+    bool own = false;    // set apart: its contrast uses its own scatter
+  };
+  std::vector<GroupScatterLine> scatter;
   std::vector<double> rates;              // every rate simulated
   std::vector<SetDiagnosis> sets;         // one per set held against the reference
   RunHealth health;

@@ -13,6 +13,7 @@
 #include "shard/measure/comparison.hpp"
 #include "shard/measure/contrast.hpp"
 #include "shard/measure/effect_library.hpp"
+#include "shard/measure/group_scatter.hpp"
 #include "shard/measure/simulator.hpp"
 
 namespace shard::measure {
@@ -60,7 +61,10 @@ class ContrastStudy {
  public:
   ContrastStudy(const ContrastSets& sets, Simulator& simulator, ModelPlan base);
 
-  double dof() const { return dof_; }
+  double dof() const { return scatter_.dof; }
+  // The specimens' scatter: pooled, and the groups that carry their own (group_scatter.hpp).
+  const GroupScatter& scatter() const { return scatter_; }
+  const std::vector<ContrastGroup>& groups() const { return groups_; }
   const ContrastSets& sets() const { return sets_; }
 
   // The parameters' values and ranges are the simulator's (its scene and plugins).
@@ -122,8 +126,7 @@ class ContrastStudy {
   std::vector<ContrastGroup> groups_;
   measure::ContrastScale measured_scale_;
   double scale_rate_ = 0;  // the rate whose curves set both scales
-  std::vector<std::vector<double>> covariance_;
-  double dof_ = 0;
+  GroupScatter scatter_;
 };
 
 }  // namespace shard::measure
