@@ -5,6 +5,8 @@
 #include <fmt/ostream.h>
 
 #include <fstream>
+#include <functional>
+#include <map>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -108,131 +110,177 @@ std::pair<double, double> scene_bond_parameters(const CalibrateCliOptions& o, co
   return {scene.bond->params.number("youngs_modulus"), scene.bond->params.number("critical_stress")};
 }
 
-int calibrate_command(CalibrateCliOptions& o, const CommandContext& ctx) {
-  apply_geometry(o.geometry);
-  if (o.modulus != "local" && o.modulus != "pins")
-    throw std::runtime_error(fmt::format("--modulus {}: expected local (the beam's own deflection under the pins, as "
-                                         "local instrumentation measures it) or pins (the pin travel)", o.modulus));
-  const bool use_local = o.modulus == "local";
-  prepare_output_folder(o.out_dir, "--out");
-  PluginHost host;
-  load_plugins(host, ctx.plugin_dirs, std::cerr);
-  auto [e_b, sigma] = scene_bond_parameters(o, host);
-
+// What the calibration aims at: E always; F_max given, or a strength (a measured curve's or
+// --target-strength) that becomes an F_max once a run has shown the specimen's geometry.
+struct CalibrationAims {
   bending::CalibrationTargets targets;
-  targets.youngs_modulus = o.target_e;
-  targets.tolerance = o.tolerance;
-  targets.max_runs = o.max_runs;
-  // The strength target needs the specimen's geometry: taken from a first (stiffness) run when
-  // given as a stress, so it is converted after that run.
-  std::optional<double> target_strength;
-  if (!o.measurement.empty()) {
-    // A measured curve is reduced with the same definitions as the runs, on the lab's geometry
-    // (default: the seed's, span 180 mm). Its strength, not its force, is the target: the
-    // simulated span may differ from the lab's, and sigma_b (eq. 15) is the material's figure.
-    const auto curve = bending::read_curve_csv(o.measurement);
-    const auto meta = bending::read_curve_metadata(o.measurement);
-    auto number = [&](const char* key, double fallback) {
-      const auto it = meta.find(key);
-      if (it == meta.end()) return fallback;
-      try {
-        return std::stod(it->second);
-      } catch (const std::exception&) {
-        throw std::runtime_error(fmt::format("{}: '#! {} = {}' is not a number", o.measurement, key, it->second));
-      }
-    };
-    const bending::BendingGeometry lab{1e-3 * number("span_mm", o.lab_span_mm), 1e-3 * number("pin_distance_mm", 80.0),
-                                       1e-3 * number("width_mm", 30.0), 1e-3 * number("height_mm", 35.0)};
-    lab.check();
-    if (const auto it = meta.find("displacement"); it != meta.end() && it->second != o.modulus)
-      throw std::runtime_error(fmt::format("{}: its displacement column is '{}' but --modulus is '{}': the simulated E "
-                                           "would not measure the same thing (use --modulus {})",
-                                           o.measurement, it->second, o.modulus, it->second));
-    const auto a = bending::analyse_curve(curve.displacement, curve.force, lab, o.geometry.analysis.curve);
-    if (!o.target_e_given) targets.youngs_modulus = a.youngs_modulus;
-    target_strength = a.flexural_strength;
-    fmt::print("measurement {}: E = {:.4g} MPa (eq. 14, span {:.0f} mm), F_max = {:.4g} N, sigma_b = {:.4g} MPa, "
-               "w_s,max = {:.3f} mm\n",
-               o.measurement, 1e-6 * a.youngs_modulus, 1e3 * lab.span, a.force_max, 1e-6 * a.flexural_strength,
-               1e3 * a.deflection_at_peak);
-  } else if (o.target_fmax > 0) {
-    targets.force_max = o.target_fmax;
-  } else if (o.target_strength > 0) {
-    target_strength = o.target_strength;
-  }
+  std::optional<double> strength;  // Pa, sigma_b (eq. 15)
+};
 
-  std::ofstream log_file(o.out_dir / "calibration.log");
-  double stiffness_stop = 0;  // m, pin travel of the stiffness runs
-  auto evaluate = [&](double eb, double sc, bool breakage, const std::string& stage, int index) {
-    RunOptions run;
-    run.scene = o.scene;
-    run.overrides = parse_overrides(o.overrides);
-    run.overrides.push_back({"bond.youngs_modulus", significant(eb, 9)});
-    run.overrides.push_back({"bond.critical_stress", significant(sc, 9)});
-    run.overrides.push_back({"simulation.breakage", breakage});
-    if (!breakage && stiffness_stop > 0) run.overrides.push_back({"stop.max_displacement", significant(stiffness_stop, 9)});
-    run.out_dir = o.out_dir / fmt::format("run_{:02d}_{}", index, stage);
-    run.plugin_dirs = ctx.plugin_dirs;
-    run.threads = o.threads;
-    run.quiet = true;
-    const RunSummary s = run_scene(run, log_file);
-    // Stiffness runs stop before failure: their fit window is taken on the target F_max.
-    auto analyse = [&] {
-      bending::BendingOptions options = o.geometry.analysis;
-      if (!breakage && targets.force_max) options.curve.reference_force = *targets.force_max;
-      return bending::analyse_bending_run(s.output, options);
-    };
-    auto report = analyse();
-    if (target_strength && !targets.force_max) {
-      targets.force_max = bending::force_from_flexural_stress(report.geometry, *target_strength);
+double metadata_number(const CalibrateCliOptions& o, const std::map<std::string, std::string>& meta, const char* key,
+                       double fallback) {
+  const auto it = meta.find(key);
+  if (it == meta.end()) return fallback;
+  try {
+    return std::stod(it->second);
+  } catch (const std::exception&) {
+    throw std::runtime_error(fmt::format("{}: '#! {} = {}' is not a number", o.measurement, key, it->second));
+  }
+}
+
+// A measured curve reduced with the same definitions as the runs, on the lab's geometry (default:
+// the seed's, span 180 mm). Its strength, not its force, is the target: the simulated span may
+// differ from the lab's, and sigma_b (eq. 15) is the material's figure.
+void aim_at_measurement(const CalibrateCliOptions& o, CalibrationAims& aims) {
+  const auto curve = bending::read_curve_csv(o.measurement);
+  const auto meta = bending::read_curve_metadata(o.measurement);
+  const bending::BendingGeometry lab{1e-3 * metadata_number(o, meta, "span_mm", o.lab_span_mm),
+                                     1e-3 * metadata_number(o, meta, "pin_distance_mm", 80.0),
+                                     1e-3 * metadata_number(o, meta, "width_mm", 30.0),
+                                     1e-3 * metadata_number(o, meta, "height_mm", 35.0)};
+  lab.check();
+  if (const auto it = meta.find("displacement"); it != meta.end() && it->second != o.modulus)
+    throw std::runtime_error(fmt::format("{}: its displacement column is '{}' but --modulus is '{}': the simulated E "
+                                         "would not measure the same thing (use --modulus {})",
+                                         o.measurement, it->second, o.modulus, it->second));
+  const auto a = bending::analyse_curve(curve.displacement, curve.force, lab, o.geometry.analysis.curve);
+  if (!o.target_e_given) aims.targets.youngs_modulus = a.youngs_modulus;
+  aims.strength = a.flexural_strength;
+  fmt::print("measurement {}: E = {:.4g} MPa (eq. 14, span {:.0f} mm), F_max = {:.4g} N, sigma_b = {:.4g} MPa, "
+             "w_s,max = {:.3f} mm\n",
+             o.measurement, 1e-6 * a.youngs_modulus, 1e3 * lab.span, a.force_max, 1e-6 * a.flexural_strength,
+             1e3 * a.deflection_at_peak);
+}
+
+CalibrationAims calibration_aims(const CalibrateCliOptions& o) {
+  CalibrationAims aims;
+  aims.targets.youngs_modulus = o.target_e;
+  aims.targets.tolerance = o.tolerance;
+  aims.targets.max_runs = o.max_runs;
+  if (!o.measurement.empty())
+    aim_at_measurement(o, aims);
+  else if (o.target_fmax > 0)
+    aims.targets.force_max = o.target_fmax;
+  else if (o.target_strength > 0)
+    aims.strength = o.target_strength;
+  return aims;
+}
+
+// One calibration run: the scene at the bond's parameters, analysed as a bending test. Stiffness
+// runs (no breakage) stop once past the elastic part.
+class CalibrationRunner {
+ public:
+  CalibrationRunner(const CalibrateCliOptions& o, const CommandContext& ctx, CalibrationAims& aims)
+      : o_(o), ctx_(ctx), aims_(aims), log_(o.out_dir / "calibration.log") {}
+
+  bending::CalibrationRun operator()(double eb, double sc, bool breakage, const std::string& stage, int index) {
+    const RunSummary s = run_scene(options(eb, sc, breakage, stage, index), log_);
+    auto report = analyse(s, breakage);
+    if (aims_.strength && !aims_.targets.force_max) {
+      aims_.targets.force_max = bending::force_from_flexural_stress(report.geometry, *aims_.strength);
       fmt::print("target strength {:.4g} MPa -> F_max = {:.4g} N (eq. 15, {:.0f} x {:.0f} x {:.0f} mm, span {:.0f} mm)\n",
-                 1e-6 * *target_strength, *targets.force_max, 1e3 * report.length, 1e3 * report.geometry.width,
+                 1e-6 * *aims_.strength, *aims_.targets.force_max, 1e3 * report.length, 1e3 * report.geometry.width,
                  1e3 * report.geometry.height, 1e3 * report.geometry.span);
-      if (!breakage) report = analyse();
+      if (!breakage) report = analyse(s, breakage);
     }
     io::write_json(beside(s.output, "_bending.json"), bending::report_json(report));
-    if (use_local && !report.gauges.valid)
+    const bool local = o_.modulus == "local";
+    if (local && !report.gauges.valid)
       throw std::runtime_error(fmt::format(
           "calibration run {}: {}: only {} frames in the stiffness fit window, too few for the local instrumentation; "
           "record frames more often (--set output.frame_interval=...) or use --modulus pins",
           index, s.output.string(), report.gauges.fit_frames));
     bending::CalibrationRun c;
-    c.youngs_modulus = use_local ? report.gauges.youngs_modulus : report.analysis.youngs_modulus;
+    c.youngs_modulus = local ? report.gauges.youngs_modulus : report.analysis.youngs_modulus;
     c.force_max = report.analysis.force_max;
     c.failed = report.analysis.failed;
     c.wall_seconds = s.wall_seconds;
     c.output = s.output.string();
-    if (stiffness_stop == 0 && targets.force_max && report.analysis.stiffness > 0) {
+    if (stiffness_stop_ == 0 && aims_.targets.force_max && report.analysis.stiffness > 0)
       // Later stiffness runs only need the elastic part: stop at the pin travel that reaches a
       // fraction of the target F_max at this run's pin stiffness (plus the contact onset).
-      stiffness_stop = report.analysis.onset + o.stiffness_fraction * *targets.force_max / report.analysis.stiffness;
-    }
+      stiffness_stop_ = report.analysis.onset + o_.stiffness_fraction * *aims_.targets.force_max / report.analysis.stiffness;
     return c;
-  };
-  std::ofstream csv_live(o.out_dir / "calibration_runs.csv");
-  csv_live << "run,stage,bond_youngs_modulus_Pa,bond_critical_stress_Pa,breakage,youngs_modulus_Pa,force_max_N,failed,wall_seconds\n";
-  auto observer = [&](const bending::CalibrationRun& c) {
+  }
+
+ private:
+  RunOptions options(double eb, double sc, bool breakage, const std::string& stage, int index) const {
+    RunOptions run;
+    run.scene = o_.scene;
+    run.overrides = parse_overrides(o_.overrides);
+    run.overrides.push_back({"bond.youngs_modulus", significant(eb, 9)});
+    run.overrides.push_back({"bond.critical_stress", significant(sc, 9)});
+    run.overrides.push_back({"simulation.breakage", breakage});
+    if (!breakage && stiffness_stop_ > 0) run.overrides.push_back({"stop.max_displacement", significant(stiffness_stop_, 9)});
+    run.out_dir = o_.out_dir / fmt::format("run_{:02d}_{}", index, stage);
+    run.plugin_dirs = ctx_.plugin_dirs;
+    run.threads = o_.threads;
+    run.quiet = true;
+    return run;
+  }
+  // Stiffness runs stop before failure: their fit window is taken on the target F_max.
+  bending::BendingReport analyse(const RunSummary& s, bool breakage) const {
+    bending::BendingOptions options = o_.geometry.analysis;
+    if (!breakage && aims_.targets.force_max) options.curve.reference_force = *aims_.targets.force_max;
+    return bending::analyse_bending_run(s.output, options);
+  }
+
+  const CalibrateCliOptions& o_;
+  const CommandContext& ctx_;
+  CalibrationAims& aims_;
+  std::ofstream log_;
+  double stiffness_stop_ = 0;  // m, pin travel of the stiffness runs
+};
+
+// Each run as it ends: a line on the terminal and a row of calibration_runs.csv, flushed.
+class CalibrationProgress {
+ public:
+  CalibrationProgress(const std::filesystem::path& out_dir, const CalibrationAims& aims)
+      : aims_(aims), csv_(out_dir / "calibration_runs.csv") {
+    csv_ << "run,stage,bond_youngs_modulus_Pa,bond_critical_stress_Pa,breakage,youngs_modulus_Pa,force_max_N,failed,"
+            "wall_seconds\n";
+  }
+  void operator()(const bending::CalibrationRun& c) {
+    const auto& t = aims_.targets;
     fmt::print("run {:2d} {:<9} E_b = {:9.4g} MPa  sigma_crit = {:7.4g} MPa  ->  E = {:7.4g} MPa ({:+.1f} %)  F_max = {:7.4g} N{}  "
                "{:.0f} s\n",
                c.index, c.stage, 1e-6 * c.bond_youngs_modulus, 1e-6 * c.bond_critical_stress, 1e-6 * c.youngs_modulus,
-               100 * (c.youngs_modulus / targets.youngs_modulus - 1), c.force_max,
-               targets.force_max ? fmt::format(" ({:+.1f} %)", 100 * (c.force_max / *targets.force_max - 1)) : "",
-               c.wall_seconds);
+               100 * (c.youngs_modulus / t.youngs_modulus - 1), c.force_max,
+               t.force_max ? fmt::format(" ({:+.1f} %)", 100 * (c.force_max / *t.force_max - 1)) : "", c.wall_seconds);
     std::fflush(stdout);
-    csv_live << fmt::format("{},{},{:.9g},{:.9g},{},{:.9g},{:.9g},{},{:.3f}\n", c.index, c.stage, c.bond_youngs_modulus,
-                            c.bond_critical_stress, c.breakage, c.youngs_modulus, c.force_max, c.failed, c.wall_seconds);
-    csv_live.flush();
-  };
+    csv_ << fmt::format("{},{},{:.9g},{:.9g},{},{:.9g},{:.9g},{},{:.3f}\n", c.index, c.stage, c.bond_youngs_modulus,
+                        c.bond_critical_stress, c.breakage, c.youngs_modulus, c.force_max, c.failed, c.wall_seconds);
+    csv_.flush();
+  }
+
+ private:
+  const CalibrationAims& aims_;
+  std::ofstream csv_;
+};
+
+int calibrate_command(CalibrateCliOptions& o, const CommandContext& ctx) {
+  apply_geometry(o.geometry);
+  if (o.modulus != "local" && o.modulus != "pins")
+    throw std::runtime_error(fmt::format("--modulus {}: expected local (the beam's own deflection under the pins, as "
+                                         "local instrumentation measures it) or pins (the pin travel)", o.modulus));
+  prepare_output_folder(o.out_dir, "--out");
+  PluginHost host;
+  load_plugins(host, ctx.plugin_dirs, std::cerr);
+  auto [e_b, sigma] = scene_bond_parameters(o, host);
+  CalibrationAims aims = calibration_aims(o);
+  CalibrationRunner evaluate(o, ctx, aims);
+  CalibrationProgress observer(o.out_dir, aims);
+  const auto& t = aims.targets;
   fmt::print("calibrating {}: target E ({}) = {:.4g} MPa{}, tolerance {:.1f} %, at most {} runs; output in {}\n",
-             o.scene.string(), use_local ? "eq. 14 on the beam's own deflection" : "eq. 14 on the pin travel",
-             1e-6 * targets.youngs_modulus,
-             targets.force_max ? fmt::format(", F_max = {:.4g} N", *targets.force_max)
-             : target_strength ? fmt::format(", sigma_b = {:.4g} MPa", 1e-6 * *target_strength)
-                               : std::string(", no strength target"),
-             100 * targets.tolerance, targets.max_runs, o.out_dir.string());
-  const auto result = bending::calibrate(targets, e_b, sigma, evaluate, observer);
+             o.scene.string(), o.modulus == "local" ? "eq. 14 on the beam's own deflection" : "eq. 14 on the pin travel",
+             1e-6 * t.youngs_modulus,
+             t.force_max      ? fmt::format(", F_max = {:.4g} N", *t.force_max)
+             : aims.strength ? fmt::format(", sigma_b = {:.4g} MPa", 1e-6 * *aims.strength)
+                              : std::string(", no strength target"),
+             100 * t.tolerance, t.max_runs, o.out_dir.string());
+  const auto result = bending::calibrate(aims.targets, e_b, sigma, std::ref(evaluate), std::ref(observer));
   write_text(o.out_dir / "calibration.csv", bending::calibration_csv(result));
-  io::write_json(o.out_dir / "calibration.json", bending::calibration_json(result, targets));
+  io::write_json(o.out_dir / "calibration.json", bending::calibration_json(result, aims.targets));
   fmt::print("{}: {}\nfinal: bond.youngs_modulus = {:.6g} Pa, bond.critical_stress = {:.6g} Pa\n",
              result.converged ? "converged" : "NOT converged", result.message, result.bond_youngs_modulus,
              result.bond_critical_stress);

@@ -219,20 +219,35 @@ std::string scatter_markdown(const ContrastReport& r) {
   return md + "\n";
 }
 
-}  // namespace
+std::string regimes_markdown(const Comparison& c) {
+  std::string md = "| regime | mean residual | force error |\n|---|---|---|\n";
+  for (const auto& g : c.regimes)
+    if (g.points() > 0)
+      md += fmt::format("| {} | {:+.2f} | {:+.1f} % |\n", regime_name(g.regime), g.mean_residual, 100 * g.relative_error);
+  return md;
+}
 
-std::string contrast_markdown(const ContrastReport& r) {
-  const auto& names = contrast_component_names();
-  std::string md = fmt::format("# Contrast diagnosis: {} sets against {}\n\n", r.sets.sets.size(),
-                               r.sets.reference ? "the reference " + r.sets.names[*r.sets.reference]
-                                                : std::string("the consensus of the others"));
-  md += fmt::format("Components per curve: {}. Effects tried: {}.\n\n", fmt::join(names, ", "),
-                    r.result.effects.size());
-  md += scatter_markdown(r);
-  if (!r.result.scaled_sizes.empty())
-    md += "Trial sizes from the fitted base run (plausible_from rules, docs/explanation/diagnosis.md):\n\n```\n" + r.result.scaled_sizes +
-          "```\n\n";
-  md += "## The base model and its form error\n\n";
+// The form error at a finer packing: does resolution explain it?
+std::string finer_markdown(const ContrastReport& r) {
+  const Comparison& fe = r.result.calibration.form_error;
+  const Comparison& ff = r.result.finer->form_error;
+  std::string md = fmt::format("\nAt diameters x {:g} (the base fitted again: ", r.result.finer_factor);
+  for (std::size_t k = 0; k < r.result.finer->keys.size(); ++k)
+    md += fmt::format("{}{}={:.4g}", k ? ", " : "", r.result.finer->keys[k], r.result.finer->values[k]);
+  md += fmt::format(") the form error is NRMSE {:.1f} % against {:.1f} %: ", 100 * ff.nrmse, 100 * fe.nrmse);
+  // A third less is more than the packing noise of a few seeds moves an NRMSE (tiny beam: 5-7 %).
+  md += ff.nrmse < 2.0 / 3.0 * fe.nrmse
+            ? "resolution explains much of it; a finer model packing is worth its cost.\n"
+            : "resolution does not explain it; it comes from the form of the laws or the fixture, and the contrasts "
+              "below are what can be trusted.\n";
+  // Which regimes and features stay beyond noise at the finer packing (the same verdict as above).
+  md += fmt::format("\nAt diameters x {:g}: {}\n\n", r.result.finer_factor, ff.verdict);
+  return md + regimes_markdown(ff);
+}
+
+// The base fit's path, values and form error against the reference (and at a finer packing).
+std::string base_markdown(const ContrastReport& r) {
+  std::string md = "## The base model and its form error\n\n";
   if (r.result.calibration.keys.empty())
     md += "Base parameters as in the scene (no --param given).\n\n";
   else {
@@ -255,29 +270,14 @@ std::string contrast_markdown(const ContrastReport& r) {
   }
   const Comparison& fe = r.result.calibration.form_error;
   md += fmt::format("\nAgainst the reference the fitted base model leaves NRMSE {:.1f} %: {}\n\n", 100 * fe.nrmse, fe.verdict);
-  md += "| regime | mean residual | force error |\n|---|---|---|\n";
-  for (const auto& g : fe.regimes)
-    if (g.points() > 0)
-      md += fmt::format("| {} | {:+.2f} | {:+.1f} % |\n", regime_name(g.regime), g.mean_residual, 100 * g.relative_error);
-  if (r.result.finer) {
-    const Comparison& ff = r.result.finer->form_error;
-    md += fmt::format("\nAt diameters x {:g} (the base fitted again: ", r.result.finer_factor);
-    for (std::size_t k = 0; k < r.result.finer->keys.size(); ++k)
-      md += fmt::format("{}{}={:.4g}", k ? ", " : "", r.result.finer->keys[k], r.result.finer->values[k]);
-    md += fmt::format(") the form error is NRMSE {:.1f} % against {:.1f} %: ", 100 * ff.nrmse, 100 * fe.nrmse);
-    // A third less is more than the packing noise of a few seeds moves an NRMSE (tiny beam: 5-7 %).
-    md += ff.nrmse < 2.0 / 3.0 * fe.nrmse
-              ? "resolution explains much of it; a finer model packing is worth its cost.\n"
-              : "resolution does not explain it; it comes from the form of the laws or the fixture, and the contrasts "
-                "below are what can be trusted.\n";
-    // Which regimes and features stay beyond noise at the finer packing (the same verdict as above).
-    md += fmt::format("\nAt diameters x {:g}: {}\n", r.result.finer_factor, ff.verdict);
-    md += "\n| regime | mean residual | force error |\n|---|---|---|\n";
-    for (const auto& g : ff.regimes)
-      if (g.points() > 0)
-        md += fmt::format("| {} | {:+.2f} | {:+.1f} % |\n", regime_name(g.regime), g.mean_residual, 100 * g.relative_error);
-  }
-  md += "\nThis form error is common to sets tested with one fixture; it cancels in the contrasts below.\n\n";
+  md += regimes_markdown(fe);
+  if (r.result.finer) md += finer_markdown(r);
+  return md + "\nThis form error is common to sets tested with one fixture; it cancels in the contrasts below.\n\n";
+}
+
+// One line a set: T^2, the verdict, its value, the share explained and the curve rule's figures.
+std::string verdicts_markdown(const ContrastReport& r) {
+  std::string md;
   md += "## Verdicts\n\n| set | T^2 | p (no difference) | verdict | value | share of T^2 | contrast NRMSE: base -> with "
         "effect | before the peak: with effect / floor |\n|---|---|---|---|---|---|---|---|\n";
   for (const auto& d : r.result.sets) {
@@ -301,6 +301,12 @@ std::string contrast_markdown(const ContrastReport& r) {
         "model's, over the displacement range both cover, in units of the reference's peak force. Before the peak: the "
         "same over the rising branch, against its noise floor (the measured contrast's standard uncertainty and the "
         "simulated contrast's packing scatter); a name needs at most 1.5x the floor there and half of T^2 explained.\n";
+  return md;
+}
+
+// A section a set: the components measured and modelled, and every effect's fit.
+std::string set_sections_markdown(const ContrastReport& r) {
+  std::string md;
   for (const auto& d : r.result.sets) {
     md += fmt::format("\n## {}\n\n{}\n\n", r.sets.names[d.set], verdict_text(r, d));
     const bool shown = !d.after_components.empty();
@@ -330,6 +336,23 @@ std::string contrast_markdown(const ContrastReport& r) {
                         f.chi_square_form, f.p_after, f.at_bound ? "yes" : "");
     }
   }
+  return md;
+}
+
+}  // namespace
+
+std::string contrast_markdown(const ContrastReport& r) {
+  const auto& names = contrast_component_names();
+  std::string md = fmt::format("# Contrast diagnosis: {} sets against {}\n\n", r.sets.sets.size(),
+                               r.sets.reference ? "the reference " + r.sets.names[*r.sets.reference]
+                                                : std::string("the consensus of the others"));
+  md += fmt::format("Components per curve: {}. Effects tried: {}.\n\n", fmt::join(names, ", "),
+                    r.result.effects.size());
+  md += scatter_markdown(r);
+  if (!r.result.scaled_sizes.empty())
+    md += "Trial sizes from the fitted base run (plausible_from rules, docs/explanation/diagnosis.md):\n\n```\n" + r.result.scaled_sizes +
+          "```\n\n";
+  md += base_markdown(r) + verdicts_markdown(r) + set_sections_markdown(r);
   md += assumptions_markdown(r);
   md += fmt::format("\nLargest kinetic/elastic energy ratio before breakage (deformation, less the rigid-body motion): "
                     "{:.2g} over the base and the effects at their fitted sizes; {:.2g} over the effects' trials at their "
