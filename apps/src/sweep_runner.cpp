@@ -47,6 +47,91 @@ void check_options(const SweepOptions& o) {
   if (!fs::is_regular_file(o.scene)) throw SceneError(fmt::format("{}: no such scene file", o.scene.string()));
 }
 
+// The runs, value-major, then seed.
+std::vector<SweepRun> planned_runs(const VarySpec& vary, std::int64_t seeds) {
+  std::vector<SweepRun> runs;
+  for (double v : vary.values)
+    for (std::int64_t s = 0; s < seeds; ++s) {
+      SweepRun r;
+      r.value = v;
+      r.seed = s;
+      r.label = fmt::format("v{:g}_s{}", v, s);
+      runs.push_back(r);
+    }
+  return runs;
+}
+
+// A run that ended: its plates analysed as `shard fragments --by-body` does, the table written
+// into its file (/bodies/<k>); a failure to analyse becomes the run's error.
+void analyse_plates(SweepRun& r, const SweepOptions& options, std::vector<analysis::PlateOutcome>& plates) {
+  try {
+    RunFile file(r.run_file, RunFile::Mode::read_write);
+    const analysis::RunBodies bodies =
+        analysis::analyse_run_bodies(file, std::nullopt, options.intact_fraction, options.fines_size);
+    analysis::write_body_table(file, static_cast<std::size_t>(bodies.frame), bodies.report);
+    plates = analysis::plate_outcomes(bodies.report, bodies.fragments, r.label, r.value, r.seed);
+    r.plates = bodies.report.bodies.size();
+    r.broken = bodies.report.broken;
+    r.x50 = bodies.report.pooled.x50;
+  } catch (const std::exception& e) {
+    r.error = fmt::format("the run ended but its plates could not be analysed: {}", e.what());
+  }
+}
+
+// One line a finished run: how far the sweep is, the run's plates, the breakage so far, the ETA.
+class SweepProgress {
+ public:
+  SweepProgress(std::size_t count, const std::string& value_name, std::ostream& log)
+      : count_(count), value_name_(value_name), log_(log) {}
+  void finished(const SweepRun& r) {
+    ++finished_;
+    failed_ += r.failed();
+    plates_ += r.plates;
+    broken_ += r.broken;
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    const double eta = elapsed / static_cast<double>(finished_) * static_cast<double>(count_ - finished_);
+    const std::string this_run =
+        r.failed() ? fmt::format("FAILED: {}", r.error.substr(0, r.error.find('\n')))
+                   : fmt::format("{} plates, {} broken, {:.1f} s", r.plates, r.broken, r.wall_seconds);
+    const std::string share =
+        plates_ > 0 ? fmt::format(" ({:.0f} %)", 100.0 * static_cast<double>(broken_) / static_cast<double>(plates_)) : "";
+    fmt::print(log_, "sweep: {}/{} runs{} | {} = {:g}, seed {}: {} | so far {} plates, {} broken{} | {} elapsed{}\n",
+               finished_, count_, failed_ > 0 ? fmt::format(" ({} failed)", failed_) : "", value_name_, r.value, r.seed,
+               this_run, plates_, broken_, share, duration_text(elapsed),
+               finished_ < count_ ? fmt::format(", ETA {}", duration_text(eta)) : "");
+  }
+
+ private:
+  std::size_t count_, finished_ = 0, failed_ = 0, plates_ = 0, broken_ = 0;
+  std::string value_name_;
+  std::ostream& log_;
+  Clock::time_point start_ = Clock::now();
+};
+
+// A full disk or a file-size limit must surface as a write error, not kill the process: SIGXFSZ
+// ignored while the runs write, restored however the sweep ends.
+class FileSizeSignalIgnored {
+ public:
+  FileSizeSignalIgnored() : previous_(std::signal(SIGXFSZ, SIG_IGN)) {}
+  ~FileSizeSignalIgnored() { std::signal(SIGXFSZ, previous_); }
+  FileSizeSignalIgnored(const FileSizeSignalIgnored&) = delete;
+  FileSizeSignalIgnored& operator=(const FileSizeSignalIgnored&) = delete;
+
+ private:
+  void (*previous_)(int);
+};
+
+// Pooled over the runs that ran: per plate, by impact speed and by swept value.
+void pool_plates(const SweepOptions& options, std::vector<std::vector<analysis::PlateOutcome>>& plates,
+                 SweepResult& result) {
+  for (auto& p : plates) result.plates.insert(result.plates.end(), p.begin(), p.end());
+  const analysis::CurveOptions curve;
+  result.speed_edges = options.speed_edges.empty() ? analysis::speed_bin_edges(result.plates, options.speed_bins)
+                                                   : options.speed_edges;
+  result.by_speed = analysis::breakage_by_speed(result.plates, result.speed_edges, curve);
+  result.by_value = analysis::breakage_by_value(result.plates, curve);
+}
+
 }  // namespace
 
 std::size_t SweepResult::failed() const {
@@ -63,14 +148,7 @@ SweepResult run_sweep(const SweepOptions& options, std::ostream& log) {
 
   SweepResult result;
   result.value_label = plan.value_label;
-  for (double v : vary.values)
-    for (std::int64_t s = 0; s < options.seeds; ++s) {
-      SweepRun r;
-      r.value = v;
-      r.seed = s;
-      r.label = fmt::format("v{:g}_s{}", v, s);
-      result.runs.push_back(r);
-    }
+  result.runs = planned_runs(vary, options.seeds);
   const std::size_t count = result.runs.size();
   const int workers = options.workers > 0 ? options.workers
                                           : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -81,7 +159,7 @@ SweepResult run_sweep(const SweepOptions& options, std::ostream& log) {
                options.scene.string(), std::min<std::size_t>(static_cast<std::size_t>(workers), count),
                workers == 1 ? "" : "s", options.out.string());
 
-  // Written by run(i) for its own index only, read after it reported.
+  // Written by run_one(i) for its own index only, read after it reported.
   std::vector<fs::path> outputs(count);
   std::vector<double> walls(count, 0.0);
   std::vector<std::vector<analysis::PlateOutcome>> plates(count);
@@ -91,9 +169,6 @@ SweepResult run_sweep(const SweepOptions& options, std::ostream& log) {
     const std::lock_guard lock(warnings_lock);
     if (warnings_seen.insert(text).second) fmt::print(log, "warning: {}\n", text);
   };
-
-  // A full disk or a file-size limit must surface as a write error, not kill the process.
-  void (*previous_xfsz)(int) = std::signal(SIGXFSZ, SIG_IGN);
   auto run_one = [&](std::size_t i) {
     const SweepRun& r = result.runs[i];
     driver::RunSpec spec;
@@ -104,66 +179,34 @@ SweepResult run_sweep(const SweepOptions& options, std::ostream& log) {
     std::error_code ignored;
     fs::remove_all(spec.out_dir, ignored);  // an earlier sweep's run of this label
     driver::SceneRules scene_rules;
-    const driver::RunLog run_log{{}, warn};
-    const driver::RunResult rr = driver::run(spec, host, scene_rules.observers(), run_log);
+    const driver::RunResult rr = driver::run(spec, host, scene_rules.observers(), driver::RunLog{{}, warn});
     outputs[i] = rr.output;
     walls[i] = rr.wall_seconds;
   };
-
-  const auto start = Clock::now();
-  std::size_t finished = 0, failed = 0, plates_so_far = 0, broken_so_far = 0;
+  SweepProgress progress(count, plan.value_name, log);
   auto done = [&](std::size_t i, const std::string& error) {
     SweepRun& r = result.runs[i];
-    ++finished;
     r.error = error;
     if (r.error.empty()) {
       r.run_file = outputs[i];
       r.wall_seconds = walls[i];
-      try {
-        RunFile file(r.run_file, RunFile::Mode::read_write);
-        const analysis::RunBodies bodies =
-            analysis::analyse_run_bodies(file, std::nullopt, options.intact_fraction, options.fines_size);
-        analysis::write_body_table(file, static_cast<std::size_t>(bodies.frame), bodies.report);  // /bodies/<k>, as --by-body writes it
-        plates[i] = analysis::plate_outcomes(bodies.report, bodies.fragments, r.label, r.value, r.seed);
-        r.plates = bodies.report.bodies.size();
-        r.broken = bodies.report.broken;
-        r.x50 = bodies.report.pooled.x50;
-      } catch (const std::exception& e) {
-        r.error = fmt::format("the run ended but its plates could not be analysed: {}", e.what());
-      }
+      analyse_plates(r, options, plates[i]);
     }
-    if (r.failed()) ++failed;
-    plates_so_far += r.plates;
-    broken_so_far += r.broken;
-    if (options.quiet) return;
-    const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-    const double eta = elapsed / static_cast<double>(finished) * static_cast<double>(count - finished);
-    const std::string this_run =
-        r.failed() ? fmt::format("FAILED: {}", r.error.substr(0, r.error.find('\n')))
-                   : fmt::format("{} plates, {} broken, {:.1f} s", r.plates, r.broken, r.wall_seconds);
-    const std::string share =
-        plates_so_far > 0 ? fmt::format(" ({:.0f} %)", 100.0 * static_cast<double>(broken_so_far) / static_cast<double>(plates_so_far)) : "";
-    fmt::print(log, "sweep: {}/{} runs{} | {} = {:g}, seed {}: {} | so far {} plates, {} broken{} | {} elapsed{}\n",
-               finished, count, failed > 0 ? fmt::format(" ({} failed)", failed) : "", plan.value_name, r.value,
-               r.seed, this_run, plates_so_far, broken_so_far, share, duration_text(elapsed),
-               finished < count ? fmt::format(", ETA {}", duration_text(eta)) : "");
+    if (!options.quiet) progress.finished(r);
   };
   // An HDF5 library without thread safety (the MPI build's) crashes when two runs write at once.
   const int at_once = driver::in_process_workers(workers, count);
   if (at_once < workers)
     fmt::print(log, "note: this HDF5 library is not thread-safe (an MPI build's), so the sweep's runs go one at a "
                     "time\n");
-  driver::run_in_parallel(count, at_once, run_one, done);
-  std::signal(SIGXFSZ, previous_xfsz);
+  const auto start = Clock::now();
+  {
+    const FileSizeSignalIgnored writes_may_fail;
+    driver::run_in_parallel(count, at_once, run_one, done);
+  }
   result.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-
-  for (auto& p : plates) result.plates.insert(result.plates.end(), p.begin(), p.end());
-  const analysis::CurveOptions curve;
-  result.speed_edges = options.speed_edges.empty() ? analysis::speed_bin_edges(result.plates, options.speed_bins)
-                                                   : options.speed_edges;
-  result.by_speed = analysis::breakage_by_speed(result.plates, result.speed_edges, curve);
-  result.by_value = analysis::breakage_by_value(result.plates, curve);
-  write_sweep_outputs(options, plan, result, curve, log);
+  pool_plates(options, plates, result);
+  write_sweep_outputs(options, plan, result, analysis::CurveOptions{}, log);
   return result;
 }
 
