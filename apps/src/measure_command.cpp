@@ -11,7 +11,6 @@
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <random>
 
 #include "measure_commands.hpp"
 #include "measure_plan.hpp"
@@ -139,112 +138,102 @@ void add_compare(CLI::App& app, CommandContext& ctx) {
   });
 }
 
-void add_synth(CLI::App& app, CommandContext& ctx) {
-  struct Options {
-    ModelPlan model;
-    SimulationOptions sim;
-    SensorModel sensor;
-    fs::path out = "synthetic";
-    std::string name = "synthetic";
-    // Unset: read from the scene (its walls and generated packing; its pin speed).
-    std::optional<double> length, width, height, span, pin_distance;
-    std::vector<double> rates;
-    std::uint64_t noise_seed = 1;
-    TestConditions test;  // how the simulated lab runs and records its tests
-  };
-  auto o = std::make_shared<Options>();
-  o->sim.first_seed = 1001;  // other packings than the model's default seeds 1, 2, 3
-  auto* cmd = app.add_subcommand("synth", "synthetic measurements from a truth scene plus a testing-machine model");
-  add_simulation_options(cmd, o->model, o->sim);
+struct SynthOptions {
+  ModelPlan model;
+  SimulationOptions sim;
+  SensorModel sensor;
+  fs::path out = "synthetic";
+  std::string name = "synthetic";
+  // Unset: read from the scene (its walls and generated packing; its pin speed).
+  std::optional<double> length, width, height, span, pin_distance;
+  std::vector<double> rates;
+  std::uint64_t noise_seed = 1;
+  TestConditions test;  // how the simulated lab runs and records its tests
+};
+
+void add_synth_options(CLI::App* cmd, SynthOptions& o) {
+  add_simulation_options(cmd, o.model, o.sim);
   cmd->get_option("--scene")->required();
-  cmd->add_option("--out", o->out, "measurement folder to write");
-  cmd->add_option("--name", o->name, "name in metadata.toml");
-  cmd->add_option("--scatter", o->sensor.specimen_scatter, "specimen-to-specimen force scale sd (1)");
-  cmd->add_option("--force-noise", o->sensor.force_noise, "load-cell noise sd per reading (N)");
-  cmd->add_option("--force-offset", o->sensor.force_offset, "load-cell tare sd per specimen (N)");
-  cmd->add_option("--displacement-step", o->sensor.displacement_step, "displacement resolution (m)");
-  cmd->add_option("--seating-gap", o->sensor.seating_gap,
+  cmd->add_option("--out", o.out, "measurement folder to write");
+  cmd->add_option("--name", o.name, "name in metadata.toml");
+  cmd->add_option("--scatter", o.sensor.specimen_scatter, "specimen-to-specimen force scale sd (1)");
+  cmd->add_option("--force-noise", o.sensor.force_noise, "load-cell noise sd per reading (N)");
+  cmd->add_option("--force-offset", o.sensor.force_offset, "load-cell tare sd per specimen (N)");
+  cmd->add_option("--displacement-step", o.sensor.displacement_step, "displacement resolution (m)");
+  cmd->add_option("--seating-gap", o.sensor.seating_gap,
                   "closure gap of rough specimen faces (m): a toe w + g F / (F + F_h), outside the effect library");
-  cmd->add_option("--seating-half-force", o->sensor.seating_half_force, "force at half closure F_h (N)");
-  cmd->add_option("--noise-seed", o->noise_seed, "seed of the sensor noise");
-  cmd->add_option("--length", o->length, "specimen length in specimens.csv (m; default: the scene's packing)");
-  cmd->add_option("--width", o->width, "specimen width (m; default: the scene's packing)");
-  cmd->add_option("--height", o->height, "specimen height (m; default: the scene's packing)");
-  cmd->add_option("--span", o->span, "support distance (m; default: the scene's supports)");
-  cmd->add_option("--pin-distance", o->pin_distance, "loading-pin distance (m; default: the scene's pins)");
-  cmd->add_option("--rate,--rates", o->rates,
+  cmd->add_option("--seating-half-force", o.sensor.seating_half_force, "force at half closure F_h (N)");
+  cmd->add_option("--noise-seed", o.noise_seed, "seed of the sensor noise");
+  cmd->add_option("--length", o.length, "specimen length in specimens.csv (m; default: the scene's packing)");
+  cmd->add_option("--width", o.width, "specimen width (m; default: the scene's packing)");
+  cmd->add_option("--height", o.height, "specimen height (m; default: the scene's packing)");
+  cmd->add_option("--span", o.span, "support distance (m; default: the scene's supports)");
+  cmd->add_option("--pin-distance", o.pin_distance, "loading-pin distance (m; default: the scene's pins)");
+  cmd->add_option("--rate,--rates", o.rates,
                   "loading rate(s) of the pins (m/s), comma-separated: the truth is run at each, its specimens are "
                   "replicates at that rate (default: the scene's pin speed)")
       ->delimiter(',')
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--seating-preload", o->test.seating_preload,
+  cmd->add_option("--seating-preload", o.test.seating_preload,
                   "record each curve from where the force first reaches this preload (N), with t = 0 and d = 0 there; "
                   "written to metadata.toml [test]")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_option("--zero-offset", o->test.zero_offset,
+  cmd->add_option("--zero-offset", o.test.zero_offset,
                   "a known load-cell zero offset (N) added to every recorded force and written to metadata.toml, "
                   "where the reader subtracts it");
-  cmd->add_option("--ramp", o->test.ramp, "the pins' acceleration to the loading rate: 1-cos, linear or none")
+  cmd->add_option("--ramp", o.test.ramp, "the pins' acceleration to the loading rate: 1-cos, linear or none")
       ->check(CLI::IsMember({"1-cos", "linear", "none"}));
-  cmd->add_option("--ramp-time", o->test.ramp_time, "time of the --ramp in s (lab time)")->check(CLI::PositiveNumber);
-  cmd->add_option("--grain-size", o->test.grain_size, "grain size written to metadata.toml (m)")->check(CLI::PositiveNumber);
-  cmd->add_option("--fragment-size-threshold", o->test.fragment_size_threshold,
+  cmd->add_option("--ramp-time", o.test.ramp_time, "time of the --ramp in s (lab time)")->check(CLI::PositiveNumber);
+  cmd->add_option("--grain-size", o.test.grain_size, "grain size written to metadata.toml (m)")->check(CLI::PositiveNumber);
+  cmd->add_option("--fragment-size-threshold", o.test.fragment_size_threshold,
                   "fragments smaller than this (m) are not recorded; written to metadata.toml")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--notes", o->test.notes, "free text for metadata.toml [test] notes");
+  cmd->add_option("--notes", o.test.notes, "free text for metadata.toml [test] notes");
+}
+
+// The truth run at each rate and recorded as the lab of the options would.
+void synthesize(SynthOptions& o, const CommandContext& ctx) {
+  prepare_output_folder(o.out, "--out");
+  if (o.test.has_ramp() != (o.test.ramp_time > 0))
+    throw std::runtime_error(o.test.has_ramp() ? fmt::format("--ramp {} needs --ramp-time (s)", o.test.ramp)
+                                                : "--ramp-time needs --ramp 1-cos or --ramp linear");
+  SyntheticLab lab{o.name, o.sensor, o.test, o.noise_seed};
+  lab.sensor.machine_compliance = o.model.machine_compliance;
+  ModelPlan truth = o.model;
+  truth.machine_compliance = 0;  // the sensor model applies it to the true force
+  EnsembleSimulator simulator(o.sim, ctx.plugin_dirs);
+  // The truth runs with the lab's ramp and fragment threshold; the preload zeroes the recorded
+  // (noisy, compliant) signal, as the machine does.
+  TestConditions runs = o.test;
+  runs.seating_preload = 0;
+  simulator.use_test_conditions(runs);
+  if (o.rates.empty()) o.rates.push_back(simulator.pool().scene_rate(truth.scene, truth.overrides));
+  SpecimenSetup setup;
+  if (!o.length || !o.width || !o.height || !o.span || !o.pin_distance)
+    setup = simulator.pool().specimen_setup(truth.scene, truth.overrides, o.sim.first_seed);
+  Specimen geometry;
+  geometry.length = o.length.value_or(setup.length), geometry.width = o.width.value_or(setup.width);
+  geometry.height = o.height.value_or(setup.height), geometry.span = o.span.value_or(setup.span);
+  geometry.pin_distance = o.pin_distance.value_or(setup.pin_distance);
+  std::vector<ModelPlan> at_rates;
+  for (double r : o.rates) {
+    at_rates.push_back(truth);
+    at_rates.back().loading_rate = r;
+  }
+  const MeasurementSet set = synthetic_set(simulator.simulate(at_rates, std::cerr), o.rates, geometry, lab);
+  write_measurements(set, o.out);
+  fmt::print("wrote {} specimens to {} (largest kinetic/elastic ratio {:.2g})\n", set.specimens.size(),
+             o.out.string(), simulator.max_kinetic_to_elastic());
+  if (const std::string w = simulator.dynamic_warning(); !w.empty()) fmt::print(stderr, "warning: {}\n", w);
+}
+
+void add_synth(CLI::App& app, CommandContext& ctx) {
+  auto o = std::make_shared<SynthOptions>();
+  o->sim.first_seed = 1001;  // other packings than the model's default seeds 1, 2, 3
+  auto* cmd = app.add_subcommand("synth", "synthetic measurements from a truth scene plus a testing-machine model");
+  add_synth_options(cmd, *o);
   cmd->callback([o, &ctx] {
-    prepare_output_folder(o->out, "--out");
-    if (o->test.has_ramp() != (o->test.ramp_time > 0))
-      throw std::runtime_error(o->test.has_ramp() ? fmt::format("--ramp {} needs --ramp-time (s)", o->test.ramp)
-                                                  : "--ramp-time needs --ramp 1-cos or --ramp linear");
-    MeasurementSet set;
-    set.metadata.name = o->name;
-    set.metadata.test = o->test;
-    set.metadata.load_cell_uncertainty = std::max(std::hypot(o->sensor.force_noise, o->sensor.force_offset), 1e-12);
-    set.metadata.displacement_uncertainty = o->sensor.displacement_step / std::sqrt(12.0);
-    std::mt19937_64 rng(o->noise_seed);
-    ModelPlan truth = o->model;
-    truth.machine_compliance = 0;  // the sensor model applies it to the true force
-    o->sensor.machine_compliance = o->model.machine_compliance;
-    EnsembleSimulator simulator(o->sim, ctx.plugin_dirs);
-    // The truth runs with the lab's ramp and fragment threshold; the preload zeroes the recorded
-    // (noisy, compliant) signal below, as the machine does.
-    TestConditions runs = o->test;
-    runs.seating_preload = 0;
-    simulator.use_test_conditions(runs);
-    if (o->rates.empty()) o->rates.push_back(simulator.pool().scene_rate(truth.scene, truth.overrides));
-    SpecimenSetup setup;
-    if (!o->length || !o->width || !o->height || !o->span || !o->pin_distance)
-      setup = simulator.pool().specimen_setup(truth.scene, truth.overrides, o->sim.first_seed);
-    setup.length = o->length.value_or(setup.length), setup.width = o->width.value_or(setup.width);
-    setup.height = o->height.value_or(setup.height), setup.span = o->span.value_or(setup.span);
-    setup.pin_distance = o->pin_distance.value_or(setup.pin_distance);
-    std::vector<ModelPlan> at_rates;
-    for (double r : o->rates) {
-      at_rates.push_back(truth);
-      at_rates.back().loading_rate = r;
-    }
-    const auto sims = simulator.simulate(at_rates, std::cerr);
-    for (std::size_t k = 0; k < sims.size(); ++k)
-      for (const auto& sim : sims[k]) {
-        Specimen s;
-        s.id = o->rates.size() > 1 ? fmt::format("{}_rate{:g}", sim.id, o->rates[k]) : sim.id;
-        s.length = setup.length, s.width = setup.width, s.height = setup.height;
-        s.span = setup.span, s.pin_distance = setup.pin_distance, s.loading_rate = o->rates[k];
-        s.curve = record(sim.curve, o->sensor, rng);
-        if (o->test.seating_preload > 0)
-          s.curve = zeroed_at_preload(s.curve, o->test.seating_preload, fmt::format("synthetic specimen {}", s.id));
-        for (double& f : s.curve.force) f += o->test.zero_offset;  // what the load cell reads
-        // What a lab notes after the test: where the crack is and the pieces (sieved sizes).
-        s.crack_position = sim.crack_position;
-        s.fragment_sizes = sim.fragment_sizes;
-        s.fragment_count = sim.fragment_count;
-        set.specimens.push_back(std::move(s));
-      }
-    write_measurements(set, o->out);
-    fmt::print("wrote {} specimens to {} (largest kinetic/elastic ratio {:.2g})\n", set.specimens.size(),
-               o->out.string(), simulator.max_kinetic_to_elastic());
-    if (const std::string w = simulator.dynamic_warning(); !w.empty()) fmt::print(stderr, "warning: {}\n", w);
+    synthesize(*o, ctx);
     ctx.exit_code = 0;
   });
 }

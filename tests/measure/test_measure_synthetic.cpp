@@ -80,3 +80,35 @@ TEST_CASE("seating closure: hyperbolic toe in series, half the gap at F_h, the f
   no_force.seating_gap = g;
   CHECK_THROWS(record(truth, no_force, rng));
 }
+
+TEST_CASE("a synthetic set: each rate's specimens recorded, zeroed at the preload and read with the known offset") {
+  Specimen sim;
+  sim.id = "seed1";
+  sim.curve = linear_truth(1e5);  // 0.1 N per micrometre, to 100 N
+  sim.crack_position = 0.004;
+  sim.fragment_sizes = {0.05, 0.08};
+  Specimen geometry;
+  geometry.length = 0.18, geometry.width = 0.03, geometry.height = 0.035, geometry.span = 0.16, geometry.pin_distance = 0.08;
+  SyntheticLab lab;
+  lab.name = "lab";
+  lab.sensor.force_noise = 0.03;
+  lab.sensor.force_offset = 0.04;
+  lab.test.seating_preload = 0.5;
+  lab.test.zero_offset = 0.2;
+  const MeasurementSet set = synthetic_set({{sim}, {sim}}, {0.02, 0.1}, geometry, lab);
+  REQUIRE(set.specimens.size() == 2);
+  CHECK(set.specimens[0].id == "seed1_rate0.02");
+  CHECK(set.specimens[1].id == "seed1_rate0.1");
+  CHECK(set.specimens[1].loading_rate == 0.1);
+  CHECK(set.specimens[0].span == 0.16);
+  CHECK(set.specimens[0].crack_position == 0.004);
+  CHECK(set.specimens[0].fragment_sizes.size() == 2);
+  CHECK(set.metadata.load_cell_uncertainty == doctest::Approx(0.05));  // hypot(0.03, 0.04)
+  // Zeroed where the (noisy) force first reaches 0.5 N: d = 0 there, the force read 0.5 N plus
+  // the known offset, within the noise's few sigma.
+  const Curve& c = set.specimens[0].curve;
+  CHECK(c.displacement.front() == 0);
+  CHECK(c.force.front() == doctest::Approx(0.5 + 0.2).epsilon(0.3));
+  // One noise stream over the set: the second rate's record is another draw of the same truth.
+  CHECK(set.specimens[1].curve.force != c.force);
+}

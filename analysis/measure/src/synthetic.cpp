@@ -1,8 +1,12 @@
 #include "shard/measure/synthetic.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+
+#include "shard/measure/test_conditions.hpp"
 
 namespace shard::measure {
 
@@ -39,6 +43,32 @@ Curve record(const Curve& truth, const SensorModel& s, std::mt19937_64& rng) {
   c.u_force.assign(c.size(), u_f > 0 ? u_f : 1e-12);
   c.u_displacement.assign(c.size(), u_w);
   return c;
+}
+
+MeasurementSet synthetic_set(const std::vector<std::vector<Specimen>>& truth, const std::vector<double>& rates,
+                             const Specimen& geometry, const SyntheticLab& lab) {
+  MeasurementSet set;
+  set.metadata.name = lab.name;
+  set.metadata.test = lab.test;
+  set.metadata.load_cell_uncertainty = std::max(std::hypot(lab.sensor.force_noise, lab.sensor.force_offset), 1e-12);
+  set.metadata.displacement_uncertainty = lab.sensor.displacement_step / std::sqrt(12.0);
+  std::mt19937_64 rng(lab.noise_seed);
+  for (std::size_t k = 0; k < truth.size(); ++k)
+    for (const auto& sim : truth[k]) {
+      Specimen s = geometry;
+      s.id = rates.size() > 1 ? fmt::format("{}_rate{:g}", sim.id, rates[k]) : sim.id;
+      s.loading_rate = rates[k];
+      s.curve = record(sim.curve, lab.sensor, rng);
+      if (lab.test.seating_preload > 0)
+        s.curve = zeroed_at_preload(s.curve, lab.test.seating_preload, fmt::format("synthetic specimen {}", s.id));
+      for (double& f : s.curve.force) f += lab.test.zero_offset;  // what the load cell reads
+      // What a lab notes after the test: where the crack is and the pieces (sieved sizes).
+      s.crack_position = sim.crack_position;
+      s.fragment_sizes = sim.fragment_sizes;
+      s.fragment_count = sim.fragment_count;
+      set.specimens.push_back(std::move(s));
+    }
+  return set;
 }
 
 }  // namespace shard::measure

@@ -13,9 +13,13 @@
 //                      joints; the "toe" ASTM D790 compensates) in series with the specimen:
 //                      w_rec = w + g F / (F + F_h), g the closure gap in m, F_h the force at half
 //                      closure in N. Not in the effect library: the test of "unexplained".
+#include <cstdint>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "shard/measure/curve.hpp"
+#include "shard/measure/measurements.hpp"
 
 namespace shard::measure {
 
@@ -35,5 +39,20 @@ Curve record(const Curve& truth, const SensorModel& sensor, std::mt19937_64& rng
 
 // Series-spring correction of a simulated curve for a compliant machine: w + C F.
 Curve with_machine_compliance(const Curve& c, double compliance);
+
+// The lab a synthetic set is recorded by: its sensor, how it runs and records a test, its name.
+struct SyntheticLab {
+  std::string name;
+  SensorModel sensor;
+  TestConditions test;  // seating_preload zeroes each recorded curve there; zero_offset is added
+  std::uint64_t noise_seed = 1;
+};
+
+// The measurement set such a lab writes of the truth's simulated specimens (`truth[k]` at
+// `rates[k]`): each curve recorded through the sensor, zeroed at the preload, offset as the load
+// cell reads; crack position and fragments as noted after the test; the specimens' dimensions
+// those of `geometry`. Ids get a _rate<r> suffix when there are several rates.
+MeasurementSet synthetic_set(const std::vector<std::vector<Specimen>>& truth, const std::vector<double>& rates,
+                             const Specimen& geometry, const SyntheticLab& lab);
 
 }  // namespace shard::measure
