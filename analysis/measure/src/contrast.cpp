@@ -131,6 +131,18 @@ std::vector<double> component_mean(const std::vector<std::vector<double>>& rows)
   return m;
 }
 
+std::vector<double> median_of(const std::vector<std::vector<double>>& rows) {
+  std::vector<double> out(rows.front().size());
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    std::vector<double> v;
+    for (const auto& r : rows) v.push_back(r[i]);
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    out[i] = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+  }
+  return out;
+}
+
 std::vector<std::vector<double>> pooled_covariance(const std::vector<std::vector<std::vector<double>>>& groups,
                                                    double shrinkage, double& dof) {
   std::size_t m = 0;

@@ -25,10 +25,7 @@ namespace {
 constexpr double kGeometryTolerance = 0.02;  // as Simulator::check_inputs: 2 % is a different fixture
 constexpr double kShrinkage = 0.1;           // off-diagonal shrinkage of the pooled covariance
 constexpr double kScatterAlpha = 0.01;       // a group's scatter set apart below this p over the groups
-constexpr double kBaseStep = 0.05;           // relative step of a base parameter for its Jacobian
 constexpr std::size_t kCurvePoints = 60;
-
-bool same_rate(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(std::abs(a), std::abs(b)); }
 
 std::string folder_name(const fs::path& folder) {
   const fs::path p = folder.lexically_normal();
@@ -116,18 +113,6 @@ void paired(const std::vector<std::vector<double>>& a, const std::vector<std::ve
     const double s = sample_sd(d);
     var_of_mean[i] = s * s / static_cast<double>(n);
   }
-}
-
-std::vector<double> median_of(const std::vector<std::vector<double>>& rows) {
-  std::vector<double> out(rows.front().size());
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    std::vector<double> v;
-    for (const auto& r : rows) v.push_back(r[i]);
-    std::sort(v.begin(), v.end());
-    const std::size_t n = v.size();
-    out[i] = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-  }
-  return out;
 }
 
 double mean_peak_displacement(const std::vector<Curve>& curves) {
@@ -289,144 +274,6 @@ std::vector<std::vector<double>> ContrastStudy::components(const Simulated& mode
   std::vector<std::vector<double>> rows;
   for (const auto& c : model.curves[rate_index(rate)]) rows.push_back(contrast_components(c));
   return rows;
-}
-
-BaseCalibration ContrastStudy::calibrate_base(const std::vector<std::string>& keys, int iterations, std::ostream& log) {
-  BaseCalibration cal;
-  cal.keys = keys;
-  for (const auto& k : keys) {
-    cal.start.push_back(simulator_.parameter(base_, k));
-    cal.range.push_back(simulator_.parameter_range(k));
-  }
-  cal.values = cal.start;
-  cal.uncertainty.assign(keys.size(), 0.0);
-  cal.at_range_bound.assign(keys.size(), false);
-  // Targets: the reference's (or the consensus') logarithms of stiffness, peak force and peak
-  // displacement, the form-free scale of a curve. They hold about two independent numbers (w_peak
-  // follows from the other two for a nearly linear rise), enough for E_b and sigma_crit; a third
-  // parameter moves the form (bond.poisson_ratio: the bond's shear-to-normal stiffness), and the
-  // fit then also asks the post-peak regime of the curve (the comparison's mean standardised
-  // residual after the peak, to the end of the shortest measured curve) to vanish.
-  constexpr std::size_t kScaleTargets = 3;
-  cal.form_targets = keys.size() > 2;
-  std::vector<std::vector<double>> means, rows;
-  // The reference's own scatter when it carries one (GroupScatter::own), else the pool's.
-  const std::vector<std::vector<double>>* scatter = &scatter_.pooled;
-  for (std::size_t gi = 0; gi < groups_.size(); ++gi) {
-    const ContrastGroup& g = groups_[gi];
-    if (same_rate(g.rate, scale_rate_) && (!sets_.reference || g.set == *sets_.reference)) {
-      means.push_back(component_mean(g.components));
-      rows.insert(rows.end(), g.components.begin(), g.components.end());
-      if (sets_.reference) scatter = &scatter_.covariance[gi];
-    }
-  }
-  const std::vector<double> target = median_of(means);
-  // Each scale target in units of its standard uncertainty: the pooled specimen scatter over the
-  // reference's specimens (the post-peak residual is standardised by the comparison itself).
-  std::vector<double> u_target(kScaleTargets);
-  for (std::size_t i = 0; i < kScaleTargets; ++i)
-    u_target[i] = std::sqrt((*scatter)[i][i] / static_cast<double>(rows.size()));
-  std::vector<Specimen> reference;
-  for (std::size_t k = 0; k < sets_.sets.size(); ++k)
-    if (!sets_.reference || *sets_.reference == k)
-      for (const auto& sp : sets_.sets[k].specimens)
-        if (same_rate(sp.loading_rate, scale_rate_)) reference.push_back(sp);
-  const Metadata& metadata = sets_.sets[sets_.reference.value_or(0)].metadata;
-
-  auto features_of = [&](const std::vector<Specimen>& sims) {
-    std::vector<std::vector<double>> r;
-    for (const auto& s : sims) r.push_back(contrast_components(s.curve));
-    return component_mean(r);
-  };
-  const std::size_t n_targets = kScaleTargets + (cal.form_targets ? 1 : 0);
-  // Standardised residuals of a model's runs; `band`: the comparison whose simulated band scores
-  // the post-peak regime (the base's, so that a step's difference is its mean's).
-  auto residual = [&](const std::vector<Specimen>& sims, const Comparison* band, Comparison& own) {
-    const std::vector<double> f = features_of(sims);
-    Eigen::VectorXd z(static_cast<Eigen::Index>(n_targets));
-    for (std::size_t i = 0; i < kScaleTargets; ++i) z(static_cast<Eigen::Index>(i)) = (f[i] - target[i]) / u_target[i];
-    if (cal.form_targets) {
-      own = compare(reference, metadata, sims);
-      const Comparison scored = band ? with_simulated_band(own, *band) : own;
-      z(static_cast<Eigen::Index>(kScaleTargets)) = scored.regimes[static_cast<std::size_t>(Regime::PostPeak)].mean_residual;
-    }
-    return z;
-  };
-  const double log_step = std::log1p(kBaseStep);
-  std::vector<Specimen> final_sims;
-  Eigen::MatrixXd last_jacobian;
-  for (int it = 0; it <= iterations; ++it) {
-    std::vector<ModelPlan> models{with_parameters(base_, keys, cal.values)};
-    std::vector<double> steps(keys.size(), log_step);
-    if (it < iterations)
-      for (std::size_t i = 0; i < keys.size(); ++i) {
-        std::vector<double> v = cal.values;
-        // Upwards, unless that leaves the parameter's range (poisson_ratio at 0.5).
-        v[i] *= 1 + kBaseStep;
-        if (v[i] > cal.range[i].max) v[i] = cal.values[i] / (1 + kBaseStep), steps[i] = -log_step;
-        models.push_back(with_parameters(base_, keys, v));
-      }
-    for (auto& m : models) m.loading_rate = scale_rate_;
-    simulator_.check_inputs(models.front(), reference, metadata);
-    const auto sims = simulator_.simulate(models, log);
-    Comparison base_comparison;
-    const Eigen::VectorXd z = residual(sims[0], nullptr, base_comparison);
-    std::string values;
-    for (std::size_t i = 0; i < keys.size(); ++i) values += fmt::format("{}{}={:.4g}", i ? ", " : "", keys[i], cal.values[i]);
-    // z holds (model - target) / u: the relative error is exp(z u) - 1.
-    cal.path.push_back(fmt::format("{}: stiffness {:+.1f} %, peak force {:+.1f} %, peak displacement {:+.1f} % against "
-                                   "the reference{}",
-                                   values, 100 * std::expm1(z(0) * u_target[0]),
-                                   100 * std::expm1(z(1) * u_target[1]), 100 * std::expm1(z(2) * u_target[2]),
-                                   cal.form_targets ? fmt::format(", post-peak regime {:+.2f} sigma", z(3)) : ""));
-    log << "contrast: base " << cal.path.back() << '\n';
-    if (it == iterations) {
-      final_sims = sims[0];
-      break;
-    }
-    Eigen::MatrixXd J(static_cast<Eigen::Index>(n_targets), static_cast<Eigen::Index>(keys.size()));
-    for (std::size_t i = 0; i < keys.size(); ++i) {
-      Comparison unused;
-      const Eigen::VectorXd zi = residual(sims[1 + i], &base_comparison, unused);
-      J.col(static_cast<Eigen::Index>(i)) = (zi - z) / steps[i];
-    }
-    last_jacobian = J;
-    const Eigen::VectorXd step = J.colPivHouseholderQr().solve(-z);
-    cal.at_bound.clear();
-    double largest = 0;
-    for (std::size_t i = 0; i < keys.size(); ++i) {
-      // A factor of two per iteration at most: a Jacobian taken 5 % away does not hold further.
-      double s = step(static_cast<Eigen::Index>(i));
-      if (std::abs(s) > std::log(2.0)) {
-        s = std::copysign(std::log(2.0), s);
-        cal.at_bound.push_back(keys[i]);
-      }
-      const double previous = cal.values[i], asked = previous * std::exp(s);
-      cal.values[i] = std::clamp(asked, cal.range[i].min, cal.range[i].max);
-      cal.at_range_bound[i] = cal.values[i] != asked;
-      largest = std::max(largest, std::abs(std::log(cal.values[i] / previous)));
-    }
-    if (largest < 0.005) {  // converged: the next pass only re-runs what is cached
-      iterations = it + 1;
-    }
-  }
-  // Standard uncertainties from the last Jacobian: the targets are standardised, so the
-  // covariance of the log-parameters is (J'J)^-1 (Gauss-Newton's; the specimens' scatter of the
-  // reference, not the model's form error).
-  if (last_jacobian.size() > 0) {
-    const Eigen::MatrixXd info = last_jacobian.transpose() * last_jacobian;
-    const Eigen::FullPivLU<Eigen::MatrixXd> lu(info);
-    if (lu.isInvertible()) {
-      const Eigen::MatrixXd cov = lu.inverse();
-      for (std::size_t i = 0; i < keys.size(); ++i)
-        cal.uncertainty[i] = cal.values[i] * std::sqrt(std::max(0.0, cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i))));
-    } else {
-      cal.uncertainty.assign(keys.size(), std::numeric_limits<double>::infinity());
-    }
-  }
-  base_ = with_parameters(base_, keys, cal.values);
-  cal.form_error = compare(reference, metadata, final_sims);
-  return cal;
 }
 
 ContrastStudy::Contrast ContrastStudy::contrast(std::size_t set, const Simulated& base) const {

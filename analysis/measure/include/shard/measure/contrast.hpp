@@ -55,6 +55,8 @@ std::vector<double> contrast_components(const Curve& c);
 
 // The rows' mean, component by component.
 std::vector<double> component_mean(const std::vector<std::vector<double>>& rows);
+// The rows' median, component by component (of an even count: the mean of the middle two).
+std::vector<double> median_of(const std::vector<std::vector<double>>& rows);
 
 // Within-set covariance pooled over groups of rows (one group per set), shrunk towards its
 // diagonal by `shrinkage`; `dof` receives sum(n) - groups.

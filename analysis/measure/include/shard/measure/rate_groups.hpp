@@ -1,11 +1,16 @@
 #pragma once
 // A measurement set's specimens by loading rate: specimens at one rate are replicates, and a
 // model is simulated at each rate and judged on all of them.
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "shard/measure/measurements.hpp"
 
 namespace shard::measure {
+
+// Two loading rates are one when they agree to 1e-9 (a rate read back from text or scaled).
+inline bool same_rate(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(std::abs(a), std::abs(b)); }
 
 std::vector<Specimen> specimens_at_rate(const MeasurementSet& set, double rate);
 
