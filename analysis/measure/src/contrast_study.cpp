@@ -276,71 +276,71 @@ std::vector<std::vector<double>> ContrastStudy::components(const Simulated& mode
   return rows;
 }
 
-ContrastStudy::Contrast ContrastStudy::contrast(std::size_t set, const Simulated& base) const {
-  Contrast c;
-  const std::size_t m = contrast_component_names().size();
-  struct Block {
-    std::vector<double> d, var_base;
-    Eigen::MatrixXd own, shared;
-    std::string shared_key;
-  };
-  std::vector<Block> blocks;
-  auto sigma_of = [&](const std::vector<std::vector<double>>& a) {
-    Eigen::MatrixXd sigma(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m));
-    for (std::size_t i = 0; i < m; ++i)
-      for (std::size_t j = 0; j < m; ++j) sigma(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = a[i][j];
-    return sigma;
-  };
-  for (std::size_t gi = 0; gi < groups_.size(); ++gi) {
-    const ContrastGroup& g = groups_[gi];
-    if (g.set != set) continue;
-    Block b;
-    const std::vector<double> mean = component_mean(g.components);
-    std::vector<double> ref_mean;
-    double ref_weight = 0;  // the reference mean's covariance is ref_weight * ref_sigma
-    const std::vector<std::vector<double>>* ref_sigma = &scatter_.pooled;
-    if (sets_.reference) {
-      for (std::size_t hi = 0; hi < groups_.size(); ++hi) {
-        const ContrastGroup& h = groups_[hi];
-        if (h.set == *sets_.reference && same_rate(h.rate, g.reference_rate)) {
-          ref_mean = component_mean(h.components);
-          ref_weight = 1.0 / static_cast<double>(h.components.size());
-          ref_sigma = &scatter_.covariance[hi];
-        }
+namespace {
+
+// What a group's mean is held against: the reference's group at its reference rate, or the
+// consensus of the other sets at its rate; the covariance of that mean is weight x sigma, shared
+// by every group held against the same (`key`).
+struct HeldAgainst {
+  std::vector<double> mean;
+  double weight = 0;
+  const std::vector<std::vector<double>>* sigma = nullptr;
+  std::string key;
+};
+
+HeldAgainst held_against(const ContrastSets& sets, const std::vector<ContrastGroup>& groups,
+                         const GroupScatter& scatter, std::size_t set, const ContrastGroup& g) {
+  HeldAgainst h;
+  h.sigma = &scatter.pooled;
+  if (sets.reference) {
+    for (std::size_t hi = 0; hi < groups.size(); ++hi) {
+      const ContrastGroup& r = groups[hi];
+      if (r.set == *sets.reference && same_rate(r.rate, g.reference_rate)) {
+        h.mean = component_mean(r.components);
+        h.weight = 1.0 / static_cast<double>(r.components.size());
+        h.sigma = &scatter.covariance[hi];
       }
-      b.shared_key = fmt::format("reference@{}", g.reference_rate);
-    } else {
-      // The consensus: the median of the other sets' means at this rate. Its variance is taken
-      // as the median's large-sample pi/2 times that of the pooled mean of those specimens.
-      std::vector<std::vector<double>> others;
-      double n_others = 0;
-      for (const auto& h : groups_)
-        if (h.set != set && same_rate(h.rate, g.rate)) {
-          others.push_back(component_mean(h.components));
-          n_others += static_cast<double>(h.components.size());
-        }
-      if (others.size() < 2)
-        throw std::runtime_error(fmt::format("{}: fewer than two other sets were tested at {:g} m/s, so there is no "
-                                             "consensus to hold it against. Fix: name a reference with --reference",
-                                             sets_.names[set], g.rate));
-      ref_mean = median_of(others);
-      ref_weight = std::numbers::pi / 2 / n_others;
-      b.shared_key = fmt::format("consensus-without-{}@{}", set, g.rate);
     }
-    std::vector<double> base_shift(m, 0.0), base_var(m, 0.0);
-    if (!same_rate(g.rate, g.reference_rate))
-      paired(components(base, g.rate), components(base, g.reference_rate), base_shift, base_var);
-    for (std::size_t i = 0; i < m; ++i) b.d.push_back(mean[i] - ref_mean[i] - base_shift[i]);
-    b.var_base = base_var;
-    b.own = sigma_of(scatter_.covariance[gi]) / static_cast<double>(g.components.size());
-    b.shared = sigma_of(*ref_sigma) * ref_weight;
-    for (std::size_t i = 0; i < m; ++i) {
-      c.names.push_back(fmt::format("{}@{:g}", contrast_component_names()[i], g.rate));
-      c.difference.push_back(b.d[i]);
-    }
-    c.groups.push_back(gi);
-    blocks.push_back(std::move(b));
+    h.key = fmt::format("reference@{}", g.reference_rate);
+    return h;
   }
+  // The consensus: the median of the other sets' means at this rate. Its variance is taken as
+  // the median's large-sample pi/2 times that of the pooled mean of those specimens.
+  std::vector<std::vector<double>> others;
+  double n_others = 0;
+  for (const auto& r : groups)
+    if (r.set != set && same_rate(r.rate, g.rate)) {
+      others.push_back(component_mean(r.components));
+      n_others += static_cast<double>(r.components.size());
+    }
+  if (others.size() < 2)
+    throw std::runtime_error(fmt::format("{}: fewer than two other sets were tested at {:g} m/s, so there is no "
+                                         "consensus to hold it against. Fix: name a reference with --reference",
+                                         sets.names[set], g.rate));
+  h.mean = median_of(others);
+  h.weight = std::numbers::pi / 2 / n_others;
+  h.key = fmt::format("consensus-without-{}@{}", set, g.rate);
+  return h;
+}
+
+// One group's part of a contrast: its difference, the covariance of its own mean, of what it is
+// held against (shared with the groups of the same key) and of the base's rate shift.
+struct ContrastBlock {
+  std::vector<double> d, var_base;
+  Eigen::MatrixXd own, shared;
+  std::string shared_key;
+};
+
+Eigen::MatrixXd matrix_of(const std::vector<std::vector<double>>& a) {
+  Eigen::MatrixXd m(static_cast<Eigen::Index>(a.size()), static_cast<Eigen::Index>(a.size()));
+  for (std::size_t i = 0; i < a.size(); ++i)
+    for (std::size_t j = 0; j < a.size(); ++j) m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = a[i][j];
+  return m;
+}
+
+// The blocks' joint covariance: each block's own on the diagonal, the shared parts wherever two
+// blocks are held against the same mean.
+std::vector<std::vector<double>> joint_covariance(const std::vector<ContrastBlock>& blocks, std::size_t m) {
   const auto n = static_cast<Eigen::Index>(blocks.size() * m);
   Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(n, n);
   const auto mm = static_cast<Eigen::Index>(m);
@@ -356,7 +356,37 @@ ContrastStudy::Contrast ContrastStudy::contrast(std::size_t set, const Simulated
   std::vector<std::vector<double>> cv(static_cast<std::size_t>(n), std::vector<double>(static_cast<std::size_t>(n)));
   for (Eigen::Index i = 0; i < n; ++i)
     for (Eigen::Index j = 0; j < n; ++j) cv[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = cov(i, j);
-  c.weight = spd_inverse(cv);
+  return cv;
+}
+
+}  // namespace
+
+ContrastStudy::Contrast ContrastStudy::contrast(std::size_t set, const Simulated& base) const {
+  Contrast c;
+  const std::size_t m = contrast_component_names().size();
+  std::vector<ContrastBlock> blocks;
+  for (std::size_t gi = 0; gi < groups_.size(); ++gi) {
+    const ContrastGroup& g = groups_[gi];
+    if (g.set != set) continue;
+    const HeldAgainst held = held_against(sets_, groups_, scatter_, set, g);
+    const std::vector<double> mean = component_mean(g.components);
+    std::vector<double> base_shift(m, 0.0), base_var(m, 0.0);
+    if (!same_rate(g.rate, g.reference_rate))
+      paired(components(base, g.rate), components(base, g.reference_rate), base_shift, base_var);
+    ContrastBlock b;
+    for (std::size_t i = 0; i < m; ++i) b.d.push_back(mean[i] - held.mean[i] - base_shift[i]);
+    b.var_base = base_var;
+    b.own = matrix_of(scatter_.covariance[gi]) / static_cast<double>(g.components.size());
+    b.shared = matrix_of(*held.sigma) * held.weight;
+    b.shared_key = held.key;
+    for (std::size_t i = 0; i < m; ++i) {
+      c.names.push_back(fmt::format("{}@{:g}", contrast_component_names()[i], g.rate));
+      c.difference.push_back(b.d[i]);
+    }
+    c.groups.push_back(gi);
+    blocks.push_back(std::move(b));
+  }
+  c.weight = spd_inverse(joint_covariance(blocks, m));
   if (blocks.size() == 1)  // one rate: the component names need no rate
     c.names.assign(contrast_component_names().begin(), contrast_component_names().end());
   return c;
