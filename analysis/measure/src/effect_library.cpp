@@ -106,6 +106,115 @@ std::vector<std::string> CandidateEffect::overrides(double value) const {
   return out;
 }
 
+namespace {
+
+// One key of an [[effect]] table into `e`; `has_neutral` is set when it is the neutral value.
+void read_effect_key(const std::filesystem::path& file, const std::string& k, const toml::node& value,
+                     CandidateEffect& e, bool& has_neutral) {
+  if (k == "name" || k == "parameter" || k == "unit" || k == "separated_by" || k == "doc" || k == "plausible_from") {
+    const auto* s = value.as_string();
+    if (!s) throw std::runtime_error(fmt::format("{}: '{}' must be a string", where(file, value), k));
+    (k == "name"        ? e.name
+     : k == "parameter" ? e.parameter
+     : k == "unit"      ? e.unit
+     : k == "doc"       ? e.doc
+     : k == "plausible_from" ? e.plausible_from
+                             : e.separated_by) = s->get();
+    if (k == "plausible_from") try {
+        TestScales{}.at(e.plausible_from);
+      } catch (const std::exception&) {
+        throw std::runtime_error(fmt::format("{}: unknown plausible_from '{}'; the scales are {}", where(file, value),
+                                             e.plausible_from, kTestScaleNames));
+      }
+  } else if (k == "value_format") {
+    const auto* s = value.as_string();
+    const std::string text = s ? s->get() : "";
+    const auto at = text.find("{}");
+    if (!s || at == std::string::npos || text.find("{}", at + 2) != std::string::npos)
+      throw std::runtime_error(fmt::format(
+          "{}: 'value_format' must be a string with one {{}} where the value goes, e.g. \"[0.0, 0.0, {{}}]\"",
+          where(file, value)));
+    e.value_format = text;
+  } else if (k == "neutral" || k == "plausible" || k == "min" || k == "max" || k == "plausible_factor") {
+    const auto v = value.value<double>();
+    if (!v) throw std::runtime_error(fmt::format("{}: '{}' must be a number", where(file, value), k));
+    has_neutral = has_neutral || k == "neutral";
+    (k == "neutral"     ? e.neutral
+     : k == "plausible" ? e.plausible
+     : k == "min"       ? e.min
+     : k == "max"       ? e.max
+                        : e.plausible_factor) = *v;
+  } else if (k == "rates_needed") {
+    const auto v = value.value<std::int64_t>();
+    if (!value.is_integer() || !v || *v < 1)
+      throw std::runtime_error(fmt::format(
+          "{}: 'rates_needed' must be a whole number >= 1 (the loading rates the data need before the effect can "
+          "be named; 2 for a rate effect such as a viscosity)",
+          where(file, value)));
+    e.rates_needed = static_cast<int>(*v);
+  } else if (k == "set") {
+    const auto* a = value.as_array();
+    if (!a) throw std::runtime_error(fmt::format("{}: 'set' must be an array of \"section.key=value\" strings", where(file, value)));
+    for (const auto& item : *a) {
+      const auto s = item.value<std::string>();
+      if (!s || s->find('=') == std::string::npos)
+        throw std::runtime_error(fmt::format("{}: each 'set' entry is a \"section.key=value\" string", where(file, item)));
+      e.set.push_back(*s);
+    }
+  } else {
+    throw std::runtime_error(fmt::format(
+        "{}: unknown key '{}' in [[effect]]; the keys are name, parameter, value_format, unit, neutral, "
+        "plausible, plausible_from, plausible_factor, min, max, rates_needed, set, separated_by, doc",
+        where(file, value), k));
+  }
+}
+
+// The neutral value is declared once, in the schema of the plugin that carries the parameter.
+// Plugins that disagree leave the choice to the entry's own `neutral`.
+void resolve_neutral(const std::filesystem::path& file, const toml::node& node, const toml::table& t,
+                     CandidateEffect& e, bool has_neutral, const SchemaNeutral& schema) {
+  std::optional<double> declared;
+  try {
+    declared = schema ? schema(e.parameter) : std::nullopt;
+  } catch (const std::exception& x) {
+    if (!has_neutral)
+      throw std::runtime_error(fmt::format("{}: effect '{}': {}; give its neutral = ... here", where(file, node),
+                                           e.name, x.what()));
+  }
+  if (declared && has_neutral && *declared != e.neutral)
+    throw std::runtime_error(fmt::format(
+        "{}: effect '{}': neutral {:g} contradicts the neutral value {:g} that the plugin's schema declares for {}; "
+        "remove the key (the schema's value is used)",
+        where(file, *t.get("neutral")), e.name, e.neutral, *declared, e.parameter));
+  if (declared) e.neutral = *declared;
+  if (!declared && !has_neutral)
+    throw std::runtime_error(fmt::format(
+        "{}: effect '{}' needs a neutral value (the effect is off): {} is no plugin parameter with a neutral value "
+        "in its schema, so give neutral = ... here",
+        where(file, node), e.name, e.parameter));
+}
+
+// The entry's values against each other: a rule with its factor, neutral and plausible in range.
+void check_effect_values(const std::filesystem::path& file, const toml::node& node, CandidateEffect& e) {
+  if (e.plausible_from.empty() != (e.plausible_factor == 0))
+    throw std::runtime_error(fmt::format("{}: effect '{}': plausible_from and plausible_factor go together (plausible = "
+                                         "factor x the scale), e.g. plausible_from = \"time_to_peak\" and "
+                                         "plausible_factor = 0.1",
+                                         where(file, node), e.name));
+  // With a rule, plausible is set once the measurements are known (with_test_plausible).
+  const bool rule = !e.plausible_from.empty();
+  if (rule) e.plausible = std::numeric_limits<double>::quiet_NaN();
+  if (!(e.min <= e.neutral && e.neutral <= e.max && (rule || (e.min <= e.plausible && e.plausible <= e.max))))
+    throw std::runtime_error(fmt::format("{}: effect '{}': neutral {:g} and plausible {:g} must lie in [min, max] = [{:g}, {:g}]",
+                                         where(file, node), e.name, e.neutral, e.plausible, e.min, e.max));
+  if (!rule && e.plausible == e.neutral)
+    throw std::runtime_error(fmt::format("{}: effect '{}': plausible equals neutral, the trial run would not switch "
+                                         "it on",
+                                         where(file, node), e.name));
+}
+
+}  // namespace
+
 std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& file, const SchemaNeutral& schema) {
   if (!std::filesystem::exists(file))
     throw std::runtime_error(fmt::format(
@@ -130,103 +239,11 @@ std::vector<CandidateEffect> read_effect_library(const std::filesystem::path& fi
     CandidateEffect e;
     e.origin = where(file, node);
     bool has_neutral = false;
-    for (const auto& [key, value] : *t) {
-      const std::string k(key.str());
-      if (k == "name" || k == "parameter" || k == "unit" || k == "separated_by" || k == "doc" || k == "plausible_from") {
-        const auto* s = value.as_string();
-        if (!s) throw std::runtime_error(fmt::format("{}: '{}' must be a string", where(file, value), k));
-        (k == "name"        ? e.name
-         : k == "parameter" ? e.parameter
-         : k == "unit"      ? e.unit
-         : k == "doc"       ? e.doc
-         : k == "plausible_from" ? e.plausible_from
-                                 : e.separated_by) = s->get();
-        if (k == "plausible_from") try {
-            TestScales{}.at(e.plausible_from);
-          } catch (const std::exception&) {
-            throw std::runtime_error(fmt::format("{}: unknown plausible_from '{}'; the scales are {}", where(file, value),
-                                                 e.plausible_from, kTestScaleNames));
-          }
-      } else if (k == "value_format") {
-        const auto* s = value.as_string();
-        const std::string text = s ? s->get() : "";
-        const auto at = text.find("{}");
-        if (!s || at == std::string::npos || text.find("{}", at + 2) != std::string::npos)
-          throw std::runtime_error(fmt::format(
-              "{}: 'value_format' must be a string with one {{}} where the value goes, e.g. \"[0.0, 0.0, {{}}]\"",
-              where(file, value)));
-        e.value_format = text;
-      } else if (k == "neutral" || k == "plausible" || k == "min" || k == "max" || k == "plausible_factor") {
-        const auto v = value.value<double>();
-        if (!v) throw std::runtime_error(fmt::format("{}: '{}' must be a number", where(file, value), k));
-        has_neutral = has_neutral || k == "neutral";
-        (k == "neutral"     ? e.neutral
-         : k == "plausible" ? e.plausible
-         : k == "min"       ? e.min
-         : k == "max"       ? e.max
-                            : e.plausible_factor) = *v;
-      } else if (k == "rates_needed") {
-        const auto v = value.value<std::int64_t>();
-        if (!value.is_integer() || !v || *v < 1)
-          throw std::runtime_error(fmt::format(
-              "{}: 'rates_needed' must be a whole number >= 1 (the loading rates the data need before the effect can "
-              "be named; 2 for a rate effect such as a viscosity)",
-              where(file, value)));
-        e.rates_needed = static_cast<int>(*v);
-      } else if (k == "set") {
-        const auto* a = value.as_array();
-        if (!a) throw std::runtime_error(fmt::format("{}: 'set' must be an array of \"section.key=value\" strings", where(file, value)));
-        for (const auto& item : *a) {
-          const auto s = item.value<std::string>();
-          if (!s || s->find('=') == std::string::npos)
-            throw std::runtime_error(fmt::format("{}: each 'set' entry is a \"section.key=value\" string", where(file, item)));
-          e.set.push_back(*s);
-        }
-      } else {
-        throw std::runtime_error(fmt::format(
-            "{}: unknown key '{}' in [[effect]]; the keys are name, parameter, value_format, unit, neutral, "
-            "plausible, plausible_from, plausible_factor, min, max, rates_needed, set, separated_by, doc",
-            where(file, value), k));
-      }
-    }
+    for (const auto& [key, value] : *t) read_effect_key(file, std::string(key.str()), value, e, has_neutral);
     if (e.name.empty() || e.parameter.empty())
       throw std::runtime_error(fmt::format("{}: an [[effect]] needs a name and a parameter", where(file, node)));
-    // The neutral value is declared once, in the schema of the plugin that carries the parameter.
-    // Plugins that disagree leave the choice to the entry's own `neutral`.
-    std::optional<double> declared;
-    try {
-      declared = schema ? schema(e.parameter) : std::nullopt;
-    } catch (const std::exception& x) {
-      if (!has_neutral)
-        throw std::runtime_error(fmt::format("{}: effect '{}': {}; give its neutral = ... here", where(file, node),
-                                             e.name, x.what()));
-    }
-    if (declared && has_neutral && *declared != e.neutral)
-      throw std::runtime_error(fmt::format(
-          "{}: effect '{}': neutral {:g} contradicts the neutral value {:g} that the plugin's schema declares for {}; "
-          "remove the key (the schema's value is used)",
-          where(file, *t->get("neutral")), e.name, e.neutral, *declared, e.parameter));
-    if (declared) e.neutral = *declared;
-    if (!declared && !has_neutral)
-      throw std::runtime_error(fmt::format(
-          "{}: effect '{}' needs a neutral value (the effect is off): {} is no plugin parameter with a neutral value "
-          "in its schema, so give neutral = ... here",
-          where(file, node), e.name, e.parameter));
-    if (e.plausible_from.empty() != (e.plausible_factor == 0))
-      throw std::runtime_error(fmt::format("{}: effect '{}': plausible_from and plausible_factor go together (plausible = "
-                                           "factor x the scale), e.g. plausible_from = \"time_to_peak\" and "
-                                           "plausible_factor = 0.1",
-                                           where(file, node), e.name));
-    // With a rule, plausible is set once the measurements are known (with_test_plausible).
-    const bool rule = !e.plausible_from.empty();
-    if (rule) e.plausible = std::numeric_limits<double>::quiet_NaN();
-    if (!(e.min <= e.neutral && e.neutral <= e.max && (rule || (e.min <= e.plausible && e.plausible <= e.max))))
-      throw std::runtime_error(fmt::format("{}: effect '{}': neutral {:g} and plausible {:g} must lie in [min, max] = [{:g}, {:g}]",
-                                           where(file, node), e.name, e.neutral, e.plausible, e.min, e.max));
-    if (!rule && e.plausible == e.neutral)
-      throw std::runtime_error(fmt::format("{}: effect '{}': plausible equals neutral, the trial run would not switch "
-                                           "it on",
-                                           where(file, node), e.name));
+    resolve_neutral(file, node, *t, e, has_neutral, schema);
+    check_effect_values(file, node, e);
     // Effects are chosen by name (--with, --only) and ranked by name: one name, one effect.
     for (const auto& earlier : out)
       if (earlier.name == e.name)
