@@ -79,7 +79,11 @@ std::string separating_text(const ContrastReport& r, const std::string& lead) {
 std::string withheld_text(const ContrastReport& r, const SetDiagnosis& d, const std::string& name) {
   const ContrastDecision& c = d.decision;
   const bool curve_misses = !curve_agrees(d.after);
-  std::string why = curve_misses
+  std::string why = !improves_on_base(d)
+                        ? fmt::format("its simulated contrast curve fits the measured one worse than the base model "
+                                      "without it (NRMSE {:.1f} % against {:.1f} %)",
+                                      100 * d.after.nrmse, 100 * d.before.nrmse)
+                    : curve_misses
                         ? fmt::format("its simulated contrast curve misses the measured one before the peak (NRMSE "
                                       "{:.1f} % against a noise floor of {:.1f} %; a name needs at most {:g}x the floor)",
                                       100 * d.after.rising_nrmse, 100 * naming_floor(d.after),

@@ -230,6 +230,8 @@ TEST_CASE("a name the curve does not bear out is withheld") {
     SetDiagnosis d;
     d.decision.verdict = "bond_softening";
     d.decision.chi_square = 100;
+    d.before.nrmse = 0.2;
+    d.after.nrmse = 0.08;
     d.decision.fits.push_back({});
     d.decision.fits.back().name = "bond_softening";
     d.decision.fits.back().drop = drop;
@@ -246,7 +248,8 @@ TEST_CASE("a name the curve does not bear out is withheld") {
     return d;
   };
   REQUIRE(naming_floor(named(0, 0).after) == doctest::Approx(0.04123).epsilon(1e-3));
-  std::vector<SetDiagnosis> sets{named(0.0615, 90), named(0.0625, 90), named(0.02, 40)};
+  std::vector<SetDiagnosis> sets{named(0.0615, 90), named(0.0625, 90), named(0.02, 40), named(0.0615, 90)};
+  sets[3].after.nrmse = 0.25;  // the whole contrast curve worse than the base's: the foreign friction batch's case
   require_curve_agreement(sets, ContrastOptions{});
   CHECK(sets[0].decision.verdict == "bond_softening");  // within 1.5 x the floor, 90 % of T^2
   CHECK(sets[0].share == doctest::Approx(0.9));
@@ -254,6 +257,8 @@ TEST_CASE("a name the curve does not bear out is withheld") {
   CHECK(sets[1].withheld == "bond_softening");
   CHECK(sets[1].decision.rivals.empty());
   CHECK(sets[2].decision.verdict == kUnexplainedDifference);  // 40 % of T^2 is not most of it
+  CHECK(sets[3].decision.verdict == kUnexplainedDifference);  // it leaves the contrast curve worse than no effect
+  CHECK(sets[3].withheld == "bond_softening");
 }
 
 TEST_CASE("an effect moves the model from the reference's state, not from the library's neutral") {
@@ -331,6 +336,8 @@ TEST_CASE("a closest effect whose fracture components differ is named by its cur
     SetDiagnosis d;
     d.decision.verdict = kUnexplainedDifference;
     d.decision.chi_square = 1000;
+    d.before.nrmse = 0.2;
+    d.after.nrmse = 0.08;
     for (const char* name : {"compression_asymmetry", "bond_softening"}) {
       ContrastFit f;
       f.name = name, f.scale = 1, f.identifiable = true, f.p_drop = 1e-12, f.p_after = 0.006;
@@ -345,8 +352,9 @@ TEST_CASE("a closest effect whose fracture components differ is named by its cur
     d.after.rising_nrmse = rising_nrmse;
     return d;
   };
-  std::vector<SetDiagnosis> sets{closest(0.91, 0.054), closest(0.80, 0.054), closest(0.91, 0.07)};
+  std::vector<SetDiagnosis> sets{closest(0.91, 0.054), closest(0.80, 0.054), closest(0.91, 0.07), closest(0.91, 0.054)};
   sets[0].decision.fits[1].chi_square = 90 + 1.5;  // a rival within 2 in chi^2
+  sets[3].after.nrmse = 0.25;
   name_by_curve(sets, 8, ContrastOptions{});
   CHECK(sets[0].decision.verdict == "compression_asymmetry");
   CHECK(sets[0].named_by_curve);
@@ -354,6 +362,7 @@ TEST_CASE("a closest effect whose fracture components differ is named by its cur
   CHECK(sets[1].decision.verdict == kUnexplainedDifference);  // 80 %: wrong closest effects reached 78 %
   CHECK(sets[2].decision.verdict == kUnexplainedDifference);  // the curve misses
   CHECK_FALSE(sets[2].named_by_curve);
+  CHECK(sets[3].decision.verdict == kUnexplainedDifference);  // worse than the base over the whole curve
 }
 
 TEST_CASE("what a verdict rests on: a base assumption moved, each shown model rerun there") {

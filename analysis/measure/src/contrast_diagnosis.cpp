@@ -123,6 +123,8 @@ bool curve_agrees(const ContrastStudy::CurveContrast& c, const ContrastOptions& 
   return c.rising_nrmse <= options.curve_floor_factor * naming_floor(c, options);
 }
 
+bool improves_on_base(const SetDiagnosis& d) { return d.after.nrmse < d.before.nrmse; }
+
 bool names_a_pair(const SetDiagnosis& d, const ContrastOptions& options) {
   return d.pair && pair_is_named(*d.pair, d.seconds_tried, options) && d.withheld.empty();
 }
@@ -132,7 +134,7 @@ void require_curve_agreement(std::vector<SetDiagnosis>& sets, const ContrastOpti
     d.share = share_of(d, options);
     const std::string& verdict = d.decision.verdict;
     if (verdict == kNoDifference || verdict == kUnexplainedDifference) continue;
-    if (curve_agrees(d.after, options) && d.share >= options.min_share) continue;
+    if (curve_agrees(d.after, options) && improves_on_base(d) && d.share >= options.min_share) continue;
     d.withheld = verdict;
     d.decision.verdict = kUnexplainedDifference;
     d.decision.rivals.clear();
@@ -148,7 +150,7 @@ void name_by_curve(std::vector<SetDiagnosis>& sets, std::size_t tried, const Con
     const double share = c.chi_square > 0 ? closest.drop / c.chi_square : 0.0;
     const bool curve_of_closest_agrees = d.after_effect == closest.name && curve_agrees(d.after, options);
     if (!(closest.scale != 0 && closest.identifiable && closest.p_drop < level && share >= options.curve_name_share &&
-          curve_of_closest_agrees))
+          curve_of_closest_agrees && improves_on_base(d)))
       continue;
     c.verdict = closest.name;
     c.rivals = rivals_of(c.fits, closest, level, options);
