@@ -42,17 +42,21 @@ std::vector<std::optional<ContrastStudy::Simulated>> simulate_each(ContrastStudy
   return runs;
 }
 
-void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>& effects,
-                       const ContrastStudy::Simulated& base, std::vector<SetDiagnosis>& sets, int count, int iterations,
-                       ContrastOptions decide, std::ostream& log) {
-  struct Trial {
-    std::size_t effect = 0;
-    double scale = 0;
-    ContrastStudy::Simulated run;
-    bool has_run = false;
-    bool failed = false;
-  };
-  std::vector<std::vector<Trial>> trials(sets.size());
+namespace {
+
+// One effect of one set, simulated at its fitted size.
+struct Trial {
+  std::size_t effect = 0;
+  double scale = 0;
+  ContrastStudy::Simulated run;
+  bool has_run = false;
+  bool failed = false;
+};
+using SetTrials = std::vector<std::vector<Trial>>;  // [set][trial]
+
+// Each set's best `count` effects of the linear fit (none for a set of no difference).
+SetTrials first_trials(const std::vector<SetDiagnosis>& sets, const std::vector<CandidateEffect>& effects, int count) {
+  SetTrials trials(sets.size());
   for (std::size_t s = 0; s < sets.size(); ++s) {
     if (sets[s].linear.verdict == kNoDifference) continue;  // nothing to confirm
     int taken = 0;
@@ -64,42 +68,38 @@ void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>&
       ++taken;
     }
   }
-  auto signature_of = [&](const SetDiagnosis& d, const Trial& t) {
-    const CandidateEffect& e = effects[t.effect];
-    return EffectSignature{e.name, e.value_at(t.scale) - e.neutral, study.model_contrast(d.contrast, t.run, base), 1, 1,
-                           e.identifiable_at(study.rate_count(d.contrast))};
-  };
-  for (int pass = 0; pass < iterations; ++pass) {
+  return trials;
+}
+
+class Confirmation {
+ public:
+  Confirmation(ContrastStudy& study, const std::vector<CandidateEffect>& effects, const ContrastStudy::Simulated& base,
+               std::vector<SetDiagnosis>& sets, int count)
+      : study_(study), effects_(effects), base_(base), sets_(sets), trials_(first_trials(sets, effects, count)) {}
+
+  // One batch: trials without a run are run, and a run whose simulated contrast asks for a size
+  // more than 20 % away is run again there. False when nothing was left to run.
+  bool pass(int index, std::ostream& log) {
     std::vector<ModelPlan> models;
     std::vector<std::pair<std::size_t, std::size_t>> owner;
-    for (std::size_t s = 0; s < sets.size(); ++s)
-      for (std::size_t k = 0; k < trials[s].size(); ++k) {
-        Trial& t = trials[s][k];
-        if (t.has_run) {
-          // The simulated contrast at this size, scaled by a*, fits best: run there when a* is
-          // more than 20 % from 1 (an effect's signature is not linear in its size).
-          const EffectSignature sig = signature_of(sets[s], t);
-          const auto fit = decide_contrast(sets[s].contrast.difference, sets[s].contrast.weight,
-                                           {{sig.name, sig.trial_size, sig.signature, 0, 1e9}}, study.dof());
-          const double a = fit.fits.front().scale;
-          if (!(std::abs(a - 1) > 0.2) || a == 0) continue;
-          const CandidateEffect& e = effects[t.effect];
-          t.scale = std::clamp(t.scale * a, e.scale_min(), e.scale_max());
-        }
-        models.push_back(with_effect(study.base(), effects[t.effect], effects[t.effect].value_at(t.scale)));
+    for (std::size_t s = 0; s < sets_.size(); ++s)
+      for (std::size_t k = 0; k < trials_[s].size(); ++k) {
+        Trial& t = trials_[s][k];
+        if (t.has_run && !resized(sets_[s], t)) continue;
+        models.push_back(with_effect(study_.base(), effects_[t.effect], effects_[t.effect].value_at(t.scale)));
         owner.emplace_back(s, k);
       }
-    if (models.empty()) break;
-    log << fmt::format("diagnose: confirmation pass {}: {} runs of effects at their fitted sizes\n", pass + 1, models.size());
+    if (models.empty()) return false;
+    log << fmt::format("diagnose: confirmation pass {}: {} runs of effects at their fitted sizes\n", index + 1, models.size());
     auto runs = simulate_each(
-        study, models,
+        study_, models,
         [&](std::size_t m) {
-          const Trial& t = trials[owner[m].first][owner[m].second];
-          return fmt::format("{} at {:.4g}", effects[t.effect].name, effects[t.effect].value_at(t.scale));
+          const Trial& t = trials_[owner[m].first][owner[m].second];
+          return fmt::format("{} at {:.4g}", effects_[t.effect].name, effects_[t.effect].value_at(t.scale));
         },
         log);
     for (std::size_t m = 0; m < models.size(); ++m) {
-      Trial& t = trials[owner[m].first][owner[m].second];
+      Trial& t = trials_[owner[m].first][owner[m].second];
       if (runs[m]) {
         t.run = std::move(*runs[m]);
         t.has_run = true;
@@ -107,39 +107,81 @@ void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>&
         t.failed = true;
       }
     }
-    for (auto& per_set : trials)
-      std::erase_if(per_set, [](const Trial& t) { return t.failed; });
+    for (auto& per_set : trials_) std::erase_if(per_set, [](const Trial& t) { return t.failed; });
+    return true;
   }
-  decide.tried = effects.size();
-  for (std::size_t s = 0; s < sets.size(); ++s) {
-    SetDiagnosis& d = sets[s];
-    if (trials[s].empty()) continue;
+
+  // Each set decided on its simulated contrasts; the named (or closest) effect's run shown.
+  void decide(const ContrastOptions& options) {
+    for (std::size_t s = 0; s < sets_.size(); ++s)
+      if (!trials_[s].empty()) decide_set(sets_[s], trials_[s], options);
+  }
+
+ private:
+  EffectSignature signature_of(const SetDiagnosis& d, const Trial& t) const {
+    const CandidateEffect& e = effects_[t.effect];
+    return EffectSignature{e.name, e.value_at(t.scale) - e.neutral, study_.model_contrast(d.contrast, t.run, base_), 1, 1,
+                           e.identifiable_at(study_.rate_count(d.contrast))};
+  }
+
+  // The simulated contrast at this size, scaled by a*, fits best: a new size when a* is more
+  // than 20 % from 1 (an effect's signature is not linear in its size).
+  bool resized(const SetDiagnosis& d, Trial& t) const {
+    const EffectSignature sig = signature_of(d, t);
+    const auto fit = decide_contrast(d.contrast.difference, d.contrast.weight,
+                                     {{sig.name, sig.trial_size, sig.signature, 0, 1e9}}, study_.dof());
+    const double a = fit.fits.front().scale;
+    if (!(std::abs(a - 1) > 0.2) || a == 0) return false;
+    const CandidateEffect& e = effects_[t.effect];
+    t.scale = std::clamp(t.scale * a, e.scale_min(), e.scale_max());
+    return true;
+  }
+
+  void decide_set(SetDiagnosis& d, const std::vector<Trial>& trials, const ContrastOptions& options) const {
     std::vector<EffectSignature> sig;
-    for (const auto& t : trials[s]) sig.push_back(signature_of(d, t));
-    d.decision = decide_contrast(d.contrast.difference, d.contrast.weight, sig, study.dof(), decide);
+    for (const auto& t : trials) sig.push_back(signature_of(d, t));
+    d.decision = decide_contrast(d.contrast.difference, d.contrast.weight, sig, study_.dof(), options);
     d.confirmed_values.clear();
     for (auto& f : d.decision.fits)
-      for (const auto& t : trials[s])
-        if (effects[t.effect].name == f.name) {
-          d.confirmed_values.push_back(effects[t.effect].value_at(t.scale));
+      for (const auto& t : trials)
+        if (effects_[t.effect].name == f.name) {
+          d.confirmed_values.push_back(effects_[t.effect].value_at(t.scale));
           // A run's size is fixed; it is at a bound when the size it was run at is.
-          f.at_bound = t.scale <= effects[t.effect].scale_min() || t.scale >= effects[t.effect].scale_max();
+          f.at_bound = t.scale <= effects_[t.effect].scale_min() || t.scale >= effects_[t.effect].scale_max();
         }
     // A named effect is shown with its run; for an unexplained difference the closest effect, so
     // the plot shows how far the library gets; nothing when there is no difference to explain.
-    if (d.decision.verdict == kNoDifference) continue;
+    if (d.decision.verdict == kNoDifference) return;
     const std::string& show =
         d.decision.verdict == kUnexplainedDifference ? d.decision.fits.front().name : d.decision.verdict;
-    for (const auto& t : trials[s])
-      if (effects[t.effect].name == d.decision.fits.front().name) d.closest = SetDiagnosis::ConfirmedRun{t.effect, t.scale, t.run};
-    for (const auto& t : trials[s])
-      if (effects[t.effect].name == show) {
-        d.after = study.curve_contrast(d.contrast, t.run, base);
+    for (const auto& t : trials)
+      if (effects_[t.effect].name == d.decision.fits.front().name) d.closest = SetDiagnosis::ConfirmedRun{t.effect, t.scale, t.run};
+    for (const auto& t : trials)
+      if (effects_[t.effect].name == show) {
+        d.after = study_.curve_contrast(d.contrast, t.run, base_);
         d.after_effect = show;
-        d.after_components = study.model_contrast(d.contrast, t.run, base);
-        d.after_value = effects[t.effect].value_at(t.scale);
+        d.after_components = study_.model_contrast(d.contrast, t.run, base_);
+        d.after_value = effects_[t.effect].value_at(t.scale);
       }
   }
+
+  ContrastStudy& study_;
+  const std::vector<CandidateEffect>& effects_;
+  const ContrastStudy::Simulated& base_;
+  std::vector<SetDiagnosis>& sets_;
+  SetTrials trials_;
+};
+
+}  // namespace
+
+void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>& effects,
+                       const ContrastStudy::Simulated& base, std::vector<SetDiagnosis>& sets, int count, int iterations,
+                       ContrastOptions decide, std::ostream& log) {
+  Confirmation confirmation(study, effects, base, sets, count);
+  for (int pass = 0; pass < iterations; ++pass)
+    if (!confirmation.pass(pass, log)) break;
+  decide.tried = effects.size();
+  confirmation.decide(decide);
 }
 
 }  // namespace shard::measure
