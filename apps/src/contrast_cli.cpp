@@ -26,6 +26,10 @@ void add_contrast_options(CLI::App* cmd, ContrastOptionsCli& o) {
   cmd->add_option("--form-tolerance", o.diagnosis.decide.form_tolerance,
                   "share of an effect's simulated contrast by which the lab's may differ in form (0: exact shape)")
       ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--own-scatter", o.diagnosis.decide.own_scatter_p,
+                  "a set whose specimens scatter beyond the others' at this p (e.g. 0.01) carries its own scatter "
+                  "instead of joining the pooled one (default 0: every set pooled)")
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_flag("--lab-grain-size", o.diagnosis.lab_grain_size,
                "run the model at the reference's reported grain size ([test] grain_size in metadata.toml): the "
                "scene's diameters scaled to it (cost ~ (scene mean / grain)^4 per run)");

@@ -5,6 +5,7 @@
 // Every path runs in milliseconds, so a change of a decision rule is tested without a DEM run.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -120,10 +121,22 @@ TEST_CASE("a set that scatters seven times wider carries its own scatter and lea
     return s;
   };
   auto calm = study(false), wild = study(true);
+  calm->options.decide.own_scatter_p = wild->options.decide.own_scatter_p = 0.01;
   const ContrastDiagnosis without = calm->run(), with = wild->run();
   for (const auto& g : with.scatter) CHECK(g.own == (wild->sets.names[g.set] == "wild"));
-  // Pooled in, the wild set's variance (49 x) would weigh 3 of 21 degrees of freedom: the pool
-  // ~7 x wider and T^2 ~7 x smaller. Set apart, the softening's T^2 is its T^2 without the wild set.
+  // Off (the default), the wild set is pooled with the others and only reported.
+  auto pooled = study(true);
+  const ContrastDiagnosis all_pooled = pooled->run();
+  for (const auto& g : all_pooled.scatter) CHECK_FALSE(g.own);
+  const auto wild_line = std::find_if(all_pooled.scatter.begin(), all_pooled.scatter.end(),
+                                      [&](const auto& g) { return pooled->sets.names[g.set] == "wild"; });
+  REQUIRE(wild_line != all_pooled.scatter.end());
+  CHECK(wild_line->p_value < 1e-3);
+  // Pooled in, its variance (49 x in peak force, displacement and work, 3 of 21 degrees of
+  // freedom) widens the pool in those components and the softening's T^2 falls by a quarter.
+  CHECK(diagnosis_of(all_pooled, *pooled, "softening").decision.chi_square <
+        0.8 * diagnosis_of(with, *wild, "softening").decision.chi_square);
+  // Set apart, the softening's T^2 is its T^2 without the wild set.
   const SetDiagnosis& soft = diagnosis_of(with, *wild, "softening");
   CHECK(soft.decision.chi_square == doctest::Approx(diagnosis_of(without, *calm, "softening").decision.chi_square).epsilon(1e-9));
   CHECK(soft.decision.verdict == "bond_softening");

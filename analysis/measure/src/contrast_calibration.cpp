@@ -85,7 +85,8 @@ ContrastCalibration calibrate_contrast(const ContrastSets& sets, std::size_t tar
                                        const ContrastCalibrationOptions& options, std::ostream& log) {
   ContrastCalibration out;
   check_effects_reach(chosen, base);
-  ContrastStudy study(sets, simulator, base_at_grain_size(sets, simulator, base, options.lab_grain_size, log));
+  ContrastStudy study(sets, simulator, base_at_grain_size(sets, simulator, base, options.lab_grain_size, log),
+                      options.decide.own_scatter_p);
   out.calibration = study.calibrate_base(options.params, options.params.empty() ? 0 : options.base_iterations, log);
   out.effects = centred_on_reference(scaled_to_base_run(chosen, study, out.scaled_sizes, log), study.base(), log);
   const auto& effects = out.effects;

@@ -165,7 +165,8 @@ ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simula
                                      const ContrastDiagnosisOptions& options, std::ostream& log) {
   ContrastDiagnosis out;
   check_effects_reach(library, base);
-  ContrastStudy study(sets, simulator, base_at_grain_size(sets, simulator, base, options.lab_grain_size, log));
+  ContrastStudy study(sets, simulator, base_at_grain_size(sets, simulator, base, options.lab_grain_size, log),
+                      options.decide.own_scatter_p);
   out.calibration = study.calibrate_base(options.params, options.params.empty() ? 0 : options.base_iterations, log);
   if (options.finer > 0) {
     out.finer = finer_calibration(sets, simulator, base, options, log);

@@ -24,7 +24,6 @@ namespace {
 
 constexpr double kGeometryTolerance = 0.02;  // as Simulator::check_inputs: 2 % is a different fixture
 constexpr double kShrinkage = 0.1;           // off-diagonal shrinkage of the pooled covariance
-constexpr double kScatterAlpha = 0.01;       // a group's scatter set apart below this p over the groups
 constexpr std::size_t kCurvePoints = 60;
 
 std::string folder_name(const fs::path& folder) {
@@ -186,7 +185,7 @@ ContrastSets read_contrast_sets(const std::vector<fs::path>& folders, const std:
   return s;
 }
 
-ContrastStudy::ContrastStudy(const ContrastSets& sets, Simulator& simulator, ModelPlan base)
+ContrastStudy::ContrastStudy(const ContrastSets& sets, Simulator& simulator, ModelPlan base, double own_scatter_p)
     : sets_(sets), simulator_(simulator), base_(std::move(base)) {
   // The scales come from the reference's slowest rate, or without a reference from the rate most
   // specimens were tested at.
@@ -220,7 +219,7 @@ ContrastStudy::ContrastStudy(const ContrastSets& sets, Simulator& simulator, Mod
       groups_.push_back(std::move(group));
     }
   }
-  scatter_ = group_scatter(pooled, kShrinkage, kScatterAlpha);
+  scatter_ = group_scatter(pooled, kShrinkage, own_scatter_p);
 }
 
 std::vector<double> ContrastStudy::rates() const {

@@ -105,6 +105,13 @@ struct ContrastOptions {
   // curve rule leaves out on purpose. On the foreign sets the wrong closest effects took at most
   // 78 % of T^2, the right ones 90-93 %.
   double curve_name_share = 0.85;
+  // Sets whose specimen scatter is exceptional carry their own instead of joining the pool
+  // (group_scatter.hpp), at this p over the sets; 0 pools every set. Off by default: on the
+  // tiny-beam foreign sets the Weibull set (95 x the others' variance) left the pool and the
+  // asymmetry set's remainder, measured against the narrower pool, fell to p 0.047 (named
+  // before); on the default-size foreign draw it names the self-weight set and keeps a
+  // frictionless-roller set (272 x) from swamping every other contrast.
+  double own_scatter_p = 0;
   // Effects tried for the Bonferroni corrections (0: those passed). A confirmation that decides
   // on the simulated refits of the top few still pays for every effect the ranking looked at.
   std::size_t tried = 0;

@@ -59,7 +59,8 @@ struct BaseCalibration {
 
 class ContrastStudy {
  public:
-  ContrastStudy(const ContrastSets& sets, Simulator& simulator, ModelPlan base);
+  // `own_scatter_p`: ContrastOptions::own_scatter_p (0: every set in the pooled scatter).
+  ContrastStudy(const ContrastSets& sets, Simulator& simulator, ModelPlan base, double own_scatter_p = 0);
 
   double dof() const { return scatter_.dof; }
   // The specimens' scatter: pooled, and the groups that carry their own (group_scatter.hpp).
