@@ -9,12 +9,18 @@
 //   scene F N [section.key=value ...]  the scene file F (e.g. the four-point bending beam) over N steps: decomposed and
 //              serial agree within 1e-9 of the displacement scale and break the same bonds
 //   too_many   a scene of 8 spheres on more ranks than it has cells: every rank refuses it alike
+//   fragments  the block cut into five slabs of 2, 9, 1, 8 and 4 layers plus three loose spheres:
+//              the distributed fragment labels (label_fragments) after 20 steps are the serial
+//              labeller's on the gathered state, particle by particle, with the same sizes; on 4
+//              ranks one fragment spans at least three ranks' sub-domains
 // Exit code 0 on success; each failed check prints one line on rank 0.
 #include <mpi.h>
 #include <omp.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -26,6 +32,7 @@
 #include <vector>
 
 #include "../common/beam_hertz_models.hpp"
+#include "shard/analysis/components.hpp"
 #include "shard/mpi/distributed_simulation.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
@@ -259,6 +266,82 @@ int too_many(int rank, int ranks) {
   return failures == 0 ? 0 : 1;
 }
 
+// The block without the bonds across the planes after layers 1, 10, 11 and 19 (slabs of 2, 9, 1, 8
+// and 4 layers: 160, 720, 80, 640 and 320 spheres, no two alike in mass) and without any bond of
+// three spheres inside the slabs (equal masses: their order is the smallest id's).
+SimulationSetup cut_block(const Models& m) {
+  SimulationSetup s = block(m);
+  const auto layer = [](Index site) { return site % kNx; };
+  const std::vector<Index> loose = {(4 * kNy + 5) * kNx + 5, (3 * kNy + 2) * kNx + 15, (1 * kNy + 8) * kNx + 6};
+  std::vector<std::pair<Index, Index>> kept;
+  for (const auto& [a, b] : s.bonds) {
+    const Index lower = std::min(layer(a), layer(b));
+    const bool across = layer(a) != layer(b) && (lower == 1 || lower == 10 || lower == 11 || lower == 19);
+    const bool of_loose = std::count(loose.begin(), loose.end(), a) + std::count(loose.begin(), loose.end(), b) > 0;
+    if (!across && !of_loose) kept.emplace_back(a, b);
+  }
+  s.bonds = std::move(kept);
+  return s;
+}
+
+// The serial labeller and canonical numbering on the whole state (ascending id), as a serial run's
+// frame gets them.
+std::vector<Index> serial_labels(const SimulationState& whole, std::vector<std::size_t>& sizes) {
+  std::vector<Index> labels;
+  analysis::UnionFindLabeller labeller;
+  const Index count = labeller.label(whole.particles.size(), {whole.bonds.i, whole.bonds.j}, labels);
+  analysis::canonicalise_labels(labels, count, whole.particles.mass, whole.particles.id);
+  sizes.assign(static_cast<std::size_t>(count), 0);
+  for (Index l : labels) ++sizes[static_cast<std::size_t>(l)];
+  std::sort(sizes.begin(), sizes.end(), std::greater<>());
+  return labels;
+}
+
+// How many ranks own particles of the fragment that spans most of them (on rank 0).
+int widest_span(const mpi::DistributedSimulation& sim, const std::vector<Index>& labels) {
+  std::vector<Index> present(labels);
+  std::sort(present.begin(), present.end());
+  present.erase(std::unique(present.begin(), present.end()), present.end());
+  std::vector<Index> all = sim.gather_to_root(present);
+  std::map<Index, int> ranks_of;
+  for (Index l : all) ++ranks_of[l];
+  int widest = 0;
+  for (const auto& [label, count] : ranks_of) widest = std::max(widest, count);
+  return widest;
+}
+
+int fragments(int rank, int ranks) {
+  const Models m;
+  mpi::DistributedSimulation sim(MPI_COMM_WORLD, cut_block(m));
+  sim.run(20);
+  const mpi::FragmentLabels f = sim.label_fragments();
+  const mpi::FrameShare share = sim.frame_share();
+  const std::vector<Index> ids = sim.gather_to_root(share.particles.id), labels = sim.gather_to_root(f.labels);
+  const SimulationState whole = sim.gather_state(0, false);
+  const int widest = widest_span(sim, f.labels);
+  if (rank == 0) {
+    std::vector<std::size_t> sizes;
+    const std::vector<Index> reference = serial_labels(whole, sizes);
+    std::map<Index, Index> by_id;
+    for (std::size_t k = 0; k < ids.size(); ++k) by_id[ids[k]] = labels[k];
+    std::size_t same = 0;
+    for (std::size_t k = 0; k < whole.particles.size(); ++k) {
+      const auto it = by_id.find(whole.particles.id[k]);
+      same += it != by_id.end() && it->second == reference[k] ? 1 : 0;
+    }
+    std::printf("%d ranks: %zu fragments (sizes", ranks, f.sizes.size());
+    for (std::size_t n : f.sizes) std::printf(" %zu", n);
+    std::printf("), %d exchange rounds, the widest over %d ranks; %zu of %zu labels as the serial labeller's\n",
+                f.rounds, widest, same, whole.particles.size());
+    check(ids.size() == whole.particles.size() && same == ids.size(), rank,
+          "every particle's fragment label is the serial labeller's");
+    check(f.sizes == sizes && sizes.size() == 8, rank, "eight fragments, of the serial labeller's sizes");
+    check(ranks < 4 || widest >= 3, rank, "on 4 ranks a fragment spans at least three ranks' sub-domains");
+  }
+  MPI_Bcast(&failures, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return failures == 0 ? 0 : 1;
+}
+
 int scene_run(int rank, int ranks, const std::string& file, std::int64_t steps, const std::vector<std::string>& overrides) {
   PluginHost host;
   host.load_directories(PluginHost::default_search_path());
@@ -323,6 +406,7 @@ int main(int argc, char** argv) {
   try {
     if (mode == "agreement") code = agreement(rank, ranks);
     if (mode == "too_many") code = too_many(rank, ranks);
+    if (mode == "fragments") code = fragments(rank, ranks);
     if (mode == "scene" && argc > 3) code = scene_run(rank, ranks, argv[2], std::stoll(argv[3]), std::vector<std::string>(argv + 4, argv + argc));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rank %d: %s\n", rank, e.what());

@@ -5,7 +5,7 @@
 // frame. Modes (the run files are read back with the serial RunFile reader):
 //   serial OUT               the reference: driver::run, no MPI
 //   decomposed OUT REF       mpirun -np N: the same run decomposed (fragment labels in every frame:
-//                            labelled on rank 0, written by every rank); rank 0 compares OUT with REF:
+//                            by the distributed union-find, written by every rank); rank 0 compares OUT with REF:
 //                            up to the first break, the load curve and every frame's positions
 //                            within 1e-9 of the displacement scale (the pins' travel at the first
 //                            break); over the whole run the same breaks (step, ids) in order, the
@@ -172,8 +172,7 @@ void compare(const fs::path& file, const fs::path& reference, const std::string&
 }
 
 // Two files of the same decomposed run (the same rank count: bit-reproducible), one without
-// fragment labels and one with (which gathers ids, masses and bond rows to rank 0 and sends the
-// labels back): every frame holds the same numbers for every particle id, bit for bit, and the
+// fragment labels and one with (labelled by the distributed union-find): every frame holds the same numbers for every particle id, bit for bit, and the
 // same bonds as id pairs; the labels are the only difference.
 void compare_bitwise(const fs::path& parallel, const fs::path& gathered, const std::string& who) {
   const RunFile a(parallel), b(gathered);
@@ -247,7 +246,7 @@ int main(int argc, char** argv) {
   const std::string who = fmt::format("{} ranks", mpi.size());
   try {
     if ((mode == "decomposed" || mode == "parallel_frames") && argc > 3) {
-      // parallel_frames: no fragment labels, so nothing of a frame is gathered.
+      // parallel_frames: no fragment labels.
       const bool labelled = mode == "decomposed";
       if (rank_ == 0) fs::remove_all(out);
       MPI_Barrier(MPI_COMM_WORLD);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <stdexcept>
 
 #include "shard/output.hpp"
 
@@ -149,8 +150,11 @@ void require_id_dataset(const std::filesystem::path& file) {
 MpiBackend::MpiBackend() {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &ranks_);
-  whole_.frame_particles = &no_particles_;
-  whole_.frame_bonds = &no_bonds_;
+  whole_.label_fragments = [this](std::vector<Index>& labels, std::vector<std::size_t>& sizes) {
+    mpi::FragmentLabels f = dist_->label_fragments();
+    labels = std::move(f.labels);
+    sizes = std::move(f.sizes);
+  };
 }
 
 Checkpoint MpiBackend::read_restart(const std::filesystem::path& checkpoint) const {
@@ -216,36 +220,17 @@ SimulationState MpiBackend::whole_state() const {
 double MpiBackend::deformation_kinetic_energy() const { return deformation_kinetic_energy_over_ranks(*dist_); }
 
 // Every frame is written by all ranks at once, each its own particles and bonds (nothing of it
-// gathered: docs/explanation/scaling.md). A frame the fragment labeller labels (its cadence: [analysis]
-// fragments_every) gathers to rank 0 what the labels need, the particles' ids and masses and the
-// bonds' rows, in the frame's row order; rank 0 labels the whole bond graph and sends each rank
-// the labels of its rows.
+// gathered: docs/explanation/scaling.md). The fragment labeller labels a frame through
+// whole_.label_fragments: a distributed union-find, each rank's labels for its own rows.
 void MpiBackend::write_frame(RunWriter& writer, RunState& state, const std::function<void()>& before_frame) {
-  const int every = state.scene.fragments_every;
-  const bool to_label = every > 0 && state.frames_written % every == 0;
   const mpi::FrameShare share = dist_->frame_share();
-  Particles label_particles;
-  Bonds label_bonds;
-  if (to_label) {
-    label_particles.id = dist_->gather_to_root(share.particles.id);
-    label_particles.mass = dist_->gather_to_root(share.particles.mass);
-    const std::vector<Index> rows = dist_->gather_to_root(share.bond_rows);
-    for (std::size_t k = 0; k + 1 < rows.size(); k += 2) {
-      label_bonds.i.push_back(rows[k]);
-      label_bonds.j.push_back(rows[k + 1]);
-    }
-  }
-  whole_.frame_particles = &label_particles;
-  whole_.frame_bonds = &label_bonds;
   state.frame_labels = nullptr;
   before_frame();
   FramePart part;
   part.labelled = dist_->any_rank(state.frame_labels != nullptr);
-  std::vector<Index> labels;
-  if (part.labelled)
-    labels = dist_->scatter_from_root(rank_ == 0 && state.frame_labels ? *state.frame_labels : std::vector<Index>{},
-                                      share.particles.id.size());
-  part.fragment_labels = &labels;
+  if (part.labelled && (!state.frame_labels || state.frame_labels->size() != share.particles.id.size()))
+    throw std::logic_error("a decomposed frame's fragment labels do not match this rank's rows");
+  part.fragment_labels = state.frame_labels;
   part.configure_transfer = collective_transfer;
   part.particles = &share.particles;
   part.first_row = share.first_row;
@@ -253,8 +238,6 @@ void MpiBackend::write_frame(RunWriter& writer, RunState& state, const std::func
   part.bond_rows = &share.bond_rows;
   part.first_bond = share.first_bond;
   part.total_bonds = share.total_bonds;
-  whole_.frame_particles = &no_particles_;  // the gathered ids and masses go out of scope below
-  whole_.frame_bonds = &no_bonds_;
   on_all([&] { writer.write_frame_part(dist_->step_count(), dist_->time(), part); });
 }
 

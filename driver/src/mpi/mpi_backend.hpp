@@ -1,9 +1,9 @@
 #pragma once
 // The run's simulation decomposed in space over the ranks of MPI_COMM_WORLD
 // (mpi::DistributedSimulation, docs/explanation/scaling.md): every figure of the whole run reduced over
-// the ranks in rank order. Every rank writes the run file through MPI-IO (a frame without
-// fragment labels each its own rows; a labelled one gathered to rank 0); checkpoints are gathered
-// to rank 0 and written there.
+// the ranks in rank order. Every rank writes its own rows of each frame through MPI-IO, with their
+// fragment labels from a distributed union-find; checkpoints are gathered to rank 0 and written
+// there.
 #include <optional>
 
 #include "../run_backend.hpp"
@@ -55,8 +55,6 @@ class MpiBackend final : public RunBackend {
   std::vector<WallContactBegun> begun_;
   std::size_t events_written_ = 0;  // break events handed to the run file
   RunState::Whole whole_;
-  const Particles no_particles_;
-  const Bonds no_bonds_;
 };
 
 }  // namespace shard::driver::detail

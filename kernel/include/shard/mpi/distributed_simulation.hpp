@@ -47,6 +47,14 @@ struct FrameShare {
   std::size_t first_bond = 0, total_bonds = 0;
 };
 
+// The fragment labels of a frame (kernel/src/mpi/fragment_labels.cpp): what the serial labeller and
+// analysis::canonicalise_labels give the whole run, computed where the particles are.
+struct FragmentLabels {
+  std::vector<Index> labels;        // this rank's own particles in ascending id (FrameShare's rows)
+  std::vector<std::size_t> sizes;   // particles per fragment, largest first, on rank 0 (empty elsewhere)
+  int rounds = 0;                   // border exchanges until no fragment's name changed
+};
+
 class DistributedSimulation {
  public:
   // `setup` is the whole scene, the same on every rank (each keeps its part). Throws
@@ -131,6 +139,10 @@ class DistributedSimulation {
   // This rank's share of a frame, nothing gathered: two prefix sums, and the rows of the ghosts'
   // owners through the halo links (one integer per ghost).
   FrameShare frame_share() const;
+  // The fragments of the surviving bonds by a distributed union-find: each rank's own components,
+  // merged across borders over the halo links, numbered canonically on rank 0 from one record per
+  // fragment and rank (docs/explanation/scaling.md).
+  FragmentLabels label_fragments() const;
   // Element-wise sums over the ranks, added in rank order (the same on every rank).
   std::vector<double> sum_over_ranks(const std::vector<double>& mine) const;
   // Every rank's `mine` (of any length), concatenated in rank order, on every rank.
