@@ -69,8 +69,9 @@ class RunBackend {
   virtual std::int64_t wall_contacts_begun_anywhere() const = 0;
   // The break events since the last call (the run file takes them).
   virtual std::vector<BondBreakEvent> take_new_break_events() = 0;
-  // The whole state for a checkpoint, on rank 0 (empty elsewhere).
-  virtual SimulationState whole_state() const = 0;
+  // Writes `loop` (the run loop's numbers and arrays, the same on every rank) with the whole
+  // simulation state as the checkpoint `file`, crash-safe (write_checkpoint). Collective.
+  virtual void write_checkpoint(Checkpoint& loop, const std::filesystem::path& file) const = 0;
   // analysis::deformation_kinetic_energy of the whole run's particles.
   virtual double deformation_kinetic_energy() const = 0;
   // Writes a frame of the whole run; `before_frame` lets the observers label it.

@@ -144,16 +144,13 @@ Energies SceneLoop::series_row() {
   return e;
 }
 
-// A checkpoint of the simulation (gathered to rank 0) and of the loop.
+// A checkpoint of the simulation and of the loop.
 void save_checkpoint(const RunBackend& backend, RunState& state, const NumericalHealth& health,
                       const ImpactTracker& impacts, const std::filesystem::path& file) {
   Checkpoint c;
-  c.simulation = backend.whole_state();
   save_loop_state(c, state.result, state.frames_written, health.state(backend));
-  backend.on_root([&] {
-    c.arrays.emplace_back("body_impacts", impacts.state());
-    write_checkpoint(file, c);
-  });
+  c.arrays.emplace_back("body_impacts", impacts.state());
+  backend.write_checkpoint(c, file);
   state.result.checkpoint = file;
   state.result.checkpoint_step = backend.local().step_count();
 }

@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <climits>
+#include <filesystem>
 #include <stdexcept>
 
+#include "shard/checkpoint.hpp"
 #include "shard/output.hpp"
 
 namespace shard::driver::detail {
@@ -61,13 +63,16 @@ void run_on_all(const std::function<void()>& work) {
   throw OutputError(error);
 }
 
+// A file every rank writes at once: HDF5's MPI-IO driver on its access list.
+void use_mpi_io(std::int64_t list) {
+  if (H5Pset_fapl_mpio(list, MPI_COMM_WORLD, MPI_INFO_NULL) < 0)
+    throw OutputError("cannot select HDF5's MPI-IO driver: is this build's HDF5 the parallel one?");
+}
+
 // The run file shared by the ranks: the MPI-IO driver, run.xmf kept by rank 0.
 RunWriterAccess shared_run_file(int rank) {
   RunWriterAccess access;
-  access.configure = [](std::int64_t list) {
-    if (H5Pset_fapl_mpio(list, MPI_COMM_WORLD, MPI_INFO_NULL) < 0)
-      throw OutputError("cannot select HDF5's MPI-IO driver for the run file: is this build's HDF5 the parallel one?");
-  };
+  access.configure = use_mpi_io;
   access.writes_index = rank == 0;
   return access;
 }
@@ -75,6 +80,21 @@ RunWriterAccess shared_run_file(int rank) {
 void collective_transfer(std::int64_t list) {
   if (H5Pset_dxpl_mpio(list, H5FD_MPIO_COLLECTIVE) < 0)
     throw OutputError("cannot ask HDF5 for collective MPI-IO transfers");
+}
+
+// Rank 0's values of the loop's numbers and arrays on every rank: a file written by every rank
+// must be given the same attributes and shared tables by each.
+void same_as_root(Checkpoint& c) {
+  std::vector<double> numbers;
+  for (const auto& [name, value] : c.numbers) numbers.push_back(value);
+  MPI_Bcast(numbers.data(), static_cast<int>(numbers.size()), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  for (std::size_t k = 0; k < numbers.size(); ++k) c.numbers[k].second = numbers[k];
+  for (auto& [name, values] : c.arrays) {
+    unsigned long long size = values.size();
+    MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+    values.resize(static_cast<std::size_t>(size));
+    MPI_Bcast(values.data(), static_cast<int>(size), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  }
 }
 
 // analysis::deformation_kinetic_energy over every rank's particles: the kinetic energy less that
@@ -211,10 +231,31 @@ std::vector<BondBreakEvent> MpiBackend::take_new_break_events() {
   return fresh;
 }
 
-SimulationState MpiBackend::whole_state() const {
-  SimulationState s = dist_->gather_state(0, true);
-  s.events_taken = events_written_;
-  return s;
+// Every rank writes its share of the checkpoint into the temporary file at once (MPI-IO, the
+// serial layout); rank 0 then flushes it to disk and renames it over the previous one, as the
+// serial writer does, once every rank's part is in: a kill before the rename leaves the previous
+// checkpoint whole.
+void MpiBackend::write_checkpoint(Checkpoint& loop, const std::filesystem::path& file) const {
+  same_as_root(loop);
+  mpi::StateShare share = dist_->state_share(true);
+  share.state.events_taken = events_written_;
+  loop.simulation = std::move(share.state);
+  CheckpointShare part;
+  part.checkpoint = &loop;
+  part.particles = share.particles;
+  part.bonds = share.bonds;
+  part.contacts = share.contacts;
+  part.writes_shared = rank_ == 0;
+  part.configure = use_mpi_io;
+  part.configure_transfer = collective_transfer;
+  const std::filesystem::path temporary = checkpoint_temporary_for(file);
+  try {
+    run_on_all([&] { write_checkpoint_share(temporary, part); });
+  } catch (const std::exception&) {
+    run_on_root([&] { std::filesystem::remove(temporary); });
+    throw;
+  }
+  run_on_root([&] { publish_checkpoint(temporary, file); });
 }
 
 double MpiBackend::deformation_kinetic_energy() const { return deformation_kinetic_energy_over_ranks(*dist_); }

@@ -1,9 +1,8 @@
 #pragma once
 // The run's simulation decomposed in space over the ranks of MPI_COMM_WORLD
 // (mpi::DistributedSimulation, docs/explanation/scaling.md): every figure of the whole run reduced over
-// the ranks in rank order. Every rank writes its own rows of each frame through MPI-IO, with their
-// fragment labels from a distributed union-find; checkpoints are gathered to rank 0 and written
-// there.
+// the ranks in rank order. Every rank writes its own rows of each frame and of each checkpoint
+// through MPI-IO (the serial layouts), a frame's fragment labels from a distributed union-find.
 #include <optional>
 
 #include "../run_backend.hpp"
@@ -37,7 +36,7 @@ class MpiBackend final : public RunBackend {
   std::size_t contact_count() const override { return dist_->contact_count(); }
   std::int64_t wall_contacts_begun_anywhere() const override { return dist_->wall_contacts_begun_anywhere(); }
   std::vector<BondBreakEvent> take_new_break_events() override;
-  SimulationState whole_state() const override;
+  void write_checkpoint(Checkpoint& loop, const std::filesystem::path& file) const override;
   double deformation_kinetic_energy() const override;
   void write_frame(RunWriter& writer, RunState& state, const std::function<void()>& before_frame) override;
 

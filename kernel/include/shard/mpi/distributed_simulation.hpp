@@ -47,6 +47,15 @@ struct FrameShare {
   std::size_t first_bond = 0, total_bonds = 0;
 };
 
+// This rank's share of a checkpoint that every rank writes at once (write_checkpoint_share): its own
+// particles in ascending id, its own bonds and touching contacts with their ends as rows of the
+// whole file, at the rows given; the rest (step, walls, break log, totals) the whole run's, the
+// same on every rank.
+struct StateShare {
+  SimulationState state;
+  CheckpointRows particles, bonds, contacts;
+};
+
 // The fragment labels of a frame (kernel/src/mpi/fragment_labels.cpp): what the serial labeller and
 // analysis::canonicalise_labels give the whole run, computed where the particles are.
 struct FragmentLabels {
@@ -132,6 +141,9 @@ class DistributedSimulation {
   // `contacts` the touching pairs' history (no list build positions: the importer rebuilds).
   // What a frame and a checkpoint hold; a checkpoint of it restarts on any rank count.
   SimulationState gather_state(int root = 0, bool contacts = true) const;
+  // The same state as every rank's share of one file, nothing gathered: prefix sums of the ranks'
+  // counts and the rows of the ghosts' owners through the halo links.
+  StateShare state_share(bool contacts = true) const;
   // A frame's content on `root` (empty elsewhere), by MPI_Gatherv: per particle 11 doubles and 3
   // integers, per bond two ids, against gather_state's 22 doubles, 5 integers and 2 + stride
   // doubles (kernel/src/mpi/frame_gather.cpp).
@@ -165,6 +177,7 @@ class DistributedSimulation {
   void distribute(Owned owned, double longest_bond, SimulationSetup* initial, const SimulationState* resumed = nullptr);
   void start(const SimulationSetup& setup);
   void finish_step();
+  void fill_whole_figures(SimulationState& s) const;
 
   MPI_Comm comm_;
   int rank_ = 0, ranks_ = 1;
