@@ -5,7 +5,8 @@
 // break. Modes:
 //   agreement  the decomposed run agrees with the serial one (rank 0 runs it) within 1e-9 of the
 //              largest displacement up to the first break, breaks the same bonds in the same order,
-//              and a second decomposed run is identical to the bit
+//              and a second decomposed run is identical to the bit, as is a third started from the
+//              block held by rank 0 alone (ScatteredScene)
 //   scene F N [section.key=value ...]  the scene file F (e.g. the four-point bending beam) over N steps: decomposed and
 //              serial agree within 1e-9 of the displacement scale and break the same bonds
 //   too_many   a scene of 8 spheres on more ranks than it has cells: every rank refuses it alike
@@ -141,8 +142,22 @@ Outcome serial(const Models& m) {
   return o;
 }
 
-Outcome decomposed(const Models& m, double* halo_share = nullptr, std::int64_t* repartitions = nullptr) {
-  mpi::DistributedSimulation sim(MPI_COMM_WORLD, block(m));
+// The block on rank 0 only, the other ranks given its models, walls and settings: what a run whose
+// scene rank 0 alone generated starts from (DistributedSimulation::ScatteredScene).
+mpi::DistributedSimulation scattered_block(const Models& m) {
+  SimulationSetup share = block(m);
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (rank != 0) {
+    share.particles = Particles{};
+    share.bonds.clear();
+  }
+  return mpi::DistributedSimulation(MPI_COMM_WORLD, std::move(share), mpi::DistributedSimulation::ScatteredScene{});
+}
+
+Outcome decomposed(const Models& m, double* halo_share = nullptr, std::int64_t* repartitions = nullptr,
+                   bool scattered = false) {
+  mpi::DistributedSimulation sim = scattered ? scattered_block(m) : mpi::DistributedSimulation(MPI_COMM_WORLD, block(m));
   Outcome o;
   o.dt = sim.dt();
   const double start = MPI_Wtime();
@@ -209,6 +224,7 @@ int agreement(int rank, int ranks) {
   const Outcome a = decomposed(m, &halo_share, &repartitions);
   const double t1 = MPI_Wtime();
   const Outcome b = decomposed(m);
+  const Outcome c = decomposed(m, nullptr, nullptr, true);
   if (rank == 0) {
     std::printf("serial: %.2f s, %lld neighbour-list rebuilds\n", ref.seconds, static_cast<long long>(ref.rebuilds));
     std::printf("%d ranks: %lld steps in %.2f s (halo exchange %.0f %% of it), %lld re-partitions, first break at "
@@ -218,6 +234,8 @@ int agreement(int rank, int ranks) {
                 ref.breaks.size());
   }
   check(a.hash == b.hash && a.breaks == b.breaks, rank, "two decomposed runs on this rank count are identical to the bit");
+  check(c.hash == a.hash && c.breaks == a.breaks && !a.breaks.empty(), rank,
+        "the block held by rank 0 alone and scattered by the first partition runs identically to the bit");
   if (rank == 0) {
     check(a.dt == ref.dt, rank, "the time step is the serial run's");
     check(ref.first_break > 0, rank, "the serial block breaks within the run");

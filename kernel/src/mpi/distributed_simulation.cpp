@@ -44,19 +44,14 @@ void DistributedSimulation::start(const SimulationSetup& setup) {
   halo_ = std::make_unique<Halo>(comm_);
 }
 
-DistributedSimulation::DistributedSimulation(MPI_Comm comm, SimulationSetup setup)
-    : comm_(comm), contact_(setup.contact), bond_(setup.bond) {
+// Particles [begin, end) of `setup` and the bonds whose smaller-id end is among them, as records,
+// and the longest of those bonds.
+double DistributedSimulation::take_rows(const SimulationSetup& setup, std::size_t begin, std::size_t end,
+                                        Owned& owned) const {
   const Particles& p = setup.particles;
   const std::size_t n = p.size();
-  if (n == 0) throw std::invalid_argument("a decomposed run needs particles");
-  for (std::size_t k = 0; k < n; ++k) r_max_ = std::max(r_max_, p.radius[k]);
-  start(setup);
-  // Before the first partition every rank takes an equal slice of the scene's listing.
-  Owned owned;
   owned.bond_stride = bond_ ? bond_->state_size() : 0;
   owned.history_stride = contact_ ? contact_->history_size() : 0;
-  const std::size_t begin = n * static_cast<std::size_t>(rank_) / static_cast<std::size_t>(ranks_);
-  const std::size_t end = n * static_cast<std::size_t>(rank_ + 1) / static_cast<std::size_t>(ranks_);
   for (std::size_t k = begin; k < end; ++k) owned.particles.push_back(record_of(p, k));
   std::vector<std::pair<Index, Index>> bonds;
   double longest = 0;
@@ -76,7 +71,38 @@ DistributedSimulation::DistributedSimulation(MPI_Comm comm, SimulationSetup setu
     owned.bonds.push_back(b);
     owned.bonds.insert(owned.bonds.end(), owned.bond_stride, 0.0);  // the bond model initialises it
   }
+  return longest;
+}
+
+// The largest radius over every rank's particles of `setup`; refuses a scene without particles.
+void DistributedSimulation::find_largest_radius(const Particles& p) {
+  for (std::size_t k = 0; k < p.size(); ++k) r_max_ = std::max(r_max_, p.radius[k]);
+  r_max_ = max_over_ranks(r_max_, comm_);
+  if (!(max_over_ranks(static_cast<double>(p.size()), comm_) > 0))
+    throw std::invalid_argument("a decomposed run needs particles");
+}
+
+DistributedSimulation::DistributedSimulation(MPI_Comm comm, SimulationSetup setup)
+    : comm_(comm), contact_(setup.contact), bond_(setup.bond) {
+  find_largest_radius(setup.particles);
+  start(setup);
+  // Before the first partition every rank takes an equal slice of the scene's listing.
+  const std::size_t n = setup.particles.size();
+  const std::size_t begin = n * static_cast<std::size_t>(rank_) / static_cast<std::size_t>(ranks_);
+  const std::size_t end = n * static_cast<std::size_t>(rank_ + 1) / static_cast<std::size_t>(ranks_);
+  Owned owned;
+  const double longest = take_rows(setup, begin, end, owned);
   distribute(std::move(owned), longest, &setup);
+}
+
+DistributedSimulation::DistributedSimulation(MPI_Comm comm, SimulationSetup share, ScatteredScene)
+    : comm_(comm), contact_(share.contact), bond_(share.bond) {
+  find_largest_radius(share.particles);
+  start(share);
+  // Each rank holds its share (rank 0 the whole scene, say): the first partition sends it on.
+  Owned owned;
+  const double longest = take_rows(share, 0, share.particles.size(), owned);
+  distribute(std::move(owned), longest, &share);
 }
 
 DistributedSimulation::DistributedSimulation(MPI_Comm comm, SimulationSetup setup, const SimulationState& from)

@@ -69,6 +69,12 @@ class DistributedSimulation {
   // `setup` is the whole scene, the same on every rank (each keeps its part). Throws
   // std::invalid_argument, on every rank alike, when the rank count cannot hold the partition.
   DistributedSimulation(MPI_Comm comm, SimulationSetup setup);
+  // `share` holds this rank's share of the scene: any split of its particles, each rank's bonds
+  // between its own particles (rank 0 holding the whole scene that it alone generated, the others
+  // none, is one). The models, walls and settings are the scene's on every rank. The first
+  // partition sends every particle and bond to its owner; no rank needs the whole scene.
+  struct ScatteredScene {};
+  DistributedSimulation(MPI_Comm comm, SimulationSetup share, ScatteredScene);
   // Continues a run from its whole state `from` (a checkpoint, written on any rank count or by the
   // serial build: particles, bonds and contacts are matched by stable id), the same on every rank.
   // `setup` is the scene's (models, walls, damping); its particles and bonds are not used.
@@ -172,6 +178,8 @@ class DistributedSimulation {
 
  private:
   struct Owned;
+  double take_rows(const SimulationSetup& setup, std::size_t begin, std::size_t end, Owned& owned) const;
+  void find_largest_radius(const Particles& p);
   void repartition();
   // `initial`: the scene's set-up, taken over (moved from) to build this rank's Simulation.
   void distribute(Owned owned, double longest_bond, SimulationSetup* initial, const SimulationState* resumed = nullptr);
