@@ -44,6 +44,10 @@ class RunBackend {
   virtual void barrier() const = 0;
   // How the run file is opened (every rank of a decomposed run holds it open through MPI-IO).
   virtual RunWriterAccess run_file_access() const = 0;
+  // How `instantiate` obtains each body's packing here (empty: its generator plugin, in this
+  // process). Every process instantiates the scene; the packing need not be made by each.
+  virtual BodyPacker body_packer(const Scene& scene, const PluginHost& host,
+                                 const std::function<void(const std::string&)>& log) const = 0;
   // Builds this process's simulation from the whole scene as instantiated (`inst.simulation`,
   // released here), or from the checkpoint `from`. Throws std::invalid_argument for a state it
   // cannot hold.

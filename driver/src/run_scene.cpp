@@ -187,9 +187,9 @@ RunResult run_scene(const RunSpec& spec, const PluginHost& host, const std::vect
       read_run_start(spec, host, log, [&](const std::filesystem::path& c) { return backend.read_restart(c); });
   const Scene& scene = start.scene;
   if (!start.restarting) backend.on_root([&] { prepare_run_output(spec, scene); });
-  // The whole scene in every process (the generator's packing is not distributed): the backend
+  // The whole scene in every process (its packing made once, by the backend's packer): the backend
   // keeps its part; the health watch, the impacts and the metadata read it first.
-  SceneInstance inst = instantiate(scene, host, info);
+  SceneInstance inst = instantiate(scene, host, info, backend.body_packer(scene, host, info));
   NumericalHealth health(*inst.simulation, scene.gravity);
   ImpactTracker impacts(inst.simulation->particles());  // first wall contact per body (docs/reference/bodies.md)
   const RunMetadataDraft draft = run_metadata(scene, inst, host);

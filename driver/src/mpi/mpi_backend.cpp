@@ -3,11 +3,13 @@
 #include <fmt/format.h>
 #include <hdf5.h>
 #include <mpi.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <climits>
 #include <filesystem>
 #include <stdexcept>
+#include <string>
 
 #include "shard/checkpoint.hpp"
 #include "shard/output.hpp"
@@ -94,6 +96,52 @@ void same_as_root(Checkpoint& c) {
     MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
     values.resize(static_cast<std::size_t>(size));
     MPI_Bcast(values.data(), static_cast<int>(size), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  }
+}
+
+// Rank 0's `v` on every rank.
+template <class T>
+void broadcast(std::vector<T>& v) {
+  unsigned long long size = v.size();
+  MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+  v.resize(static_cast<std::size_t>(size));
+  const std::size_t bytes = v.size() * sizeof(T);
+  if (bytes > static_cast<std::size_t>(INT_MAX)) throw OutputError("a body's packing above 2 GiB cannot be broadcast");
+  MPI_Bcast(v.data(), static_cast<int>(bytes), MPI_BYTE, 0, MPI_COMM_WORLD);
+}
+
+// Until rank 0 arrives: the others wait without spinning (a rank in a blocking MPI call polls
+// at full speed and would take a core from rank 0's work on a shared machine).
+void wait_for_root() {
+  MPI_Request arrived;
+  MPI_Ibarrier(MPI_COMM_WORLD, &arrived);
+  for (int done = 0; !done;) {
+    MPI_Test(&arrived, &done, MPI_STATUS_IGNORE);
+    if (!done) usleep(2000);
+  }
+}
+
+// Rank 0's packing on every rank: positions, radii, materials, bonds and the quality figures.
+void broadcast(GeneratedBody& body) {
+  broadcast(body.position);
+  broadcast(body.radius);
+  broadcast(body.material);
+  broadcast(body.bonds);
+  std::vector<double> values;
+  std::string names;
+  for (const auto& [name, value] : body.quality) {
+    values.push_back(value);
+    names += name + '\n';
+  }
+  broadcast(values);
+  std::vector<char> text(names.begin(), names.end());
+  broadcast(text);
+  body.quality.clear();
+  std::size_t at = 0;
+  for (double value : values) {
+    const auto end = std::find(text.begin() + static_cast<std::ptrdiff_t>(at), text.end(), '\n');
+    body.quality.emplace_back(std::string(text.begin() + static_cast<std::ptrdiff_t>(at), end), value);
+    at = static_cast<std::size_t>(end - text.begin()) + 1;
   }
 }
 
@@ -188,6 +236,29 @@ void MpiBackend::on_root(const std::function<void()>& work) const { run_on_root(
 void MpiBackend::on_all(const std::function<void()>& work) const { run_on_all(work); }
 void MpiBackend::barrier() const { MPI_Barrier(MPI_COMM_WORLD); }
 RunWriterAccess MpiBackend::run_file_access() const { return shared_run_file(rank_); }
+
+// Rank 0 makes each packing and sends it to the others, which wait meanwhile: the generation is
+// paid once, not once per rank (docs/explanation/scaling.md). Its failure is the scene's on every rank.
+BodyPacker MpiBackend::body_packer(const Scene& scene, const PluginHost& host,
+                                   const std::function<void(const std::string&)>& log) const {
+  return [this, &scene, &host, log](const BodySpec& spec) {
+    GeneratedBody body;
+    std::vector<char> error;
+    if (rank_ == 0) {
+      try {
+        body = generate_body(spec, scene, host, log);
+      } catch (const std::exception& e) {
+        const std::string what = e.what();
+        error.assign(what.begin(), what.end());
+      }
+    }
+    wait_for_root();
+    broadcast(error);
+    if (!error.empty()) throw SceneError(std::string(error.begin(), error.end()));
+    broadcast(body);
+    return body;
+  };
+}
 
 // Every rank places its part of the whole scene (or of the checkpoint), then lets the whole scene
 // go: it was needed for the baseline and the metadata only.
