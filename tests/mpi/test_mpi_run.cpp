@@ -26,6 +26,9 @@
 //                            later checkpoints; the previous
 //                            checkpoint must then read, and `MPIRUN -np 2 EXE restart OUT REF`
 //                            continue it to the reference's end
+//   bad_generator OUT        mpirun -np N: the generator's box too small for one sphere: its
+//                            failure on rank 0 (which alone generates) is a SceneError on every
+//                            rank, naming the scene file, line and section
 //   checkpointing OUT        mpirun -np N: the run with a checkpoint at every frame, each rank's
 //                            pid in OUT/pid.RANK
 // Exit code 0 on success; each check prints one line on rank 0.
@@ -382,6 +385,21 @@ int main(int argc, char** argv) {
         fs::create_directories(copy);
         for (const char* name : {"run.h5", "run.checkpoint.h5"}) fs::copy_file(out / name, copy / name);
       }
+    } else if (mode == "bad_generator") {
+      Observers o;
+      driver::RunSpec spec = spec_for(out);
+      for (auto& extra : parse_overrides({"generator.max_corner=[-0.0899,-0.0149,0.0001]"})) spec.overrides.push_back(extra);
+      std::string message;
+      try {
+        run_decomposed(spec, o);
+      } catch (const SceneError& e) {
+        message = e.what();
+      }
+      std::printf("rank %d: %s\n", rank_, message.c_str());
+      const bool named = message.find("four_point_bending_ci.toml:25:1: [generator] box_fill: the box") != std::string::npos;
+      int mine = named ? 1 : 0, all = 0;
+      MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+      check(all, who + ": every rank refuses the scene whose generator failed on rank 0, naming file, line and section");
     } else if (mode == "checkpointing") {
       std::ofstream(out / fmt::format("pid.{}", rank_)) << ::getpid() << std::endl;
       Observers o(-1, 1);
