@@ -8,21 +8,24 @@ namespace shard::driver {
 void FragmentLabeller::before_frame(RunState& run) {
   const int every = run.scene.fragments_every;
   if (every <= 0 || run.frames_written % every != 0) return;
-  const Particles& p = run.frame_particles();
-  const Bonds& b = run.frame_bonds();
-  // By id: a decomposed run hands over only the ids and masses of the frame (RunState::Whole).
-  count_ = labeller_.label(p.id.size(), {b.i, b.j}, labels_);
-  analysis::canonicalise_labels(labels_, count_, p.mass, p.id);
+  if (run.whole) {
+    // A decomposed run labels where its particles are (RunState::Whole::label_fragments).
+    run.whole->label_fragments(labels_, sizes_);
+  } else {
+    const Particles& p = run.sim.particles();
+    const Bonds& b = run.sim.bonds();
+    const Index count = labeller_.label(p.size(), {b.i, b.j}, labels_);
+    analysis::canonicalise_labels(labels_, count, p.mass, p.id);
+    sizes_.assign(static_cast<std::size_t>(count), 0);
+    for (Index l : labels_) ++sizes_[static_cast<std::size_t>(l)];
+    std::sort(sizes_.begin(), sizes_.end(), std::greater<>());
+  }
   run.frame_labels = &labels_;
   labelled_ = true;
 }
 
 void FragmentLabeller::on_finish(RunState& run) {
-  if (!labelled_) return;
-  std::vector<std::size_t> sizes(static_cast<std::size_t>(count_), 0);
-  for (Index l : labels_) ++sizes[static_cast<std::size_t>(l)];
-  std::sort(sizes.begin(), sizes.end(), std::greater<>());
-  run.result.fragment_particles = std::move(sizes);
+  if (labelled_) run.result.fragment_particles = sizes_;
 }
 
 }  // namespace shard::driver

@@ -44,6 +44,10 @@ class RunBackend {
   virtual void barrier() const = 0;
   // How the run file is opened (every rank of a decomposed run holds it open through MPI-IO).
   virtual RunWriterAccess run_file_access() const = 0;
+  // How `instantiate` obtains each body's packing here (empty: its generator plugin, in this
+  // process). Every process instantiates the scene; the packing need not be made by each.
+  virtual BodyPacker body_packer(const Scene& scene, const PluginHost& host,
+                                 const std::function<void(const std::string&)>& log) const = 0;
   // Builds this process's simulation from the whole scene as instantiated (`inst.simulation`,
   // released here), or from the checkpoint `from`. Throws std::invalid_argument for a state it
   // cannot hold.
@@ -69,8 +73,9 @@ class RunBackend {
   virtual std::int64_t wall_contacts_begun_anywhere() const = 0;
   // The break events since the last call (the run file takes them).
   virtual std::vector<BondBreakEvent> take_new_break_events() = 0;
-  // The whole state for a checkpoint, on rank 0 (empty elsewhere).
-  virtual SimulationState whole_state() const = 0;
+  // Writes `loop` (the run loop's numbers and arrays, the same on every rank) with the whole
+  // simulation state as the checkpoint `file`, crash-safe (write_checkpoint). Collective.
+  virtual void write_checkpoint(Checkpoint& loop, const std::filesystem::path& file) const = 0;
   // analysis::deformation_kinetic_energy of the whole run's particles.
   virtual double deformation_kinetic_energy() const = 0;
   // Writes a frame of the whole run; `before_frame` lets the observers label it.

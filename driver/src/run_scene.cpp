@@ -144,16 +144,13 @@ Energies SceneLoop::series_row() {
   return e;
 }
 
-// A checkpoint of the simulation (gathered to rank 0) and of the loop.
+// A checkpoint of the simulation and of the loop.
 void save_checkpoint(const RunBackend& backend, RunState& state, const NumericalHealth& health,
                       const ImpactTracker& impacts, const std::filesystem::path& file) {
   Checkpoint c;
-  c.simulation = backend.whole_state();
   save_loop_state(c, state.result, state.frames_written, health.state(backend));
-  backend.on_root([&] {
-    c.arrays.emplace_back("body_impacts", impacts.state());
-    write_checkpoint(file, c);
-  });
+  c.arrays.emplace_back("body_impacts", impacts.state());
+  backend.write_checkpoint(c, file);
   state.result.checkpoint = file;
   state.result.checkpoint_step = backend.local().step_count();
 }
@@ -190,9 +187,9 @@ RunResult run_scene(const RunSpec& spec, const PluginHost& host, const std::vect
       read_run_start(spec, host, log, [&](const std::filesystem::path& c) { return backend.read_restart(c); });
   const Scene& scene = start.scene;
   if (!start.restarting) backend.on_root([&] { prepare_run_output(spec, scene); });
-  // The whole scene in every process (the generator's packing is not distributed): the backend
+  // The whole scene in every process (its packing made once, by the backend's packer): the backend
   // keeps its part; the health watch, the impacts and the metadata read it first.
-  SceneInstance inst = instantiate(scene, host, info);
+  SceneInstance inst = instantiate(scene, host, info, backend.body_packer(scene, host, info));
   NumericalHealth health(*inst.simulation, scene.gravity);
   ImpactTracker impacts(inst.simulation->particles());  // first wall contact per body (docs/reference/bodies.md)
   const RunMetadataDraft draft = run_metadata(scene, inst, host);

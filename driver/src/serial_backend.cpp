@@ -1,6 +1,7 @@
 #include "serial_backend.hpp"
 
 #include "shard/analysis/deformation_kinetic.hpp"
+#include "shard/checkpoint.hpp"
 
 namespace shard::driver::detail {
 
@@ -33,6 +34,11 @@ void SerialBackend::write_frame(RunWriter& writer, RunState& state, const std::f
   state.frame_labels = nullptr;
   before_frame();
   writer.write_frame(sim_->step_count(), sim_->time(), sim_->particles(), sim_->bonds(), state.frame_labels);
+}
+
+void SerialBackend::write_checkpoint(Checkpoint& loop, const std::filesystem::path& file) const {
+  loop.simulation = sim_->export_state();
+  shard::write_checkpoint(file, loop);
 }
 
 }  // namespace shard::driver::detail

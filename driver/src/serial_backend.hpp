@@ -31,7 +31,10 @@ class SerialBackend final : public RunBackend {
   std::size_t contact_count() const override { return sim_->contact_count(); }
   std::int64_t wall_contacts_begun_anywhere() const override { return static_cast<std::int64_t>(begun_.size()); }
   std::vector<BondBreakEvent> take_new_break_events() override { return sim_->take_new_break_events(); }
-  SimulationState whole_state() const override { return sim_->export_state(); }
+  void write_checkpoint(Checkpoint& loop, const std::filesystem::path& file) const override;
+  BodyPacker body_packer(const Scene&, const PluginHost&, const std::function<void(const std::string&)>&) const override {
+    return {};
+  }
   double deformation_kinetic_energy() const override;
   void write_frame(RunWriter& writer, RunState& state, const std::function<void()>& before_frame) override;
 

@@ -8,6 +8,8 @@
 
 #include <cerrno>
 #include <cstring>
+#include <functional>
+#include <stdexcept>
 #include <system_error>
 
 #include "h5_io.hpp"
@@ -19,15 +21,44 @@ namespace {
 constexpr const char* kFormat = "shard checkpoint";
 constexpr std::int64_t kFormatVersion = 1;
 
+// Which rows of the whole file a dataset's rows are, when several processes write it at once.
+enum class Table { particles, bonds, contacts, shared };
+
+// How this process writes the file: the whole of it (no share), or its share of the particles,
+// bonds and contacts, the shared tables by one process only.
+struct Layout {
+  const CheckpointShare* share = nullptr;
+  hid_t transfer = H5P_DEFAULT;
+};
+
+// `rows` rows of `cols` (0: a 1-D dataset); `per_row`: values per row of the table (a flat array of
+// `per_row` values per bond or contact).
 template <class T>
-void put(hid_t group, const std::string& name, const std::vector<T>& v) {
-  h5::write_dataset(group, name, v.data(), v.size());
+void put_rows(hid_t group, const std::string& name, const T* data, std::size_t rows, std::size_t cols,
+              const Layout& l, Table table, std::size_t per_row = 1) {
+  if (!l.share) {
+    h5::write_dataset(group, name, data, rows, cols);
+    return;
+  }
+  if (table == Table::shared) {
+    h5::write_dataset_part(group, name, data, 0, l.share->writes_shared ? rows : 0, rows, cols, l.transfer);
+    return;
+  }
+  const CheckpointRows& r = table == Table::particles ? l.share->particles
+                            : table == Table::bonds   ? l.share->bonds
+                                                      : l.share->contacts;
+  h5::write_dataset_part(group, name, data, r.first * per_row, rows, r.total * per_row, cols, l.transfer);
 }
-void put(hid_t group, const std::string& name, const std::vector<Vec3>& v) {
-  h5::write_dataset(group, name, v.empty() ? nullptr : v.front().data(), v.size(), 3);
+
+template <class T>
+void put(hid_t group, const std::string& name, const std::vector<T>& v, const Layout& l, Table t, std::size_t per_row = 1) {
+  put_rows(group, name, v.data(), v.size(), 0, l, t, per_row);
 }
-void put(hid_t group, const std::string& name, const std::vector<Quat>& v) {
-  h5::write_dataset(group, name, v.empty() ? nullptr : v.front().coeffs().data(), v.size(), 4);
+void put(hid_t group, const std::string& name, const std::vector<Vec3>& v, const Layout& l, Table t) {
+  put_rows(group, name, v.empty() ? nullptr : v.front().data(), v.size(), 3, l, t);
+}
+void put(hid_t group, const std::string& name, const std::vector<Quat>& v, const Layout& l, Table t) {
+  put_rows(group, name, v.empty() ? nullptr : v.front().coeffs().data(), v.size(), 4, l, t);
 }
 
 template <class T>
@@ -74,21 +105,21 @@ std::vector<BondStress> read_stress(hid_t group, const std::string& table, const
   return out;
 }
 
-void write_particles(hid_t file, const Particles& p) {
+void write_particles(hid_t file, const Particles& p, const Layout& l) {
   h5::Handle g = h5::create_group(file, "particles");
-  put(g.get(), "position", p.position);
-  put(g.get(), "velocity", p.velocity);
-  put(g.get(), "orientation", p.orientation);
-  put(g.get(), "omega", p.omega);
-  put(g.get(), "force", p.force);
-  put(g.get(), "torque", p.torque);
-  put(g.get(), "radius", p.radius);
-  put(g.get(), "mass", p.mass);
-  put(g.get(), "inertia", p.inertia);
-  put(g.get(), "material", p.material);
-  put(g.get(), "flags", p.flags);
-  put(g.get(), "id", p.id);
-  put(g.get(), "body", p.body);
+  put(g.get(), "position", p.position, l, Table::particles);
+  put(g.get(), "velocity", p.velocity, l, Table::particles);
+  put(g.get(), "orientation", p.orientation, l, Table::particles);
+  put(g.get(), "omega", p.omega, l, Table::particles);
+  put(g.get(), "force", p.force, l, Table::particles);
+  put(g.get(), "torque", p.torque, l, Table::particles);
+  put(g.get(), "radius", p.radius, l, Table::particles);
+  put(g.get(), "mass", p.mass, l, Table::particles);
+  put(g.get(), "inertia", p.inertia, l, Table::particles);
+  put(g.get(), "material", p.material, l, Table::particles);
+  put(g.get(), "flags", p.flags, l, Table::particles);
+  put(g.get(), "id", p.id, l, Table::particles);
+  put(g.get(), "body", p.body, l, Table::particles);
 }
 
 Particles read_particles(hid_t file) {
@@ -111,21 +142,22 @@ Particles read_particles(hid_t file) {
   return p;
 }
 
-void write_bonds(hid_t file, const Bonds& b) {
+void write_bonds(hid_t file, const Bonds& b, const Layout& l) {
   h5::Handle g = h5::create_group(file, "bonds");
   h5::write_attribute(g.get(), "stride", static_cast<std::int64_t>(b.stride));
-  put(g.get(), "i", b.i);
-  put(g.get(), "j", b.j);
-  put(g.get(), "state", b.state);
+  const Table t = Table::bonds;
+  put(g.get(), "i", b.i, l, t);
+  put(g.get(), "j", b.j, l, t);
+  put(g.get(), "state", b.state, l, t, b.stride);
   if (b.keeps_loads) {
-    put(g.get(), "force", b.force);
-    put(g.get(), "torque_i", b.torque_i);
-    put(g.get(), "torque_j", b.torque_j);
-    put(g.get(), "energy", b.energy);
+    put(g.get(), "force", b.force, l, t);
+    put(g.get(), "torque_i", b.torque_i, l, t);
+    put(g.get(), "torque_j", b.torque_j, l, t);
+    put(g.get(), "energy", b.energy, l, t);
   }
-  put(g.get(), "broken", b.broken);
-  h5::write_dataset(g.get(), "stress", stress_table(b.stress).data(), b.stress.size(), kStressColumns);
-  put(g.get(), "mode", mode_column(b.stress));
+  put(g.get(), "broken", b.broken, l, t);
+  put_rows(g.get(), "stress", stress_table(b.stress).data(), b.stress.size(), kStressColumns, l, t);
+  put(g.get(), "mode", mode_column(b.stress), l, t);
 }
 
 Bonds read_bonds(hid_t file) {
@@ -147,7 +179,7 @@ Bonds read_bonds(hid_t file) {
   return b;
 }
 
-void write_events(hid_t file, const std::vector<BondBreakEvent>& events) {
+void write_events(hid_t file, const std::vector<BondBreakEvent>& events, const Layout& l) {
   h5::Handle g = h5::create_group(file, "events");
   std::vector<double> time;
   std::vector<std::int64_t> step;
@@ -162,13 +194,14 @@ void write_events(hid_t file, const std::vector<BondBreakEvent>& events) {
     midpoint.push_back(e.midpoint);
     stress.push_back(e.stress);
   }
-  put(g.get(), "time", time);
-  put(g.get(), "step", step);
-  put(g.get(), "id_i", id_i);
-  put(g.get(), "id_j", id_j);
-  put(g.get(), "midpoint", midpoint);
-  h5::write_dataset(g.get(), "stress", stress_table(stress).data(), stress.size(), kStressColumns);
-  put(g.get(), "mode", mode_column(stress));
+  const Table t = Table::shared;
+  put(g.get(), "time", time, l, t);
+  put(g.get(), "step", step, l, t);
+  put(g.get(), "id_i", id_i, l, t);
+  put(g.get(), "id_j", id_j, l, t);
+  put(g.get(), "midpoint", midpoint, l, t);
+  put_rows(g.get(), "stress", stress_table(stress).data(), stress.size(), kStressColumns, l, t);
+  put(g.get(), "mode", mode_column(stress), l, t);
 }
 
 std::vector<BondBreakEvent> read_events(hid_t file) {
@@ -187,7 +220,7 @@ std::vector<BondBreakEvent> read_events(hid_t file) {
   return events;
 }
 
-void write_walls(hid_t file, const std::vector<WallState>& walls) {
+void write_walls(hid_t file, const std::vector<WallState>& walls, const Layout& l) {
   h5::Handle g = h5::create_group(file, "walls");
   std::vector<Vec3> velocity, displacement, force, torque;
   std::vector<double> contact_work, stored_energy;
@@ -201,13 +234,13 @@ void write_walls(hid_t file, const std::vector<WallState>& walls) {
     stored_energy.push_back(w.stored_energy);
     impacts.push_back(w.impacts);
   }
-  put(g.get(), "velocity", velocity);
-  put(g.get(), "displacement", displacement);
-  put(g.get(), "force", force);
-  put(g.get(), "torque", torque);
-  put(g.get(), "contact_work", contact_work);
-  put(g.get(), "stored_energy", stored_energy);
-  put(g.get(), "impacts", impacts);
+  put(g.get(), "velocity", velocity, l, Table::shared);
+  put(g.get(), "displacement", displacement, l, Table::shared);
+  put(g.get(), "force", force, l, Table::shared);
+  put(g.get(), "torque", torque, l, Table::shared);
+  put(g.get(), "contact_work", contact_work, l, Table::shared);
+  put(g.get(), "stored_energy", stored_energy, l, Table::shared);
+  put(g.get(), "impacts", impacts, l, Table::shared);
 }
 
 // A column that checkpoints written before it existed lack: `fallback` for each of n rows.
@@ -237,19 +270,21 @@ std::vector<WallState> read_walls(hid_t file) {
   return walls;
 }
 
-void write_neighbours(hid_t file, const NeighbourState& s) {
+void write_neighbours(hid_t file, const NeighbourState& s, const Layout& l) {
   h5::Handle g = h5::create_group(file, "neighbours");
   h5::write_attribute(g.get(), "skin", s.skin);
   h5::write_attribute(g.get(), "history_stride", static_cast<std::int64_t>(s.history_stride));
   h5::write_attribute(g.get(), "rebuilds", s.rebuilds);
-  put(g.get(), "first", s.first);
-  put(g.get(), "second", s.second);
-  put(g.get(), "history", s.history);
-  put(g.get(), "position_at_build", s.position_at_build);
-  put(g.get(), "wall_displacement_at_build", s.wall_displacement_at_build);
-  put(g.get(), "wall_angle_at_build", s.wall_angle_at_build);
-  put(g.get(), "wall_reach", s.wall_reach);
-  put(g.get(), "touching", s.touching);
+  // A share's contacts are touching pairs without build positions (the importer rebuilds the
+  // list): those are empty on every process, written as shared.
+  put(g.get(), "first", s.first, l, Table::contacts);
+  put(g.get(), "second", s.second, l, Table::contacts);
+  put(g.get(), "history", s.history, l, Table::contacts, s.history_stride);
+  put(g.get(), "position_at_build", s.position_at_build, l, Table::shared);
+  put(g.get(), "wall_displacement_at_build", s.wall_displacement_at_build, l, Table::shared);
+  put(g.get(), "wall_angle_at_build", s.wall_angle_at_build, l, Table::shared);
+  put(g.get(), "wall_reach", s.wall_reach, l, Table::shared);
+  put(g.get(), "touching", s.touching, l, Table::contacts);
 }
 
 NeighbourState read_neighbours(hid_t file) {
@@ -272,10 +307,10 @@ NeighbourState read_neighbours(hid_t file) {
   return s;
 }
 
-void write_run(hid_t file, const Checkpoint& c) {
+void write_run(hid_t file, const Checkpoint& c, const Layout& l) {
   h5::Handle g = h5::create_group(file, "run");
   for (const auto& [name, value] : c.numbers) h5::write_attribute(g.get(), name, value);
-  for (const auto& [name, values] : c.arrays) put(g.get(), name, values);
+  for (const auto& [name, values] : c.arrays) put(g.get(), name, values, l, Table::shared);
 }
 
 void read_run(hid_t file, Checkpoint& c) {
@@ -284,12 +319,15 @@ void read_run(hid_t file, Checkpoint& c) {
   for (const auto& name : h5::child_names(g.get())) c.arrays.emplace_back(name, get<double>(g.get(), name));
 }
 
-void write_file(const std::filesystem::path& path, const Checkpoint& c) {
+void write_file(const std::filesystem::path& path, const Checkpoint& c, const Layout& l,
+                const std::function<void(std::int64_t)>& configure_access) {
   const SimulationState& s = c.simulation;
   h5::Handle creation = h5::plist_handle(H5Pcreate(H5P_FILE_CREATE), "creating file creation list");
   h5::check(H5Pset_attr_creation_order(creation.get(), H5P_CRT_ORDER_TRACKED | H5P_CRT_ORDER_INDEXED),
             "tracking attribute order");
-  h5::Handle file = h5::file_handle(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, creation.get(), H5P_DEFAULT),
+  h5::Handle access = h5::plist_handle(H5Pcreate(H5P_FILE_ACCESS), "creating file access list");
+  if (configure_access) configure_access(access.get());
+  h5::Handle file = h5::file_handle(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, creation.get(), access.get()),
                                     "creating the checkpoint '" + path.string() + "'");
   const hid_t f = file.get();
   h5::write_attribute(f, "format", std::string(kFormat));
@@ -302,14 +340,20 @@ void write_file(const std::filesystem::path& path, const Checkpoint& c) {
   h5::write_attribute(f, "contacts", static_cast<std::int64_t>(s.contacts));
   h5::write_attribute(f, "contact_energy", s.contact_energy);
   h5::write_attribute(f, "bond_energy", s.bond_energy);
-  write_particles(f, s.particles);
-  write_bonds(f, s.bonds);
-  write_events(f, s.events);
-  write_walls(f, s.walls);
-  write_neighbours(f, s.neighbours);
-  write_run(f, c);
+  write_particles(f, s.particles, l);
+  write_bonds(f, s.bonds, l);
+  write_events(f, s.events, l);
+  write_walls(f, s.walls, l);
+  write_neighbours(f, s.neighbours, l);
+  write_run(f, c, l);
   // Everything reaches the file here, so a full disk is reported here; closing writes nothing more.
   h5::check(H5Fflush(f, H5F_SCOPE_GLOBAL), "flushing the checkpoint");
+}
+
+CheckpointError not_written(const std::filesystem::path& path, const std::exception& e) {
+  return CheckpointError(fmt::format("cannot write the checkpoint '{}': {}. The previous checkpoint (if any) is "
+                                     "kept; free disk space or choose a writable output folder",
+                                     path.string(), e.what()));
 }
 
 // HDF5 has written and closed the file; the data may still sit in the page cache. fsync makes
@@ -344,19 +388,44 @@ std::filesystem::path checkpoint_path_for(const std::filesystem::path& run_file)
   return p;
 }
 
-void write_checkpoint(const std::filesystem::path& path, const Checkpoint& checkpoint) {
+std::filesystem::path checkpoint_temporary_for(const std::filesystem::path& path) {
   std::filesystem::path temporary = path;
   temporary += ".tmp";
+  return temporary;
+}
+
+void write_checkpoint(const std::filesystem::path& path, const Checkpoint& checkpoint) {
+  const std::filesystem::path temporary = checkpoint_temporary_for(path);
   try {
     const h5::QuietErrors quiet;
-    write_file(temporary, checkpoint);
+    write_file(temporary, checkpoint, Layout{}, {});
+  } catch (const std::exception& e) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw not_written(path, e);
+  }
+  publish_checkpoint(temporary, path);
+}
+
+void write_checkpoint_share(const std::filesystem::path& temporary, const CheckpointShare& share) {
+  if (!share.checkpoint) throw std::invalid_argument("write_checkpoint_share: no checkpoint given");
+  try {
+    const h5::QuietErrors quiet;
+    h5::Handle transfer = h5::plist_handle(H5Pcreate(H5P_DATASET_XFER), "creating a transfer list");
+    if (share.configure_transfer) share.configure_transfer(transfer.get());
+    write_file(temporary, *share.checkpoint, Layout{&share, transfer.get()}, share.configure);
+  } catch (const std::exception& e) {
+    throw not_written(temporary, e);
+  }
+}
+
+void publish_checkpoint(const std::filesystem::path& temporary, const std::filesystem::path& path) {
+  try {
     sync_to_disk(temporary);
   } catch (const std::exception& e) {
     std::error_code ignored;
     std::filesystem::remove(temporary, ignored);
-    throw CheckpointError(fmt::format("cannot write the checkpoint '{}': {}. The previous checkpoint (if any) is "
-                                      "kept; free disk space or choose a writable output folder",
-                                      path.string(), e.what()));
+    throw not_written(path, e);
   }
   std::error_code error;
   std::filesystem::rename(temporary, path, error);

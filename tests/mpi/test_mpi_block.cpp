@@ -5,16 +5,23 @@
 // break. Modes:
 //   agreement  the decomposed run agrees with the serial one (rank 0 runs it) within 1e-9 of the
 //              largest displacement up to the first break, breaks the same bonds in the same order,
-//              and a second decomposed run is identical to the bit
+//              and a second decomposed run is identical to the bit, as is a third started from the
+//              block held by rank 0 alone (ScatteredScene)
 //   scene F N [section.key=value ...]  the scene file F (e.g. the four-point bending beam) over N steps: decomposed and
 //              serial agree within 1e-9 of the displacement scale and break the same bonds
 //   too_many   a scene of 8 spheres on more ranks than it has cells: every rank refuses it alike
+//   fragments  the block cut into five slabs of 2, 9, 1, 8 and 4 layers plus three loose spheres:
+//              the distributed fragment labels (label_fragments) after 20 steps are the serial
+//              labeller's on the gathered state, particle by particle, with the same sizes; on 4
+//              ranks one fragment spans at least three ranks' sub-domains
 // Exit code 0 on success; each failed check prints one line on rank 0.
 #include <mpi.h>
 #include <omp.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -26,6 +33,7 @@
 #include <vector>
 
 #include "../common/beam_hertz_models.hpp"
+#include "shard/analysis/components.hpp"
 #include "shard/mpi/distributed_simulation.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
@@ -134,8 +142,22 @@ Outcome serial(const Models& m) {
   return o;
 }
 
-Outcome decomposed(const Models& m, double* halo_share = nullptr, std::int64_t* repartitions = nullptr) {
-  mpi::DistributedSimulation sim(MPI_COMM_WORLD, block(m));
+// The block on rank 0 only, the other ranks given its models, walls and settings: what a run whose
+// scene rank 0 alone generated starts from (DistributedSimulation::ScatteredScene).
+mpi::DistributedSimulation scattered_block(const Models& m) {
+  SimulationSetup share = block(m);
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (rank != 0) {
+    share.particles = Particles{};
+    share.bonds.clear();
+  }
+  return mpi::DistributedSimulation(MPI_COMM_WORLD, std::move(share), mpi::DistributedSimulation::ScatteredScene{});
+}
+
+Outcome decomposed(const Models& m, double* halo_share = nullptr, std::int64_t* repartitions = nullptr,
+                   bool scattered = false) {
+  mpi::DistributedSimulation sim = scattered ? scattered_block(m) : mpi::DistributedSimulation(MPI_COMM_WORLD, block(m));
   Outcome o;
   o.dt = sim.dt();
   const double start = MPI_Wtime();
@@ -202,6 +224,7 @@ int agreement(int rank, int ranks) {
   const Outcome a = decomposed(m, &halo_share, &repartitions);
   const double t1 = MPI_Wtime();
   const Outcome b = decomposed(m);
+  const Outcome c = decomposed(m, nullptr, nullptr, true);
   if (rank == 0) {
     std::printf("serial: %.2f s, %lld neighbour-list rebuilds\n", ref.seconds, static_cast<long long>(ref.rebuilds));
     std::printf("%d ranks: %lld steps in %.2f s (halo exchange %.0f %% of it), %lld re-partitions, first break at "
@@ -211,6 +234,8 @@ int agreement(int rank, int ranks) {
                 ref.breaks.size());
   }
   check(a.hash == b.hash && a.breaks == b.breaks, rank, "two decomposed runs on this rank count are identical to the bit");
+  check(c.hash == a.hash && c.breaks == a.breaks && !a.breaks.empty(), rank,
+        "the block held by rank 0 alone and scattered by the first partition runs identically to the bit");
   if (rank == 0) {
     check(a.dt == ref.dt, rank, "the time step is the serial run's");
     check(ref.first_break > 0, rank, "the serial block breaks within the run");
@@ -256,6 +281,82 @@ int too_many(int rank, int ranks) {
   int all = refused ? 1 : 0, every = 0;
   MPI_Allreduce(&all, &every, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
   check(ranks > 1 && every == 1, rank, "every rank refuses 8 touching spheres in one cell on several ranks, naming the fix");
+  return failures == 0 ? 0 : 1;
+}
+
+// The block without the bonds across the planes after layers 1, 10, 11 and 19 (slabs of 2, 9, 1, 8
+// and 4 layers: 160, 720, 80, 640 and 320 spheres, no two alike in mass) and without any bond of
+// three spheres inside the slabs (equal masses: their order is the smallest id's).
+SimulationSetup cut_block(const Models& m) {
+  SimulationSetup s = block(m);
+  const auto layer = [](Index site) { return site % kNx; };
+  const std::vector<Index> loose = {(4 * kNy + 5) * kNx + 5, (3 * kNy + 2) * kNx + 15, (1 * kNy + 8) * kNx + 6};
+  std::vector<std::pair<Index, Index>> kept;
+  for (const auto& [a, b] : s.bonds) {
+    const Index lower = std::min(layer(a), layer(b));
+    const bool across = layer(a) != layer(b) && (lower == 1 || lower == 10 || lower == 11 || lower == 19);
+    const bool of_loose = std::count(loose.begin(), loose.end(), a) + std::count(loose.begin(), loose.end(), b) > 0;
+    if (!across && !of_loose) kept.emplace_back(a, b);
+  }
+  s.bonds = std::move(kept);
+  return s;
+}
+
+// The serial labeller and canonical numbering on the whole state (ascending id), as a serial run's
+// frame gets them.
+std::vector<Index> serial_labels(const SimulationState& whole, std::vector<std::size_t>& sizes) {
+  std::vector<Index> labels;
+  analysis::UnionFindLabeller labeller;
+  const Index count = labeller.label(whole.particles.size(), {whole.bonds.i, whole.bonds.j}, labels);
+  analysis::canonicalise_labels(labels, count, whole.particles.mass, whole.particles.id);
+  sizes.assign(static_cast<std::size_t>(count), 0);
+  for (Index l : labels) ++sizes[static_cast<std::size_t>(l)];
+  std::sort(sizes.begin(), sizes.end(), std::greater<>());
+  return labels;
+}
+
+// How many ranks own particles of the fragment that spans most of them (on rank 0).
+int widest_span(const mpi::DistributedSimulation& sim, const std::vector<Index>& labels) {
+  std::vector<Index> present(labels);
+  std::sort(present.begin(), present.end());
+  present.erase(std::unique(present.begin(), present.end()), present.end());
+  std::vector<Index> all = sim.gather_to_root(present);
+  std::map<Index, int> ranks_of;
+  for (Index l : all) ++ranks_of[l];
+  int widest = 0;
+  for (const auto& [label, count] : ranks_of) widest = std::max(widest, count);
+  return widest;
+}
+
+int fragments(int rank, int ranks) {
+  const Models m;
+  mpi::DistributedSimulation sim(MPI_COMM_WORLD, cut_block(m));
+  sim.run(20);
+  const mpi::FragmentLabels f = sim.label_fragments();
+  const mpi::FrameShare share = sim.frame_share();
+  const std::vector<Index> ids = sim.gather_to_root(share.particles.id), labels = sim.gather_to_root(f.labels);
+  const SimulationState whole = sim.gather_state(0, false);
+  const int widest = widest_span(sim, f.labels);
+  if (rank == 0) {
+    std::vector<std::size_t> sizes;
+    const std::vector<Index> reference = serial_labels(whole, sizes);
+    std::map<Index, Index> by_id;
+    for (std::size_t k = 0; k < ids.size(); ++k) by_id[ids[k]] = labels[k];
+    std::size_t same = 0;
+    for (std::size_t k = 0; k < whole.particles.size(); ++k) {
+      const auto it = by_id.find(whole.particles.id[k]);
+      same += it != by_id.end() && it->second == reference[k] ? 1 : 0;
+    }
+    std::printf("%d ranks: %zu fragments (sizes", ranks, f.sizes.size());
+    for (std::size_t n : f.sizes) std::printf(" %zu", n);
+    std::printf("), %d exchange rounds, the widest over %d ranks; %zu of %zu labels as the serial labeller's\n",
+                f.rounds, widest, same, whole.particles.size());
+    check(ids.size() == whole.particles.size() && same == ids.size(), rank,
+          "every particle's fragment label is the serial labeller's");
+    check(f.sizes == sizes && sizes.size() == 8, rank, "eight fragments, of the serial labeller's sizes");
+    check(ranks < 4 || widest >= 3, rank, "on 4 ranks a fragment spans at least three ranks' sub-domains");
+  }
+  MPI_Bcast(&failures, 1, MPI_INT, 0, MPI_COMM_WORLD);
   return failures == 0 ? 0 : 1;
 }
 
@@ -323,6 +424,7 @@ int main(int argc, char** argv) {
   try {
     if (mode == "agreement") code = agreement(rank, ranks);
     if (mode == "too_many") code = too_many(rank, ranks);
+    if (mode == "fragments") code = fragments(rank, ranks);
     if (mode == "scene" && argc > 3) code = scene_run(rank, ranks, argv[2], std::stoll(argv[3]), std::vector<std::string>(argv + 4, argv + argc));
   } catch (const std::exception& e) {
     std::fprintf(stderr, "rank %d: %s\n", rank, e.what());

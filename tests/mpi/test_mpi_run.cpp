@@ -5,7 +5,7 @@
 // frame. Modes (the run files are read back with the serial RunFile reader):
 //   serial OUT               the reference: driver::run, no MPI
 //   decomposed OUT REF       mpirun -np N: the same run decomposed (fragment labels in every frame:
-//                            labelled on rank 0, written by every rank); rank 0 compares OUT with REF:
+//                            by the distributed union-find, written by every rank); rank 0 compares OUT with REF:
 //                            up to the first break, the load curve and every frame's positions
 //                            within 1e-9 of the displacement scale (the pins' travel at the first
 //                            break); over the whole run the same breaks (step, ids) in order, the
@@ -19,16 +19,33 @@
 //                            and compares with REF as `decomposed` does
 //   no_ids DIR REF           mpirun -np N: a copy of REF whose checkpoint lacks /particles/id is
 //                            refused on every rank with a CheckpointError naming the fix
+//   kill OUT REF MPIRUN EXE  (no mpirun) starts `MPIRUN -np 2 EXE checkpointing OUT`, a run that
+//                            checkpoints at every frame (every rank writing its share), and kills
+//                            both ranks with SIGKILL while a checkpoint is being written (its
+//                            temporary file exists, the previous one beside it), three times at
+//                            later checkpoints; the previous
+//                            checkpoint must then read, and `MPIRUN -np 2 EXE restart OUT REF`
+//                            continue it to the reference's end
+//   bad_generator OUT        mpirun -np N: the generator's box too small for one sphere: its
+//                            failure on rank 0 (which alone generates) is a SceneError on every
+//                            rank, naming the scene file, line and section
+//   checkpointing OUT        mpirun -np N: the run with a checkpoint at every frame, each rank's
+//                            pid in OUT/pid.RANK
 // Exit code 0 on success; each check prints one line on rank 0.
 #include <fmt/format.h>
 #include <hdf5.h>
 #include <mpi.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <thread>
 #include <map>
 #include <string>
 #include <utility>
@@ -72,9 +89,10 @@ void load_plugins(PluginHost& host) { host.load_directories({fs::path(SHARD_BUIL
 // The run's observers as `shard run` composes them (less the printing ones).
 struct Observers {
   driver::SceneRules rules;
-  driver::CheckpointWriter checkpoints{0};
+  driver::CheckpointWriter checkpoints;
   driver::InterruptStop interrupt;
-  explicit Observers(std::int64_t at_step = -1) : interrupt(at_step) {}
+  explicit Observers(std::int64_t at_step = -1, int checkpoint_every = 0)
+      : checkpoints(checkpoint_every), interrupt(at_step) {}
   std::vector<driver::RunObserver*> list() {
     auto l = rules.observers();
     l.insert(l.end(), {&checkpoints, &interrupt});
@@ -172,8 +190,7 @@ void compare(const fs::path& file, const fs::path& reference, const std::string&
 }
 
 // Two files of the same decomposed run (the same rank count: bit-reproducible), one without
-// fragment labels and one with (which gathers ids, masses and bond rows to rank 0 and sends the
-// labels back): every frame holds the same numbers for every particle id, bit for bit, and the
+// fragment labels and one with (labelled by the distributed union-find): every frame holds the same numbers for every particle id, bit for bit, and the
 // same bonds as id pairs; the labels are the only difference.
 void compare_bitwise(const fs::path& parallel, const fs::path& gathered, const std::string& who) {
   const RunFile a(parallel), b(gathered);
@@ -207,12 +224,98 @@ int run_decomposed(const driver::RunSpec& spec, Observers& o) {
   return 0;
 }
 
+
+// Runs `args` (argv[0] the program) in a child process of its own process group; returns its pid.
+pid_t spawn(const std::vector<std::string>& args) {
+  const pid_t child = ::fork();
+  if (child != 0) return child;
+  ::setpgid(0, 0);
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  ::execv(argv[0], argv.data());
+  ::_exit(127);
+}
+
+int exit_code(pid_t child) {
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+// The ranks' pids, once both have written them.
+std::vector<pid_t> rank_pids(const fs::path& out, int ranks) {
+  std::vector<pid_t> pids;
+  for (int r = 0; r < ranks; ++r) {
+    std::ifstream in(out / fmt::format("pid.{}", r));
+    long pid = 0;
+    if (in >> pid) pids.push_back(static_cast<pid_t>(pid));
+  }
+  return pids;
+}
+
+// Waits (polling every 50 us, at most 60 s) until the `nth` checkpoint write seen (its temporary
+// file appearing) is under way over an earlier one, then kills the ranks `delay_us` later.
+// Returns whether it caught one.
+bool kill_during_checkpoint(const fs::path& out, int nth, int delay_us) {
+  const fs::path done = out / "run.checkpoint.h5", partial = out / "run.checkpoint.h5.tmp";
+  int seen = 0;
+  bool writing = false;
+  for (int k = 0; k < 1200000; ++k) {
+    const bool now = fs::exists(partial);
+    if (now && !writing) ++seen;
+    writing = now;
+    const std::vector<pid_t> pids = rank_pids(out, 2);
+    if (writing && seen >= nth && pids.size() == 2 && fs::exists(done)) {
+      if (delay_us > 0) ::usleep(static_cast<useconds_t>(delay_us));
+      for (pid_t p : pids) ::kill(p, SIGKILL);
+      return true;
+    }
+    ::usleep(50);
+  }
+  return false;
+}
+
+int kill_and_continue(const fs::path& out, const fs::path& reference, const std::string& mpirun, const std::string& exe) {
+  const std::vector<std::string> launch = {mpirun, "--allow-run-as-root", "--oversubscribe", "-np", "2", exe};
+  // Three kills, in the 2nd, 6th and 10th checkpoint write seen, at 0, 0.5 and 1 ms into it, each
+  // followed by the restart to the end.
+  for (int trial = 0; trial < 3; ++trial) {
+    fs::remove_all(out);
+    fs::create_directories(out);
+    std::vector<std::string> run = launch;
+    run.insert(run.end(), {"checkpointing", out.string()});
+    const pid_t job = spawn(run);
+    const bool caught = kill_during_checkpoint(out, 2 + 4 * trial, 500 * trial);
+    if (!caught) ::kill(-job, SIGKILL);
+    const int code = exit_code(job);
+    ::kill(-job, SIGKILL);  // whatever of mpirun's group is left
+    check(caught, fmt::format("trial {}: both ranks killed while a checkpoint was being written (mpirun exit {})",
+                              trial, code));
+    if (!caught) continue;
+    std::int64_t step = -1;
+    try {
+      step = read_checkpoint(out / "run.checkpoint.h5").simulation.step;
+    } catch (const std::exception& e) {
+      std::printf("%s\n", e.what());
+    }
+    std::printf("trial %d: the previous checkpoint holds step %lld; a torn temporary file is %s\n", trial,
+                static_cast<long long>(step), fs::exists(out / "run.checkpoint.h5.tmp") ? "beside it" : "gone");
+    check(step >= 0, fmt::format("trial {}: the previous checkpoint reads", trial));
+    std::vector<std::string> again = launch;
+    again.insert(again.end(), {"restart", out.string(), reference.string()});
+    check(exit_code(spawn(again)) == 0,
+          fmt::format("trial {}: 2 ranks continue it to the reference's end (its checks above)", trial));
+  }
+  return failures > 0 ? 1 : 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   H5dont_atexit();
   if (argc < 3) {
-    std::fprintf(stderr, "usage: test_mpi_run serial|decomposed|parallel_frames|interrupt|restart|no_ids ARGS\n");
+    std::fprintf(stderr, "usage: test_mpi_run serial|decomposed|parallel_frames|interrupt|restart|no_ids|kill|checkpointing ARGS\n");
     return 2;
   }
   const std::string mode = argv[1];
@@ -242,12 +345,13 @@ int main(int argc, char** argv) {
     compare(out / "run.h5", fs::path(argv[4]) / "run.h5", "serial build continuing 4 ranks");
     return failures > 0 ? 1 : 0;
   }
+  if (mode == "kill" && argc > 5) return kill_and_continue(out, argv[3], argv[4], argv[5]);
   const driver::MpiSession mpi;
   rank_ = mpi.rank();
   const std::string who = fmt::format("{} ranks", mpi.size());
   try {
     if ((mode == "decomposed" || mode == "parallel_frames") && argc > 3) {
-      // parallel_frames: no fragment labels, so nothing of a frame is gathered.
+      // parallel_frames: no fragment labels.
       const bool labelled = mode == "decomposed";
       if (rank_ == 0) fs::remove_all(out);
       MPI_Barrier(MPI_COMM_WORLD);
@@ -281,6 +385,25 @@ int main(int argc, char** argv) {
         fs::create_directories(copy);
         for (const char* name : {"run.h5", "run.checkpoint.h5"}) fs::copy_file(out / name, copy / name);
       }
+    } else if (mode == "bad_generator") {
+      Observers o;
+      driver::RunSpec spec = spec_for(out);
+      for (auto& extra : parse_overrides({"generator.max_corner=[-0.0899,-0.0149,0.0001]"})) spec.overrides.push_back(extra);
+      std::string message;
+      try {
+        run_decomposed(spec, o);
+      } catch (const SceneError& e) {
+        message = e.what();
+      }
+      std::printf("rank %d: %s\n", rank_, message.c_str());
+      const bool named = message.find("four_point_bending_ci.toml:25:1: [generator] box_fill: the box") != std::string::npos;
+      int mine = named ? 1 : 0, all = 0;
+      MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+      check(all, who + ": every rank refuses the scene whose generator failed on rank 0, naming file, line and section");
+    } else if (mode == "checkpointing") {
+      std::ofstream(out / fmt::format("pid.{}", rank_)) << ::getpid() << std::endl;
+      Observers o(-1, 1);
+      run_decomposed(spec_for(out), o);
     } else if (mode == "restart" && argc > 3) {
       Observers o;
       driver::RunSpec spec = spec_for(out);

@@ -3,10 +3,15 @@
 #include <fmt/format.h>
 #include <hdf5.h>
 #include <mpi.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <climits>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
 
+#include "shard/checkpoint.hpp"
 #include "shard/output.hpp"
 
 namespace shard::driver::detail {
@@ -60,13 +65,16 @@ void run_on_all(const std::function<void()>& work) {
   throw OutputError(error);
 }
 
+// A file every rank writes at once: HDF5's MPI-IO driver on its access list.
+void use_mpi_io(std::int64_t list) {
+  if (H5Pset_fapl_mpio(list, MPI_COMM_WORLD, MPI_INFO_NULL) < 0)
+    throw OutputError("cannot select HDF5's MPI-IO driver: is this build's HDF5 the parallel one?");
+}
+
 // The run file shared by the ranks: the MPI-IO driver, run.xmf kept by rank 0.
 RunWriterAccess shared_run_file(int rank) {
   RunWriterAccess access;
-  access.configure = [](std::int64_t list) {
-    if (H5Pset_fapl_mpio(list, MPI_COMM_WORLD, MPI_INFO_NULL) < 0)
-      throw OutputError("cannot select HDF5's MPI-IO driver for the run file: is this build's HDF5 the parallel one?");
-  };
+  access.configure = use_mpi_io;
   access.writes_index = rank == 0;
   return access;
 }
@@ -74,6 +82,67 @@ RunWriterAccess shared_run_file(int rank) {
 void collective_transfer(std::int64_t list) {
   if (H5Pset_dxpl_mpio(list, H5FD_MPIO_COLLECTIVE) < 0)
     throw OutputError("cannot ask HDF5 for collective MPI-IO transfers");
+}
+
+// Rank 0's values of the loop's numbers and arrays on every rank: a file written by every rank
+// must be given the same attributes and shared tables by each.
+void same_as_root(Checkpoint& c) {
+  std::vector<double> numbers;
+  for (const auto& [name, value] : c.numbers) numbers.push_back(value);
+  MPI_Bcast(numbers.data(), static_cast<int>(numbers.size()), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  for (std::size_t k = 0; k < numbers.size(); ++k) c.numbers[k].second = numbers[k];
+  for (auto& [name, values] : c.arrays) {
+    unsigned long long size = values.size();
+    MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+    values.resize(static_cast<std::size_t>(size));
+    MPI_Bcast(values.data(), static_cast<int>(size), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  }
+}
+
+// Rank 0's `v` on every rank.
+template <class T>
+void broadcast(std::vector<T>& v) {
+  unsigned long long size = v.size();
+  MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+  v.resize(static_cast<std::size_t>(size));
+  const std::size_t bytes = v.size() * sizeof(T);
+  if (bytes > static_cast<std::size_t>(INT_MAX)) throw OutputError("a body's packing above 2 GiB cannot be broadcast");
+  MPI_Bcast(v.data(), static_cast<int>(bytes), MPI_BYTE, 0, MPI_COMM_WORLD);
+}
+
+// Until rank 0 arrives: the others wait without spinning (a rank in a blocking MPI call polls
+// at full speed and would take a core from rank 0's work on a shared machine).
+void wait_for_root() {
+  MPI_Request arrived;
+  MPI_Ibarrier(MPI_COMM_WORLD, &arrived);
+  for (int done = 0; !done;) {
+    MPI_Test(&arrived, &done, MPI_STATUS_IGNORE);
+    if (!done) usleep(2000);
+  }
+}
+
+// Rank 0's packing on every rank: positions, radii, materials, bonds and the quality figures.
+void broadcast(GeneratedBody& body) {
+  broadcast(body.position);
+  broadcast(body.radius);
+  broadcast(body.material);
+  broadcast(body.bonds);
+  std::vector<double> values;
+  std::string names;
+  for (const auto& [name, value] : body.quality) {
+    values.push_back(value);
+    names += name + '\n';
+  }
+  broadcast(values);
+  std::vector<char> text(names.begin(), names.end());
+  broadcast(text);
+  body.quality.clear();
+  std::size_t at = 0;
+  for (double value : values) {
+    const auto end = std::find(text.begin() + static_cast<std::ptrdiff_t>(at), text.end(), '\n');
+    body.quality.emplace_back(std::string(text.begin() + static_cast<std::ptrdiff_t>(at), end), value);
+    at = static_cast<std::size_t>(end - text.begin()) + 1;
+  }
 }
 
 // analysis::deformation_kinetic_energy over every rank's particles: the kinetic energy less that
@@ -149,8 +218,11 @@ void require_id_dataset(const std::filesystem::path& file) {
 MpiBackend::MpiBackend() {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &ranks_);
-  whole_.frame_particles = &no_particles_;
-  whole_.frame_bonds = &no_bonds_;
+  whole_.label_fragments = [this](std::vector<Index>& labels, std::vector<std::size_t>& sizes) {
+    mpi::FragmentLabels f = dist_->label_fragments();
+    labels = std::move(f.labels);
+    sizes = std::move(f.sizes);
+  };
 }
 
 Checkpoint MpiBackend::read_restart(const std::filesystem::path& checkpoint) const {
@@ -164,6 +236,29 @@ void MpiBackend::on_root(const std::function<void()>& work) const { run_on_root(
 void MpiBackend::on_all(const std::function<void()>& work) const { run_on_all(work); }
 void MpiBackend::barrier() const { MPI_Barrier(MPI_COMM_WORLD); }
 RunWriterAccess MpiBackend::run_file_access() const { return shared_run_file(rank_); }
+
+// Rank 0 makes each packing and sends it to the others, which wait meanwhile: the generation is
+// paid once, not once per rank (docs/explanation/scaling.md). Its failure is the scene's on every rank.
+BodyPacker MpiBackend::body_packer(const Scene& scene, const PluginHost& host,
+                                   const std::function<void(const std::string&)>& log) const {
+  return [this, &scene, &host, log](const BodySpec& spec) {
+    GeneratedBody body;
+    std::vector<char> error;
+    if (rank_ == 0) {
+      try {
+        body = generate_body(spec, scene, host, log);
+      } catch (const std::exception& e) {
+        const std::string what = e.what();
+        error.assign(what.begin(), what.end());
+      }
+    }
+    wait_for_root();
+    broadcast(error);
+    if (!error.empty()) throw SceneError(std::string(error.begin(), error.end()));
+    broadcast(body);
+    return body;
+  };
+}
 
 // Every rank places its part of the whole scene (or of the checkpoint), then lets the whole scene
 // go: it was needed for the baseline and the metadata only.
@@ -207,45 +302,47 @@ std::vector<BondBreakEvent> MpiBackend::take_new_break_events() {
   return fresh;
 }
 
-SimulationState MpiBackend::whole_state() const {
-  SimulationState s = dist_->gather_state(0, true);
-  s.events_taken = events_written_;
-  return s;
+// Every rank writes its share of the checkpoint into the temporary file at once (MPI-IO, the
+// serial layout); rank 0 then flushes it to disk and renames it over the previous one, as the
+// serial writer does, once every rank's part is in: a kill before the rename leaves the previous
+// checkpoint whole.
+void MpiBackend::write_checkpoint(Checkpoint& loop, const std::filesystem::path& file) const {
+  same_as_root(loop);
+  mpi::StateShare share = dist_->state_share(true);
+  share.state.events_taken = events_written_;
+  loop.simulation = std::move(share.state);
+  CheckpointShare part;
+  part.checkpoint = &loop;
+  part.particles = share.particles;
+  part.bonds = share.bonds;
+  part.contacts = share.contacts;
+  part.writes_shared = rank_ == 0;
+  part.configure = use_mpi_io;
+  part.configure_transfer = collective_transfer;
+  const std::filesystem::path temporary = checkpoint_temporary_for(file);
+  try {
+    run_on_all([&] { write_checkpoint_share(temporary, part); });
+  } catch (const std::exception&) {
+    run_on_root([&] { std::filesystem::remove(temporary); });
+    throw;
+  }
+  run_on_root([&] { publish_checkpoint(temporary, file); });
 }
 
 double MpiBackend::deformation_kinetic_energy() const { return deformation_kinetic_energy_over_ranks(*dist_); }
 
 // Every frame is written by all ranks at once, each its own particles and bonds (nothing of it
-// gathered: docs/explanation/scaling.md). A frame the fragment labeller labels (its cadence: [analysis]
-// fragments_every) gathers to rank 0 what the labels need, the particles' ids and masses and the
-// bonds' rows, in the frame's row order; rank 0 labels the whole bond graph and sends each rank
-// the labels of its rows.
+// gathered: docs/explanation/scaling.md). The fragment labeller labels a frame through
+// whole_.label_fragments: a distributed union-find, each rank's labels for its own rows.
 void MpiBackend::write_frame(RunWriter& writer, RunState& state, const std::function<void()>& before_frame) {
-  const int every = state.scene.fragments_every;
-  const bool to_label = every > 0 && state.frames_written % every == 0;
   const mpi::FrameShare share = dist_->frame_share();
-  Particles label_particles;
-  Bonds label_bonds;
-  if (to_label) {
-    label_particles.id = dist_->gather_to_root(share.particles.id);
-    label_particles.mass = dist_->gather_to_root(share.particles.mass);
-    const std::vector<Index> rows = dist_->gather_to_root(share.bond_rows);
-    for (std::size_t k = 0; k + 1 < rows.size(); k += 2) {
-      label_bonds.i.push_back(rows[k]);
-      label_bonds.j.push_back(rows[k + 1]);
-    }
-  }
-  whole_.frame_particles = &label_particles;
-  whole_.frame_bonds = &label_bonds;
   state.frame_labels = nullptr;
   before_frame();
   FramePart part;
   part.labelled = dist_->any_rank(state.frame_labels != nullptr);
-  std::vector<Index> labels;
-  if (part.labelled)
-    labels = dist_->scatter_from_root(rank_ == 0 && state.frame_labels ? *state.frame_labels : std::vector<Index>{},
-                                      share.particles.id.size());
-  part.fragment_labels = &labels;
+  if (part.labelled && (!state.frame_labels || state.frame_labels->size() != share.particles.id.size()))
+    throw std::logic_error("a decomposed frame's fragment labels do not match this rank's rows");
+  part.fragment_labels = state.frame_labels;
   part.configure_transfer = collective_transfer;
   part.particles = &share.particles;
   part.first_row = share.first_row;
@@ -253,8 +350,6 @@ void MpiBackend::write_frame(RunWriter& writer, RunState& state, const std::func
   part.bond_rows = &share.bond_rows;
   part.first_bond = share.first_bond;
   part.total_bonds = share.total_bonds;
-  whole_.frame_particles = &no_particles_;  // the gathered ids and masses go out of scope below
-  whole_.frame_bonds = &no_bonds_;
   on_all([&] { writer.write_frame_part(dist_->step_count(), dist_->time(), part); });
 }
 

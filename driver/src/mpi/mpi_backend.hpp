@@ -1,9 +1,8 @@
 #pragma once
 // The run's simulation decomposed in space over the ranks of MPI_COMM_WORLD
 // (mpi::DistributedSimulation, docs/explanation/scaling.md): every figure of the whole run reduced over
-// the ranks in rank order. Every rank writes the run file through MPI-IO (a frame without
-// fragment labels each its own rows; a labelled one gathered to rank 0); checkpoints are gathered
-// to rank 0 and written there.
+// the ranks in rank order. Every rank writes its own rows of each frame and of each checkpoint
+// through MPI-IO (the serial layouts), a frame's fragment labels from a distributed union-find.
 #include <optional>
 
 #include "../run_backend.hpp"
@@ -21,6 +20,8 @@ class MpiBackend final : public RunBackend {
   void on_all(const std::function<void()>& work) const override;
   void barrier() const override;
   RunWriterAccess run_file_access() const override;
+  BodyPacker body_packer(const Scene& scene, const PluginHost& host,
+                         const std::function<void(const std::string&)>& log) const override;
   void start(const Scene& scene, SceneInstance& inst, const SimulationState* from) override;
   void add_notes(RunMetadata& meta, bool restarting) const override;
   std::string where() const override;
@@ -37,7 +38,7 @@ class MpiBackend final : public RunBackend {
   std::size_t contact_count() const override { return dist_->contact_count(); }
   std::int64_t wall_contacts_begun_anywhere() const override { return dist_->wall_contacts_begun_anywhere(); }
   std::vector<BondBreakEvent> take_new_break_events() override;
-  SimulationState whole_state() const override;
+  void write_checkpoint(Checkpoint& loop, const std::filesystem::path& file) const override;
   double deformation_kinetic_energy() const override;
   void write_frame(RunWriter& writer, RunState& state, const std::function<void()>& before_frame) override;
 
@@ -55,8 +56,6 @@ class MpiBackend final : public RunBackend {
   std::vector<WallContactBegun> begun_;
   std::size_t events_written_ = 0;  // break events handed to the run file
   RunState::Whole whole_;
-  const Particles no_particles_;
-  const Bonds no_bonds_;
 };
 
 }  // namespace shard::driver::detail

@@ -7,6 +7,7 @@
 // (reference frames), the break log, the walls' displacement, time and step.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -79,6 +80,34 @@ std::filesystem::path checkpoint_path_for(const std::filesystem::path& run_file)
 // moment leaves either the previous checkpoint or the new one, never a torn one.
 // Throws CheckpointError naming the path and the cause (disk full, read-only folder, ...).
 void write_checkpoint(const std::filesystem::path& path, const Checkpoint& checkpoint);
+// Where one process's rows of a table go in a checkpoint that several write at once.
+struct CheckpointRows {
+  std::size_t first = 0, total = 0;
+};
+
+// One process's share of a checkpoint that several write at once through one file (a run
+// decomposed over MPI ranks: docs/explanation/scaling.md), in the serial layout.
+// `checkpoint->simulation` holds this process's particles, bonds and touching contacts (their ends
+// as rows of the whole file) for the rows given; everything else (the attributes, the break log,
+// the walls, the loop's numbers and arrays) must be the same on every process and is written
+// once, by the process with `writes_shared`.
+struct CheckpointShare {
+  const Checkpoint* checkpoint = nullptr;
+  CheckpointRows particles, bonds, contacts;
+  bool writes_shared = false;
+  std::function<void(std::int64_t access)> configure;             // the file access list (the MPI-IO driver)
+  std::function<void(std::int64_t transfer)> configure_transfer;  // each write's transfer list (collective)
+};
+
+// write_checkpoint's temporary file: `path` + ".tmp".
+std::filesystem::path checkpoint_temporary_for(const std::filesystem::path& path);
+// Collective over the processes sharing the file: writes `temporary` (checkpoint_temporary_for)
+// and flushes it; publish_checkpoint, on one process once every one has returned, moves it into
+// place. Throws CheckpointError naming the file and the cause.
+void write_checkpoint_share(const std::filesystem::path& temporary, const CheckpointShare& share);
+// The end of write_checkpoint: flushes `temporary` to disk and renames it over `path`; a kill
+// before the rename leaves the previous checkpoint in place.
+void publish_checkpoint(const std::filesystem::path& temporary, const std::filesystem::path& path);
 // Throws CheckpointError naming the path when it is missing, unreadable or not a checkpoint.
 Checkpoint read_checkpoint(const std::filesystem::path& path);
 

@@ -159,8 +159,15 @@ struct SceneInstance {
   std::unique_ptr<Simulation> simulation;
 };
 
+// How instantiate obtains the packing of each [[body]] entry (one per entry, in the scene's order):
+// by default generate_body, its generator plugin; a run decomposed over MPI ranks generates it on
+// one rank and hands it to the others.
+using BodyPacker = std::function<GeneratedBody(const BodySpec& spec)>;
+GeneratedBody generate_body(const BodySpec& spec, const Scene& scene, const PluginHost& host,
+                            const std::function<void(const std::string&)>& log);
+
 SceneInstance instantiate(const Scene& scene, const PluginHost& host,
-                          const std::function<void(const std::string&)>& log);
+                          const std::function<void(const std::string&)>& log, const BodyPacker& packer = {});
 
 // The setup the instance's Simulation was built from, taken back from it (particles with their
 // ids and grips, bonds, the models, the scene's walls and settings, dt as the Simulation chose

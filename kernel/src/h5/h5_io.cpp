@@ -208,6 +208,9 @@ void write_dataset_part(hid_t parent, const std::string& name, hid_t file_type, 
   Handle dataset = dataset_handle(H5Dcreate2(parent, name.c_str(), file_type, space.get(),
                                              H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                                   "creating dataset '" + name + "'");
+  // An empty dataset has no storage to write to (HDF5 fails with an address overflow); the total is
+  // the same on every process, so all of them skip the write alike.
+  if (total == 0) return;
   // A collective write takes every process, one without rows included (an empty selection).
   const std::array<hsize_t, 2> start{first, 0}, count{rows, cols};
   Handle memory = space_handle(H5Screate_simple(rank, count.data(), nullptr), "the rows of '" + name + "'");

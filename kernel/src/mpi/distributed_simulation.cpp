@@ -12,101 +12,11 @@
 #include "comm.hpp"
 #include "halo.hpp"
 #include "partition.hpp"
+#include "records.hpp"
 #include "shard/checkpoint.hpp"
 
 namespace shard::mpi {
 namespace {
-
-// One particle on its way to another rank: its whole state, so a migrated particle continues
-// exactly (the force of the last step included: the next half-kick uses it).
-struct ParticleRecord {
-  double position[3], velocity[3], orientation[4], omega[3], force[3], torque[3];
-  double radius, mass, inertia;
-  std::int32_t material, body;
-  Index id;
-  std::int32_t owner;  // the rank owning it after the partition
-  std::uint8_t flags;
-};
-
-ParticleRecord record_of(const Particles& p, std::size_t k) {
-  ParticleRecord r{};
-  std::copy_n(p.position[k].data(), 3, r.position);
-  std::copy_n(p.velocity[k].data(), 3, r.velocity);
-  std::copy_n(p.orientation[k].coeffs().data(), 4, r.orientation);
-  std::copy_n(p.omega[k].data(), 3, r.omega);
-  std::copy_n(p.force[k].data(), 3, r.force);
-  std::copy_n(p.torque[k].data(), 3, r.torque);
-  r.radius = p.radius[k];
-  r.mass = p.mass[k];
-  r.inertia = p.inertia[k];
-  r.material = p.material[k];
-  r.body = p.body[k];
-  r.id = p.id[k];
-  r.flags = static_cast<std::uint8_t>(p.flags[k] & ~kGhost);
-  return r;
-}
-
-void append(Particles& p, const ParticleRecord& r, bool ghost) {
-  p.position.emplace_back(r.position[0], r.position[1], r.position[2]);
-  p.velocity.emplace_back(r.velocity[0], r.velocity[1], r.velocity[2]);
-  Quat q;
-  std::copy_n(r.orientation, 4, q.coeffs().data());
-  p.orientation.push_back(q);
-  p.omega.emplace_back(r.omega[0], r.omega[1], r.omega[2]);
-  p.force.emplace_back(r.force[0], r.force[1], r.force[2]);
-  p.torque.emplace_back(r.torque[0], r.torque[1], r.torque[2]);
-  p.radius.push_back(r.radius);
-  p.mass.push_back(r.mass);
-  p.inertia.push_back(r.inertia);
-  p.material.push_back(r.material);
-  p.body.push_back(r.body);
-  p.id.push_back(r.id);
-  p.flags.push_back(ghost ? static_cast<std::uint8_t>(r.flags | kGhost) : r.flags);
-}
-
-// A break event as plain numbers, for the gather.
-struct EventRecord {
-  std::int64_t step;
-  double time;
-  Index id_i, id_j;  // id_i < id_j
-  double midpoint[3];
-  BondStress stress;
-};
-
-bool event_order(const EventRecord& a, const EventRecord& b) {
-  if (a.step != b.step) return a.step < b.step;
-  if (a.id_i != b.id_i) return a.id_i < b.id_i;
-  return a.id_j < b.id_j;
-}
-
-bool by_id(const ParticleRecord& a, const ParticleRecord& b) { return a.id < b.id; }
-
-// The touching pairs of a rank's list as records (first id, second id or -1 - wall, history):
-// a pair's history travels with it, matched again by ids wherever it lands.
-void append_touching(const SimulationState& s, std::vector<double>& out) {
-  const Particles& p = s.particles;
-  const NeighbourState& list = s.neighbours;
-  for (std::size_t k = 0; k < list.first.size(); ++k) {
-    if (!list.touching[k]) continue;  // a pair that does not touch has no history to carry
-    const Index b = list.second[k];
-    out.push_back(static_cast<double>(p.id[static_cast<std::size_t>(list.first[k])]));
-    out.push_back(b < 0 ? static_cast<double>(b) : static_cast<double>(p.id[static_cast<std::size_t>(b)]));
-    out.insert(out.end(), list.history.begin() + static_cast<std::ptrdiff_t>(k * list.history_stride),
-               list.history.begin() + static_cast<std::ptrdiff_t>((k + 1) * list.history_stride));
-  }
-}
-
-// Record k of a flat array of records of `width` doubles, ordered by their first two numbers.
-std::vector<std::size_t> record_order(const std::vector<double>& flat, std::size_t width) {
-  std::vector<std::size_t> order(width > 0 ? flat.size() / width : 0);
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    const double* x = flat.data() + a * width;
-    const double* y = flat.data() + b * width;
-    return x[0] != y[0] ? x[0] < y[0] : x[1] < y[1];
-  });
-  return order;
-}
 
 // Re-partition before some particle can have moved half the skin since the last partition by the
 // end of the next step (its travel so far plus twice the largest |v| dt, a margin for the next
@@ -134,19 +44,14 @@ void DistributedSimulation::start(const SimulationSetup& setup) {
   halo_ = std::make_unique<Halo>(comm_);
 }
 
-DistributedSimulation::DistributedSimulation(MPI_Comm comm, SimulationSetup setup)
-    : comm_(comm), contact_(setup.contact), bond_(setup.bond) {
+// Particles [begin, end) of `setup` and the bonds whose smaller-id end is among them, as records,
+// and the longest of those bonds.
+double DistributedSimulation::take_rows(const SimulationSetup& setup, std::size_t begin, std::size_t end,
+                                        Owned& owned) const {
   const Particles& p = setup.particles;
   const std::size_t n = p.size();
-  if (n == 0) throw std::invalid_argument("a decomposed run needs particles");
-  for (std::size_t k = 0; k < n; ++k) r_max_ = std::max(r_max_, p.radius[k]);
-  start(setup);
-  // Before the first partition every rank takes an equal slice of the scene's listing.
-  Owned owned;
   owned.bond_stride = bond_ ? bond_->state_size() : 0;
   owned.history_stride = contact_ ? contact_->history_size() : 0;
-  const std::size_t begin = n * static_cast<std::size_t>(rank_) / static_cast<std::size_t>(ranks_);
-  const std::size_t end = n * static_cast<std::size_t>(rank_ + 1) / static_cast<std::size_t>(ranks_);
   for (std::size_t k = begin; k < end; ++k) owned.particles.push_back(record_of(p, k));
   std::vector<std::pair<Index, Index>> bonds;
   double longest = 0;
@@ -166,7 +71,38 @@ DistributedSimulation::DistributedSimulation(MPI_Comm comm, SimulationSetup setu
     owned.bonds.push_back(b);
     owned.bonds.insert(owned.bonds.end(), owned.bond_stride, 0.0);  // the bond model initialises it
   }
+  return longest;
+}
+
+// The largest radius over every rank's particles of `setup`; refuses a scene without particles.
+void DistributedSimulation::find_largest_radius(const Particles& p) {
+  for (std::size_t k = 0; k < p.size(); ++k) r_max_ = std::max(r_max_, p.radius[k]);
+  r_max_ = max_over_ranks(r_max_, comm_);
+  if (!(max_over_ranks(static_cast<double>(p.size()), comm_) > 0))
+    throw std::invalid_argument("a decomposed run needs particles");
+}
+
+DistributedSimulation::DistributedSimulation(MPI_Comm comm, SimulationSetup setup)
+    : comm_(comm), contact_(setup.contact), bond_(setup.bond) {
+  find_largest_radius(setup.particles);
+  start(setup);
+  // Before the first partition every rank takes an equal slice of the scene's listing.
+  const std::size_t n = setup.particles.size();
+  const std::size_t begin = n * static_cast<std::size_t>(rank_) / static_cast<std::size_t>(ranks_);
+  const std::size_t end = n * static_cast<std::size_t>(rank_ + 1) / static_cast<std::size_t>(ranks_);
+  Owned owned;
+  const double longest = take_rows(setup, begin, end, owned);
   distribute(std::move(owned), longest, &setup);
+}
+
+DistributedSimulation::DistributedSimulation(MPI_Comm comm, SimulationSetup share, ScatteredScene)
+    : comm_(comm), contact_(share.contact), bond_(share.bond) {
+  find_largest_radius(share.particles);
+  start(share);
+  // Each rank holds its share (rank 0 the whole scene, say): the first partition sends it on.
+  Owned owned;
+  const double longest = take_rows(share, 0, share.particles.size(), owned);
+  distribute(std::move(owned), longest, &share);
 }
 
 DistributedSimulation::DistributedSimulation(MPI_Comm comm, SimulationSetup setup, const SimulationState& from)
@@ -670,91 +606,6 @@ bool DistributedSimulation::all_slower_than(double speed) const {
   int all = 0;
   MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_LAND, comm_);
   return all != 0;
-}
-
-SimulationState DistributedSimulation::gather_state(int root, bool contacts) const {
-  const Simulation& sim = *local_;
-  std::vector<ParticleRecord> mine;
-  std::vector<double> bonds, touching;
-  const std::size_t bond_stride = sim.bonds().stride;
-  const std::size_t history_stride = contact_ ? contact_->history_size() : 0;
-  {
-    const Particles& p = sim.particles();
-    for (std::size_t k = 0; k < p.size(); ++k)
-      if (!(p.flags[k] & kGhost)) mine.push_back(record_of(p, k));
-    // A rank holds the bonds it owns only (owner-computes): each bond is gathered once.
-    const Bonds& b = sim.bonds();
-    for (std::size_t k = 0; k < b.size(); ++k) {
-      const Index a = p.id[static_cast<std::size_t>(b.i[k])], c = p.id[static_cast<std::size_t>(b.j[k])];
-      bonds.push_back(static_cast<double>(std::min(a, c)));
-      bonds.push_back(static_cast<double>(std::max(a, c)));
-      bonds.insert(bonds.end(), b.state.begin() + static_cast<std::ptrdiff_t>(k * bond_stride),
-                   b.state.begin() + static_cast<std::ptrdiff_t>((k + 1) * bond_stride));
-    }
-  }
-  if (contacts) append_touching(sim.export_state(), touching);
-  // The run's totals of what each rank counts for itself.
-  const Energies own = sim.energies();
-  std::vector<double> counts{static_cast<double>(sim.contact_count()), own.contact, own.bond};
-  for (const Wall& w : sim.walls()) {
-    counts.push_back(w.contact_work);
-    counts.push_back(static_cast<double>(w.impacts));
-  }
-  const std::vector<double> total = sum_in_rank_order(counts, comm_);
-  std::vector<ParticleRecord> all = gather_to(mine, root, comm_);
-  const std::vector<double> all_bonds = gather_to(bonds, root, comm_);
-  const std::vector<double> all_touching = gather_to(touching, root, comm_);
-  SimulationState s;
-  if (rank_ != root) return s;
-
-  s.step = sim.step_count();
-  s.time = sim.time();
-  s.dt = sim.dt();
-  std::sort(all.begin(), all.end(), by_id);
-  s.particles.reserve(all.size());
-  for (const ParticleRecord& r : all) append(s.particles, r, false);
-  const auto index_of = [&](double id) {
-    const auto it = std::lower_bound(all.begin(), all.end(), static_cast<Index>(id),
-                                     [](const ParticleRecord& r, Index v) { return r.id < v; });
-    if (it == all.end() || it->id != static_cast<Index>(id))
-      throw std::logic_error(fmt::format("gather: particle id {} is held by no rank", static_cast<Index>(id)));
-    return static_cast<Index>(it - all.begin());
-  };
-  const std::size_t bond_width = 2 + bond_stride;
-  const std::vector<std::size_t> bond_order = record_order(all_bonds, bond_width);
-  s.bonds.stride = bond_stride;
-  s.bonds.keeps_loads = false;
-  s.bonds.resize(bond_order.size());
-  for (std::size_t k = 0; k < bond_order.size(); ++k) {
-    const double* rec = all_bonds.data() + bond_order[k] * bond_width;
-    s.bonds.i[k] = index_of(rec[0]);
-    s.bonds.j[k] = index_of(rec[1]);
-    std::copy_n(rec + 2, bond_stride, s.bonds.state.data() + k * bond_stride);
-  }
-  s.events = events_;
-  s.bonds_broken = bonds_broken();
-  s.contacts = static_cast<std::size_t>(total[0]);
-  s.contact_energy = total[1];
-  s.bond_energy = total[2];
-  const std::vector<Wall>& walls = sim.walls();
-  for (std::size_t w = 0; w < walls.size(); ++w) {
-    const Wall& x = walls[w];
-    s.walls.push_back({x.velocity, x.displacement, x.force, x.torque, total[3 + 2 * w], x.stored_energy,
-                       static_cast<std::int64_t>(total[4 + 2 * w])});
-  }
-  NeighbourState& list = s.neighbours;
-  list.skin = skin_;
-  list.history_stride = history_stride;
-  list.rebuilds = sim.neighbour_rebuilds();
-  const std::size_t contact_width = 2 + history_stride;
-  for (std::size_t k : record_order(all_touching, contact_width)) {
-    const double* rec = all_touching.data() + k * contact_width;
-    list.first.push_back(index_of(rec[0]));
-    list.second.push_back(rec[1] < 0 ? static_cast<Index>(rec[1]) : index_of(rec[1]));
-    list.history.insert(list.history.end(), rec + 2, rec + contact_width);
-    list.touching.push_back(1);
-  }
-  return s;
 }
 
 }  // namespace shard::mpi

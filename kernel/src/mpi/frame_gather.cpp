@@ -12,14 +12,13 @@
 #include <fmt/format.h>
 
 #include "comm.hpp"
+#include "global_rows.hpp"
 #include "halo.hpp"
 #include "shard/domain_exchange.hpp"
 #include "shard/mpi/distributed_simulation.hpp"
 
 namespace shard::mpi {
 namespace {
-
-constexpr int kFrameRowsTag = 7301;  // the ghosts' frame rows (the halo's own messages use others)
 
 struct FrameRecord {
   double position[3], velocity[3], omega[3];
@@ -126,57 +125,18 @@ FrameShare DistributedSimulation::frame_share() const {
   std::vector<FrameRecord> mine = own_frame_records(p, owned_);
   std::sort(mine.begin(), mine.end(), [](const FrameRecord& x, const FrameRecord& y) { return x.id < y.id; });
   const bool flags = b.broken.size() == b.size();
-  unsigned long long counts[2] = {mine.size(), 0}, before[2] = {0, 0}, total[2] = {0, 0};
-  for (std::size_t k = 0; k < b.size(); ++k) counts[1] += flags && b.broken[k] != 0 ? 0 : 1;
-  MPI_Exscan(counts, before, 2, MPI_UNSIGNED_LONG_LONG, MPI_SUM, comm_);
-  if (rank_ == 0) before[0] = before[1] = 0;  // MPI_Exscan leaves rank 0's result undefined
-  MPI_Allreduce(counts, total, 2, MPI_UNSIGNED_LONG_LONG, MPI_SUM, comm_);
+  unsigned long long bonds = 0;
+  for (std::size_t k = 0; k < b.size(); ++k) bonds += flags && b.broken[k] != 0 ? 0 : 1;
+  const std::vector<RowRange> rows = row_ranges({mine.size(), bonds}, comm_);
 
   FrameShare f;
-  f.first_row = before[0];
-  f.total_rows = total[0];
-  f.first_bond = before[1];
-  f.total_bonds = total[1];
+  f.first_row = rows[0].first;
+  f.total_rows = rows[0].total;
+  f.first_bond = rows[1].first;
+  f.total_bonds = rows[1].total;
   f.particles = frame_particles(mine);
-  const Particles& q = f.particles;
-  const auto own_row = [&](Index id) -> std::int64_t {
-    const auto it = std::lower_bound(q.id.begin(), q.id.end(), id);
-    if (it == q.id.end() || *it != id) return -1;
-    return static_cast<std::int64_t>(f.first_row) + (it - q.id.begin());
-  };
-
-  // The ghosts' rows from their owners, over the halo's links (each end lists the ids in the
-  // same ascending order).
-  const std::vector<HaloLink>& links = halo_->links();
-  std::vector<std::vector<std::int64_t>> out(links.size()), in(links.size());
-  std::vector<MPI_Request> requests;
-  requests.reserve(2 * links.size());
-  for (std::size_t l = 0; l < links.size(); ++l) {
-    for (Index id : links[l].send) out[l].push_back(own_row(id));
-    in[l].resize(links[l].recv.size());
-    requests.emplace_back();
-    MPI_Irecv(in[l].data(), static_cast<int>(in[l].size()), MPI_INT64_T, links[l].rank, kFrameRowsTag, comm_,
-              &requests.back());
-    requests.emplace_back();
-    MPI_Isend(out[l].data(), static_cast<int>(out[l].size()), MPI_INT64_T, links[l].rank, kFrameRowsTag, comm_,
-              &requests.back());
-  }
-  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
-  std::vector<std::pair<Index, std::int64_t>> ghost_rows;
-  for (std::size_t l = 0; l < links.size(); ++l)
-    for (std::size_t k = 0; k < in[l].size(); ++k) ghost_rows.emplace_back(links[l].recv[k], in[l][k]);
-  std::sort(ghost_rows.begin(), ghost_rows.end());
-  const auto row_of = [&](Index id) {
-    std::int64_t row = own_row(id);
-    if (row < 0) {
-      const auto it = std::lower_bound(ghost_rows.begin(), ghost_rows.end(), std::pair<Index, std::int64_t>{id, -1});
-      if (it != ghost_rows.end() && it->first == id) row = it->second;
-    }
-    if (row < 0 || row > std::numeric_limits<Index>::max())
-      throw std::logic_error(fmt::format("frame_share: no frame row for particle id {}", id));
-    return static_cast<Index>(row);
-  };
-  f.bond_rows.reserve(2 * counts[1]);
+  const GlobalRows row_of(f.particles.id, f.first_row, halo_->links(), comm_);
+  f.bond_rows.reserve(2 * bonds);
   for (std::size_t k = 0; k < b.size(); ++k) {
     if (flags && b.broken[k] != 0) continue;
     const Index x = p.id[static_cast<std::size_t>(b.i[k])], y = p.id[static_cast<std::size_t>(b.j[k])];

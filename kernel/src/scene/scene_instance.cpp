@@ -55,13 +55,18 @@ void set_scene_fields(SimulationSetup& setup, const Scene& scene, const SceneIns
 
 }  // namespace
 
+GeneratedBody generate_body(const BodySpec& spec, const Scene& scene, const PluginHost& host,
+                            const std::function<void(const std::string&)>& log) {
+  return generate(spec, scene, host, log);
+}
+
 SceneInstance instantiate(const Scene& scene, const PluginHost& host,
-                          const std::function<void(const std::string&)>& log) {
+                          const std::function<void(const std::string&)>& log, const BodyPacker& packer) {
   SceneInstance out;
   scene_detail::PlacedBodies placed;
   for (std::size_t s = 0; s < scene.bodies.size(); ++s) {
     const BodySpec& spec = scene.bodies[s];
-    const GeneratedBody packing = generate(spec, scene, host, log);
+    const GeneratedBody packing = packer ? packer(spec) : generate(spec, scene, host, log);
     for (const auto& [name, value] : packing.quality)
       placed.all.quality.emplace_back(spec.from_generator_section ? name : spec.name + "." + name, value);
     scene_detail::place_body(spec, s, packing, placed);

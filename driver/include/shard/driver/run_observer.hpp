@@ -40,11 +40,11 @@ class RunState {
   struct Whole {
     std::int64_t bonds_broken = 0;
     std::size_t bonds_intact = 0;
-    // In before_frame of a frame to be labelled: the ids and masses of the next frame's particles
-    // (only those fields; in the frame's row order) and its bonds as rows into them, on rank 0;
-    // empty on the others, for other frames and outside before_frame.
-    const Particles* frame_particles = nullptr;
-    const Bonds* frame_bonds = nullptr;
+    // In before_frame of a frame to be labelled: labels the fragments of the next frame where its
+    // particles are (collective: every rank calls it at the same hook). Fills `labels` with this
+    // rank's rows of the frame and `sizes` with the particles per fragment, largest first, on
+    // rank 0 (empty elsewhere).
+    std::function<void(std::vector<Index>& labels, std::vector<std::size_t>& sizes)> label_fragments;
     // Whether every particle of the run is slower than the speed given (m/s), decided over all
     // ranks: collective, so every rank asks at the same hook (RestStop's on_start and on_step).
     std::function<bool(double)> all_slower_than;
@@ -52,8 +52,6 @@ class RunState {
   const Whole* whole = nullptr;
   std::int64_t bonds_broken() const { return whole ? whole->bonds_broken : sim.bonds_broken(); }
   std::size_t bonds_intact() const { return whole ? whole->bonds_intact : sim.bonds().size(); }
-  const Particles& frame_particles() const { return whole ? *whole->frame_particles : sim.particles(); }
-  const Bonds& frame_bonds() const { return whole ? *whole->frame_bonds : sim.bonds(); }
 
   // Ends the loop after the current hook round; the first request wins.
   void request_stop(StopReason reason, std::string words) {

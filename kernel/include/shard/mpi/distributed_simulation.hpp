@@ -47,11 +47,34 @@ struct FrameShare {
   std::size_t first_bond = 0, total_bonds = 0;
 };
 
+// This rank's share of a checkpoint that every rank writes at once (write_checkpoint_share): its own
+// particles in ascending id, its own bonds and touching contacts with their ends as rows of the
+// whole file, at the rows given; the rest (step, walls, break log, totals) the whole run's, the
+// same on every rank.
+struct StateShare {
+  SimulationState state;
+  CheckpointRows particles, bonds, contacts;
+};
+
+// The fragment labels of a frame (kernel/src/mpi/fragment_labels.cpp): what the serial labeller and
+// analysis::canonicalise_labels give the whole run, computed where the particles are.
+struct FragmentLabels {
+  std::vector<Index> labels;        // this rank's own particles in ascending id (FrameShare's rows)
+  std::vector<std::size_t> sizes;   // particles per fragment, largest first, on rank 0 (empty elsewhere)
+  int rounds = 0;                   // border exchanges until no fragment's name changed
+};
+
 class DistributedSimulation {
  public:
   // `setup` is the whole scene, the same on every rank (each keeps its part). Throws
   // std::invalid_argument, on every rank alike, when the rank count cannot hold the partition.
   DistributedSimulation(MPI_Comm comm, SimulationSetup setup);
+  // `share` holds this rank's share of the scene: any split of its particles, each rank's bonds
+  // between its own particles (rank 0 holding the whole scene that it alone generated, the others
+  // none, is one). The models, walls and settings are the scene's on every rank. The first
+  // partition sends every particle and bond to its owner; no rank needs the whole scene.
+  struct ScatteredScene {};
+  DistributedSimulation(MPI_Comm comm, SimulationSetup share, ScatteredScene);
   // Continues a run from its whole state `from` (a checkpoint, written on any rank count or by the
   // serial build: particles, bonds and contacts are matched by stable id), the same on every rank.
   // `setup` is the scene's (models, walls, damping); its particles and bonds are not used.
@@ -124,6 +147,9 @@ class DistributedSimulation {
   // `contacts` the touching pairs' history (no list build positions: the importer rebuilds).
   // What a frame and a checkpoint hold; a checkpoint of it restarts on any rank count.
   SimulationState gather_state(int root = 0, bool contacts = true) const;
+  // The same state as every rank's share of one file, nothing gathered: prefix sums of the ranks'
+  // counts and the rows of the ghosts' owners through the halo links.
+  StateShare state_share(bool contacts = true) const;
   // A frame's content on `root` (empty elsewhere), by MPI_Gatherv: per particle 11 doubles and 3
   // integers, per bond two ids, against gather_state's 22 doubles, 5 integers and 2 + stride
   // doubles (kernel/src/mpi/frame_gather.cpp).
@@ -131,6 +157,10 @@ class DistributedSimulation {
   // This rank's share of a frame, nothing gathered: two prefix sums, and the rows of the ghosts'
   // owners through the halo links (one integer per ghost).
   FrameShare frame_share() const;
+  // The fragments of the surviving bonds by a distributed union-find: each rank's own components,
+  // merged across borders over the halo links, numbered canonically on rank 0 from one record per
+  // fragment and rank (docs/explanation/scaling.md).
+  FragmentLabels label_fragments() const;
   // Element-wise sums over the ranks, added in rank order (the same on every rank).
   std::vector<double> sum_over_ranks(const std::vector<double>& mine) const;
   // Every rank's `mine` (of any length), concatenated in rank order, on every rank.
@@ -148,11 +178,14 @@ class DistributedSimulation {
 
  private:
   struct Owned;
+  double take_rows(const SimulationSetup& setup, std::size_t begin, std::size_t end, Owned& owned) const;
+  void find_largest_radius(const Particles& p);
   void repartition();
   // `initial`: the scene's set-up, taken over (moved from) to build this rank's Simulation.
   void distribute(Owned owned, double longest_bond, SimulationSetup* initial, const SimulationState* resumed = nullptr);
   void start(const SimulationSetup& setup);
   void finish_step();
+  void fill_whole_figures(SimulationState& s) const;
 
   MPI_Comm comm_;
   int rank_ = 0, ranks_ = 1;
