@@ -29,8 +29,9 @@ LAYERS = {
     "plugins": (("plugins",), ("plugin_api", "geometry", "h5")),
     "templates": (("templates",), ("plugin_api",)),
     "kernel": (("kernel/include", "kernel/src"), ("geometry", "h5")),
-    "mpi": (("kernel/src/mpi",), ("kernel",)),
     "analysis": (("analysis/include", "analysis/src"), ("kernel",)),
+    # The decomposed run labels its fragments with the analysis library's union-find.
+    "mpi": (("kernel/src/mpi",), ("analysis",)),
     "bending": (("analysis/bending",), ("analysis",)),
     "measure": (("analysis/measure",), ("analysis",)),
     "driver": (("driver",), ("analysis", "mpi")),
