@@ -1,4 +1,4 @@
-# The installed CMake package: `cmake --install` puts the plugin API headers (kernel/CMakeLists.txt),
+# The installed CMake package: `cmake --install` puts the plugin API headers (plugin_api/CMakeLists.txt),
 # the Shard libraries, the plugins, the `shard` command, the plugin templates, the example scenes
 # and <libdir>/cmake/Shard/ in the prefix (paths: cmake/ShardLayout.cmake), so that an out-of-tree
 # plugin project needs only

@@ -22,7 +22,7 @@ endfunction()
 # no a * b + c may be fused into one rounding (GCC would in an AVX-512 version, whose target
 # enables FMA).
 #
-# LANE_KERNELS: sources written once for a lane type (kernel/include/shard/lanes/, lane_type.hpp),
+# LANE_KERNELS: sources written once for a lane type (shard::lanes, plugin_api/simd: lane_type.hpp),
 # each compiled once per instruction set with SHARD_LANES_<SET> defined: SCALAR (the reference,
 # T = double), BASELINE (xsimd's batch for the target's default set) and, on x86-64, AVX2 and
 # AVX512 (chosen at run time, lane_sets.hpp). All with -ffp-contract=off, so every set rounds as
@@ -37,7 +37,7 @@ function(shard_add_plugin_model NAME)
   target_link_libraries(${NAME} PUBLIC shard::plugin_api)
   set_target_properties(${NAME} PROPERTIES CXX_VISIBILITY_PRESET hidden VISIBILITY_INLINES_HIDDEN ON)
   if(ARG_LANE_KERNELS)
-    target_link_libraries(${NAME} PUBLIC shard_xsimd)
+    target_link_libraries(${NAME} PUBLIC shard_lanes)
     set(sets SCALAR BASELINE)
     if(CMAKE_SYSTEM_PROCESSOR MATCHES "x86_64|AMD64")
       list(APPEND sets AVX2 AVX512)
@@ -47,7 +47,7 @@ function(shard_add_plugin_model NAME)
       foreach(set IN LISTS sets)
         set(object ${NAME}_${stem}_${set})
         add_library(${object} OBJECT ${source})
-        target_link_libraries(${object} PRIVATE shard::plugin_api shard_xsimd)
+        target_link_libraries(${object} PRIVATE shard_lanes)
         target_compile_definitions(${object} PRIVATE SHARD_LANES_${set})
         # GCC 12 warns that _mm512_sqrt_pd's own _mm512_undefined_pd() is "(maybe) used uninitialized"
         # (inside avx512fintrin.h, whatever the caller does): silenced for that object alone.

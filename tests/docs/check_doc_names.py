@@ -18,8 +18,9 @@ import re
 import subprocess
 import sys
 
-TOP_FOLDERS = ("kernel", "plugins", "analysis", "driver", "apps", "scenes", "tests", "bench", "cmake",
-               "templates", "docs", ".ci")
+# Not geometry/: scenes name their meshes geometry/NAME.stl, relative to the scene's folder.
+TOP_FOLDERS = ("plugin_api", "io", "h5", "kernel", "plugins", "analysis", "driver", "apps", "scenes",
+               "tests", "bench", "cmake", "templates", "docs", ".ci")
 # A path inside the repository: a top-level folder, then at least one more part. Not preceded by a
 # path character (build/release/tests/... is a build folder, not the repository's tests/).
 REPO_PATH = re.compile(r"(?<![\w./$-])((?:%s)/[\w.+/-]*\w)" % "|".join(re.escape(f) for f in TOP_FOLDERS))

@@ -12,6 +12,7 @@
 
 #include "shard/body_impacts.hpp"
 #include "shard/bonds.hpp"
+#include "shard/io/output_error.hpp"
 #include "shard/particles.hpp"
 #include "shard/wall.hpp"
 
@@ -49,11 +50,6 @@ struct SeriesRow {
     wall_impact_energy.push_back(wall.impact_energy());
     wall_impacts.push_back(wall.impacts);
   }
-};
-
-class OutputError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
 };
 
 // How a RunWriter opens its file when several processes share it (a run decomposed over MPI

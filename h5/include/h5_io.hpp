@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "h5_handle.hpp"
-#include "shard/output.hpp"
+#include "shard/io/output_error.hpp"
 
 namespace shard::h5 {
 

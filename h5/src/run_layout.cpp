@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "h5_io.hpp"
-#include "shard/output.hpp"
+#include "shard/io/output_error.hpp"
 
 namespace shard::h5 {
 namespace {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "shard/output.hpp"
+#include "shard/io/output_error.hpp"
 
 namespace shard::h5 {
 
