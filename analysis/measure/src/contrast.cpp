@@ -12,6 +12,7 @@
 #include "shard/measure/comparison.hpp"
 #include "shard/measure/features.hpp"
 #include "shard/measure/statistics.hpp"
+#include "square_matrix.hpp"
 
 namespace shard::measure {
 namespace {
@@ -19,24 +20,6 @@ namespace {
 // The force after the peak falls below this share of F_max where the beam has parted: the
 // ductility component reads how far past the peak that happens.
 constexpr double kPartedShare = 0.5;
-
-Eigen::MatrixXd to_matrix(const std::vector<std::vector<double>>& a) {
-  const auto n = static_cast<Eigen::Index>(a.size());
-  Eigen::MatrixXd m(n, n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (static_cast<Eigen::Index>(a[static_cast<std::size_t>(i)].size()) != n)
-      throw std::invalid_argument("contrast: matrix is not square");
-    for (Eigen::Index j = 0; j < n; ++j) m(i, j) = a[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
-  }
-  return m;
-}
-
-std::vector<std::vector<double>> from_matrix(const Eigen::MatrixXd& m) {
-  std::vector<std::vector<double>> a(static_cast<std::size_t>(m.rows()), std::vector<double>(static_cast<std::size_t>(m.cols())));
-  for (Eigen::Index i = 0; i < m.rows(); ++i)
-    for (Eigen::Index j = 0; j < m.cols(); ++j) a[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = m(i, j);
-  return a;
-}
 
 Eigen::VectorXd to_vector(const std::vector<double>& v) {
   return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));

@@ -15,6 +15,7 @@
 #include "shard/measure/group_scatter.hpp"
 #include "shard/measure/rate_groups.hpp"
 #include "shard/measure/statistics.hpp"
+#include "square_matrix.hpp"
 
 namespace shard::measure {
 
@@ -330,13 +331,6 @@ struct ContrastBlock {
   std::string shared_key;
 };
 
-Eigen::MatrixXd matrix_of(const std::vector<std::vector<double>>& a) {
-  Eigen::MatrixXd m(static_cast<Eigen::Index>(a.size()), static_cast<Eigen::Index>(a.size()));
-  for (std::size_t i = 0; i < a.size(); ++i)
-    for (std::size_t j = 0; j < a.size(); ++j) m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = a[i][j];
-  return m;
-}
-
 // The blocks' joint covariance: each block's own on the diagonal, the shared parts wherever two
 // blocks are held against the same mean.
 std::vector<std::vector<double>> joint_covariance(const std::vector<ContrastBlock>& blocks, std::size_t m) {
@@ -352,10 +346,7 @@ std::vector<std::vector<double>> joint_covariance(const std::vector<ContrastBloc
         for (std::size_t i = 0; i < m; ++i) block(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)) += blocks[a].var_base[i];
       }
     }
-  std::vector<std::vector<double>> cv(static_cast<std::size_t>(n), std::vector<double>(static_cast<std::size_t>(n)));
-  for (Eigen::Index i = 0; i < n; ++i)
-    for (Eigen::Index j = 0; j < n; ++j) cv[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = cov(i, j);
-  return cv;
+  return from_matrix(cov);
 }
 
 }  // namespace
@@ -375,8 +366,8 @@ ContrastStudy::Contrast ContrastStudy::contrast(std::size_t set, const Simulated
     ContrastBlock b;
     for (std::size_t i = 0; i < m; ++i) b.d.push_back(mean[i] - held.mean[i] - base_shift[i]);
     b.var_base = base_var;
-    b.own = matrix_of(scatter_.covariance[gi]) / static_cast<double>(g.components.size());
-    b.shared = matrix_of(*held.sigma) * held.weight;
+    b.own = to_matrix(scatter_.covariance[gi]) / static_cast<double>(g.components.size());
+    b.shared = to_matrix(*held.sigma) * held.weight;
     b.shared_key = held.key;
     for (std::size_t i = 0; i < m; ++i) {
       c.names.push_back(fmt::format("{}@{:g}", contrast_component_names()[i], g.rate));

@@ -7,31 +7,17 @@
 #include <optional>
 
 #include "shard/measure/contrast.hpp"
+#include "square_matrix.hpp"
 
 namespace shard::measure {
 namespace {
 
 using Groups = std::vector<std::vector<std::vector<double>>>;
 
-Eigen::MatrixXd matrix_of(const std::vector<std::vector<double>>& a) {
-  const auto n = static_cast<Eigen::Index>(a.size());
-  Eigen::MatrixXd m(n, n);
-  for (Eigen::Index i = 0; i < n; ++i)
-    for (Eigen::Index j = 0; j < n; ++j) m(i, j) = a[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
-  return m;
-}
-
-std::vector<std::vector<double>> rows_of(const Eigen::MatrixXd& m) {
-  std::vector<std::vector<double>> a(static_cast<std::size_t>(m.rows()), std::vector<double>(static_cast<std::size_t>(m.cols())));
-  for (Eigen::Index i = 0; i < m.rows(); ++i)
-    for (Eigen::Index j = 0; j < m.cols(); ++j) a[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = m(i, j);
-  return a;
-}
-
 // The group's own sample covariance (n - 1 in the denominator).
 Eigen::MatrixXd own_covariance(const std::vector<std::vector<double>>& rows) {
   double unused = 0;
-  return matrix_of(pooled_covariance({rows}, 0.0, unused));
+  return to_matrix(pooled_covariance({rows}, 0.0, unused));
 }
 
 struct Pool {
@@ -47,7 +33,7 @@ std::optional<Pool> pool_of(const Groups& groups, const std::vector<bool>& in, s
     if (in[g] && g != skip) chosen.push_back(groups[g]);
   if (chosen.empty()) return std::nullopt;
   Pool p;
-  p.covariance = matrix_of(pooled_covariance(chosen, shrinkage, p.dof));
+  p.covariance = to_matrix(pooled_covariance(chosen, shrinkage, p.dof));
   return p;
 }
 
@@ -121,7 +107,7 @@ GroupScatter group_scatter(const Groups& groups, double shrinkage, double alpha)
     double unused = 0;
     pooled_covariance(groups, shrinkage, unused);  // throws with its message: no set has two specimens
   }
-  out.pooled = rows_of(final_pool->covariance);
+  out.pooled = from_matrix(final_pool->covariance);
   out.dof = final_pool->dof;
   out.own = own;
   for (std::size_t g = 0; g < n; ++g) {
@@ -132,7 +118,7 @@ GroupScatter group_scatter(const Groups& groups, double shrinkage, double alpha)
     out.component.push_back(r.component);
     out.p_value.push_back(r.p);
     out.covariance.push_back(
-        own[g] ? rows_of(carried_covariance(final_pool->covariance, own_covariance(groups[g]))) : out.pooled);
+        own[g] ? from_matrix(carried_covariance(final_pool->covariance, own_covariance(groups[g]))) : out.pooled);
   }
   return out;
 }
