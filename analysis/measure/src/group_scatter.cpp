@@ -5,6 +5,7 @@
 #include <boost/math/distributions/fisher_f.hpp>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
 
 #include "shard/measure/contrast.hpp"
 #include "square_matrix.hpp"
@@ -103,10 +104,7 @@ GroupScatter group_scatter(const Groups& groups, double shrinkage, double alpha)
   }
   GroupScatter out;
   const auto final_pool = pool_of(groups, pool_mask(), std::nullopt, shrinkage);
-  if (!final_pool) {
-    double unused = 0;
-    pooled_covariance(groups, shrinkage, unused);  // throws with its message: no set has two specimens
-  }
+  if (!final_pool) throw std::invalid_argument("contrast: no set has two specimens, so their scatter is unknown");
   out.pooled = from_matrix(final_pool->covariance);
   out.dof = final_pool->dof;
   out.own = own;
