@@ -209,17 +209,18 @@ std::string scatter_markdown(const ContrastReport& r) {
   const auto widest = std::max_element(lines.begin(), lines.end(), [](auto& a, auto& b) { return a.ratio < b.ratio; });
   const bool any_own = std::any_of(lines.begin(), lines.end(), [](auto& g) { return g.own; });
   if (!any_own)
-    return fmt::format("Specimen scatter pooled over all sets ({:g} degrees of freedom); the widest, {}, scatters "
-                       "{:.2f} x the others (p {:.2g}).\n\n",
-                       r.result.dof, widest == lines.end() ? "none" : group_name(r, *widest),
-                       widest == lines.end() ? 1.0 : widest->ratio, widest == lines.end() ? 1.0 : widest->p_value);
+    return widest == lines.end()
+               ? fmt::format("Specimen scatter pooled over all sets ({:g} degrees of freedom).\n\n", r.result.dof)
+               : fmt::format("Specimen scatter pooled over all sets ({:g} degrees of freedom); the widest, {}, has a "
+                             "{} variance {:.2f} x the others' (p {:.2g}; --own-scatter sets such a set apart).\n\n",
+                             r.result.dof, group_name(r, *widest), widest->component, widest->ratio, widest->p_value);
   std::string md = fmt::format(
       "Specimen scatter pooled over the sets that scatter alike ({:g} degrees of freedom). These scatter beyond the "
       "others and carry their own (their contrasts are weighed with it, which can only make a name less likely):\n\n"
-      "| set | scatter against the others | p |\n| --- | --- | --- |\n",
+      "| set | widest component | its variance against the others' | p |\n| --- | --- | --- | --- |\n",
       r.result.dof);
   for (const auto& g : lines)
-    if (g.own) md += fmt::format("| {} | {:.2f} x | {:.2g} |\n", group_name(r, g), g.ratio, g.p_value);
+    if (g.own) md += fmt::format("| {} | {} | {:.2f} x | {:.2g} |\n", group_name(r, g), g.component, g.ratio, g.p_value);
   return md + "\n";
 }
 
@@ -446,7 +447,7 @@ io::Json contrast_json(const ContrastReport& r) {
   j["dof"] = r.result.dof;
   j["scatter"] = io::Json::array();
   for (const auto& g : r.result.scatter)
-    j["scatter"].push_back({{"set", r.sets.names[g.set]}, {"rate", g.rate}, {"ratio", g.ratio}, {"p_value", g.p_value},
+    j["scatter"].push_back({{"set", r.sets.names[g.set]}, {"rate", g.rate}, {"ratio", g.ratio}, {"component", g.component}, {"p_value", g.p_value},
                             {"own", g.own}});
   j["form_error_nrmse"] = r.result.calibration.form_error.nrmse;
   j.update(base_json(r.result.calibration));

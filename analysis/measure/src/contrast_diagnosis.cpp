@@ -197,7 +197,8 @@ ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simula
   out.dof = study.dof();
   for (std::size_t gi = 0; gi < study.groups().size(); ++gi)
     out.scatter.push_back({study.groups()[gi].set, study.groups()[gi].rate, study.scatter().ratio[gi],
-                           study.scatter().p_value[gi], study.scatter().own[gi]});
+                           contrast_component_names()[study.scatter().component[gi]], study.scatter().p_value[gi],
+                           study.scatter().own[gi]});
   out.health = simulator.health();
   return out;
 }

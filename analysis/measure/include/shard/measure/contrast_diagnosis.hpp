@@ -176,7 +176,8 @@ struct ContrastDiagnosis {
   struct GroupScatterLine {
     std::size_t set = 0;
     double rate = 0;     // m/s
-    double ratio = 1;    // its scatter in units of the others' pooled scatter
+    double ratio = 1;    // its widest component's variance over the others' pooled variance
+    std::string component;  // that component's name
     double p_value = 1;  // of that ratio under one common scatter
     bool own = false;    // set apart: its contrast uses its own scatter
   };
