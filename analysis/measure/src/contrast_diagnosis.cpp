@@ -125,6 +125,16 @@ bool curve_agrees(const ContrastStudy::CurveContrast& c, const ContrastOptions& 
 
 bool improves_on_base(const SetDiagnosis& d) { return d.after.nrmse < d.before.nrmse; }
 
+namespace {
+
+// What a name asks of the shown model's contrast curve: its rising branch within the floor, and
+// the whole curve fitted better than by the base.
+bool curve_bears_out(const SetDiagnosis& d, const ContrastOptions& options) {
+  return curve_agrees(d.after, options) && improves_on_base(d);
+}
+
+}  // namespace
+
 bool names_a_pair(const SetDiagnosis& d, const ContrastOptions& options) {
   return d.pair && pair_is_named(*d.pair, d.seconds_tried, options) && d.withheld.empty();
 }
@@ -134,7 +144,7 @@ void require_curve_agreement(std::vector<SetDiagnosis>& sets, const ContrastOpti
     d.share = share_of(d, options);
     const std::string& verdict = d.decision.verdict;
     if (verdict == kNoDifference || verdict == kUnexplainedDifference) continue;
-    if (curve_agrees(d.after, options) && improves_on_base(d) && d.share >= options.min_share) continue;
+    if (curve_bears_out(d, options) && d.share >= options.min_share) continue;
     d.withheld = verdict;
     d.decision.verdict = kUnexplainedDifference;
     d.decision.rivals.clear();
@@ -148,9 +158,9 @@ void name_by_curve(std::vector<SetDiagnosis>& sets, std::size_t tried, const Con
     if (c.verdict != kUnexplainedDifference || names_a_pair(d, options) || c.fits.empty()) continue;
     const ContrastFit& closest = c.fits.front();
     const double share = c.chi_square > 0 ? closest.drop / c.chi_square : 0.0;
-    const bool curve_of_closest_agrees = d.after_effect == closest.name && curve_agrees(d.after, options);
+    const bool curve_of_closest_agrees = d.after_effect == closest.name && curve_bears_out(d, options);
     if (!(closest.scale != 0 && closest.identifiable && closest.p_drop < level && share >= options.curve_name_share &&
-          curve_of_closest_agrees && improves_on_base(d)))
+          curve_of_closest_agrees))
       continue;
     c.verdict = closest.name;
     c.rivals = rivals_of(c.fits, closest, level, options);
