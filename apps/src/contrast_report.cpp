@@ -54,8 +54,9 @@ std::string pair_text(const ContrastReport& r, const SetDiagnosis& d) {
   const ContrastPairFit& p = *d.pair;
   const CandidateEffect* a = effect_named(r, p.first);
   const CandidateEffect* b = effect_named(r, p.second);
-  const std::string sizes = fmt::format("{} = {:.4g} {} with {} = {:.4g} {}", p.first, d.pair_values[0], a ? a->unit : "",
-                                        p.second, d.pair_values[1], b ? b->unit : "");
+  const auto sized = [](const CandidateEffect* e, double v) { return e ? e->sized(v) : fmt::format("{:.4g}", v); };
+  const std::string sizes = fmt::format("{} = {} with {} = {}", p.first, sized(a, d.pair_values[0]), p.second,
+                                        sized(b, d.pair_values[1]));
   if (names_a_pair(d))
     return fmt::format(" Two effects at once: {} (simulated together) leave chi^2 {:.1f} (p = {:.2g} for what "
                        "remains); the second's drop from {}'s own chi^2 {:.1f} has p = {:.2g} (level {:.2g}: {} seconds "
@@ -134,12 +135,12 @@ std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
       // fits of two draws' Weibull and toe sets took 16-78 %: hence 85 %. The verdict stays.
       if (share >= 0.85 && f.p_drop < 0.01) {
         const CandidateEffect* e = effect_named(r, f.name);
-        s += fmt::format(" The closest, {} = {:.4g} +- {:.2g} {}, takes {:.0f} % of it away (T^2 {:.1f} -> chi^2 "
+        s += fmt::format(" The closest, {} = {:.4g} +- {:.2g}{}, takes {:.0f} % of it away (T^2 {:.1f} -> chi^2 "
                          "{:.1f}, the drop has p = {:.2g}) but leaves p = {:.2g} for what remains: {} in another form "
                          "than the library's, or {} and a second difference. `shard calibrate` this set `--with {}` and "
                          "look at what remains; a difference the library lacks is added as a plugin parameter with a "
                          "neutral value (shard new-plugin, docs/how-to/write-a-plugin.md) and an [[effect]] entry.",
-                         f.name, fitted_value(r, d, 0), fitted_uncertainty(r, d, 0), e ? e->unit : "", 100 * share,
+                         f.name, fitted_value(r, d, 0), fitted_uncertainty(r, d, 0), e ? e->unit_suffix() : "", 100 * share,
                          c.chi_square, f.chi_square, f.p_drop, f.p_after, f.name, f.name, f.name);
       } else {
         s += fmt::format(" The closest, {}, takes {:.0f} % of it away and leaves chi^2 {:.1f} (p = {:.2g} for what "
@@ -155,10 +156,10 @@ std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
     return s;
   }
   const CandidateEffect* e = effect_named(r, c.verdict);
-  std::string s = fmt::format("{} differs from the reference (T^2 = {:.1f}, p = {:.2g}) by {}: {} = {:.4g} +- {:.2g} {} "
+  std::string s = fmt::format("{} differs from the reference (T^2 = {:.1f}, p = {:.2g}) by {}: {} = {:.4g} +- {:.2g}{} "
                               "leaves chi^2 {:.1f} (p = {:.2g} for what remains; the drop has p = {:.2g}).",
                               name, c.chi_square, c.p_value, c.verdict, e ? e->parameter : c.verdict,
-                              fitted_value(r, d, 0), fitted_uncertainty(r, d, 0), e ? e->unit : "",
+                              fitted_value(r, d, 0), fitted_uncertainty(r, d, 0), e ? e->unit_suffix() : "",
                               c.fits.front().chi_square, c.fits.front().p_after, c.fits.front().p_drop);
   if (c.fits.front().at_bound) s += " The size sits at the bound of its physical range.";
   if (d.named_by_curve)
@@ -293,7 +294,7 @@ std::string verdicts_markdown(const ContrastReport& r) {
     if (names_a_pair(d))
       value = fmt::format("{:.4g}; {:.4g}", d.pair_values[0], d.pair_values[1]);
     else if (named)
-      value = fmt::format("{:.4g} +- {:.2g} {}", fitted_value(r, d, 0), fitted_uncertainty(r, d, 0), e ? e->unit : "");
+      value = fmt::format("{:.4g} +- {:.2g}{}", fitted_value(r, d, 0), fitted_uncertainty(r, d, 0), e ? e->unit_suffix() : "");
     const std::string verdict = d.withheld.empty() ? c.verdict : fmt::format("{} (closest: {})", c.verdict, d.withheld);
     md += fmt::format("| {} | {:.1f} | {:.2g} | {} | {} | {:.0f} % | {:.2f} % -> {} | {} |\n", r.sets.names[d.set],
                       c.chi_square, c.p_value, verdict, value, 100 * d.share, 100 * d.before.nrmse,

@@ -56,9 +56,9 @@ std::string credit_markdown(const EffectCalibration& fit) {
   if (!fit.base_only) return "";
   const CandidateEffect& e = *fit.effect;
   std::string md = fmt::format("Credit: of the chi^2 drop {:.1f}, the fitted base parameters with {} off make {:.1f} "
-                               "(chi^2 {:.1f}, NRMSE {:.1f} %), {} at {:.4g} {} the remaining {:.1f} (p = {:.2g}). ",
+                               "(chi^2 {:.1f}, NRMSE {:.1f} %), {} at {} the remaining {:.1f} (p = {:.2g}). ",
                                fit.credit.total, e.name, fit.credit.by_base, *fit.chi_square_base_only,
-                               100 * fit.base_only->nrmse(), e.name, fit.effect_value(), e.unit, fit.credit.by_effect,
+                               100 * fit.base_only->nrmse(), e.name, e.sized(fit.effect_value()), fit.credit.by_effect,
                                fit.credit.effect_p);
   return md + (fit.credit.effect_supported
                    ? "The effect earns its parameter.\n\n"
@@ -76,9 +76,9 @@ std::string bounds_markdown(const EffectCalibration& fit) {
                         fit.keys[i], fit.best[i], fit.lower[i], fit.upper[i], fit.keys[i]);
   const RangeEnd end = fit.effect_at_bound();
   if (end != RangeEnd::None)
-    md += fmt::format("At bound: {} at {:.4g} {} ({} of its range, {:g}-{:g} plausible sizes from neutral within "
+    md += fmt::format("At bound: {} at {} ({} of its range, {:g}-{:g} plausible sizes from neutral within "
                       "[min, max]).\n\n",
-                      fit.effect->name, fit.effect_value(), fit.effect->unit,
+                      fit.effect->name, fit.effect->sized(fit.effect_value()),
                       end == RangeEnd::Lower ? "the lower end" : "the upper end", fit.lower.back(), fit.upper.back());
   return md;
 }
@@ -88,8 +88,8 @@ std::string parameters_markdown(const EffectCalibration& fit, double time_compre
   for (std::size_t i = 0; i < fit.keys.size(); ++i)
     md += fmt::format("| {} | {:.5g} | {:.5g} |\n", fit.keys[i], fit.start[i], fit.fitted(i));
   if (fit.effect)
-    md += fmt::format("| {} ({}) | {:.5g} (neutral) | {:.5g} {} |\n", fit.effect->parameter, fit.effect->name,
-                      fit.effect->neutral, fit.effect_value(), fit.effect->unit);
+    md += fmt::format("| {} ({}) | {:.5g} (neutral) | {:.5g}{} |\n", fit.effect->parameter, fit.effect->name,
+                      fit.effect->neutral, fit.effect_value(), fit.effect->unit_suffix());
   if (time_compression != 1)
     md += fmt::format("\nSimulated at {0:g} x the measured loading rates (--time-compression): the fitted times are "
                       "model times; in the lab a bond.viscosity_time is {0:g} x the fitted value.\n",

@@ -29,7 +29,7 @@ std::string calibration_markdown(const ContrastSets& sets, const ContrastCalibra
   std::string names, sizes;
   for (std::size_t k = 0; k < c.effects.size(); ++k) {
     names += (k ? " + " : "") + c.effects[k].name;
-    sizes += fmt::format("{}{} = {:.4g} {}", k ? ", " : "", c.effects[k].parameter, c.values[k], c.effects[k].unit);
+    sizes += fmt::format("{}{} = {}", k ? ", " : "", c.effects[k].parameter, c.effects[k].sized(c.values[k]));
   }
   std::string md = fmt::format("# Calibration of {} on {} against {}\n\n", names, sets.names[c.target],
                                sets.names[*sets.reference]);

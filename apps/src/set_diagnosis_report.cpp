@@ -18,12 +18,6 @@ std::string join(const std::vector<std::string>& v, const char* sep = ", ") {
   return s;
 }
 
-std::string model_name(const StepModel& m) {
-  std::string s = "base";
-  for (const auto& [e, v] : m.kept) s += fmt::format(" + {} ({:.4g} {})", e->name, v, e->unit);
-  return s;
-}
-
 std::string values_text(const std::vector<std::string>& keys, const StepModel& m) {
   std::string v;
   for (std::size_t i = 0; i < keys.size(); ++i) v += fmt::format("{}{}={:.4g}", v.empty() ? "" : ", ", keys[i], m.parameters[i]);
@@ -169,8 +163,8 @@ std::string path_markdown(const SetDiagnosisResult& d) {
   for (std::size_t k = 0; k < d.path.size(); ++k) {
     const auto& st = d.path[k];
     const CandidateEffect* e = d.effect(st.effect);
-    md += fmt::format("| {} | {} | {:.4g} {} | {:.1f} -> {:.1f} | {:.1f} -> {:.1f} % | {:.2g} | {} |\n", k + 1, st.effect,
-                      st.value, e ? e->unit : "", st.chi_square_before, st.chi_square_after, 100 * st.nrmse_before,
+    md += fmt::format("| {} | {} | {} | {:.1f} -> {:.1f} | {:.1f} -> {:.1f} % | {:.2g} | {} |\n", k + 1, st.effect,
+                      e ? e->sized(st.value) : fmt::format("{:.4g}", st.value), st.chi_square_before, st.chi_square_after, 100 * st.nrmse_before,
                       100 * st.nrmse_after, st.p_after,
                       st.named ? "named: what remains is noise" : "kept: explains most of the excess, structure remains");
   }
@@ -187,9 +181,9 @@ std::string ranking_markdown(const SetDiagnosisResult& d, const Diagnosis& diagn
       "|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : diagnosis.ranking) {
     const CandidateEffect* e = d.effect(r.name);
-    md += fmt::format("| {}{} | {:.2f} | {:.3g} | {:.0f} % | {:.0f} % | {:.4g} {}{} | {:+.1f} | {:+.1f} | {} |\n", r.name,
+    md += fmt::format("| {}{} | {:.2f} | {:.3g} | {:.0f} % | {:.0f} % | {}{} | {:+.1f} | {:+.1f} | {} |\n", r.name,
                       r.identifiable ? "" : fmt::format(" (identifiable only with {} loading rates)", e->rates_needed),
-                      r.score, r.p_value, 100 * r.explained, 100 * r.absorbed, e->neutral + r.size, e->unit,
+                      r.score, r.p_value, 100 * r.explained, 100 * r.absorbed, e->sized(e->neutral + r.size),
                       !r.at_bound ? "" : r.size == 0 ? " (the data ask for it reversed: outside its physical range)"
                                                      : " (clamped at its physical bound)",
                       r.delta_aic, r.delta_bic, join(r.explains));
@@ -224,10 +218,10 @@ std::string kept_markdown(const SetDiagnosisResult& d, const DiagnosisStepRecord
   for (const auto& c : s.refits)
     if (c.name == kc.name) linear = &c;
   return fmt::format("\nKept: {}, carried towards its minimum before the next step by {} secant step{} (until a step "
-                     "gains less than {:g} in chi^2, at most --refit-iterations): {:.4g} -> {:.4g} {}, chi^2 {:.2f} -> "
+                     "gains less than {:g} in chi^2, at most --refit-iterations): {:.4g} -> {}, chi^2 {:.2f} -> "
                      "{:.2f}, NRMSE {:.1f} -> {:.1f} %; {}.\n",
                      kc.name, kc.secant_steps, kc.secant_steps == 1 ? "" : "s", kConvergedChiSquare,
-                     linear->effect_value, kc.effect_value, kc.effect ? kc.effect->unit : "", linear->chi_square,
+                     linear->effect_value, kc.effect ? kc.effect->sized(kc.effect_value) : fmt::format("{:.4g}", kc.effect_value), linear->chi_square,
                      kc.chi_square, 100 * linear->nrmse, 100 * kc.nrmse, values_text(d.keys, kc.plan.model));
 }
 

@@ -71,6 +71,17 @@ TEST_CASE("value_format puts the scalar into a vector-valued scene key") {
   CHECK_THROWS_WITH_AS(read_effect_library(none), doctest::Contains("one {} where the value goes"), std::runtime_error);
 }
 
+TEST_CASE("a size is printed with its unit, and a dimensionless ratio with none") {
+  const auto lib = read_effect_library(fs::path(SHARD_SOURCE_DIR) / "scenes/measurements/effects.toml");
+  const auto picked = select_effects(lib, {"support_friction", "machine_compliance"});
+  REQUIRE(picked.size() == 2);
+  const CandidateEffect& ratio = picked[0].unit == "1" ? picked[0] : picked[1];
+  const CandidateEffect& compliance = picked[0].unit == "1" ? picked[1] : picked[0];
+  CHECK(ratio.sized(2) == "2");
+  CHECK(compliance.sized(4.87e-5) == "4.87e-05 m/N");
+  CHECK(compliance.unit_suffix() == " m/N");
+}
+
 TEST_CASE("library errors name the file, line and the valid keys") {
   const auto p = write_file("bad.toml", "[[effect]]\nname = \"a\"\nparameter = \"bond.x\"\nneutral = 0\nplausibel = 1\n");
   try {

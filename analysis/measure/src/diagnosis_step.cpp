@@ -29,6 +29,12 @@ std::vector<double> difference(const ResidualVector& r, const ResidualVector& ba
 
 }  // namespace
 
+std::string model_name(const StepModel& m) {
+  std::string s = "base";
+  for (const auto& [e, v] : m.kept) s += fmt::format(" + {} ({})", e->name, e->sized(v));
+  return s;
+}
+
 ModelPlan step_plan(const ModelPlan& scene, const std::vector<std::string>& keys, const StepModel& model) {
   return with_effects(with_parameters(scene, keys, model.parameters), model.kept);
 }
@@ -165,7 +171,7 @@ RefitPlan refit_plan(const std::vector<std::string>& keys, const StepModel& star
     const double value = e.value_at(scale);
     const double asked_value = e.neutral + asked_scale * (e.plausible - e.neutral);
     if (std::abs(effect_scale(e, value) - asked_scale) > 1e-9 * std::max(1.0, std::abs(asked_scale)))
-      r.at_bound.push_back(fmt::format("{} at {:.4g} {} (asked {:.4g}; bound: {})", e.name, value, e.unit, asked_value,
+      r.at_bound.push_back(fmt::format("{} at {} (asked {:.4g}; bound: {})", e.name, e.sized(value), asked_value,
                                        value == e.min || value == e.max ? "its physical range [min, max]"
                                                                         : "0.05-3.9 plausible sizes from neutral"));
     return value;

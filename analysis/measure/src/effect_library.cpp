@@ -86,6 +86,10 @@ std::string CandidateEffect::scene_value(double value) const {
   return out;
 }
 
+std::string CandidateEffect::unit_suffix() const { return unit.empty() || unit == "1" ? "" : " " + unit; }
+
+std::string CandidateEffect::sized(double value) const { return fmt::format("{:.4g}{}", value, unit_suffix()); }
+
 double CandidateEffect::scale_min() const {
   const double step = plausible - neutral;
   return step > 0 ? (min - neutral) / step : (max - neutral) / step;

@@ -18,12 +18,6 @@ const CandidateEffect* SetDiagnosisResult::effect(const std::string& name) const
 
 namespace {
 
-std::string model_name(const StepModel& m) {
-  std::string s = "base";
-  for (const auto& [e, v] : m.kept) s += fmt::format(" + {} ({:.4g} {})", e->name, v, e->unit);
-  return s;
-}
-
 // The information criteria of each refit against the base refit that stands (refits[0]).
 void compare_with_base_refit(std::vector<RefitRun>& refits, std::size_t components) {
   for (std::size_t k = 0; k < refits.size(); ++k) {

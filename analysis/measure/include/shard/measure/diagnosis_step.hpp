@@ -44,6 +44,8 @@ struct StepModel {
   std::vector<double> parameters;  // values of the base parameters (keys)
   std::vector<std::pair<const CandidateEffect*, double>> kept;  // effect, value
 };
+// "base + bond_softening (0.41)": the model a step stands on, as reports and logs name it.
+std::string model_name(const StepModel& m);
 
 ModelPlan step_plan(const ModelPlan& scene, const std::vector<std::string>& keys, const StepModel& model);
 

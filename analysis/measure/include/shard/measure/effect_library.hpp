@@ -70,6 +70,11 @@ struct CandidateEffect {
   std::vector<std::string> overrides(double value) const;
   // The scene's text for the parameter at `value` (value_format applied).
   std::string scene_value(double value) const;
+  // `value` to four digits with its unit as a report prints it: "4.87e-05 m/N", and "2" for a
+  // dimensionless ratio (unit "1").
+  std::string sized(double value) const;
+  // " m/N" to follow a number; "" for a dimensionless ratio.
+  std::string unit_suffix() const;
   // [min, max] as multiples of the trial step plausible - neutral, from neutral.
   double scale_min() const;
   double scale_max() const;
