@@ -7,7 +7,7 @@
 #include <set>
 #include <utility>
 
-#include "../../kernel/src/mpi/partition.hpp"
+#include "../../mpi/src/partition.hpp"
 
 namespace shard::bench {
 

@@ -1,6 +1,6 @@
 #pragma once
 // What a decomposed run's partition would be on P ranks, computed in one process with the
-// decomposition's own Partition (kernel/src/mpi/partition.hpp: every rank computes the same cut
+// decomposition's own Partition (mpi/src/partition.hpp: every rank computes the same cut
 // from the same cell costs): particles owned and ghosts held per rank and the ranks each one
 // exchanges with. The cost model (docs/explanation/scaling.md) takes its ghost and neighbour counts at
 // 16-256 ranks from here, without running that many ranks.

@@ -2,7 +2,7 @@
 // The two points of a step where a sub-domain of a decomposed run talks to its neighbours
 // (docs/explanation/scaling.md). The kernel knows nothing of MPI: a Simulation given a DomainExchange
 // calls it between the drift and the force pass, and after the pair and bond pass; the MPI build
-// (kernel/src/mpi/) implements it. Without one (the default), a Simulation is the whole world.
+// (mpi/) implements it. Without one (the default), a Simulation is the whole world.
 #include <cstdint>
 
 #include "shard/particles.hpp"

@@ -56,7 +56,7 @@ struct StateShare {
   CheckpointRows particles, bonds, contacts;
 };
 
-// The fragment labels of a frame (kernel/src/mpi/fragment_labels.cpp): what the serial labeller and
+// The fragment labels of a frame (mpi/src/fragment_labels.cpp): what the serial labeller and
 // analysis::canonicalise_labels give the whole run, computed where the particles are.
 struct FragmentLabels {
   std::vector<Index> labels;        // this rank's own particles in ascending id (FrameShare's rows)
@@ -152,7 +152,7 @@ class DistributedSimulation {
   StateShare state_share(bool contacts = true) const;
   // A frame's content on `root` (empty elsewhere), by MPI_Gatherv: per particle 11 doubles and 3
   // integers, per bond two ids, against gather_state's 22 doubles, 5 integers and 2 + stride
-  // doubles (kernel/src/mpi/frame_gather.cpp).
+  // doubles (mpi/src/frame_gather.cpp).
   GatheredFrame gather_frame(int root = 0) const;
   // This rank's share of a frame, nothing gathered: two prefix sums, and the rows of the ghosts'
   // owners through the halo links (one integer per ghost).
