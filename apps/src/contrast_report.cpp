@@ -128,11 +128,10 @@ std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
     if (!c.fits.empty()) {
       const ContrastFit& f = c.fits.front();
       const double share = c.chi_square > 0 ? f.drop / c.chi_square : 0;
-      // A fit that takes nearly all of a significant difference away is a lead, not a miss: on a
-      // second draw of the foreign sets at the default resolution, compression_asymmetry 3.006 +-
-      // 0.066 (the truth 3) took T^2 1362 to 130 (90 %) and left p = 0.012, bond_softening 93 %
-      // (p 0.039; the foreign law softens parabolically, the library's linearly). The wrong closest
-      // fits of two draws' Weibull and toe sets took 16-78 %: hence 85 %. The verdict stays.
+      // A fit that takes nearly all of a significant difference away is a lead, not a miss: on
+      // foreign truth a right effect in the lab's own form (a parabolic softening against the
+      // library's linear one) took 90-93 % of T^2, the wrong closest fits 16-78 %: hence 85 %.
+      // The verdict stays; the text points at the effect.
       if (share >= 0.85 && f.p_drop < 0.01) {
         const CandidateEffect* e = effect_named(r, f.name);
         s += fmt::format(" The closest, {} = {:.4g} +- {:.2g}{}, takes {:.0f} % of it away (T^2 {:.1f} -> chi^2 "

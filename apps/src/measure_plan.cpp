@@ -168,6 +168,10 @@ void EnsembleSimulator::check_inputs(const ModelPlan& model, const std::vector<S
           1e3 * scene.particle_diameter));
 }
 
+void EnsembleSimulator::check_model(const ModelPlan& model) {
+  pool_.specimen_setup(model.scene, model.overrides, options_.first_seed);
+}
+
 ParameterRange EnsembleSimulator::parameter_range(const std::string& key) const {
   return plugin_parameter_range(key, plugin_dirs_);
 }

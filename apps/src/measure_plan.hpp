@@ -64,6 +64,7 @@ class EnsembleSimulator final : public measure::Simulator {
   // The replicates of every model, all runs in one parallel batch.
   std::vector<std::vector<measure::Specimen>> simulate(const std::vector<ModelPlan>& models, std::ostream& log) override;
   std::vector<measure::Specimen> simulate(const ModelPlan& model, std::ostream& log) { return simulate_one(model, log); }
+  void check_model(const ModelPlan& model) override;
   double parameter(const ModelPlan& model, const std::string& key) const override { return scene_number(model, key); }
   measure::ParameterRange parameter_range(const std::string& key) const override;
   measure::RunHealth health() const override;

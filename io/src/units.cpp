@@ -43,4 +43,15 @@ std::optional<double> si_factor_of_unit(std::string_view unit) {
   return std::nullopt;
 }
 
+NameWithUnit split_unit_from_name(std::string_view column) {
+  column = strip(column);
+  const bool bracketed = !column.empty() && (column.back() == ']' || column.back() == ')');
+  const std::size_t cut = bracketed ? column.find_last_of(column.back() == ']' ? '[' : '(') : column.rfind('_');
+  if (cut == std::string_view::npos || cut == 0) return {std::string(column), 1, false};
+  const std::string_view unit = bracketed ? column.substr(cut) : column.substr(cut + 1);
+  const std::optional<double> factor = si_factor_of_unit(unit);
+  if (!factor) return {std::string(column), 1, false};
+  return {std::string(strip(column.substr(0, cut))), *factor, true};
+}
+
 }  // namespace shard::io

@@ -118,3 +118,16 @@ TEST_CASE("numbers and units") {
   CHECK(shard::io::si_factor_of_unit(" N/mm² ") == 1e6);
   CHECK_FALSE(shard::io::si_factor_of_unit("lbf"));
 }
+
+TEST_CASE("a unit in a column name") {
+  using shard::io::split_unit_from_name;
+  CHECK(split_unit_from_name("force_kN").name == "force");
+  CHECK(split_unit_from_name("force_kN").factor == 1e3);
+  CHECK(split_unit_from_name("Standardkraft [N]").name == "Standardkraft");
+  CHECK(split_unit_from_name("w (mm)").factor == 1e-3);
+  CHECK(split_unit_from_name("u_displacement_mm").name == "u_displacement");
+  // What follows the '_' is no unit: the name stays whole.
+  CHECK(split_unit_from_name("u_force").name == "u_force");
+  CHECK_FALSE(split_unit_from_name("loading_rate").has_unit);
+  CHECK_FALSE(split_unit_from_name("_s").has_unit);
+}

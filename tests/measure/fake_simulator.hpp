@@ -144,6 +144,7 @@ class FakeSimulator final : public Simulator {
   void check_inputs(const ModelPlan&, const std::vector<Specimen>&, const Metadata& metadata) override {
     test_ = metadata.test;
   }
+  void check_model(const ModelPlan& model) override { parameters_of(model); }
   double parameter(const ModelPlan& model, const std::string& key) const override {
     return parameters_of(model).at(key);
   }

@@ -325,6 +325,12 @@ TEST_CASE("bad input: clear errors before a single run") {
     CHECK_THROWS_WITH_AS(centred_on_reference(effects, s.base, quiet), doctest::Contains("widen the effect's min/max"),
                          std::runtime_error);
   }
+  SUBCASE("an assumption the scene does not take (a misspelt key)") {
+    Study s;
+    s.options.assumptions = parse_overrides({"support.fricton=0.6"});
+    CHECK_THROWS_WITH_AS(s.run(), doctest::Contains("--assumption support.fricton=0.6"), std::runtime_error);
+    CHECK(s.simulator.models_simulated() == 0);
+  }
   SUBCASE("a set of one specimen") {
     Study s;
     s.sets.sets[1].specimens.resize(1);

@@ -189,6 +189,30 @@ TEST_CASE("lab exports: a ';' curve with decimal commas and a units row, a speci
   }
 }
 
+TEST_CASE("units in the column names: a curve as shard run writes it and one in ms, mm and kN") {
+  const auto dir = make_folder("unit_names");
+  write(dir / "curves/A.csv",
+        "time_s,displacement_m,force_N\n0,0,0\n1,1e-5,2\n2,2e-5,4\n3,3e-5,5.5\n4,4e-5,3\n5,5e-5,0.5\n");
+  write(dir / "curves/B.csv",
+        "time [ms],displacement_mm,force_kN\n0,0,0\n1000,0.01,0.002\n2000,0.02,0.004\n3000,0.03,0.0055\n"
+        "4000,0.04,0.003\n5000,0.05,0.0005\n");
+  const MeasurementSet named = read_measurements(dir);
+  const MeasurementSet plain = read_measurements(make_folder("unit_names_plain"));
+  for (std::size_t s = 0; s < 2; ++s) {
+    const auto& a = named.specimens[s].curve;
+    const auto& p = plain.specimens[s].curve;
+    REQUIRE(a.size() == p.size());
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      CHECK(a.time[k] == doctest::Approx(p.time[k]).epsilon(1e-15));
+      CHECK(a.displacement[k] == doctest::Approx(p.displacement[k]).epsilon(1e-15));
+      CHECK(a.force[k] == doctest::Approx(p.force[k]).epsilon(1e-15));
+    }
+  }
+  // A suffix that is no unit stays part of the name, and the error says so.
+  write(dir / "curves/A.csv", "time_x,displacement,force\n0,0,0\n1,1e-5,2\n2,2e-5,4\n");
+  CHECK(std::string(error_of(dir).what()).find("unknown column 'time_x'") != std::string::npos);
+}
+
 TEST_CASE("a ragged lab export names file, line and field") {
   const auto dir = make_folder("lab_ragged");
   write(dir / "curves/B.csv", "time;displacement;force\ns;m;N\n0;0;0\n1;1e-5\n");

@@ -9,6 +9,7 @@
 
 #include "shard/bending/curve_analysis.hpp"
 #include "shard/io/csv.hpp"
+#include "shard/io/units.hpp"
 
 namespace shard::bending {
 namespace {
@@ -22,17 +23,6 @@ std::string trim(const std::string& s) {
   const auto b = s.find_first_not_of(" \t\r");
   const auto e = s.find_last_not_of(" \t\r");
   return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
-}
-
-bool ends_with(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-// The factor to SI from a column name's unit suffix, for files without a units row.
-double name_unit_factor(const std::string& name) {
-  if (ends_with(name, "_mm") || ends_with(name, "[mm]")) return 1e-3;
-  if (ends_with(name, "_kN") || ends_with(name, "[kN]")) return 1e3;
-  return 1.0;
 }
 
 // The first column whose name starts with one of `prefixes` (lower case; the names of Shard's own
@@ -56,8 +46,8 @@ analysis::LoadCurve read_curve_csv(const std::string& path) {
                                          "Standardweg, Extension) and a force column (force..., F..., Standardkraft, "
                                          "Load)",
                                          path, t.header_line()));
-  // A units row converts each value to SI itself; without one, a name ending in _mm or _kN does.
-  auto factor = [&](std::size_t c) { return t.units().empty() ? name_unit_factor(t.header()[c]) : 1.0; };
+  // A units row converts each value to SI itself; without one, a unit in the name does (force_kN).
+  auto factor = [&](std::size_t c) { return t.units().empty() ? io::split_unit_from_name(t.header()[c]).factor : 1.0; };
   analysis::LoadCurve curve;
   for (const auto& row : t.rows()) {
     curve.displacement.push_back(factor(*cw) * t.number(row, *cw, "displacement"));

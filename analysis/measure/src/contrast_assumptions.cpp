@@ -37,6 +37,18 @@ double projection(const std::vector<double>& model, const ContrastStudy::Contras
 
 }  // namespace
 
+void check_assumptions_apply(Simulator& simulator, const ModelPlan& base, const SceneOverrides& assumptions) {
+  for (const SceneOverride& assumption : assumptions) {
+    ModelPlan moved = base;
+    moved.overrides.push_back(assumption);
+    try {
+      simulator.check_model(moved);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(fmt::format("--assumption {}: {}", assumption.text(), e.what()));
+    }
+  }
+}
+
 void assess_assumptions(ContrastStudy& study, const std::vector<CandidateEffect>& effects,
                         std::vector<SetDiagnosis>& sets, const SceneOverrides& assumptions,
                         const ContrastOptions& decide, std::ostream& log) {

@@ -175,6 +175,7 @@ ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simula
                                      const ContrastDiagnosisOptions& options, std::ostream& log) {
   ContrastDiagnosis out;
   check_effects_reach(library, base);
+  check_assumptions_apply(simulator, base, options.assumptions);
   ContrastStudy study(sets, simulator, base_at_grain_size(sets, simulator, base, options.lab_grain_size, log),
                       options.decide.own_scatter_p);
   out.calibration = study.calibrate_base(options.params, options.params.empty() ? 0 : options.base_iterations, log);

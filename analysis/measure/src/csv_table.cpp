@@ -40,7 +40,16 @@ CsvTable CsvTable::read(const std::filesystem::path& file) {
   }
 }
 
-std::optional<std::size_t> CsvTable::find(const std::string& name) const { return table_.find(name); }
+CsvTable::CsvTable(std::filesystem::path file, io::CsvTable table) : file_(std::move(file)), table_(std::move(table)) {
+  for (const std::string& column : table_.header())
+    names_.push_back(table_.units().empty() ? io::split_unit_from_name(column) : io::NameWithUnit{column, 1, false});
+}
+
+std::optional<std::size_t> CsvTable::find(const std::string& name) const {
+  for (std::size_t c = 0; c < names_.size(); ++c)
+    if (names_[c].name == name) return c;
+  return std::nullopt;
+}
 
 std::size_t CsvTable::require(const std::string& name, const std::string& meaning) const {
   if (auto c = find(name)) return *c;
@@ -52,8 +61,8 @@ std::size_t CsvTable::require(const std::string& name, const std::string& meanin
 
 void CsvTable::reject_unknown(const std::vector<std::string>& known) const {
   for (std::size_t c = 0; c < header().size(); ++c) {
-    if (std::find(known.begin(), known.end(), header()[c]) != known.end()) continue;
-    const std::string closest = closest_name(header()[c], known);
+    if (std::find(known.begin(), known.end(), names_[c].name) != known.end()) continue;
+    const std::string closest = closest_name(names_[c].name, known);
     throw MeasurementError(file_, table_.header_line(), static_cast<long>(c + 1),
                            fmt::format("unknown column '{}'", header()[c]),
                            !closest.empty() ? fmt::format("did you mean '{}'?", closest)
@@ -79,7 +88,7 @@ std::optional<double> CsvTable::optional_number(const CsvRow& row, std::size_t c
 
 double CsvTable::number(const CsvRow& row, std::size_t column, const std::string& unit_hint) const {
   try {
-    return table_.number(row, column, unit_hint);
+    return names_.at(column).factor * table_.number(row, column, unit_hint);
   } catch (const io::CsvError& e) {
     throw located(e);
   }

@@ -142,6 +142,9 @@ void confirm_contrast_pairs(ContrastStudy& study,
                             std::vector<SetDiagnosis>& sets,
                             int count, int iterations, ContrastOptions decide, std::ostream& log);
 
+// Throws, naming the assumption, when the scene does not take one (a misspelt key): before any run.
+void check_assumptions_apply(Simulator& simulator, const ModelPlan& base, const SceneOverrides& assumptions);
+
 // Each assumption moved on the fitted base: every set's shown model (the named effect or pair, or
 // the closest) rerun there at its confirmed size, and its contrast held against the measured one.
 void assess_assumptions(ContrastStudy& study, const std::vector<CandidateEffect>& effects,

@@ -31,6 +31,10 @@ class Simulator {
   // fragment threshold) and throws, naming both, when the specimens' geometry is not the model's.
   virtual void check_inputs(const ModelPlan& model, const std::vector<Specimen>& specimens,
                             const Metadata& metadata) = 0;
+  // Throws the scene's own error (file, key, the fix) when `model`'s scene does not load with its
+  // overrides: a model the study asks for only late (an assumption moved after the base fit) is
+  // checked before the first run.
+  virtual void check_model(const ModelPlan& model) = 0;
   // The value of a model's section.key parameter, and the range its plugin accepts.
   virtual double parameter(const ModelPlan& model, const std::string& key) const = 0;
   virtual ParameterRange parameter_range(const std::string& key) const = 0;
