@@ -18,7 +18,6 @@ class ImpactTracker {
  public:
   // One record per body of the whole scene (the same on every rank).
   explicit ImpactTracker(const BodyCount& bodies);
-  explicit ImpactTracker(const Particles& whole) : ImpactTracker(body_count(whole)) {}
 
   // Collective; call after every step. A step in which no rank began a wall contact sends nothing
   // (the count travels with the step's own reduction); a step in which some did, one all-gather of

@@ -9,6 +9,9 @@
 //    backend computes from the whole scene (but for the generator's own timing);
 //  - after the start: the ranks own every particle exactly once, and a rank other than 0 holds
 //    (owned and ghost copies) fewer particles than the whole scene.
+// With the arguments `overlap DIR`: three spheres, two generated inside one another, blow up
+// within 20 steps (tests/reliability's serial case); the initial packing is on rank 0 alone, and
+// every rank's NumericalError still names the overlap (rank 0 finds it and shares its figures).
 // A decomposed run's results against the serial run are test_mpi_run's, test_mpi_drops' and
 // test_mpi_materials'.
 #include <mpi.h>
@@ -16,12 +19,15 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
 #include "mpi/mpi_backend.hpp"
 #include "serial_backend.hpp"
 #include "shard/driver/distributed_run.hpp"
+#include "shard/driver/numerical_health.hpp"
+#include "shard/driver/run_driver.hpp"
 #include "shard/plugin_host.hpp"
 #include "shard/scene.hpp"
 
@@ -61,13 +67,55 @@ bool same(const WholeScene& a, const WholeScene& b) {
   return ok;
 }
 
+// Two 1 mm spheres 0.1 mm apart (190 % of the radius overlap) and a third apart; dt = 1e-5 s is
+// below the spring's critical step, so the overlap alone is the cause.
+void overlap(const fs::path& dir, const PluginHost& host) {
+  if (rank_ == 0) {
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::ofstream(dir / "spheres.csv") << "x,y,z,r\n0,0,0.002,0.001\n0,0,0.0021,0.001\n0.004,0,0.002,0.001\n";
+    std::ofstream(dir / "scene.toml") << R"([simulation]
+duration = 0.001
+dt = 1e-5
+[material]
+density = 2500
+[generator]
+plugin = "from_file"
+spheres = "spheres.csv"
+bonds = ""
+max_overlap = 2.0
+[contact]
+plugin = "linear_spring"
+normal_stiffness = 1e5
+)";
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  driver::RunSpec spec;
+  spec.scene = dir / "scene.toml";
+  spec.out_dir = dir;
+  spec.threads = 1;
+  std::string message;
+  try {
+    driver::run_distributed(spec, host, {});
+  } catch (const NumericalError& e) {
+    message = e.what();
+  }
+  std::printf("rank %d: %s\n", rank_, message.c_str());
+  check(message.find("overlapping initial packing: particles 0 and 1 overlapped by 190 %") != std::string::npos,
+        "every rank's blow-up names the overlapping initial packing that rank 0 alone holds");
+}
+
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
   const driver::MpiSession mpi;
   rank_ = mpi.rank();
   PluginHost host;
   host.load_directories({fs::path(SHARD_BUILD_DIR) / "plugins"});
+  if (argc > 2 && std::string(argv[1]) == "overlap") {
+    overlap(argv[2], host);
+    return failures > 0 ? 1 : 0;
+  }
   const Scene scene = load_scene(fs::path(SHARD_SOURCE_DIR) / "tests" / "mpi" / "materials.toml", host);
   // The reference: what a serial run reads of the whole scene (every rank makes it here, for the
   // test only; the scene is small).
