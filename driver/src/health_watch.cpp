@@ -88,32 +88,18 @@ std::vector<Flagged> moving(const RunBackend& run) {
   return out;
 }
 
-// The energy scale a gain is judged against at the start: the larger of |energy0| and the
-// round-off floor. A body at rest holds only round-off energy (1e-30 J), whose growth is no
-// blow-up; the kinetic energy of every particle moving 1e-6 of its radius per step is negligible
-// physics, and a real instability passes it within a few steps.
-double initial_scale(const Simulation& whole, double energy0) {
-  double round_off_floor = 0;
-  const Particles& p = whole.particles();
-  for (std::size_t k = 0; k < p.size(); ++k) {
-    const double v = 1e-6 * p.radius[k] / whole.dt();
-    round_off_floor += 0.5 * p.mass[k] * v * v;
-  }
-  return std::max(std::abs(energy0), round_off_floor);
-}
-
 }  // namespace
 
-NumericalHealth::NumericalHealth(const Simulation& whole, const Vec3& gravity)
+NumericalHealth::NumericalHealth(const WholeScene& whole, const Simulation* packing, const Vec3& gravity)
     : gravity_(gravity),
-      limits_(whole.time_step_limits()),
-      initial_position_(whole.particles().position),
-      initial_radius_(whole.particles().radius),
-      initial_id_(whole.particles().id) {
-  const Energies e = whole.energies();
-  energy0_ = e.kinetic + e.bond + e.contact;
-  potential0_ = e.gravity;
-  scale_ = initial_scale(whole, energy0_);
+      limits_(whole.limits),
+      energy0_(whole.energy0),
+      potential0_(whole.potential0),
+      scale_(whole.energy_scale) {
+  if (!packing) return;
+  initial_position_ = packing->particles().position;
+  initial_radius_ = packing->particles().radius;
+  initial_id_ = packing->particles().id;
 }
 
 void NumericalHealth::after_step(const RunBackend& run) {
@@ -140,7 +126,7 @@ void NumericalHealth::check(const RunBackend& run, const std::string& last_good)
   const std::string when = fmt::format("step {} (t = {:.6g} s)", local.step_count(), local.time());
   const auto fail = [&](const std::string& what, const std::vector<Index>& ids, double count) {
     throw NumericalError(fmt::format("{}: the run blew up: {} (particle ids {}). Likely cause: {}. {}", when, what,
-                                     ids_text(ids, count), likely_cause(dt, ids), last_good));
+                                     ids_text(ids, count), likely_cause(run, dt, ids), last_good));
   };
   if (all[5] > 0) fail("non-finite position, velocity or force", worst_over_ranks(run, own.non_finite), all[5]);
   if (all[6] > 0)
@@ -164,14 +150,14 @@ void NumericalHealth::check(const RunBackend& run, const std::string& last_good)
   scale_ = std::max({scale_, std::abs(mechanical), std::abs(potential), std::abs(work), std::abs(energy0_)});
 }
 
-std::string NumericalHealth::likely_cause(double dt, const std::vector<Index>& ids) const {
+std::string NumericalHealth::likely_cause(const RunBackend& run, double dt, const std::vector<Index>& ids) const {
   std::vector<std::string> causes;
   for (const auto& limit : limits_)
     if (dt > limit.critical)
       causes.push_back(fmt::format("the time step {:.4g} s is above the critical step {:.4g} s of {}: set [simulation] "
                                    "dt = \"auto\" or at most {:.4g} s",
                                    dt, limit.critical, limit.name, limit.recommended));
-  const std::string overlap = initial_overlap(ids);
+  const std::string overlap = initial_overlap(run, ids);
   if (!overlap.empty()) causes.push_back(overlap);
   if (causes.empty())
     causes.push_back(fmt::format("no model's time-step limit is exceeded (dt = {:.4g} s); look for a wall moving too "
@@ -183,8 +169,9 @@ std::string NumericalHealth::likely_cause(double dt, const std::vector<Index>& i
 }
 
 // Overlaps of the named particles in the starting state: a packing generated or edited with
-// spheres inside one another releases their overlap energy at once.
-std::string NumericalHealth::initial_overlap(const std::vector<Index>& ids) const {
+// spheres inside one another releases their overlap energy at once. Only the process holding the
+// initial packing finds one; the others add zeros to its figures, so every rank words it alike.
+std::string NumericalHealth::initial_overlap(const RunBackend& run, const std::vector<Index>& ids) const {
   double deepest = 0;
   Index a_id = 0, b_id = 0;
   for (const Index id : ids) {
@@ -203,6 +190,11 @@ std::string NumericalHealth::initial_overlap(const std::vector<Index>& ids) cons
       }
     }
   }
+  const std::vector<double> found =
+      run.sum_over_ranks({deepest, static_cast<double>(a_id), static_cast<double>(b_id)});
+  deepest = found[0];
+  a_id = static_cast<Index>(found[1]);
+  b_id = static_cast<Index>(found[2]);
   if (deepest <= 0.1) return {};
   return fmt::format("an overlapping initial packing: particles {} and {} overlapped by {:.0f} % of the smaller radius "
                      "at the start; regenerate the packing with a gap or check the particle file",

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "run_backend.hpp"
+#include "whole_scene.hpp"
 #include "shard/driver/numerical_health.hpp"
 
 namespace shard::driver::detail {
@@ -26,9 +27,10 @@ class NumericalHealth {
   static constexpr double kMaxStepOverRadius = 0.5;
   static constexpr double kMaxTurnPerStep = 0.5;  // rad
 
-  // `whole` is the whole scene as instantiated (the same on every rank): the energy baseline, the
-  // time-step limits and the initial packing a message looks into; `gravity` the scene's, m/s^2.
-  NumericalHealth(const Simulation& whole, const Vec3& gravity);
+  // `whole`: the whole scene's energy baseline and time-step limits (the same on every rank);
+  // `packing`: the whole scene's Simulation at the start where this process holds it (null
+  // elsewhere), the initial packing a message looks into; `gravity` the scene's, m/s^2.
+  NumericalHealth(const WholeScene& whole, const Simulation* packing, const Vec3& gravity);
 
   // Accumulates the work of the walls (rank 0) and of this rank's gripped particles; call after
   // every step.
@@ -44,12 +46,13 @@ class NumericalHealth {
   void restore(const std::vector<double>& s, int rank);
 
  private:
-  std::string likely_cause(double dt, const std::vector<Index>& ids) const;
-  std::string initial_overlap(const std::vector<Index>& ids) const;
+  // Collective (the initial packing is on one rank).
+  std::string likely_cause(const RunBackend& run, double dt, const std::vector<Index>& ids) const;
+  std::string initial_overlap(const RunBackend& run, const std::vector<Index>& ids) const;
 
   Vec3 gravity_;
   std::vector<TimeStepLimit> limits_;
-  std::vector<Vec3> initial_position_;
+  std::vector<Vec3> initial_position_;  // empty where the whole scene was not instantiated
   std::vector<double> initial_radius_;
   std::vector<Index> initial_id_;
   double energy0_ = 0;     // kinetic + bond + contact at the start, J

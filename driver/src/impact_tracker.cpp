@@ -10,14 +10,12 @@ namespace {
 constexpr std::size_t kOffer = 6;  // numbers per offer: body, wall, sphere id, normal
 }  // namespace
 
-ImpactTracker::ImpactTracker(const Particles& whole) {
-  std::int32_t top = -1;
-  for (std::int32_t b : whole.body) top = std::max(top, b);
-  impacts_.resize(static_cast<std::size_t>(top + 1));
+ImpactTracker::ImpactTracker(const BodyCount& bodies) {
+  impacts_.resize(bodies.bodies);
   candidate_.resize(impacts_.size());
   slot_.resize(impacts_.size());
   remaining_ = impacts_.size();
-  bodies_known_ = whole.body.size() == whole.size();
+  bodies_known_ = bodies.known;
 }
 
 void ImpactTracker::restore(const std::vector<double>& state) {

@@ -10,13 +10,14 @@
 
 #include "shard/body_impacts.hpp"
 #include "run_backend.hpp"
+#include "whole_scene.hpp"
 
 namespace shard::driver::detail {
 
 class ImpactTracker {
  public:
-  // `whole` is the whole scene as instantiated (the same on every rank): one record per body.
-  explicit ImpactTracker(const Particles& whole);
+  // One record per body of the whole scene (the same on every rank).
+  explicit ImpactTracker(const BodyCount& bodies);
 
   // Collective; call after every step. A step in which no rank began a wall contact sends nothing
   // (the count travels with the step's own reduction); a step in which some did, one all-gather of

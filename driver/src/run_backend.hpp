@@ -16,6 +16,7 @@
 #include "shard/output.hpp"
 #include "shard/scene.hpp"
 #include "shard/simulation.hpp"
+#include "whole_scene.hpp"
 
 namespace shard::driver::detail {
 
@@ -44,14 +45,15 @@ class RunBackend {
   virtual void barrier() const = 0;
   // How the run file is opened (every rank of a decomposed run holds it open through MPI-IO).
   virtual RunWriterAccess run_file_access() const = 0;
-  // How `instantiate` obtains each body's packing here (empty: its generator plugin, in this
-  // process). Every process instantiates the scene; the packing need not be made by each.
-  virtual BodyPacker body_packer(const Scene& scene, const PluginHost& host,
-                                 const std::function<void(const std::string&)>& log) const = 0;
-  // Builds this process's simulation from the whole scene as instantiated (`inst.simulation`,
+  // This process's part of the scene, instantiated: the whole scene where it is generated (once
+  // per run), the models alone elsewhere; and the whole scene's figures on every process. A
+  // failure to instantiate reaches every rank alike.
+  virtual ScenePart instantiate(const Scene& scene, const PluginHost& host,
+                                const std::function<void(const std::string&)>& log) const = 0;
+  // Builds this process's simulation from its part of the scene (`part.instance.simulation`,
   // released here), or from the checkpoint `from`. Throws std::invalid_argument for a state it
   // cannot hold.
-  virtual void start(const Scene& scene, SceneInstance& inst, const SimulationState* from) = 0;
+  virtual void start(const Scene& scene, ScenePart& part, const SimulationState* from) = 0;
   // The run's notes for the run file and its log ("" serially).
   virtual void add_notes(RunMetadata& meta, bool restarting) const = 0;
   virtual std::string where() const = 0;  // ", over N MPI ranks"

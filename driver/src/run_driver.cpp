@@ -125,25 +125,24 @@ void prepare_run_output(const RunSpec& spec, const Scene& scene) {
                                   run_file.string()));
 }
 
-RunMetadataDraft run_metadata(const Scene& scene, const SceneInstance& inst, const PluginHost& host) {
-  const Simulation& sim = *inst.simulation;
+RunMetadataDraft run_metadata(const Scene& scene, const WholeScene& whole, const PluginHost& host) {
   RunMetadataDraft draft;
   RunMetadata& meta = draft.meta;
-  const TimeStepReport time_step = time_step_report(scene, sim);
+  const TimeStepReport time_step = time_step_report(scene, whole.limits, whole.dt);
   for (const auto& [key, line] : time_step.limits) {
     draft.lines.push_back(line);
     meta.notes.emplace_back(key, line);
   }
   draft.lines.push_back(time_step.chosen);
-  meta.notes.emplace_back("dt", fmt::format("{:.17g}", sim.dt()));
-  for (const auto& [k, v] : inst.body.quality) draft.lines.push_back(fmt::format("packing {} = {:.6g}", k, v));
+  meta.notes.emplace_back("dt", fmt::format("{:.17g}", whole.dt));
+  for (const auto& [k, v] : whole.quality) draft.lines.push_back(fmt::format("packing {} = {:.6g}", k, v));
   meta.scene_text = scene.resolved_text;
   meta.scene_file = scene.file.string();
   meta.seed = scene.seed;
   // The code that ran it (shard/version.hpp); git_revision is empty for a build outside git.
   meta.shard_version = std::string(version());
   meta.git_revision = std::string(git_describe());
-  meta.generator_quality = inst.body.quality;
+  meta.generator_quality = whole.quality;
   auto record = [&](PluginKind kind, const char* label, const PluginChoice& c, const std::string& body = {}) {
     const auto& p = host.find(kind, c.name);
     meta.plugins.emplace_back(fmt::format("{}/{}{}", label, c.name, body.empty() ? "" : "/" + body),

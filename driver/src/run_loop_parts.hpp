@@ -15,6 +15,7 @@
 #include "shard/driver/run_observer.hpp"
 #include "shard/output.hpp"
 #include "shard/scene.hpp"
+#include "whole_scene.hpp"
 
 namespace shard::driver::detail {
 
@@ -40,12 +41,12 @@ RunStart read_run_start(const RunSpec& spec, const PluginHost& host, const RunLo
 // packing's time.
 void prepare_run_output(const RunSpec& spec, const Scene& scene);
 // The run file's metadata of a new run, and the lines the run's log shows of it (time step,
-// packing quality), from the whole scene as instantiated.
+// packing quality), from the whole scene's figures.
 struct RunMetadataDraft {
   RunMetadata meta;
   std::vector<std::string> lines;
 };
-RunMetadataDraft run_metadata(const Scene& scene, const SceneInstance& inst, const PluginHost& host);
+RunMetadataDraft run_metadata(const Scene& scene, const WholeScene& whole, const PluginHost& host);
 double kinetic_to_elastic_up_to_peak(const RunResult& r);
 // Where a numerical error's message sends the user: the last checkpoint, if any.
 std::string last_good_state(const RunResult& r);

@@ -23,9 +23,9 @@ using Info = std::function<void(const std::string&)>;
 
 // The backend's simulation from the instantiated scene or the restart's checkpoint; a state it
 // cannot hold is the checkpoint's fault on a restart, the scene's otherwise.
-void start_backend(RunBackend& backend, const RunSpec& spec, const RunStart& start, SceneInstance& inst) {
+void start_backend(RunBackend& backend, const RunSpec& spec, const RunStart& start, ScenePart& part) {
   try {
-    backend.start(start.scene, inst, start.restart_point ? &start.restart_point->simulation : nullptr);
+    backend.start(start.scene, part, start.restart_point ? &start.restart_point->simulation : nullptr);
   } catch (const std::invalid_argument& e) {
     if (start.restarting)
       throw CheckpointError(fmt::format("cannot continue from {}: {}", checkpoint_path_for(spec.restart).string(),
@@ -187,16 +187,15 @@ RunResult run_scene(const RunSpec& spec, const PluginHost& host, const std::vect
       read_run_start(spec, host, log, [&](const std::filesystem::path& c) { return backend.read_restart(c); });
   const Scene& scene = start.scene;
   if (!start.restarting) backend.on_root([&] { prepare_run_output(spec, scene); });
-  // The whole scene in every process (its packing made once, by the backend's packer): the backend
-  // keeps its part; the health watch, the impacts and the metadata read it first.
-  SceneInstance inst = instantiate(scene, host, info, backend.body_packer(scene, host, info));
-  NumericalHealth health(*inst.simulation, scene.gravity);
-  ImpactTracker impacts(inst.simulation->particles());  // first wall contact per body (docs/reference/bodies.md)
-  const RunMetadataDraft draft = run_metadata(scene, inst, host);
+  // The scene generated once (the whole of it in one process, the models alone in the others);
+  // the health watch, the impacts and the metadata read the whole scene's figures.
+  ScenePart part = backend.instantiate(scene, host, info);
+  NumericalHealth health(part.whole, part.instance.simulation.get(), scene.gravity);
+  ImpactTracker impacts(part.whole.bodies);  // first wall contact per body (docs/reference/bodies.md)
+  const RunMetadataDraft draft = run_metadata(scene, part.whole, host);
   RunResult result;
-  result.particles =
-      start.restart_point ? start.restart_point->simulation.particles.size() : inst.simulation->particles().size();
-  start_backend(backend, spec, start, inst);
+  result.particles = start.restart_point ? start.restart_point->simulation.particles.size() : part.whole.particles;
+  start_backend(backend, spec, start, part);
   Simulation& sim = backend.local();
   // The network as the run began: a restart counts the bonds broken before it too, so the progress
   // line's intact / initial and broken add up.

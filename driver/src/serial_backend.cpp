@@ -9,8 +9,16 @@ Checkpoint SerialBackend::read_restart(const std::filesystem::path& checkpoint) 
   return read_checkpoint(checkpoint);
 }
 
-void SerialBackend::start(const Scene&, SceneInstance& inst, const SimulationState* from) {
-  sim_ = std::move(inst.simulation);
+ScenePart SerialBackend::instantiate(const Scene& scene, const PluginHost& host,
+                                     const std::function<void(const std::string&)>& log) const {
+  ScenePart part;
+  part.instance = shard::instantiate(scene, host, log);
+  part.whole = whole_scene_of(part.instance);
+  return part;
+}
+
+void SerialBackend::start(const Scene&, ScenePart& part, const SimulationState* from) {
+  sim_ = std::move(part.instance.simulation);
   if (from) sim_->import_state(*from);
 }
 

@@ -15,7 +15,9 @@ class SerialBackend final : public RunBackend {
   void on_all(const std::function<void()>& work) const override { work(); }
   void barrier() const override {}
   RunWriterAccess run_file_access() const override { return {}; }
-  void start(const Scene& scene, SceneInstance& inst, const SimulationState* from) override;
+  ScenePart instantiate(const Scene& scene, const PluginHost& host,
+                        const std::function<void(const std::string&)>& log) const override;
+  void start(const Scene& scene, ScenePart& part, const SimulationState* from) override;
   void add_notes(RunMetadata&, bool) const override {}
   std::string where() const override { return {}; }
 
@@ -32,9 +34,6 @@ class SerialBackend final : public RunBackend {
   std::int64_t wall_contacts_begun_anywhere() const override { return static_cast<std::int64_t>(begun_.size()); }
   std::vector<BondBreakEvent> take_new_break_events() override { return sim_->take_new_break_events(); }
   void write_checkpoint(Checkpoint& loop, const std::filesystem::path& file) const override;
-  BodyPacker body_packer(const Scene&, const PluginHost&, const std::function<void(const std::string&)>&) const override {
-    return {};
-  }
   double deformation_kinetic_energy() const override;
   void write_frame(RunWriter& writer, RunState& state, const std::function<void()>& before_frame) override;
 

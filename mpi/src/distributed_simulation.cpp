@@ -50,7 +50,8 @@ double DistributedSimulation::take_rows(const SimulationSetup& setup, std::size_
                                         Owned& owned) const {
   const Particles& p = setup.particles;
   const std::size_t n = p.size();
-  owned.bond_stride = bond_ ? bond_->state_size() : 0;
+  // A new bond has no state to send: the bond model initialises it on the rank it lands on.
+  owned.bond_stride = 0;
   owned.history_stride = contact_ ? contact_->history_size() : 0;
   for (std::size_t k = begin; k < end; ++k) owned.particles.push_back(record_of(p, k));
   std::vector<std::pair<Index, Index>> bonds;
@@ -69,7 +70,6 @@ double DistributedSimulation::take_rows(const SimulationSetup& setup, std::size_
   for (const auto& [a, b] : bonds) {
     owned.bonds.push_back(a);
     owned.bonds.push_back(b);
-    owned.bonds.insert(owned.bonds.end(), owned.bond_stride, 0.0);  // the bond model initialises it
   }
   return longest;
 }
@@ -280,7 +280,8 @@ void DistributedSimulation::distribute(Owned owned, double longest_bond, Simulat
   halo_->reset(std::move(links));
 
   // Bonds and contacts in local indices; a far end not held here would be a gap in the ghost layer.
-  const std::size_t bond_stride = bond_ ? bond_->state_size() : 0;
+  // The state values each bond record carries (the same on every rank: none for a new scene's).
+  const std::size_t bond_stride = bond_record - 2;
   const std::size_t history_stride = contact_ ? contact_->history_size() : 0;
   const auto held = [&](double id, const char* what) {
     const Index k = local_index(static_cast<Index>(id));

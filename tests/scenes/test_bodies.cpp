@@ -443,12 +443,12 @@ TEST_CASE("the impacts come from the kernel's begun wall contacts and equal a sc
     // The same floor as a belt: it carries, so the bars record no impact although they land on it.
     if (belt) text.replace(text.find("normal = [0, 0, 1]\n"), 19, "normal = [0, 0, 1]\nbelt_speed = 0.5\nbelt_direction = [1, 0, 0]\n");
     const Scene scene = load(text);
-    SceneInstance inst = instantiate(scene, plugins(), {});
     // The run driver's tracker over a serial run, as `shard run` records /body_impacts.
     driver::detail::SerialBackend run;
-    run.start(scene, inst, nullptr);
+    driver::detail::ScenePart part = run.instantiate(scene, plugins(), {});
+    run.start(scene, part, nullptr);
     const Simulation& sim = run.local();
-    driver::detail::ImpactTracker recorder(sim.particles());
+    driver::detail::ImpactTracker recorder(part.whole.bodies);
     std::map<std::pair<Index, std::int32_t>, Vec3> before = touching_now(sim);
     std::vector<std::int64_t> first_step(2, -1);
     std::vector<Vec3> first_velocity(2, Vec3::Zero()), first_normal(2, Vec3::Zero());

@@ -5,8 +5,12 @@
 #include <fmt/format.h>
 #include <mpi.h>
 
+#include <climits>
 #include <cstdio>
 #include <cstdlib>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include "../run_scene.hpp"
 #include "mpi_backend.hpp"
@@ -50,8 +54,26 @@ void abort_job(const std::string& message) {
   std::exit(1);
 }
 
+namespace {
+
+// Every frame and checkpoint allocates and frees the rank's share of the state (tens of MB). By
+// default glibc maps each block above 32 MiB anew and hands freed memory at the heap's top back to
+// the system, so every checkpoint faults its pages in again: the seed beam on 2 ranks, 6
+// checkpoints in 40 steps, took 35.8 s after its set-up this way and 19.4-19.9 s with the freed memory
+// kept (system time 6.3-7.3 s against 2.4-2.6 s per rank). A rank holds its peak memory for the
+// whole run anyway, so keeping what it frees costs nothing.
+void keep_freed_memory() {
+#ifdef __GLIBC__
+  mallopt(M_MMAP_MAX, 0);
+  mallopt(M_TRIM_THRESHOLD, INT_MAX);
+#endif
+}
+
+}  // namespace
+
 RunResult run_distributed(const RunSpec& spec, const PluginHost& host, const std::vector<RunObserver*>& observers,
                           const RunLog& log) {
+  keep_freed_memory();
   detail::MpiBackend backend;
   return detail::run_scene(spec, host, observers, log, backend);
 }

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <climits>
+#include <exception>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -121,28 +122,46 @@ void wait_for_root() {
   }
 }
 
-// Rank 0's packing on every rank: positions, radii, materials, bonds and the quality figures.
-void broadcast(GeneratedBody& body) {
-  broadcast(body.position);
-  broadcast(body.radius);
-  broadcast(body.material);
-  broadcast(body.bonds);
-  std::vector<double> values;
-  std::string names;
-  for (const auto& [name, value] : body.quality) {
-    values.push_back(value);
-    names += name + '\n';
-  }
-  broadcast(values);
-  std::vector<char> text(names.begin(), names.end());
+// Rank 0's strings on every rank (names: no string holds a NUL).
+void broadcast(std::vector<std::string>& v) {
+  std::vector<char> text;
+  for (const std::string& s : v) text.insert(text.end(), s.c_str(), s.c_str() + s.size() + 1);
   broadcast(text);
-  body.quality.clear();
-  std::size_t at = 0;
-  for (double value : values) {
-    const auto end = std::find(text.begin() + static_cast<std::ptrdiff_t>(at), text.end(), '\n');
-    body.quality.emplace_back(std::string(text.begin() + static_cast<std::ptrdiff_t>(at), end), value);
-    at = static_cast<std::size_t>(end - text.begin()) + 1;
+  v.clear();
+  for (auto at = text.begin(); at != text.end();) {
+    const auto end = std::find(at, text.end(), '\0');
+    v.emplace_back(at, end);
+    at = end == text.end() ? end : end + 1;
   }
+}
+
+// Rank 0's figures of the whole scene on every rank: a few numbers and names, no particle.
+void broadcast(WholeScene& w) {
+  std::vector<double> numbers = {static_cast<double>(w.particles), w.dt, static_cast<double>(w.bodies.bodies),
+                                 w.bodies.known ? 1.0 : 0.0, w.energy0, w.potential0, w.energy_scale,
+                                 static_cast<double>(w.limits.size())};
+  std::vector<std::string> names;
+  for (const auto& l : w.limits) {
+    names.push_back(l.name);
+    numbers.insert(numbers.end(), {l.critical, l.recommended});
+  }
+  for (const auto& [name, value] : w.quality) {
+    names.push_back(name);
+    numbers.push_back(value);
+  }
+  broadcast(numbers);
+  broadcast(names);
+  w.particles = static_cast<std::size_t>(numbers[0]);
+  w.dt = numbers[1];
+  w.bodies = {static_cast<std::size_t>(numbers[2]), numbers[3] != 0};
+  w.energy0 = numbers[4];
+  w.potential0 = numbers[5];
+  w.energy_scale = numbers[6];
+  w.limits.resize(static_cast<std::size_t>(numbers[7]));
+  w.quality.resize(names.size() - w.limits.size());
+  std::size_t at = 8;
+  for (std::size_t k = 0; k < w.limits.size(); ++k, at += 2) w.limits[k] = {names[k], numbers[at], numbers[at + 1]};
+  for (std::size_t k = 0; k < w.quality.size(); ++k, ++at) w.quality[k] = {names[w.limits.size() + k], numbers[at]};
 }
 
 // analysis::deformation_kinetic_energy over every rank's particles: the kinetic energy less that
@@ -237,37 +256,45 @@ void MpiBackend::on_all(const std::function<void()>& work) const { run_on_all(wo
 void MpiBackend::barrier() const { MPI_Barrier(MPI_COMM_WORLD); }
 RunWriterAccess MpiBackend::run_file_access() const { return shared_run_file(rank_); }
 
-// Rank 0 makes each packing and sends it to the others, which wait meanwhile: the generation is
-// paid once, not once per rank (docs/explanation/scaling.md). Its failure is the scene's on every rank.
-BodyPacker MpiBackend::body_packer(const Scene& scene, const PluginHost& host,
-                                   const std::function<void(const std::string&)>& log) const {
-  return [this, &scene, &host, log](const BodySpec& spec) {
-    GeneratedBody body;
-    std::vector<char> error;
-    if (rank_ == 0) {
-      try {
-        body = generate_body(spec, scene, host, log);
-      } catch (const std::exception& e) {
-        const std::string what = e.what();
-        error.assign(what.begin(), what.end());
-      }
+// Rank 0 generates the scene and builds it whole while the others wait without spinning (the
+// generation is paid once, not once per rank: docs/explanation/scaling.md); its failure is the
+// scene's on every rank. The others build the models alone: the first partition sends them their
+// particles and bonds, and the whole scene's figures come from rank 0.
+ScenePart MpiBackend::instantiate(const Scene& scene, const PluginHost& host,
+                                  const std::function<void(const std::string&)>& log) const {
+  ScenePart part;
+  std::exception_ptr failure;
+  std::vector<char> error;
+  if (rank_ == 0) {
+    try {
+      part.instance = shard::instantiate(scene, host, log);
+      part.whole = whole_scene_of(part.instance);
+    } catch (const std::exception& e) {
+      failure = std::current_exception();
+      const std::string what = *e.what() ? e.what() : "the scene could not be instantiated on rank 0";
+      error.assign(what.begin(), what.end());
     }
-    wait_for_root();
-    broadcast(error);
-    if (!error.empty()) throw SceneError(std::string(error.begin(), error.end()));
-    broadcast(body);
-    return body;
-  };
+  }
+  wait_for_root();
+  broadcast(error);
+  if (failure) std::rethrow_exception(failure);
+  if (!error.empty()) throw SceneError(std::string(error.begin(), error.end()));
+  broadcast(part.whole);
+  if (rank_ != 0) part.instance = instantiate_models(scene, host, log);
+  return part;
 }
 
-// Every rank places its part of the whole scene (or of the checkpoint), then lets the whole scene
-// go: it was needed for the baseline and the metadata only.
-void MpiBackend::start(const Scene& scene, SceneInstance& inst, const SimulationState* from) {
-  if (from)
-    dist_.emplace(MPI_COMM_WORLD, setup_of(scene, inst), *from);
-  else
-    dist_.emplace(MPI_COMM_WORLD, setup_of(scene, inst));
+// Rank 0 holds the whole scene, the others none: the first partition sends every particle and
+// bond to its owner. A restart places the checkpoint's particles; the scene gives the models.
+void MpiBackend::start(const Scene& scene, ScenePart& part, const SimulationState* from) {
+  SceneInstance& inst = part.instance;
+  const bool whole_here = inst.simulation && !from;
+  SimulationSetup setup = whole_here ? setup_of(scene, inst) : setup_without_particles(scene, inst, part.whole.dt);
   inst.simulation.reset();
+  if (from)
+    dist_.emplace(MPI_COMM_WORLD, std::move(setup), *from);
+  else
+    dist_.emplace(MPI_COMM_WORLD, std::move(setup), mpi::DistributedSimulation::ScatteredScene{});
   events_written_ = from ? from->events_taken : 0;
   whole_.bonds_broken = dist_->bonds_broken();
   whole_.bonds_intact = dist_->bond_count();

@@ -20,9 +20,9 @@ class MpiBackend final : public RunBackend {
   void on_all(const std::function<void()>& work) const override;
   void barrier() const override;
   RunWriterAccess run_file_access() const override;
-  BodyPacker body_packer(const Scene& scene, const PluginHost& host,
-                         const std::function<void(const std::string&)>& log) const override;
-  void start(const Scene& scene, SceneInstance& inst, const SimulationState* from) override;
+  ScenePart instantiate(const Scene& scene, const PluginHost& host,
+                        const std::function<void(const std::string&)>& log) const override;
+  void start(const Scene& scene, ScenePart& part, const SimulationState* from) override;
   void add_notes(RunMetadata& meta, bool restarting) const override;
   std::string where() const override;
 

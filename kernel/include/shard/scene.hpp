@@ -159,20 +159,21 @@ struct SceneInstance {
   std::unique_ptr<Simulation> simulation;
 };
 
-// How instantiate obtains the packing of each [[body]] entry (one per entry, in the scene's order):
-// by default generate_body, its generator plugin; a run decomposed over MPI ranks generates it on
-// one rank and hands it to the others.
-using BodyPacker = std::function<GeneratedBody(const BodySpec& spec)>;
-GeneratedBody generate_body(const BodySpec& spec, const Scene& scene, const PluginHost& host,
-                            const std::function<void(const std::string&)>& log);
-
+// Generates every body's packing with its generator plugin and builds the whole scene's Simulation.
 SceneInstance instantiate(const Scene& scene, const PluginHost& host,
-                          const std::function<void(const std::string&)>& log, const BodyPacker& packer = {});
+                          const std::function<void(const std::string&)>& log);
+// The scene's contact and bond models alone (no bodies, no Simulation): what a process holding none
+// of the scene's particles needs, e.g. an MPI rank other than the one that generated the scene.
+SceneInstance instantiate_models(const Scene& scene, const PluginHost& host,
+                                 const std::function<void(const std::string&)>& log);
 
 // The setup the instance's Simulation was built from, taken back from it (particles with their
 // ids and grips, bonds, the models, the scene's walls and settings, dt as the Simulation chose
 // it): what another simulation of the same scene starts from, e.g. one decomposed over MPI ranks.
 SimulationSetup setup_of(const Scene& scene, const SceneInstance& inst);
+// The same without particles or bonds, for an instance of the models alone: the models, the scene's
+// walls and settings, and `dt` (the whole scene's, as its Simulation chose it).
+SimulationSetup setup_without_particles(const Scene& scene, const SceneInstance& inst, double dt);
 
 // "name=value; name=value" for the output's plugin records.
 std::string describe(const ParamSet& params);

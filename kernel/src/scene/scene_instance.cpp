@@ -55,38 +55,9 @@ void set_scene_fields(SimulationSetup& setup, const Scene& scene, const SceneIns
 
 }  // namespace
 
-GeneratedBody generate_body(const BodySpec& spec, const Scene& scene, const PluginHost& host,
-                            const std::function<void(const std::string&)>& log) {
-  return generate(spec, scene, host, log);
-}
-
-SceneInstance instantiate(const Scene& scene, const PluginHost& host,
-                          const std::function<void(const std::string&)>& log, const BodyPacker& packer) {
+SceneInstance instantiate_models(const Scene& scene, const PluginHost& host,
+                                 const std::function<void(const std::string&)>& log) {
   SceneInstance out;
-  scene_detail::PlacedBodies placed;
-  for (std::size_t s = 0; s < scene.bodies.size(); ++s) {
-    const BodySpec& spec = scene.bodies[s];
-    const GeneratedBody packing = packer ? packer(spec) : generate(spec, scene, host, log);
-    for (const auto& [name, value] : packing.quality)
-      placed.all.quality.emplace_back(spec.from_generator_section ? name : spec.name + "." + name, value);
-    scene_detail::place_body(spec, s, packing, placed);
-    if (log && !spec.from_generator_section)
-      log(fmt::format("body {}: {} particles, {} bonds{}", spec.name, packing.position.size(), packing.bonds.size(),
-                      spec.stream ? fmt::format(", {} copies", spec.stream->copies) : std::string()));
-  }
-  scene_detail::check_body_overlaps(placed, scene.bodies);
-  scene_detail::check_bodies_reach_walls(placed, scene.bodies, scene.walls, scene.gravity);
-  // With [[material]] entries every particle is of its body's material (docs/reference/materials.md); a
-  // one-material scene keeps the generator's material column as it is.
-  std::vector<double> density(placed.all.position.size(), scene.density);
-  for (std::size_t k = 0; k < density.size(); ++k) {
-    const BodySpec& spec = scene.bodies[placed.spec_of[static_cast<std::size_t>(placed.body[k])]];
-    if (!scene.material_table) continue;
-    placed.all.material[k] = spec.material;
-    density[k] = scene.materials[static_cast<std::size_t>(spec.material)].density;
-  }
-  out.body = std::move(placed.all);
-  out.body_names = std::move(placed.body_names);
   // The plugins' own parameter checks (an unknown effect policy, a modulus <= 0) name the section.
   try {
     if (scene.contact) out.contact = host.make_contact(scene.contact->name, scene.contact->params);
@@ -112,6 +83,36 @@ SceneInstance instantiate(const Scene& scene, const PluginHost& host,
   } catch (const std::invalid_argument& e) {
     throw SceneError(fmt::format("{}: [bond] {}", scene.bond->where, e.what()));
   }
+  return out;
+}
+
+SceneInstance instantiate(const Scene& scene, const PluginHost& host,
+                          const std::function<void(const std::string&)>& log) {
+  scene_detail::PlacedBodies placed;
+  for (std::size_t s = 0; s < scene.bodies.size(); ++s) {
+    const BodySpec& spec = scene.bodies[s];
+    const GeneratedBody packing = generate(spec, scene, host, log);
+    for (const auto& [name, value] : packing.quality)
+      placed.all.quality.emplace_back(spec.from_generator_section ? name : spec.name + "." + name, value);
+    scene_detail::place_body(spec, s, packing, placed);
+    if (log && !spec.from_generator_section)
+      log(fmt::format("body {}: {} particles, {} bonds{}", spec.name, packing.position.size(), packing.bonds.size(),
+                      spec.stream ? fmt::format(", {} copies", spec.stream->copies) : std::string()));
+  }
+  scene_detail::check_body_overlaps(placed, scene.bodies);
+  scene_detail::check_bodies_reach_walls(placed, scene.bodies, scene.walls, scene.gravity);
+  // With [[material]] entries every particle is of its body's material (docs/reference/materials.md); a
+  // one-material scene keeps the generator's material column as it is.
+  std::vector<double> density(placed.all.position.size(), scene.density);
+  for (std::size_t k = 0; k < density.size(); ++k) {
+    const BodySpec& spec = scene.bodies[placed.spec_of[static_cast<std::size_t>(placed.body[k])]];
+    if (!scene.material_table) continue;
+    placed.all.material[k] = spec.material;
+    density[k] = scene.materials[static_cast<std::size_t>(spec.material)].density;
+  }
+  SceneInstance out = instantiate_models(scene, host, log);
+  out.body = std::move(placed.all);
+  out.body_names = std::move(placed.body_names);
 
   SimulationSetup setup;
   const std::size_t n = out.body.position.size();
@@ -146,6 +147,13 @@ SceneInstance instantiate(const Scene& scene, const PluginHost& host,
     throw SceneError(fmt::format("{}: {}", scene.file.string(), e.what()));
   }
   return out;
+}
+
+SimulationSetup setup_without_particles(const Scene& scene, const SceneInstance& inst, double dt) {
+  SimulationSetup s;
+  set_scene_fields(s, scene, inst);
+  s.dt = dt;
+  return s;
 }
 
 SimulationSetup setup_of(const Scene& scene, const SceneInstance& inst) {

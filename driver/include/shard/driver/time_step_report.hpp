@@ -6,6 +6,8 @@
 #include <utility>
 #include <vector>
 
+#include "shard/time_step.hpp"
+
 namespace shard {
 struct Scene;
 class Simulation;
@@ -19,5 +21,7 @@ struct TimeStepReport {
 };
 
 TimeStepReport time_step_report(const Scene& scene, const Simulation& sim);
+// The same from the models' limits over the whole scene and the step its Simulation chose, s.
+TimeStepReport time_step_report(const Scene& scene, const std::vector<TimeStepLimit>& limits, double dt);
 
 }  // namespace shard::driver
