@@ -57,11 +57,10 @@ void abort_job(const std::string& message) {
 namespace {
 
 // Every frame and checkpoint allocates and frees the rank's share of the state (tens of MB). By
-// default glibc maps each block above 32 MiB anew and hands freed memory at the heap's top back to
-// the system, so every checkpoint faults its pages in again: the seed beam on 2 ranks, 6
-// checkpoints in 40 steps, took 35.8 s after its set-up this way and 19.4-19.9 s with the freed memory
-// kept (system time 6.3-7.3 s against 2.4-2.6 s per rank). A rank holds its peak memory for the
-// whole run anyway, so keeping what it frees costs nothing.
+// default glibc maps each large block anew and hands freed memory at the heap's top back to the
+// system, so every checkpoint would fault its pages in again (docs/explanation/performance.md,
+// "Set-up of a decomposed run"). A rank holds its peak memory for the whole run anyway, so
+// keeping what it frees costs nothing.
 void keep_freed_memory() {
 #ifdef __GLIBC__
   mallopt(M_MMAP_MAX, 0);
