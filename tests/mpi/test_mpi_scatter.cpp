@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "../common/overlap_scene.hpp"
 #include "mpi/mpi_backend.hpp"
 #include "serial_backend.hpp"
 #include "shard/driver/distributed_run.hpp"
@@ -67,27 +68,12 @@ bool same(const WholeScene& a, const WholeScene& b) {
   return ok;
 }
 
-// Two 1 mm spheres 0.1 mm apart (190 % of the radius overlap) and a third apart; dt = 1e-5 s is
-// below the spring's critical step, so the overlap alone is the cause.
+// The packing's overlap (tests/common/overlap_scene.hpp) is found on rank 0, which alone holds it.
 void overlap(const fs::path& dir, const PluginHost& host) {
   if (rank_ == 0) {
     fs::remove_all(dir);
     fs::create_directories(dir);
-    std::ofstream(dir / "spheres.csv") << "x,y,z,r\n0,0,0.002,0.001\n0,0,0.0021,0.001\n0.004,0,0.002,0.001\n";
-    std::ofstream(dir / "scene.toml") << R"([simulation]
-duration = 0.001
-dt = 1e-5
-[material]
-density = 2500
-[generator]
-plugin = "from_file"
-spheres = "spheres.csv"
-bonds = ""
-max_overlap = 2.0
-[contact]
-plugin = "linear_spring"
-normal_stiffness = 1e5
-)";
+    test::write_overlap_scene(dir);
   }
   MPI_Barrier(MPI_COMM_WORLD);
   driver::RunSpec spec;

@@ -4,6 +4,7 @@
 
 #include "shard/driver/numerical_health.hpp"
 #include "reliability_fixtures.hpp"
+#include "../common/overlap_scene.hpp"
 #include "shard/app/run_command.hpp"
 
 using namespace shard;
@@ -54,26 +55,8 @@ TEST_CASE("a time step far above the bonds' critical step is stopped within a fe
 TEST_CASE("spheres generated inside one another: the blow-up names the overlapping initial packing") {
   std::ostringstream log;
   const auto dir = scratch("overlap");
-  // Two 1 mm spheres 0.1 mm apart: 190 % of the radius overlap. dt = 1e-5 s is below the
-  // spring's critical step (2.3e-5 s), so the overlap alone is named as the cause; with dt
-  // "auto" (1.1e-6 s) the spring resolves even this, and nothing blows up.
-  std::ofstream(dir / "spheres.csv") << "x,y,z,r\n0,0,0.002,0.001\n0,0,0.0021,0.001\n0.004,0,0.002,0.001\n";
-  std::ofstream(dir / "scene.toml") << R"([simulation]
-duration = 0.001
-dt = 1e-5
-[material]
-density = 2500
-[generator]
-plugin = "from_file"
-spheres = "spheres.csv"
-bonds = ""
-max_overlap = 2.0
-[contact]
-plugin = "linear_spring"
-normal_stiffness = 1e5
-)";
   RunOptions o;
-  o.scene = dir / "scene.toml";
+  o.scene = test::write_overlap_scene(dir);
   o.out_dir = dir;
   o.quiet = true;
   std::string message;
