@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdlib>
+#include <utility>
 
 namespace shard::h5 {
 
@@ -22,6 +23,22 @@ Handle fresh_attribute(hid_t object, const std::string& name, hid_t file_type) {
   return attribute_handle(
       H5Acreate2(object, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
       "creating attribute '" + name + "'");
+}
+
+// Rows [first, first + rows) of `dataset`, `cols` values each (0: a 1-D dataset): its file space
+// with them selected, and a memory space of their shape, for one H5Dread or H5Dwrite.
+struct RowSelection {
+  Handle file, memory;
+};
+RowSelection select_rows(hid_t dataset, std::size_t first, std::size_t rows, std::size_t cols,
+                         const std::string& what) {
+  Handle file = space_handle(H5Dget_space(dataset), "selecting in " + what);
+  const std::array<hsize_t, 2> start{first, 0}, count{rows, cols};
+  check(H5Sselect_hyperslab(file.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr),
+        "selecting rows of " + what);
+  Handle memory = space_handle(H5Screate_simple(cols == 0 ? 1 : 2, count.data(), nullptr),
+                               "creating the memory space for " + what);
+  return {std::move(file), std::move(memory)};
 }
 
 template <class T>
@@ -251,17 +268,8 @@ void read_dataset(hid_t parent, const std::string& path, hid_t memory_type, void
   if (rows == 0) return;
   Handle dataset = dataset_handle(H5Dopen2(parent, path.c_str(), H5P_DEFAULT),
                                   "opening dataset '" + path + "'");
-  Handle file_space = space_handle(H5Dget_space(dataset.get()), "selecting in '" + path + "'");
-  const int rank = cols == 0 ? 1 : 2;
-  const std::array<hsize_t, 2> start{0, 0};
-  const std::array<hsize_t, 2> count{rows, cols};
-  check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr,
-                            count.data(), nullptr),
-        "selecting rows of '" + path + "'");
-  Handle memory_space = space_handle(H5Screate_simple(rank, count.data(), nullptr),
-                                     "creating the memory space for '" + path + "'");
-  check(H5Dread(dataset.get(), memory_type, memory_space.get(), file_space.get(), H5P_DEFAULT,
-                out),
+  const RowSelection selected = select_rows(dataset.get(), 0, rows, cols, "'" + path + "'");
+  check(H5Dread(dataset.get(), memory_type, selected.memory.get(), selected.file.get(), H5P_DEFAULT, out),
         "reading dataset '" + path + "'");
 }
 
@@ -285,13 +293,8 @@ void record_frame_address(hid_t index, std::size_t k, hid_t group) {
   H5O_info_t info{};
   check(H5Oget_info2(group, &info, H5O_INFO_BASIC), "locating frame " + std::to_string(k));
   const std::uint64_t address = info.addr;
-  Handle file_space = space_handle(H5Dget_space(index), "selecting in the frame index");
-  const hsize_t start = k, count = 1;
-  check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, &start, nullptr, &count, nullptr),
-        "selecting frame index entry " + std::to_string(k));
-  Handle memory_space = space_handle(H5Screate_simple(1, &count, nullptr), "frame index entry");
-  check(H5Dwrite(index, H5T_NATIVE_UINT64, memory_space.get(), file_space.get(), H5P_DEFAULT,
-                 &address),
+  const RowSelection entry = select_rows(index, k, 1, 0, "frame index entry " + std::to_string(k));
+  check(H5Dwrite(index, H5T_NATIVE_UINT64, entry.memory.get(), entry.file.get(), H5P_DEFAULT, &address),
         "recording frame " + std::to_string(k) + " in the frame index");
 }
 
@@ -325,19 +328,10 @@ Column::Column(hid_t parent, const std::string& name, hid_t file_type, hid_t mem
 
 void Column::append(const void* data, std::size_t rows) {
   if (rows == 0) return;
-  const int rank = cols_ == 0 ? 1 : 2;
   const std::array<hsize_t, 2> new_dims{rows_ + rows, cols_};
   check(H5Dset_extent(dataset_.get(), new_dims.data()), "extending '" + name_ + "'");
-  Handle file_space = space_handle(H5Dget_space(dataset_.get()), "selecting in '" + name_ + "'");
-  const std::array<hsize_t, 2> start{rows_, 0};
-  const std::array<hsize_t, 2> count{rows, cols_};
-  check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr,
-                            count.data(), nullptr),
-        "selecting new rows of '" + name_ + "'");
-  Handle memory_space = space_handle(H5Screate_simple(rank, count.data(), nullptr),
-                                     "creating the memory space for '" + name_ + "'");
-  check(H5Dwrite(dataset_.get(), memory_type_, memory_space.get(), file_space.get(),
-                 H5P_DEFAULT, data),
+  const RowSelection added = select_rows(dataset_.get(), rows_, rows, cols_, "the new rows of '" + name_ + "'");
+  check(H5Dwrite(dataset_.get(), memory_type_, added.memory.get(), added.file.get(), H5P_DEFAULT, data),
         "appending to '" + name_ + "'");
   rows_ += rows;
 }
