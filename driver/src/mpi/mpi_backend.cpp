@@ -27,6 +27,17 @@ int world_rank() {
 // Runs `work` on rank 0 only, then every rank learns whether it failed: a failure is thrown on
 // every rank as an OutputError with rank 0's message (the others would otherwise wait for rank 0
 // in the next collective call forever).
+// Rank `root`'s `v` (a vector of plain values, or a string) on every rank.
+template <class Contiguous>
+void broadcast(Contiguous& v, int root = 0) {
+  unsigned long long size = v.size();
+  MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG_LONG, root, MPI_COMM_WORLD);
+  v.resize(static_cast<std::size_t>(size));
+  const std::size_t bytes = v.size() * sizeof(typename Contiguous::value_type);
+  if (bytes > static_cast<std::size_t>(INT_MAX)) throw OutputError("more than 2 GiB cannot go out in one broadcast");
+  MPI_Bcast(v.data(), static_cast<int>(bytes), MPI_BYTE, root, MPI_COMM_WORLD);
+}
+
 void run_on_root(const std::function<void()>& work) {
   std::string error;
   if (world_rank() == 0) {
@@ -36,12 +47,8 @@ void run_on_root(const std::function<void()>& work) {
       error = e.what();
     }
   }
-  int size = static_cast<int>(error.size());
-  MPI_Bcast(&size, 1, MPI_INT, 0, MPI_COMM_WORLD);
-  if (size == 0) return;
-  error.resize(static_cast<std::size_t>(size));
-  MPI_Bcast(error.data(), size, MPI_CHAR, 0, MPI_COMM_WORLD);
-  throw OutputError(error);
+  broadcast(error);
+  if (!error.empty()) throw OutputError(error);
 }
 
 // Runs `work` on every rank (a call of the run file's writer, which every rank makes alike), then
@@ -59,10 +66,7 @@ void run_on_all(const std::function<void()>& work) {
   int first = INT_MAX;
   MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
   if (first == INT_MAX) return;
-  int size = static_cast<int>(error.size());
-  MPI_Bcast(&size, 1, MPI_INT, first, MPI_COMM_WORLD);
-  error.resize(static_cast<std::size_t>(size));
-  MPI_Bcast(error.data(), size, MPI_CHAR, first, MPI_COMM_WORLD);
+  broadcast(error, first);
   throw OutputError(error);
 }
 
@@ -92,23 +96,7 @@ void same_as_root(Checkpoint& c) {
   for (const auto& [name, value] : c.numbers) numbers.push_back(value);
   MPI_Bcast(numbers.data(), static_cast<int>(numbers.size()), MPI_DOUBLE, 0, MPI_COMM_WORLD);
   for (std::size_t k = 0; k < numbers.size(); ++k) c.numbers[k].second = numbers[k];
-  for (auto& [name, values] : c.arrays) {
-    unsigned long long size = values.size();
-    MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
-    values.resize(static_cast<std::size_t>(size));
-    MPI_Bcast(values.data(), static_cast<int>(size), MPI_DOUBLE, 0, MPI_COMM_WORLD);
-  }
-}
-
-// Rank 0's `v` on every rank.
-template <class T>
-void broadcast(std::vector<T>& v) {
-  unsigned long long size = v.size();
-  MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
-  v.resize(static_cast<std::size_t>(size));
-  const std::size_t bytes = v.size() * sizeof(T);
-  if (bytes > static_cast<std::size_t>(INT_MAX)) throw OutputError("a body's packing above 2 GiB cannot be broadcast");
-  MPI_Bcast(v.data(), static_cast<int>(bytes), MPI_BYTE, 0, MPI_COMM_WORLD);
+  for (auto& [name, values] : c.arrays) broadcast(values);
 }
 
 // Until rank 0 arrives: the others wait without spinning (a rank in a blocking MPI call polls
