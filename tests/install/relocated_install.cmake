@@ -1,8 +1,10 @@
 # A relocatable install, as a user moves it: `cmake --install` into a scratch prefix, the prefix
 # moved to another folder, then the moved `shard` must list every plugin the build has, each from
 # the moved prefix (never from the build tree), find its templates, and run an installed scene.
-# The build tree is only read.
-# Run: cmake -DSHARD_BUILD_DIR=<build> -DWORK_DIR=<scratch> -DVERSION=<x.y.z> -P relocated_install.cmake
+# The build tree is only read. LAUNCHER (optional, a list such as "mpiexec;-n;2"): the scene runs
+# under it, and the run must say it was decomposed over that many MPI ranks (RANKS).
+# Run: cmake -DSHARD_BUILD_DIR=<build> -DWORK_DIR=<scratch> -DVERSION=<x.y.z> [-DLAUNCHER=... -DRANKS=N]
+#            -P relocated_install.cmake
 set(required_vars SHARD_BUILD_DIR WORK_DIR VERSION)
 include(${CMAKE_CURRENT_LIST_DIR}/command_line.cmake)
 
@@ -56,10 +58,13 @@ if(NOT scene)
   message(FATAL_ERROR "no four_point_bending.toml installed under ${prefix}/share")
 endif()
 run(${clean_env} "${shard}" check "${scene}")
-run(${clean_env} "${shard}" run "${scene}" --out "${WORK_DIR}/run" --threads 1 --quiet
-    --set simulation.duration=0.004)
+run(${clean_env} ${LAUNCHER} "${shard}" run "${scene}" --out "${WORK_DIR}/run" --threads 1 --set simulation.duration=0.004)
 if(NOT EXISTS "${WORK_DIR}/run/run.h5")
   message(FATAL_ERROR "the installed scene wrote no run.h5:\n${run_log}")
+endif()
+if(LAUNCHER)
+  string(REPLACE ";" " " launcher_line "${LAUNCHER}")
+  expect_match("the installed scene under ${launcher_line}" "${run_output}${run_log}" "over ${RANKS} MPI ranks")
 endif()
 message(STATUS "the installed four_point_bending.toml ran from the moved prefix")
 file(REMOVE_RECURSE "${WORK_DIR}")
