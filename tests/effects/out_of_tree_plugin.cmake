@@ -6,21 +6,8 @@
 #   4. the installed `shard --plugin-dir <build>/plugins plugins` loads and lists it, and the
 #      installed plugin folder holds the shipped plugins.
 # Run: cmake -DSHARD_BUILD_DIR=<build> -DWORK_DIR=<scratch> -P out_of_tree_plugin.cmake
-foreach(var SHARD_BUILD_DIR SHARD_SOURCE_DIR WORK_DIR)
-  if(NOT DEFINED ${var})
-    message(FATAL_ERROR "out_of_tree_plugin: -D${var}= is required")
-  endif()
-endforeach()
-
-function(run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    string(REPLACE ";" " " cmd "${ARGN}")
-    message(FATAL_ERROR "failed (${rc}): ${cmd}\n${out}\n${err}")
-  endif()
-  set(run_output "${out}" PARENT_SCOPE)
-  set(run_log "${err}" PARENT_SCOPE)  # a run's report (peak load, time steps) goes to stderr
-endfunction()
+set(required_vars SHARD_BUILD_DIR SHARD_SOURCE_DIR WORK_DIR)
+include(${CMAKE_CURRENT_LIST_DIR}/../install/command_line.cmake)  # run(), expect_match()
 
 file(REMOVE_RECURSE "${WORK_DIR}")
 set(prefix "${WORK_DIR}/prefix")

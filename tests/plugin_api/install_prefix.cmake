@@ -1,21 +1,6 @@
 # Shared by the installed-API scripts: run(), and a fresh install of the build into ${prefix}.
-foreach(var SHARD_BUILD_DIR SHARD_SOURCE_DIR WORK_DIR)
-  if(NOT DEFINED ${var})
-    message(FATAL_ERROR "-D${var}= is required")
-  endif()
-endforeach()
-
-# Runs a command, failing the test with its output; run_output / run_log: its stdout / stderr
-# (a run's report, peak load and time steps, goes to stderr).
-function(run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    string(REPLACE ";" " " cmd "${ARGN}")
-    message(FATAL_ERROR "failed (${rc}): ${cmd}\n${out}\n${err}")
-  endif()
-  set(run_output "${out}" PARENT_SCOPE)
-  set(run_log "${err}" PARENT_SCOPE)
-endfunction()
+set(required_vars SHARD_BUILD_DIR SHARD_SOURCE_DIR WORK_DIR)
+include(${CMAKE_CURRENT_LIST_DIR}/../install/command_line.cmake)  # run(), expect_match()
 
 file(REMOVE_RECURSE "${WORK_DIR}")
 set(prefix "${WORK_DIR}/prefix")
