@@ -30,18 +30,13 @@ const fs::path kWork = fs::current_path() / "foreign_contrast_work";
 const std::string kScene = std::string(SHARD_SOURCE_DIR) + "/scenes/measurements/tiny_bending.toml";
 const std::string kParams = " --param bond.youngs_modulus --param bond.critical_stress";
 
-using shard_test::number_after;
+using nlohmann::json;
+using shard_test::element_with;
 using shard_test::read_text;
-using shard_test::string_after;
 
-// "name": "<set>" as diagnose.json writes it (appended piecewise: GCC 12 warns falsely on the
-// inlined operator+ chain, -Wrestrict).
-std::string name_key(const std::string& set) {
-  std::string key = "\"name\": \"";
-  key += set;
-  key += '"';
-  return key;
-}
+// The format versions of the contrast form's documents (diagnose.json and calibrate.json of
+// `diagnose SETS` and `calibrate SETS`), each read with the strict parser.
+constexpr int kContrastDiagnoseVersion = 2, kContrastCalibrateVersion = 2;
 
 }  // namespace
 
@@ -57,10 +52,13 @@ TEST_CASE("contrast diagnosis on foreign truth: null, four library effects, one 
   shard_test::run_shard("diagnose" + folders + " --reference reference --scene " + kScene + " --work " +
                             (kWork / "model").string() + kParams + " --out " + diag.string(),
                         kWork);
-  const std::string json = read_text(diag / "diagnose.json");
+  const json diagnosis = shard_test::read_document(diag / "diagnose.json", kContrastDiagnoseVersion);
+  const auto set_result = [&](const std::string& set) -> const json& {
+    return element_with(diagnosis.at("sets"), "name", set);
+  };
   std::map<std::string, std::string> verdict;
   for (const char* s : {"null", "compliance", "weibull", "softening", "asymmetry", "toe", "both"})
-    verdict[s] = string_after(json, "\"verdict\": \"", json.find(name_key(s)));
+    verdict[s] = set_result(s).at("verdict").get<std::string>();
   for (const auto& [set, v] : verdict) MESSAGE(set << ": " << v);
 
   CHECK(verdict["null"] == "no difference");
@@ -70,8 +68,7 @@ TEST_CASE("contrast diagnosis on foreign truth: null, four library effects, one 
   // bond_softening explains it (six draws of these sets: both named in 6, compliance 1.76-2.17e-4
   // m/N; docs/explanation/diagnosis.md, "Lab data: contrasts across sets").
   CHECK(verdict["both"] == "machine_compliance + bond_softening");
-  const auto both_at = json.find(name_key("both"));
-  const double both_compliance = number_after(json, "\"values\": [", json.find("\"pair\": {", both_at));
+  const double both_compliance = set_result("both").at("pair").at("values").at(0).get<double>();
   MESSAGE("both: machine_compliance " << both_compliance << " m/N (truth 2e-4)");
   CHECK(both_compliance > 1e-4);
   CHECK(both_compliance < 4e-4);
@@ -82,10 +79,10 @@ TEST_CASE("contrast diagnosis on foreign truth: null, four library effects, one 
                             " --reference reference --with machine_compliance --with bond_softening --scene " + kScene +
                             " --work " + (kWork / "model").string() + kParams + " --out " + cal_both.string(),
                         kWork);
-  const std::string cb = read_text(cal_both / "calibrate.json");
-  const double both_before = number_after(cb, "\"nrmse_before\": "), both_after = number_after(cb, "\"nrmse_after\": ");
+  const json cb = shard_test::read_document(cal_both / "calibrate.json", kContrastCalibrateVersion);
+  const double both_before = cb.at("nrmse_before").get<double>(), both_after = cb.at("nrmse_after").get<double>();
   MESSAGE("both: contrast NRMSE " << both_before << " -> " << both_after << " with both effects calibrated");
-  CHECK(cb.find("\"effect\": \"machine_compliance + bond_softening\"") != std::string::npos);
+  CHECK(cb.at("effect") == "machine_compliance + bond_softening");
   CHECK(both_after <= 0.5 * both_before);
   // The outside effect gets no lead: its closest fit (machine_compliance, 42 % of T^2 on this draw)
   // takes far less than the 85 % of the difference that makes the report point to a library effect.
@@ -106,8 +103,7 @@ TEST_CASE("contrast diagnosis on foreign truth: null, four library effects, one 
   for (const auto& [set, effect] : hidden)
     if (verdict[set] == effect) {
       ++named;
-      const auto at = json.find(name_key(set));
-      const double nrmse = std::stod(json.substr(json.find("\"nrmse_base\": ", at) + 14));
+      const double nrmse = set_result(set).at("nrmse_base").get<double>();
       if (nrmse > largest) largest = nrmse, calibrate_set = set;
     }
   CHECK(named >= 3);
@@ -118,8 +114,8 @@ TEST_CASE("contrast diagnosis on foreign truth: null, four library effects, one 
                             " --reference reference --with " + hidden.at(calibrate_set) + " --scene " + kScene +
                             " --work " + (kWork / "model").string() + kParams + " --out " + cal.string(),
                         kWork);
-  const std::string c = read_text(cal / "calibrate.json");
-  const double before = number_after(c, "\"nrmse_before\": "), after = number_after(c, "\"nrmse_after\": ");
+  const json c = shard_test::read_document(cal / "calibrate.json", kContrastCalibrateVersion);
+  const double before = c.at("nrmse_before").get<double>(), after = c.at("nrmse_after").get<double>();
   MESSAGE(calibrate_set << ": contrast NRMSE " << before << " -> " << after);
   CHECK(after <= 0.5 * before);
 }
@@ -147,21 +143,21 @@ TEST_CASE("the base fit moves bond.poisson_ratio on foreign truth: the post-peak
     args += " --only machine_compliance --confirm 0 --out ";
     args += (kWork / out).string();
     shard_test::run_shard(args, kWork);
-    return read_text(kWork / out / "diagnose.json");
+    return shard_test::read_document(kWork / out / "diagnose.json", kContrastDiagnoseVersion);
   };
-  const std::string two = fit(kParams, "base_two");
+  const json two = fit(kParams, "base_two");
   std::string three_params = kParams;
   // tiny_bending.toml leaves poisson_ratio at beam_bond's default; a base parameter is read from the scene.
   three_params += " --param bond.poisson_ratio --set bond.poisson_ratio=0.25";
-  const std::string three = fit(three_params, "base_three");
-  const double nrmse_two = number_after(two, "\"form_error_nrmse\": ");
-  const double nrmse_three = number_after(three, "\"form_error_nrmse\": ");
-  const double poisson = number_after(three, "\"bond.poisson_ratio\": ");
-  const double u_poisson = number_after(three, "\"bond.poisson_ratio\": ", three.find("\"base_uncertainty\""));
+  const json three = fit(three_params, "base_three");
+  const double nrmse_two = two.at("form_error_nrmse").get<double>();
+  const double nrmse_three = three.at("form_error_nrmse").get<double>();
+  const double poisson = three.at("base").at("bond.poisson_ratio").get<double>();
+  const double u_poisson = three.at("base_uncertainty").at("bond.poisson_ratio").get<double>();
   MESSAGE("form error NRMSE " << nrmse_two << " -> " << nrmse_three << ", poisson_ratio " << poisson << " +- "
                               << u_poisson);
-  CHECK(three.find("\"base_form_targets\": true") != std::string::npos);
-  CHECK(two.find("\"base_form_targets\": false") != std::string::npos);
+  CHECK(three.at("base_form_targets") == true);
+  CHECK(two.at("base_form_targets") == false);
   // Measured: 6.7 % -> 2.6 % (the sets' noise floor against their own model is 2.8 %), poisson_ratio
   // 0.125 +- 0.028 with sigma_crit 7 % higher: the fit found another route than the by-hand
   // poisson 0.4 (one parameter moved at a time), so the direction is not asserted, the move is.
