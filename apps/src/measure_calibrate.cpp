@@ -13,6 +13,7 @@
 #include "measure_commands.hpp"
 #include "measure_plan.hpp"
 #include "option_checks.hpp"
+#include "model_history.hpp"
 #include "shard/app/commands.hpp"
 #include "shard/driver/output_folder.hpp"
 #include "shard/io/json.hpp"

@@ -14,6 +14,7 @@
 
 #include "measure_commands.hpp"
 #include "measure_plan.hpp"
+#include "model_history.hpp"
 #include "shard/driver/output_folder.hpp"
 #include "shard/io/json.hpp"
 #include "shard/app/commands.hpp"

@@ -14,6 +14,7 @@
 #include "contrast_report.hpp"
 #include "shard/driver/output_folder.hpp"
 #include "measure_commands.hpp"
+#include "model_history.hpp"
 #include "shard/io/json.hpp"
 #include "shard/measure/contrast_calibration.hpp"
 #include "shard/app/commands.hpp"

@@ -9,7 +9,7 @@
 #include <set>
 
 #include "measure_commands.hpp"
-#include "measure_plan.hpp"
+#include "model_history.hpp"
 #include "shard/app/commands.hpp"
 #include "shard/measure/report.hpp"
 

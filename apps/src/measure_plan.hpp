@@ -1,7 +1,6 @@
 #pragma once
 // What the measurement commands share: a model (scene + overrides + machine compliance), its
-// packing-seed replicates run through the RunPool, the options every command takes, and the
-// model-history file.
+// packing-seed replicates run through the RunPool, and the options every command takes.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -118,21 +117,5 @@ using measure::RateComparison;
 std::vector<RateComparison> simulate_and_compare(EnsembleSimulator& simulator, const RateGroups& groups,
                                                  const measure::Metadata& metadata, const std::vector<ModelPlan>& models,
                                                  std::ostream& log);
-
-// One model version in <work>/history.jsonl: what `shard history` tabulates.
-struct HistoryEntry {
-  std::string command, label;
-  std::vector<std::string> effects;
-  std::map<std::string, double> parameters;
-  double nrmse = 0, chi_square = 0;
-  std::map<std::string, double> regimes;   // mean standardised residual per regime
-  std::map<std::string, double> features;  // relative error per feature
-};
-HistoryEntry history_entry(const std::string& command, const std::string& label, const measure::Comparison& c);
-// Several rates in one entry: the joint NRMSE and chi-square; regimes and features named
-// "<name>@<rate>" (as in the joint residual) when there is more than one rate.
-HistoryEntry history_entry(const std::string& command, const std::string& label, const RateComparison& c);
-void append_history(const std::filesystem::path& work_dir, const HistoryEntry& entry);
-std::vector<HistoryEntry> read_history(const std::filesystem::path& work_dir);
 
 }  // namespace shard
