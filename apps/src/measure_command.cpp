@@ -208,10 +208,10 @@ void synthesize(SynthOptions& o, const CommandContext& ctx) {
   TestConditions runs = o.test;
   runs.seating_preload = 0;
   simulator.use_test_conditions(runs);
-  if (o.rates.empty()) o.rates.push_back(simulator.pool().scene_rate(truth.scene, truth.overrides));
+  if (o.rates.empty()) o.rates.push_back(simulator.pool().fixture().scene_rate(truth.scene, truth.overrides));
   SpecimenSetup setup;
   if (!o.length || !o.width || !o.height || !o.span || !o.pin_distance)
-    setup = simulator.pool().specimen_setup(truth.scene, truth.overrides, o.sim.first_seed);
+    setup = simulator.pool().fixture().specimen_setup(truth.scene, truth.overrides, o.sim.first_seed);
   Specimen geometry;
   geometry.length = o.length.value_or(setup.length), geometry.width = o.width.value_or(setup.width);
   geometry.height = o.height.value_or(setup.height), geometry.span = o.span.value_or(setup.span);

@@ -71,7 +71,7 @@ std::vector<std::vector<Specimen>> EnsembleSimulator::simulate(const std::vector
     const double rate = m.loading_rate * options_.time_compression;
     if (rate > 0 && !rate_hint_given_) {
       rate_hint_given_ = true;
-      const double own = pool_.scene_rate(m.scene, m.overrides);
+      const double own = pool_.fixture().scene_rate(m.scene, m.overrides);
       if (options_.time_compression != 1)
         log << fmt::format("time compression {0:g}: the model loads at {1:g} m/s for data at {2:g} m/s; model times "
                            "(and bond.viscosity_time) are the lab's divided by {0:g}\n",
@@ -83,13 +83,13 @@ std::vector<std::vector<Specimen>> EnsembleSimulator::simulate(const std::vector
                            m.loading_rate, own / rate, own, own / rate, own / rate);
     }
     if (rate > 0) {
-      for (auto& r : pool_.rate_overrides(m.scene, m.overrides, rate)) overrides.push_back(std::move(r));
-      const double own = pool_.scene_rate(m.scene, m.overrides);
+      for (auto& r : pool_.fixture().rate_overrides(m.scene, m.overrides, rate)) overrides.push_back(std::move(r));
+      const double own = pool_.fixture().scene_rate(m.scene, m.overrides);
       if (own > 0 && rate / own > max_rate_factor_) max_rate_factor_ = rate / own, fastest_rate_ = rate, scene_rate_ = own;
     }
     // The lab's ramp in model time: the model's times are the lab's divided by the compression.
     if (!test_.ramp.empty())
-      for (auto& r : pool_.ramp_overrides(m.scene, m.overrides, test_.ramp, test_.ramp_time / options_.time_compression))
+      for (auto& r : pool_.fixture().ramp_overrides(m.scene, m.overrides, test_.ramp, test_.ramp_time / options_.time_compression))
         overrides.push_back(std::move(r));
     for (int k = 0; k < options_.seeds; ++k) requests.push_back({m.scene, overrides, options_.first_seed + k, options_.seat});
   }
@@ -139,7 +139,7 @@ void EnsembleSimulator::check_inputs(const ModelPlan& model, const std::vector<S
                "warning: one packing seed: the model's packing-to-packing scatter is unknown, so the scores below count "
                "the measurement's noise only and read far beyond noise (use --seeds 3 or more)\n");
   if (!options_.check_geometry) return;
-  const SpecimenSetup scene = pool_.specimen_setup(model.scene, model.overrides, options_.first_seed);
+  const SpecimenSetup scene = pool_.fixture().specimen_setup(model.scene, model.overrides, options_.first_seed);
   auto off = [](double measured, double simulated) { return std::abs(measured - simulated) > 0.02 * simulated; };
   for (const auto& s : specimens)
     if (off(s.span, scene.span) || off(s.pin_distance, scene.pin_distance))
@@ -165,7 +165,7 @@ void EnsembleSimulator::check_inputs(const ModelPlan& model, const std::vector<S
 }
 
 void EnsembleSimulator::check_model(const ModelPlan& model) {
-  pool_.specimen_setup(model.scene, model.overrides, options_.first_seed);
+  pool_.fixture().specimen_setup(model.scene, model.overrides, options_.first_seed);
 }
 
 ParameterRange EnsembleSimulator::parameter_range(const std::string& key) const {

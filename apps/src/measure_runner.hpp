@@ -9,10 +9,7 @@
 // go on. However they run, the runs' outcomes come back as records (run_job.hpp) and this process
 // alone writes the cache (run_cache.hpp), so no two writers meet on a cache file.
 //
-// Seating: a testing machine brings the pins into contact before it records. With `seat`, the
-// loading walls ([stop] load_walls) and the resting cylinders (supports) are moved along the
-// loading direction until they just touch the generated packing, so a random packing's uneven
-// surface does not add a seed-dependent toe gap to the curve.
+// Seating: with `seat`, each run's fixture is seated on its packing (bending_fixture.hpp).
 #include <cstdint>
 #include <filesystem>
 #include <iosfwd>
@@ -22,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "bending_fixture.hpp"
 #include "run_job.hpp"
 #include "shard/driver/worker_process.hpp"
 #include "shard/scene_override.hpp"
@@ -38,14 +36,6 @@ struct RunRequest {
   bool seat = true;
 };
 
-// A bending scene's specimen as a measurement describes it (m): the extent of the generated
-// packing along the beam (the line between the loading pins, across the loading direction),
-// across it and along the load; the distances between the two supports and the two pins.
-struct SpecimenSetup {
-  double length = 0, width = 0, height = 0, span = 0, pin_distance = 0;
-  double particle_diameter = 0;  // the largest sphere's, m
-};
-
 class RunPool {
  public:
   RunPool(std::filesystem::path work_dir, std::vector<std::filesystem::path> plugin_dirs, int workers);
@@ -53,21 +43,8 @@ class RunPool {
   RunPool(const RunPool&) = delete;
   RunPool& operator=(const RunPool&) = delete;
 
-  // The overrides that seat the walls of `request` on its packing (empty without load walls).
-  SceneOverrides seating_overrides(const RunRequest& request) const;
-  // The overrides that load `scene` (with `overrides`) at `rate` m/s instead of its own pin
-  // speed: the load walls' velocities scaled, and the duration and the series interval scaled
-  // inversely so that the same pin travel is simulated and recorded. Empty at the scene's rate.
-  SceneOverrides rate_overrides(const std::filesystem::path& scene, const SceneOverrides& overrides, double rate) const;
-  // The overrides that accelerate the [stop] load walls along `ramp` ("1-cos", "linear", "none")
-  // over `ramp_time` s (the kernel's [[wall]] ramp).
-  SceneOverrides ramp_overrides(const std::filesystem::path& scene, const SceneOverrides& overrides,
-                                const std::string& ramp, double ramp_time) const;
-  // The specimen of a scene (generated with `seed`); throws unless the scene has two loading
-  // cylinders ([stop] load_walls) and two resting cylinders (supports).
-  SpecimenSetup specimen_setup(const std::filesystem::path& scene, const SceneOverrides& overrides, long seed) const;
-  // The pin speed of a scene, m/s: the largest speed of its [stop] load walls.
-  double scene_rate(const std::filesystem::path& scene, const SceneOverrides& overrides) const;
+  // The bending fixture of the pool's scenes (seating, specimen, rate and ramp overrides).
+  const BendingFixture& fixture() const { return *fixture_; }
   // The full scene text a request runs (overrides, seed and seating applied).
   std::string resolved_text(const RunRequest& request) const;
   // Runs every request that is not cached, `workers` at a time on threads; results in the order
@@ -86,7 +63,8 @@ class RunPool {
   const std::filesystem::path& work_dir() const { return work_dir_; }
 
  private:
-  SceneOverrides full_overrides(const RunRequest& request) const;
+  SceneOverrides full_overrides(const RunRequest& request) const;  // with the packing seed
+  SceneOverrides run_overrides(const RunRequest& request) const;   // and the seating, when asked
   // The jobs of the requests not in `cache`, one per distinct key; fills the requests' `keys` and
   // the cached outcomes by key (`found`).
   std::vector<RunJob> jobs_to_run(const std::vector<RunRequest>& requests, const RunCache& cache,
@@ -101,6 +79,7 @@ class RunPool {
   std::vector<std::filesystem::path> plugin_dirs_;
   int workers_;
   std::unique_ptr<PluginHost> host_;
+  std::unique_ptr<BendingFixture> fixture_;  // reads host_
   std::optional<driver::WorkerCommand> worker_;
   bool warned_unsafe_hdf5_ = false;  // the one-at-a-time note was printed
   std::size_t runs_started_ = 0;
