@@ -138,22 +138,51 @@ std::size_t frame_number(std::int64_t k, const RunFile& file) {
   return static_cast<std::size_t>(k);
 }
 
+// Options that only make sense with another one, or not together, refused before the run file is opened.
+void check_option_combinations(const FragmentsOptions& options) {
+  if (options.body_csv && !options.by_body)
+    throw std::invalid_argument("--body-csv writes the per-body table of --by-body: add --by-body");
+  if (options.report && !options.by_body)
+    throw std::invalid_argument("--report is the breakage report of --by-body: add --by-body");
+  if ((options.speed_bins > 0 || !options.speed_edges.empty()) && !options.report)
+    throw std::invalid_argument("--speed-bins and --speed-edges bin the impact speeds of --report: add --report DIR");
+  if (options.speed_bins > 0 && !options.speed_edges.empty())
+    throw std::invalid_argument("give either --speed-bins or --speed-edges, not both");
+  for (std::size_t e = 1; e < options.speed_edges.size(); ++e)
+    if (!(options.speed_edges[e] > options.speed_edges[e - 1]))
+      throw std::invalid_argument(fmt::format("--speed-edges must ascend: {} follows {}", options.speed_edges[e],
+                                              options.speed_edges[e - 1]));
+}
+
+// --by-body: each body's breakage, stored in the run file and printed; with --body-csv and --report.
+void report_bodies(RunFile& file, std::size_t k, const FrameData& frame, const FragmentAnalysis& analysis,
+                   const FragmentsOptions& options, std::ostream& out) {
+  BodyReport report =
+      body_statistics(particle_sample(frame), analysis.fragments, options.intact_fraction, options.fines_size);
+  attach_impacts(report, file.read_body_impacts());
+  print_bodies(report, options.rows, out);
+  write_body_table(file, k, report);
+  out << fmt::format("wrote /bodies/{}\n", frame_name(k));
+  if (options.body_csv) {
+    write_body_csv(report, *options.body_csv);
+    out << "wrote " << options.body_csv->string() << "\n";
+  }
+  if (options.report) {
+    RunReportOptions ro;
+    ro.dir = *options.report;
+    ro.speed_bins = options.speed_bins;
+    ro.speed_edges = options.speed_edges;
+    ro.command = options.command_line;
+    write_run_breakage_report(file, {static_cast<std::int64_t>(k), frame.time, analysis.fragments, report},
+                              options.intact_fraction, ro, out);
+  }
+}
+
 }  // namespace
 
 int fragments_command(const FragmentsOptions& options, std::ostream& out, std::ostream& err) {
   try {
-    if (options.body_csv && !options.by_body)
-      throw std::invalid_argument("--body-csv writes the per-body table of --by-body: add --by-body");
-    if (options.report && !options.by_body)
-      throw std::invalid_argument("--report is the breakage report of --by-body: add --by-body");
-    if ((options.speed_bins > 0 || !options.speed_edges.empty()) && !options.report)
-      throw std::invalid_argument("--speed-bins and --speed-edges bin the impact speeds of --report: add --report DIR");
-    if (options.speed_bins > 0 && !options.speed_edges.empty())
-      throw std::invalid_argument("give either --speed-bins or --speed-edges, not both");
-    for (std::size_t e = 1; e < options.speed_edges.size(); ++e)
-      if (!(options.speed_edges[e] > options.speed_edges[e - 1]))
-        throw std::invalid_argument(fmt::format("--speed-edges must ascend: {} follows {}", options.speed_edges[e],
-                                       options.speed_edges[e - 1]));
+    check_option_combinations(options);
     const bool writes = options.write_labels || options.by_body;
     RunFile file(options.run_file, writes ? RunFile::Mode::read_write : RunFile::Mode::read);
     const std::vector<std::size_t>& frames = file.frames();
@@ -186,27 +215,7 @@ int fragments_command(const FragmentsOptions& options, std::ostream& out, std::o
       write_fragment_table(file, k, analysis.fragments, fsd);
       out << fmt::format("wrote /frames/{0}/fragment and /fragments/{0}\n", frame_name(k));
     }
-    if (options.by_body) {
-      BodyReport report =
-          body_statistics(particle_sample(frame), analysis.fragments, options.intact_fraction, options.fines_size);
-      attach_impacts(report, file.read_body_impacts());
-      print_bodies(report, options.rows, out);
-      write_body_table(file, k, report);
-      out << fmt::format("wrote /bodies/{}\n", frame_name(k));
-      if (options.body_csv) {
-        write_body_csv(report, *options.body_csv);
-        out << "wrote " << options.body_csv->string() << "\n";
-      }
-      if (options.report) {
-        RunReportOptions ro;
-        ro.dir = *options.report;
-        ro.speed_bins = options.speed_bins;
-        ro.speed_edges = options.speed_edges;
-        ro.command = options.command_line;
-        write_run_breakage_report(file, {static_cast<std::int64_t>(k), frame.time, analysis.fragments, report}, options.intact_fraction, ro,
-                                  out);
-      }
-    }
+    if (options.by_body) report_bodies(file, k, frame, analysis, options, out);
     if (options.plot) {
       plot_size_distribution(fsd, *options.plot,
                              fmt::format("{} frame {}", options.run_file.filename().string(), k));

@@ -105,6 +105,110 @@ class EdgeGrid {
   mutable std::vector<std::uint64_t> keys_;  // scratch of along(); the grid is used by one thread
 };
 
+Vec3 direction(const std::vector<Vec3>& v, const Edge& e) { return Vec3(v[e.b] - v[e.a]); }
+
+// The open edges with the grid that finds them near a point, and the tolerance of "lying on".
+struct OpenEdges {
+  const std::vector<Vec3>& v;
+  const std::vector<Edge>& edges;
+  const EdgeGrid& grid;
+  double tol;
+};
+
+// The open-edge vertices lying on edge e (within tol of it, not at its ends) with its own two
+// ends, ordered along it: the stops between which its pieces run.
+void stops_along(const OpenEdges& open, std::size_t e, std::vector<std::pair<double, Index>>& stops) {
+  const auto& v = open.v;
+  const auto& edges = open.edges;
+  const Vec3& a = v[edges[e].a];
+  const Vec3& b = v[edges[e].b];
+  stops.assign({{0.0, edges[e].a}, {1.0, edges[e].b}});
+  open.grid.edges_along(a, b, [&](std::size_t f) {
+    for (Index w : {edges[f].a, edges[f].b}) {
+      if (w == edges[e].a || w == edges[e].b) continue;
+      double t = 0.0;
+      if (segment_distance(v[w], a, b, t) <= open.tol && (v[w] - a).norm() > open.tol && (v[w] - b).norm() > open.tol)
+        stops.emplace_back(t, w);
+    }
+  });
+  std::sort(stops.begin(), stops.end());
+  stops.erase(std::unique(stops.begin(), stops.end()), stops.end());
+}
+
+// Whether every piece of edge e between consecutive stops lies on an open edge running the other way.
+bool all_pieces_covered(const OpenEdges& open, std::size_t e, const std::vector<std::pair<double, Index>>& stops) {
+  const auto& v = open.v;
+  const auto& edges = open.edges;
+  bool all_pieces = true;
+  for (std::size_t s = 0; s + 1 < stops.size() && all_pieces; ++s) {
+    const Vec3& p = v[stops[s].second];
+    const Vec3& q = v[stops[s + 1].second];
+    bool piece = false;
+    open.grid.edges_in_box(p, p, [&](std::size_t f) {
+      if (piece || f == e || direction(v, edges[f]).dot(direction(v, edges[e])) >= 0.0) return;
+      double t = 0.0;
+      piece = segment_distance(p, v[edges[f].a], v[edges[f].b], t) <= open.tol &&
+              segment_distance(q, v[edges[f].a], v[edges[f].b], t) <= open.tol;
+    });
+    all_pieces = piece;
+  }
+  return all_pieces;
+}
+
+// An open edge is covered when every piece between the open-edge vertices lying on it is lying
+// on an open edge of the other side running the other way: a T-junction, closed as a surface.
+// Fills the report's counts; returns which edges are covered.
+std::vector<char> find_covered_edges(const OpenEdges& open, OpenEdgeReport& report) {
+  std::vector<char> covered(open.edges.size(), 0);
+  std::vector<char> on_an_edge(open.v.size(), 0);
+  std::vector<std::pair<double, Index>> stops;
+  for (std::size_t e = 0; e < open.edges.size(); ++e) {
+    stops_along(open, e, stops);
+    if (stops.size() > 2)
+      for (std::size_t s = 1; s + 1 < stops.size(); ++s) on_an_edge[static_cast<std::size_t>(stops[s].second)] = 1;
+    covered[e] = all_pieces_covered(open, e, stops) ? 1 : 0;
+  }
+  report.t_junctions = static_cast<std::size_t>(std::count(on_an_edge.begin(), on_an_edge.end(), 1));
+  report.covered_edges = static_cast<std::size_t>(std::count(covered.begin(), covered.end(), 1));
+  report.gap_edges = open.edges.size() - report.covered_edges;
+  return covered;
+}
+
+// Width of each opening: from a gap edge's midpoint to the nearest open edge running the other
+// way. Across a crack that is its width; the edges along a hole's border run the same way as
+// their neighbours, so a finely cut hole still measures its diameter, not its edge length.
+void measure_gaps(const OpenEdges& open, const std::vector<char>& covered, double gap_tolerance,
+                  OpenEdgeReport& report) {
+  const auto& v = open.v;
+  const auto& edges = open.edges;
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    if (covered[e]) continue;
+    const Vec3 mid = 0.5 * (v[edges[e].a] + v[edges[e].b]);
+    double width = std::numeric_limits<double>::infinity();
+    open.grid.edges_in_box(mid - Vec3::Constant(gap_tolerance), mid + Vec3::Constant(gap_tolerance), [&](std::size_t f) {
+      // Covered edges count as the far side too: a crack whose sides slide along each other is
+      // covered in places, and the uncovered pieces next to them face the covered ones.
+      if (f == e || direction(v, edges[f]).dot(direction(v, edges[e])) >= 0.0) return;
+      double t = 0.0;
+      width = std::min(width, segment_distance(mid, v[edges[f].a], v[edges[f].b], t));
+    });
+    if (width > gap_tolerance) {
+      width = std::numeric_limits<double>::infinity();
+      ++report.wide_gap_edges;
+    }
+    report.largest_gap = std::max(report.largest_gap, width);
+  }
+}
+
+// The openings' share of the enclosed volume: a closed surface's area vectors sum to zero.
+double volume_ambiguity(const TriangleMesh& mesh, double diagonal) {
+  const auto& v = mesh.vertices;
+  Vec3 area = Vec3::Zero();
+  for (const auto& f : mesh.faces) area += 0.5 * (v[f[1]] - v[f[0]]).cross(v[f[2]] - v[f[0]]);
+  const double volume = std::abs(signed_volume(mesh));
+  return volume > 0.0 ? area.norm() * diagonal / (3.0 * volume) : std::numeric_limits<double>::infinity();
+}
+
 }  // namespace
 
 OpenEdgeReport classify_open_edges(const TriangleMesh& mesh, double on_edge_tolerance, double gap_tolerance) {
@@ -122,75 +226,12 @@ OpenEdgeReport classify_open_edges(const TriangleMesh& mesh, double on_edge_tole
   // At least 1/1024 of the diagonal keeps the cell index within 21 bits per axis.
   const double cell = std::max({mean_length, 2.0 * tol, gap_tolerance, diagonal / 1024.0, 1e-300});
   const EdgeGrid grid(mesh, edges, cell, tol);
-  auto direction = [&](const Edge& e) { return Vec3(v[e.b] - v[e.a]); };
+  const OpenEdges open{v, edges, grid, tol};
 
-  // An open edge is covered when every piece between the open-edge vertices lying on it is lying
-  // on an open edge of the other side running the other way: a T-junction, closed as a surface.
-  std::vector<char> covered(edges.size(), 0);
-  std::vector<char> on_an_edge(v.size(), 0);
-  std::vector<std::pair<double, Index>> stops;
-  for (std::size_t e = 0; e < edges.size(); ++e) {
-    const Vec3& a = v[edges[e].a];
-    const Vec3& b = v[edges[e].b];
-    stops.assign({{0.0, edges[e].a}, {1.0, edges[e].b}});
-    grid.edges_along(a, b, [&](std::size_t f) {
-      for (Index w : {edges[f].a, edges[f].b}) {
-        if (w == edges[e].a || w == edges[e].b) continue;
-        double t = 0.0;
-        if (segment_distance(v[w], a, b, t) <= tol && (v[w] - a).norm() > tol && (v[w] - b).norm() > tol)
-          stops.emplace_back(t, w);
-      }
-    });
-    std::sort(stops.begin(), stops.end());
-    stops.erase(std::unique(stops.begin(), stops.end()), stops.end());
-    if (stops.size() > 2)
-      for (std::size_t s = 1; s + 1 < stops.size(); ++s) on_an_edge[static_cast<std::size_t>(stops[s].second)] = 1;
-    bool all_pieces = true;
-    for (std::size_t s = 0; s + 1 < stops.size() && all_pieces; ++s) {
-      const Vec3& p = v[stops[s].second];
-      const Vec3& q = v[stops[s + 1].second];
-      bool piece = false;
-      grid.edges_in_box(p, p, [&](std::size_t f) {
-        if (piece || f == e || direction(edges[f]).dot(direction(edges[e])) >= 0.0) return;
-        double t = 0.0;
-        piece = segment_distance(p, v[edges[f].a], v[edges[f].b], t) <= tol &&
-                segment_distance(q, v[edges[f].a], v[edges[f].b], t) <= tol;
-      });
-      all_pieces = piece;
-    }
-    covered[e] = all_pieces ? 1 : 0;
-  }
-  report.t_junctions = static_cast<std::size_t>(std::count(on_an_edge.begin(), on_an_edge.end(), 1));
-  report.covered_edges = static_cast<std::size_t>(std::count(covered.begin(), covered.end(), 1));
-  report.gap_edges = edges.size() - report.covered_edges;
+  const std::vector<char> covered = find_covered_edges(open, report);
   if (report.gap_edges == 0) return report;
-
-  // Width of each opening: from a gap edge's midpoint to the nearest open edge running the other
-  // way. Across a crack that is its width; the edges along a hole's border run the same way as
-  // their neighbours, so a finely cut hole still measures its diameter, not its edge length.
-  for (std::size_t e = 0; e < edges.size(); ++e) {
-    if (covered[e]) continue;
-    const Vec3 mid = 0.5 * (v[edges[e].a] + v[edges[e].b]);
-    double width = std::numeric_limits<double>::infinity();
-    grid.edges_in_box(mid - Vec3::Constant(gap_tolerance), mid + Vec3::Constant(gap_tolerance), [&](std::size_t f) {
-      // Covered edges count as the far side too: a crack whose sides slide along each other is
-      // covered in places, and the uncovered pieces next to them face the covered ones.
-      if (f == e || direction(edges[f]).dot(direction(edges[e])) >= 0.0) return;
-      double t = 0.0;
-      width = std::min(width, segment_distance(mid, v[edges[f].a], v[edges[f].b], t));
-    });
-    if (width > gap_tolerance) {
-      width = std::numeric_limits<double>::infinity();
-      ++report.wide_gap_edges;
-    }
-    report.largest_gap = std::max(report.largest_gap, width);
-  }
-  // The openings' share of the enclosed volume: a closed surface's area vectors sum to zero.
-  Vec3 area = Vec3::Zero();
-  for (const auto& f : mesh.faces) area += 0.5 * (v[f[1]] - v[f[0]]).cross(v[f[2]] - v[f[0]]);
-  const double volume = std::abs(signed_volume(mesh));
-  report.volume_ambiguity =
-      volume > 0.0 ? area.norm() * diagonal / (3.0 * volume) : std::numeric_limits<double>::infinity();
+  measure_gaps(open, covered, gap_tolerance, report);
+  report.volume_ambiguity = volume_ambiguity(mesh, diagonal);
   return report;
 }
 

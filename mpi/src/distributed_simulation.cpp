@@ -25,6 +25,280 @@ namespace {
 // an owned one can touch. The serial run rebuilds its list at the same travel (half the skin).
 constexpr double kStepMargin = 2;
 
+// The slot of particle `id` in `sorted` (ascending id); the id must be there.
+std::size_t slot_of(const std::vector<ParticleRecord>& sorted, Index id) {
+  const auto it = std::lower_bound(sorted.begin(), sorted.end(), id,
+                                   [](const ParticleRecord& r, Index v) { return r.id < v; });
+  if (it == sorted.end() || it->id != id)
+    throw std::logic_error(fmt::format("partition: particle id {} is not owned here", id));
+  return static_cast<std::size_t>(it - sorted.begin());
+}
+
+// Flat records of one kind (bonds or contacts): each `size` values, the first the id of the
+// particle whose owner keeps it.
+struct FlatRecords {
+  const std::vector<double>& values;
+  std::size_t size;
+  std::size_t count() const { return values.size() / size; }
+  const double* operator[](std::size_t k) const { return values.data() + k * size; }
+  Index first_id(std::size_t k) const { return static_cast<Index>(values[k * size]); }
+};
+
+// The grid: one cell reaches every particle an owned one can touch before the next partition
+// (2 r_max + skin), and the far end of every bond. Collective: the origin is below every rank's particles.
+CellGrid partition_grid(const std::vector<ParticleRecord>& particles, double r_max, double longest_bond, double skin,
+                        MPI_Comm comm) {
+  double lo[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                  std::numeric_limits<double>::infinity()};
+  for (const ParticleRecord& r : particles)
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], r.position[a]);
+  double global_lo[3];
+  MPI_Allreduce(lo, global_lo, 3, MPI_DOUBLE, MPI_MIN, comm);
+  CellGrid grid;
+  grid.cell = std::max(2 * r_max, max_over_ranks(longest_bond, comm)) + skin;
+  grid.origin = Vec3(global_lo[0], global_lo[1], global_lo[2]) - Vec3::Constant(grid.cell);
+  return grid;
+}
+
+// Cost of each owned particle's cell: itself, the bonds and contacts it owns; `key` gets each
+// particle's cell.
+std::vector<CellCost> cell_costs(const std::vector<ParticleRecord>& particles, const FlatRecords& bonds,
+                                 const FlatRecords& contacts, const CellGrid& grid, std::vector<std::uint64_t>& key) {
+  std::vector<double> cost(particles.size(), 1.0);
+  for (std::size_t b = 0; b < bonds.count(); ++b) cost[slot_of(particles, bonds.first_id(b))] += 1;
+  for (std::size_t c = 0; c < contacts.count(); ++c) cost[slot_of(particles, contacts.first_id(c))] += 1;
+  key.resize(particles.size());
+  std::vector<CellCost> cells;
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    const ParticleRecord& r = particles[k];
+    key[k] = grid.key(Vec3(r.position[0], r.position[1], r.position[2]));
+    cells.push_back({key[k], cost[k]});
+  }
+  return cells;
+}
+
+// The ranks owning the cells around a cell, looked up once per cell (27 searches each). Keyed by
+// cell only: one instance serves one `self`.
+class RanksAround {
+ public:
+  explicit RanksAround(const Partition& partition) : partition_(partition) {}
+  const std::vector<int>& of(std::uint64_t cell, int self) {
+    auto [it, fresh] = around_.try_emplace(cell);
+    if (fresh) partition_.neighbour_ranks(cell, self, it->second);
+    return it->second;
+  }
+
+ private:
+  const Partition& partition_;
+  std::unordered_map<std::uint64_t, std::vector<int>> around_;
+};
+
+// What this rank sends to each rank: the particles it will own, the ghost copies it will keep,
+// and the bonds and contacts kept by the owner of their first particle.
+struct Outgoing {
+  std::vector<std::vector<ParticleRecord>> to_owner, to_ghost;
+  std::vector<std::vector<double>> bonds_to, contacts_to;
+};
+
+Outgoing route(const std::vector<ParticleRecord>& particles, const FlatRecords& bonds, const FlatRecords& contacts,
+               const Partition& partition, const std::vector<std::uint64_t>& key, std::size_t ranks) {
+  Outgoing out{std::vector<std::vector<ParticleRecord>>(ranks), std::vector<std::vector<ParticleRecord>>(ranks),
+               std::vector<std::vector<double>>(ranks), std::vector<std::vector<double>>(ranks)};
+  RanksAround around(partition);
+  std::vector<int> owner(particles.size());
+  for (std::size_t k = 0; k < particles.size(); ++k) {
+    ParticleRecord r = particles[k];
+    r.owner = partition.owner_of(key[k]);
+    owner[k] = r.owner;
+    out.to_owner[static_cast<std::size_t>(r.owner)].push_back(r);
+    for (int d : around.of(key[k], r.owner)) out.to_ghost[static_cast<std::size_t>(d)].push_back(r);
+  }
+  const auto send = [&](const FlatRecords& records, std::vector<std::vector<double>>& to) {
+    for (std::size_t b = 0; b < records.count(); ++b) {
+      auto& dest = to[static_cast<std::size_t>(owner[slot_of(particles, records.first_id(b))])];
+      dest.insert(dest.end(), records[b], records[b] + records.size);
+    }
+  };
+  send(bonds, out.bonds_to);
+  send(contacts, out.contacts_to);
+  return out;
+}
+
+// What this rank received: its particles and their ghosts (each ascending in id), and the bonds
+// and contacts it keeps.
+struct Arrived {
+  std::vector<ParticleRecord> mine, ghosts;
+  std::vector<double> bonds, contacts;
+
+  // The local index of particle `id` (owned ones first, then the ghosts); -1 when not held here.
+  Index local_index(Index id) const {
+    const auto find = [id](const std::vector<ParticleRecord>& v) {
+      const auto it = std::lower_bound(v.begin(), v.end(), id, [](const ParticleRecord& r, Index x) { return r.id < x; });
+      return it != v.end() && it->id == id ? static_cast<Index>(it - v.begin()) : Index{-1};
+    };
+    const Index o = find(mine);
+    if (o >= 0) return o;
+    const Index g = find(ghosts);
+    return g >= 0 ? static_cast<Index>(mine.size()) + g : Index{-1};
+  }
+};
+
+Arrived exchange(const Outgoing& out, MPI_Comm comm) {
+  Arrived in;
+  in.mine = all_to_all(out.to_owner, comm);
+  in.ghosts = all_to_all(out.to_ghost, comm);
+  in.bonds = all_to_all(out.bonds_to, comm);
+  in.contacts = all_to_all(out.contacts_to, comm);
+  std::sort(in.mine.begin(), in.mine.end(), by_id);
+  std::sort(in.ghosts.begin(), in.ghosts.end(), by_id);
+  return in;
+}
+
+// This rank's particles: owned ones first, then the ghosts, each in ascending id.
+Particles local_particles(const Arrived& in) {
+  Particles local;
+  local.reserve(in.mine.size() + in.ghosts.size());
+  for (const ParticleRecord& r : in.mine) append(local, r, false);
+  for (const ParticleRecord& r : in.ghosts) append(local, r, true);
+  return local;
+}
+
+// The halo: which owned particles each neighbour keeps a ghost of, and which ghosts come from whom.
+std::vector<HaloLink> halo_links(const Arrived& in, const Partition& partition, const CellGrid& grid, int rank,
+                                 std::size_t ranks) {
+  std::vector<HaloLink> links(ranks);
+  for (std::size_t r = 0; r < ranks; ++r) links[r].rank = static_cast<int>(r);
+  RanksAround around(partition);
+  for (const ParticleRecord& r : in.mine)
+    for (int d : around.of(grid.key(Vec3(r.position[0], r.position[1], r.position[2])), rank))
+      links[static_cast<std::size_t>(d)].send.push_back(r.id);
+  for (const ParticleRecord& r : in.ghosts) links[static_cast<std::size_t>(r.owner)].recv.push_back(r.id);
+  std::erase_if(links, [](const HaloLink& l) { return l.send.empty() && l.recv.empty(); });
+  return links;
+}
+
+// The received bonds' ends and touching contacts in local indices.
+struct LocalLinks {
+  std::vector<std::pair<Index, Index>> bond_ends;
+  NeighbourState touching;
+};
+
+// Bonds and contacts in local indices; a far end not held here would be a gap in the ghost layer.
+LocalLinks local_links(const Arrived& in, std::size_t bond_stride, std::size_t history_stride, double skin, int rank) {
+  const auto held = [&](double id, const char* what) {
+    const Index k = in.local_index(static_cast<Index>(id));
+    if (k < 0)
+      throw std::logic_error(fmt::format("partition: the {} end id {} is not within the ghost layer of rank {}", what,
+                                         static_cast<Index>(id), rank));
+    return k;
+  };
+  LocalLinks out;
+  for (std::size_t b = 0; b < in.bonds.size() / (2 + bond_stride); ++b) {
+    const double* rec = in.bonds.data() + b * (2 + bond_stride);
+    out.bond_ends.emplace_back(held(rec[0], "bond's"), held(rec[1], "bond's"));
+  }
+  NeighbourState& touching = out.touching;
+  touching.skin = skin;
+  touching.history_stride = history_stride;
+  for (std::size_t c = 0; c < in.contacts.size() / (2 + history_stride); ++c) {
+    const double* rec = in.contacts.data() + c * (2 + history_stride);
+    touching.first.push_back(held(rec[0], "contact's"));
+    touching.second.push_back(rec[1] < 0 ? static_cast<Index>(rec[1]) : held(rec[1], "contact's"));
+    touching.history.insert(touching.history.end(), rec + 2, rec + 2 + history_stride);
+    touching.touching.push_back(1);
+  }
+  return out;
+}
+
+
+// The kernel renumbers its particles at its own rebuilds (Morton order): the positions at the
+// partition follow their particles by id.
+void follow_by_id(const Particles& p, std::vector<Index>& partition_id, std::vector<Vec3>& position_at_partition) {
+  if (std::equal(p.id.begin(), p.id.end(), partition_id.begin(), partition_id.end())) return;
+  std::vector<std::pair<Index, Vec3>> at(partition_id.size());
+  for (std::size_t k = 0; k < at.size(); ++k) at[k] = {partition_id[k], position_at_partition[k]};
+  std::sort(at.begin(), at.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const auto it = std::lower_bound(at.begin(), at.end(), p.id[k], [](const auto& a, Index id) { return a.first < id; });
+    position_at_partition[k] = it->second;
+  }
+  partition_id = p.id;
+}
+
+// This rank's figures of the step, gathered from every rank: the bonds broken, how far the owned
+// particles may have travelled since the partition by the end of the next step, the wall contacts
+// begun, and per wall its force, torque and stored energy (7 values).
+std::vector<double> step_figures(std::size_t broken, const Particles& p, const std::vector<Vec3>& position_at_partition,
+                                 double dt, std::size_t begun, const std::vector<Wall>& walls) {
+  double moved = 0, speed = 0;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    if (p.flags[k] & kGhost) continue;
+    moved = std::max(moved, (p.position[k] - position_at_partition[k]).squaredNorm());
+    speed = std::max(speed, p.velocity[k].squaredNorm());
+  }
+  std::vector<double> mine{static_cast<double>(broken), std::sqrt(moved) + kStepMargin * std::sqrt(speed) * dt,
+                           static_cast<double>(begun)};
+  for (const Wall& w : walls) {
+    mine.insert(mine.end(), w.force.data(), w.force.data() + 3);
+    mine.insert(mine.end(), w.torque.data(), w.torque.data() + 3);
+    mine.push_back(w.stored_energy);
+  }
+  return mine;
+}
+
+struct StepTotals {
+  double events = 0, max_moved = 0, begun = 0;
+};
+
+// The gathered figures (`per` values a rank) summed in rank order; the walls' loads become the sums.
+StepTotals add_up_ranks(const std::vector<double>& all, std::size_t per, int ranks, std::vector<Wall>& walls) {
+  StepTotals t;
+  for (auto& w : walls) {
+    w.force.setZero();
+    w.torque.setZero();
+    w.stored_energy = 0;
+  }
+  for (int r = 0; r < ranks; ++r) {
+    const double* v = all.data() + static_cast<std::size_t>(r) * per;
+    t.events += v[0];
+    t.max_moved = std::max(t.max_moved, v[1]);
+    t.begun += v[2];
+    for (std::size_t w = 0; w < walls.size(); ++w) {
+      const double* x = v + 3 + 7 * w;
+      walls[w].force += Vec3(x[0], x[1], x[2]);
+      walls[w].torque += Vec3(x[3], x[4], x[5]);
+      walls[w].stored_energy += x[6];
+    }
+  }
+  return t;
+}
+
+// Every rank's new break events, in the one order all ranks agree on, appended to `events`.
+void gather_break_events(const std::vector<BondBreakEvent>& fresh, MPI_Comm comm, std::vector<BondBreakEvent>& events) {
+  std::vector<EventRecord> records;
+  for (const BondBreakEvent& e : fresh) {
+    EventRecord r{};
+    r.step = e.step;
+    r.time = e.time;
+    r.id_i = std::min(e.id_i, e.id_j);
+    r.id_j = std::max(e.id_i, e.id_j);
+    std::copy_n(e.midpoint.data(), 3, r.midpoint);
+    r.stress = e.stress;
+    records.push_back(r);
+  }
+  std::vector<EventRecord> gathered = all_gather(records, comm);
+  std::sort(gathered.begin(), gathered.end(), event_order);
+  for (const EventRecord& r : gathered) {
+    BondBreakEvent e;
+    e.step = r.step;
+    e.time = r.time;
+    e.id_i = r.id_i;
+    e.id_j = r.id_j;
+    e.midpoint = Vec3(r.midpoint[0], r.midpoint[1], r.midpoint[2]);
+    e.stress = r.stress;
+    events.push_back(e);
+  }
+}
 }  // namespace
 
 // This rank's particles, bonds and touching contacts before a partition, by stable id.
@@ -177,188 +451,93 @@ void DistributedSimulation::distribute(Owned owned, double longest_bond, Simulat
                                        const SimulationState* resumed) {
   const double start = MPI_Wtime();
   std::sort(owned.particles.begin(), owned.particles.end(), by_id);
-  const std::size_t bond_record = 2 + owned.bond_stride, contact_record = 2 + owned.history_stride;
-  const std::size_t bond_count = owned.bonds.size() / bond_record;
-  const std::size_t contact_count = owned.contacts.size() / contact_record;
-  const auto owned_slot = [&](Index id) {
-    const auto it = std::lower_bound(owned.particles.begin(), owned.particles.end(), id,
-                                     [](const ParticleRecord& r, Index v) { return r.id < v; });
-    if (it == owned.particles.end() || it->id != id)
-      throw std::logic_error(fmt::format("partition: particle id {} is not owned here", id));
-    return static_cast<std::size_t>(it - owned.particles.begin());
-  };
-
-  // The grid: one cell reaches every particle an owned one can touch before the next partition
-  // (2 r_max + skin), and the far end of every bond.
-  double lo[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-                  std::numeric_limits<double>::infinity()};
-  for (const ParticleRecord& r : owned.particles)
-    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], r.position[a]);
-  double global_lo[3];
-  MPI_Allreduce(lo, global_lo, 3, MPI_DOUBLE, MPI_MIN, comm_);
-  CellGrid grid;
-  grid.cell = std::max(2 * r_max_, max_over_ranks(longest_bond, comm_)) + skin_;
-  grid.origin = Vec3(global_lo[0], global_lo[1], global_lo[2]) - Vec3::Constant(grid.cell);
-
-  // Cost of each owned particle's cell: itself, the bonds and contacts it owns.
-  std::vector<double> cost(owned.particles.size(), 1.0);
-  for (std::size_t b = 0; b < bond_count; ++b) cost[owned_slot(static_cast<Index>(owned.bonds[b * bond_record]))] += 1;
-  for (std::size_t c = 0; c < contact_count; ++c)
-    cost[owned_slot(static_cast<Index>(owned.contacts[c * contact_record]))] += 1;
-  std::vector<std::uint64_t> key(owned.particles.size());
-  std::vector<CellCost> cells;
-  for (std::size_t k = 0; k < owned.particles.size(); ++k) {
-    const ParticleRecord& r = owned.particles[k];
-    key[k] = grid.key(Vec3(r.position[0], r.position[1], r.position[2]));
-    cells.push_back({key[k], cost[k]});
-  }
-  const Partition partition = Partition::balance(all_gather(cells, comm_), ranks_, grid.cell);
-
-  // The ranks owning the cells around a cell, looked up once per cell (27 searches each).
-  std::unordered_map<std::uint64_t, std::vector<int>> around;
-  const auto ranks_around = [&](std::uint64_t cell, int self) -> const std::vector<int>& {
-    auto [it, fresh] = around.try_emplace(cell);
-    if (fresh) partition.neighbour_ranks(cell, self, it->second);
-    return it->second;
-  };
+  const std::size_t bond_record = 2 + owned.bond_stride;
+  const FlatRecords bonds{owned.bonds, bond_record}, contacts{owned.contacts, 2 + owned.history_stride};
+  const CellGrid grid = partition_grid(owned.particles, r_max_, longest_bond, skin_, comm_);
+  std::vector<std::uint64_t> key;
+  const Partition partition =
+      Partition::balance(all_gather(cell_costs(owned.particles, bonds, contacts, grid, key), comm_), ranks_, grid.cell);
 
   // Where everything goes.
   const auto R = static_cast<std::size_t>(ranks_);
-  std::vector<std::vector<ParticleRecord>> to_owner(R), to_ghost(R);
-  std::vector<std::vector<double>> bonds_to(R), contacts_to(R);
-  std::vector<int> owner(owned.particles.size());
-  for (std::size_t k = 0; k < owned.particles.size(); ++k) {
-    ParticleRecord r = owned.particles[k];
-    r.owner = partition.owner_of(key[k]);
-    owner[k] = r.owner;
-    to_owner[static_cast<std::size_t>(r.owner)].push_back(r);
-    for (int d : ranks_around(key[k], r.owner)) to_ghost[static_cast<std::size_t>(d)].push_back(r);
+  Arrived in;
+  {
+    const Outgoing out = route(owned.particles, bonds, contacts, partition, key, R);
+    owned = Owned{};
+    in = exchange(out, comm_);
   }
-  for (std::size_t b = 0; b < bond_count; ++b) {
-    const double* rec = owned.bonds.data() + b * bond_record;
-    auto& out = bonds_to[static_cast<std::size_t>(owner[owned_slot(static_cast<Index>(rec[0]))])];
-    out.insert(out.end(), rec, rec + bond_record);
-  }
-  for (std::size_t c = 0; c < contact_count; ++c) {
-    const double* rec = owned.contacts.data() + c * contact_record;
-    auto& out = contacts_to[static_cast<std::size_t>(owner[owned_slot(static_cast<Index>(rec[0]))])];
-    out.insert(out.end(), rec, rec + contact_record);
-  }
-  owned = Owned{};
-  std::vector<ParticleRecord> mine = all_to_all(to_owner, comm_);
-  std::vector<ParticleRecord> ghosts = all_to_all(to_ghost, comm_);
-  const std::vector<double> bonds_in = all_to_all(bonds_to, comm_);
-  const std::vector<double> contacts_in = all_to_all(contacts_to, comm_);
-  std::sort(mine.begin(), mine.end(), by_id);
-  std::sort(ghosts.begin(), ghosts.end(), by_id);
+  Particles local = local_particles(in);
+  halo_->reset(halo_links(in, partition, grid, rank_, R));
 
-  // This rank's particles: owned ones first, then the ghosts, each in ascending id.
-  Particles local;
-  local.reserve(mine.size() + ghosts.size());
-  for (const ParticleRecord& r : mine) append(local, r, false);
-  for (const ParticleRecord& r : ghosts) append(local, r, true);
-  const auto local_index = [&](Index id) -> Index {
-    const auto find = [id](const std::vector<ParticleRecord>& v) {
-      const auto it = std::lower_bound(v.begin(), v.end(), id, [](const ParticleRecord& r, Index x) { return r.id < x; });
-      return it != v.end() && it->id == id ? static_cast<Index>(it - v.begin()) : Index{-1};
-    };
-    const Index o = find(mine);
-    if (o >= 0) return o;
-    const Index g = find(ghosts);
-    return g >= 0 ? static_cast<Index>(mine.size()) + g : Index{-1};
-  };
-
-  // The halo: which owned particles each neighbour keeps a ghost of, and which ghosts come from whom.
-  std::vector<HaloLink> links(R);
-  for (std::size_t r = 0; r < R; ++r) links[r].rank = static_cast<int>(r);
-  around.clear();  // (keyed by cell only: the owner, passed as `self`, is this rank from here on)
-  for (const ParticleRecord& r : mine)
-    for (int d : ranks_around(grid.key(Vec3(r.position[0], r.position[1], r.position[2])), rank_))
-      links[static_cast<std::size_t>(d)].send.push_back(r.id);
-  for (const ParticleRecord& r : ghosts) links[static_cast<std::size_t>(r.owner)].recv.push_back(r.id);
-  std::erase_if(links, [](const HaloLink& l) { return l.send.empty() && l.recv.empty(); });
-  halo_->reset(std::move(links));
-
-  // Bonds and contacts in local indices; a far end not held here would be a gap in the ghost layer.
   // The state values each bond record carries (the same on every rank: none for a new scene's).
   const std::size_t bond_stride = bond_record - 2;
   const std::size_t history_stride = contact_ ? contact_->history_size() : 0;
-  const auto held = [&](double id, const char* what) {
-    const Index k = local_index(static_cast<Index>(id));
-    if (k < 0)
-      throw std::logic_error(fmt::format("partition: the {} end id {} is not within the ghost layer of rank {}", what,
-                                         static_cast<Index>(id), rank_));
-    return k;
-  };
-  std::vector<std::pair<Index, Index>> bond_ends;
-  for (std::size_t b = 0; b < bonds_in.size() / (2 + bond_stride); ++b) {
-    const double* rec = bonds_in.data() + b * (2 + bond_stride);
-    bond_ends.emplace_back(held(rec[0], "bond's"), held(rec[1], "bond's"));
-  }
-  NeighbourState touching;
-  touching.skin = skin_;
-  touching.history_stride = history_stride;
-  for (std::size_t c = 0; c < contacts_in.size() / (2 + history_stride); ++c) {
-    const double* rec = contacts_in.data() + c * (2 + history_stride);
-    touching.first.push_back(held(rec[0], "contact's"));
-    touching.second.push_back(rec[1] < 0 ? static_cast<Index>(rec[1]) : held(rec[1], "contact's"));
-    touching.history.insert(touching.history.end(), rec + 2, rec + 2 + history_stride);
-    touching.touching.push_back(1);
-  }
-  owned_ = mine.size();
+  LocalLinks links = local_links(in, bond_stride, history_stride, skin_, rank_);
+  owned_ = in.mine.size();
 
-  if (initial) {
-    // The scene's set-up as a serial run takes it (models, materials, walls, settings), with this
-    // rank's particles and bonds in place of the whole scene's.
-    SimulationSetup s = std::move(*initial);
-    s.particles = resumed ? local : std::move(local);  // a resumed run imports them again below
-    s.bonds = resumed ? bond_ends : std::move(bond_ends);
-    s.skin = skin_;
-    s.dt = resumed ? resumed->dt : s.dt;
-    if (!(s.dt > 0)) {
-      // "auto": every rank's models state their limits over its particles and bonds (a probe
-      // without the halo); the smallest over the ranks is the serial run's.
-      SimulationSetup probe = s;
-      s.dt = min_over_ranks(Simulation(std::move(probe)).dt(), comm_);
-    }
-    s.exchange = halo_.get();
-    local_ = std::make_unique<Simulation>(std::move(s));
-  }
-  if (!initial || resumed) {
-    SimulationState s;
-    s.step = resumed ? resumed->step : local_->step_count();
-    s.time = resumed ? resumed->time : local_->time();
-    s.dt = resumed ? resumed->dt : local_->dt();
-    s.particles = std::move(local);
-    s.bonds.stride = bond_stride;
-    s.bonds.resize(bond_ends.size());
-    for (std::size_t b = 0; b < bond_ends.size(); ++b) {
-      s.bonds.i[b] = std::min(bond_ends[b].first, bond_ends[b].second);
-      s.bonds.j[b] = std::max(bond_ends[b].first, bond_ends[b].second);
-      std::copy_n(bonds_in.data() + b * (2 + bond_stride) + 2, bond_stride, s.bonds.state.data() + b * bond_stride);
-    }
-    if (resumed) {
-      // The loads are the run's (the same on every rank, as walls() promises); the work and the
-      // impacts a rank counts from here on are its own, summed when gathered: rank 0 keeps the past.
-      for (WallState w : resumed->walls) {
-        if (rank_ != 0) {
-          w.contact_work = 0;
-          w.impacts = 0;
-        }
-        s.walls.push_back(w);
-      }
-    } else {
-      for (const Wall& w : local_->walls())
-        s.walls.push_back({w.velocity, w.displacement, w.force, w.torque, w.contact_work, w.stored_energy, w.impacts});
-    }
-    touching.rebuilds = resumed ? resumed->neighbours.rebuilds : local_->neighbour_rebuilds();
-    s.neighbours = std::move(touching);  // no build positions: the next force pass rebuilds the list
-    local_->import_state(s);
-  }
+  if (initial) build_local(std::move(*initial), resumed, local, links.bond_ends);
+  if (!initial || resumed)
+    import_local(resumed, std::move(local), links.bond_ends, in.bonds, bond_stride, std::move(links.touching));
   position_at_partition_ = local_->particles().position;
   partition_id_ = local_->particles().id;
   partition_seconds_ += MPI_Wtime() - start;
   if (initial && !resumed) finish_step();  // the first force pass's wall loads and breaks
+}
+
+// The scene's set-up as a serial run takes it (models, materials, walls, settings), with this
+// rank's particles and bonds in place of the whole scene's. A resumed run imports them again
+// (import_local), so they are copied, not moved.
+void DistributedSimulation::build_local(SimulationSetup s, const SimulationState* resumed, Particles& local,
+                                        std::vector<std::pair<Index, Index>>& bond_ends) {
+  s.particles = resumed ? local : std::move(local);
+  s.bonds = resumed ? bond_ends : std::move(bond_ends);
+  s.skin = skin_;
+  s.dt = resumed ? resumed->dt : s.dt;
+  if (!(s.dt > 0)) {
+    // "auto": every rank's models state their limits over its particles and bonds (a probe
+    // without the halo); the smallest over the ranks is the serial run's.
+    SimulationSetup probe = s;
+    s.dt = min_over_ranks(Simulation(std::move(probe)).dt(), comm_);
+  }
+  s.exchange = halo_.get();
+  local_ = std::make_unique<Simulation>(std::move(s));
+}
+
+// This rank's particles, bonds (with their state from `bond_records`) and touching contacts into
+// its Simulation: at a re-partition, or a resumed run's state.
+void DistributedSimulation::import_local(const SimulationState* resumed, Particles local,
+                                         const std::vector<std::pair<Index, Index>>& bond_ends,
+                                         const std::vector<double>& bond_records, std::size_t bond_stride,
+                                         NeighbourState touching) {
+  SimulationState s;
+  s.step = resumed ? resumed->step : local_->step_count();
+  s.time = resumed ? resumed->time : local_->time();
+  s.dt = resumed ? resumed->dt : local_->dt();
+  s.particles = std::move(local);
+  s.bonds.stride = bond_stride;
+  s.bonds.resize(bond_ends.size());
+  for (std::size_t b = 0; b < bond_ends.size(); ++b) {
+    s.bonds.i[b] = std::min(bond_ends[b].first, bond_ends[b].second);
+    s.bonds.j[b] = std::max(bond_ends[b].first, bond_ends[b].second);
+    std::copy_n(bond_records.data() + b * (2 + bond_stride) + 2, bond_stride, s.bonds.state.data() + b * bond_stride);
+  }
+  if (resumed) {
+    // The loads are the run's (the same on every rank, as walls() promises); the work and the
+    // impacts a rank counts from here on are its own, summed when gathered: rank 0 keeps the past.
+    for (WallState w : resumed->walls) {
+      if (rank_ != 0) {
+        w.contact_work = 0;
+        w.impacts = 0;
+      }
+      s.walls.push_back(w);
+    }
+  } else {
+    for (const Wall& w : local_->walls())
+      s.walls.push_back({w.velocity, w.displacement, w.force, w.torque, w.contact_work, w.stored_energy, w.impacts});
+  }
+  touching.rebuilds = resumed ? resumed->neighbours.rebuilds : local_->neighbour_rebuilds();
+  s.neighbours = std::move(touching);  // no build positions: the next force pass rebuilds the list
+  local_->import_state(s);
 }
 
 void DistributedSimulation::repartition() {
@@ -400,23 +579,7 @@ void DistributedSimulation::finish_step() {
   Simulation& sim = *local_;
   std::vector<BondBreakEvent> fresh = sim.take_new_break_events();
   const Particles& p = sim.particles();
-  // The kernel renumbers its particles at its own rebuilds (Morton order): follow by id.
-  if (!std::equal(p.id.begin(), p.id.end(), partition_id_.begin(), partition_id_.end())) {
-    std::vector<std::pair<Index, Vec3>> at(partition_id_.size());
-    for (std::size_t k = 0; k < at.size(); ++k) at[k] = {partition_id_[k], position_at_partition_[k]};
-    std::sort(at.begin(), at.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (std::size_t k = 0; k < p.size(); ++k) {
-      const auto it = std::lower_bound(at.begin(), at.end(), p.id[k], [](const auto& a, Index id) { return a.first < id; });
-      position_at_partition_[k] = it->second;
-    }
-    partition_id_ = p.id;
-  }
-  double moved = 0, speed = 0;
-  for (std::size_t k = 0; k < p.size(); ++k) {
-    if (p.flags[k] & kGhost) continue;
-    moved = std::max(moved, (p.position[k] - position_at_partition_[k]).squaredNorm());
-    speed = std::max(speed, p.velocity[k].squaredNorm());
-  }
+  follow_by_id(p, partition_id_, position_at_partition_);
   begun_.clear();
   const bool bodies = p.body.size() == p.size();
   for (const WallContactStart& c : sim.wall_contacts_begun()) {
@@ -425,13 +588,7 @@ void DistributedSimulation::finish_step() {
     begun_.push_back({p.id[k], bodies ? p.body[k] : 0, c.wall, c.normal});
   }
   std::vector<Wall>& walls = sim.walls();
-  std::vector<double> mine{static_cast<double>(fresh.size()), std::sqrt(moved) + kStepMargin * std::sqrt(speed) * sim.dt(),
-                           static_cast<double>(begun_.size())};
-  for (const Wall& w : walls) {
-    mine.insert(mine.end(), w.force.data(), w.force.data() + 3);
-    mine.insert(mine.end(), w.torque.data(), w.torque.data() + 3);
-    mine.push_back(w.stored_energy);
-  }
+  const std::vector<double> mine = step_figures(fresh.size(), p, position_at_partition_, sim.dt(), begun_.size(), walls);
   double reduction_start = MPI_Wtime();
   if (timing_barriers_) {
     MPI_Barrier(comm_);
@@ -441,52 +598,11 @@ void DistributedSimulation::finish_step() {
   }
   const std::vector<double> all = all_gather(mine, comm_);
   reduction_seconds_ += MPI_Wtime() - reduction_start;
-  const std::size_t per = mine.size();
-  double events = 0, max_moved = 0, begun = 0;
-  for (auto& w : walls) {
-    w.force.setZero();
-    w.torque.setZero();
-    w.stored_energy = 0;
-  }
-  for (int r = 0; r < ranks_; ++r) {
-    const double* v = all.data() + static_cast<std::size_t>(r) * per;
-    events += v[0];
-    max_moved = std::max(max_moved, v[1]);
-    begun += v[2];
-    for (std::size_t w = 0; w < walls.size(); ++w) {
-      const double* x = v + 3 + 7 * w;
-      walls[w].force += Vec3(x[0], x[1], x[2]);
-      walls[w].torque += Vec3(x[3], x[4], x[5]);
-      walls[w].stored_energy += x[6];
-    }
-  }
-  wall_contacts_begun_anywhere_ = static_cast<std::int64_t>(begun);
-  if (events > 0) {
-    std::vector<EventRecord> records;
-    for (const BondBreakEvent& e : fresh) {
-      EventRecord r{};
-      r.step = e.step;
-      r.time = e.time;
-      r.id_i = std::min(e.id_i, e.id_j);
-      r.id_j = std::max(e.id_i, e.id_j);
-      std::copy_n(e.midpoint.data(), 3, r.midpoint);
-      r.stress = e.stress;
-      records.push_back(r);
-    }
-    std::vector<EventRecord> gathered = all_gather(records, comm_);
-    std::sort(gathered.begin(), gathered.end(), event_order);
-    for (const EventRecord& r : gathered) {
-      BondBreakEvent e;
-      e.step = r.step;
-      e.time = r.time;
-      e.id_i = r.id_i;
-      e.id_j = r.id_j;
-      e.midpoint = Vec3(r.midpoint[0], r.midpoint[1], r.midpoint[2]);
-      e.stress = r.stress;
-      events_.push_back(e);
-    }
-  }
-  if (!(max_moved < 0.5 * skin_)) repartition();  // also when not finite: the partition then names the particle
+  const StepTotals totals = add_up_ranks(all, mine.size(), ranks_, walls);
+  wall_contacts_begun_anywhere_ = static_cast<std::int64_t>(totals.begun);
+  if (totals.events > 0) gather_break_events(fresh, comm_, events_);
+  // Also when not finite: the partition then names the particle.
+  if (!(totals.max_moved < 0.5 * skin_)) repartition();
 }
 
 std::size_t DistributedSimulation::ghosts() const { return halo_->ghosts(); }

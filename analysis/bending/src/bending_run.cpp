@@ -94,42 +94,44 @@ analysis::LoadCurve pin_curve(const RunFile& file, const std::vector<std::string
   return curve;
 }
 
-}  // namespace
-
-BendingReport analyse_bending_run(const std::filesystem::path& path, const BendingOptions& options) {
-  const RunFile file(path);
-  BendingReport r;
-  r.run = path;
-  const RunMetadata meta = file.metadata();
-  toml::table scene;
+toml::table stored_scene(const std::filesystem::path& path, const RunMetadata& meta) {
   try {
-    scene = toml::parse(meta.scene_text);
+    return toml::parse(meta.scene_text);
   } catch (const toml::parse_error& e) {
     throw std::runtime_error(fmt::format("{}: the stored scene does not parse: {}", path.string(), e.what()));
   }
-  r.bond = bond_parameters(meta);
-  r.breakage = scene["simulation"]["breakage"].value_or(true) && r.bond.breakage;
-  const double density = scene["material"]["density"].value_or(0.0);
+}
 
-  // Loading pins and supports.
+// The scene's cylinder walls: the two loading pins (its [stop] load walls) and the supports (the others).
+struct PinsAndSupports {
   std::vector<std::string> load_walls;
-  if (const auto* a = scene["stop"]["load_walls"].as_array())
-    for (const auto& n : *a) load_walls.push_back(n.value_or(std::string()));
-  r.down = toml_vec3(scene["stop"]["load_direction"].node(), -Vec3::UnitZ()).normalized();
   std::vector<CylinderWall> pins, supports;
+};
+
+PinsAndSupports pins_and_supports(const toml::table& scene, const std::filesystem::path& path) {
+  PinsAndSupports out;
+  if (const auto* a = scene["stop"]["load_walls"].as_array())
+    for (const auto& n : *a) out.load_walls.push_back(n.value_or(std::string()));
   if (const auto* walls = scene["wall"].as_array())
     for (const auto& w : *walls) {
       const auto* t = w.as_table();
       if (!t || (*t)["shape"].value_or(std::string()) != "cylinder") continue;
       CylinderWall c{(*t)["name"].value_or(std::string()), toml_vec3((*t)["point"].node(), Vec3::Zero())};
-      (std::find(load_walls.begin(), load_walls.end(), c.name) != load_walls.end() ? pins : supports).push_back(c);
+      const bool pin = std::find(out.load_walls.begin(), out.load_walls.end(), c.name) != out.load_walls.end();
+      (pin ? out.pins : out.supports).push_back(c);
     }
-  if (pins.size() != 2)
+  if (out.pins.size() != 2)
     throw std::runtime_error(fmt::format("{}: a four-point bending run needs two cylinder walls in [stop] load_walls; "
-                                         "found {}", path.string(), pins.size()));
-  BeamFrame frame;
+                                         "found {}", path.string(), out.pins.size()));
+  return out;
+}
+
+// The beam's frame from the pins, and its pin distance and span (given, or from the walls);
+// returns where each came from for the report.
+std::string frame_and_spans(const std::filesystem::path& path, const PinsAndSupports& walls,
+                            const BendingOptions& options, BeamFrame& frame, BendingReport& r) {
   try {
-    frame = beam_frame(pins[0].point, pins[1].point, r.down);
+    frame = beam_frame(walls.pins[0].point, walls.pins[1].point, r.down);
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(fmt::format("{}: {}", path.string(), e.what()));
   }
@@ -137,22 +139,25 @@ BendingReport analyse_bending_run(const std::filesystem::path& path, const Bendi
   r.centre = frame.centre;
   std::string source;
   BendingGeometry& g = r.geometry;
-  g.pin_distance = options.pin_distance.value_or(distance_along(frame, pins[0].point, pins[1].point));
+  g.pin_distance = options.pin_distance.value_or(distance_along(frame, walls.pins[0].point, walls.pins[1].point));
   source += options.pin_distance ? "pin distance: given; " : "pin distance: pin walls; ";
   if (options.span) {
     g.span = *options.span;
     source += "span: given; ";
-  } else if (supports.size() == 2) {
-    g.span = distance_along(frame, supports[0].point, supports[1].point);
+  } else if (walls.supports.size() == 2) {
+    g.span = distance_along(frame, walls.supports[0].point, walls.supports[1].point);
     source += "span: support walls; ";
   } else {
     throw std::runtime_error(fmt::format("{}: cannot infer the span: {} cylinder walls besides the pins (need 2); "
-                                         "give it explicitly", path.string(), supports.size()));
+                                         "give it explicitly", path.string(), walls.supports.size()));
   }
+  return source;
+}
 
-  // The specimen from the first frame.
-  if (file.frame_count() == 0) throw std::runtime_error(fmt::format("{}: no frames", path.string()));
-  const FrameData first = file.read_frame(0);
+// The specimen from the first frame: its counts, mean diameter, length, and width and height
+// (given, or the spheres' extent) completing the geometry, which is then checked.
+SphereExtent read_specimen(const std::filesystem::path& path, const FrameData& first, const BeamFrame& frame,
+                           const BendingOptions& options, std::string source, BendingReport& r) {
   r.particles = first.id.size();
   r.bonds = first.bond_i.size();
   if (r.particles == 0) throw std::runtime_error(fmt::format("{}: the first frame holds no particles", path.string()));
@@ -161,95 +166,93 @@ BendingReport analyse_bending_run(const std::filesystem::path& path, const Bendi
   for (double rad : first.radius) dsum += 2 * rad;
   r.mean_diameter = dsum / static_cast<double>(r.particles);
   r.length = extent.length;
+  BendingGeometry& g = r.geometry;
   g.width = options.width.value_or(extent.width);
   g.height = options.height.value_or(extent.height);
   source += options.width ? "width: given; " : "width: sphere extent; ";
   source += options.height ? "height: given" : "height: sphere extent";
   r.geometry_source = source;
   g.check();
+  return extent;
+}
 
-  r.curve = pin_curve(file, load_walls, r.down);
+// Fragments in the last frame, their masses from the scene's one density.
+FragmentSummary last_frame_fragments(const FrameData& last, double density, const BendingOptions& options) {
+  FragmentSummary out;
+  std::vector<double> mass(last.radius.size());
+  for (std::size_t k = 0; k < mass.size(); ++k) mass[k] = density * analysis::sphere_volume(last.radius[k]);
+  const analysis::ParticleSample sample{last.id, last.position, last.velocity, last.radius, mass, {}};
+  const auto fa = analysis::analyse_fragments(sample, {last.bond_i, last.bond_j});
+  double total = 0;
+  for (const auto& f : fa.fragments) total += f.mass;
+  out.count = fa.fragments.size();
+  out.frame_time = last.time;
+  for (const auto& f : fa.fragments) out.sizes.push_back(f.d_eq);
+  for (const auto& f : fa.fragments)
+    if (total > 0 && f.mass >= options.major_fragment * total) out.major_mass_fractions.push_back(f.mass / total);
+  out.major = out.major_mass_fractions.size();
+  return out;
+}
+
+// The network's own stiffness: the Voigt estimate of the first frame's bonds.
+void network_stiffness(const FrameData& first, BendingReport& r) {
+  const BendingGeometry& g = r.geometry;
+  const double volume = r.length * g.width * g.height;
+  r.voigt = voigt_modulus(first.position, first.radius, first.bond_i, first.bond_j, r.bond, volume, r.axis);
+  const double e_over_g = 2.0 * (1.0 + std::clamp(r.voigt.poisson_ratio, 0.0, 0.49));
+  r.shear_correction = shear_to_bending_deflection(g, e_over_g);
+}
+
+// Local instrumentation: the beam's own deflection under the pins relative to the supports,
+// and the curvature between the pins, on every frame before the first break and the peak. The
+// first break is the first beyond BendingOptions::local_damage_limit (none allowed by default).
+void local_instrumentation(const RunFile& file, const FrameData& first, const SphereExtent& extent,
+                           const std::vector<BondBreakEvent>& events, const BendingOptions& options, BendingReport& r) {
+  const BendingGeometry& g = r.geometry;
   const auto& time = r.curve.time;
-  r.analysis = analyse_curve(r.curve.displacement, r.curve.force, g, options.curve);
-
-  // Crack.
-  const auto events = file.read_break_events();
-  std::vector<Vec3> mids;
-  mids.reserve(events.size());
-  for (const auto& e : events) mids.push_back(e.midpoint);
-  const double window = options.crack_window > 0 ? options.crack_window : 2 * r.mean_diameter;
-  r.crack = locate_crack(mids, r.centre, r.axis, window, g.pin_distance);
-
-  // Fragments in the last frame.
-  const FrameData last = file.read_frame(file.frame_count() - 1);
-  {
-    std::vector<double> mass(last.radius.size());
-    for (std::size_t k = 0; k < mass.size(); ++k) mass[k] = density * analysis::sphere_volume(last.radius[k]);
-    const analysis::ParticleSample sample{last.id, last.position, last.velocity, last.radius, mass, {}};
-    const auto fa = analysis::analyse_fragments(sample, {last.bond_i, last.bond_j});
-    double total = 0;
-    for (const auto& f : fa.fragments) total += f.mass;
-    r.fragments.count = fa.fragments.size();
-    r.fragments.frame_time = last.time;
-    for (const auto& f : fa.fragments) r.fragments.sizes.push_back(f.d_eq);
-    for (const auto& f : fa.fragments)
-      if (total > 0 && f.mass >= options.major_fragment * total) r.fragments.major_mass_fractions.push_back(f.mass / total);
-    r.fragments.major = r.fragments.major_mass_fractions.size();
-  }
-
-  // The network's own stiffness: the Voigt estimate of the first frame's bonds.
-  {
-    const double volume = r.length * g.width * g.height;
-    r.voigt = voigt_modulus(first.position, first.radius, first.bond_i, first.bond_j, r.bond, volume, r.axis);
-    const double e_over_g = 2.0 * (1.0 + std::clamp(r.voigt.poisson_ratio, 0.0, 0.49));
-    r.shear_correction = shear_to_bending_deflection(g, e_over_g);
-  }
-
-  // Local instrumentation: the beam's own deflection under the pins relative to the supports,
-  // and the curvature between the pins, on every frame before the first break and the peak. The
-  // first break is the first beyond BendingOptions::local_damage_limit (none allowed by default).
   const auto allowed = static_cast<std::size_t>(std::floor(options.local_damage_limit * static_cast<double>(r.bonds)));
   const double t_first_break = events.size() > allowed ? events[allowed].time : 1e300;
   const double t_peak = time.empty() ? 0 : time[r.analysis.peak_row];
-  {
-    SectionGauges gauges;
-    gauges.centre = r.centre + extent.mid_height * r.down;
-    gauges.axis = r.axis;
-    gauges.down = r.down;
-    gauges.section_width = options.gauge_section > 0 ? options.gauge_section : 2 * r.mean_diameter;
-    gauges.core_height = options.gauge_core > 0 ? options.gauge_core : 0.5 * g.height;
-    std::map<Index, std::size_t> row_of;
-    for (std::size_t k = 0; k < first.id.size(); ++k) row_of[first.id[k]] = k;
-    std::vector<LocalFrame> rows;  // before the first break and the peak: the elastic part
-    std::vector<Vec3> ref, def;
-    for (std::size_t k = 1; k < file.frame_count(); ++k) {
-      const FrameData f = file.read_frame(k);
-      ref.clear(), def.clear();
-      for (std::size_t q = 0; q < f.id.size(); ++q)
-        if (auto it = row_of.find(f.id[q]); it != row_of.end()) {
-          ref.push_back(first.position[it->second]);
-          def.push_back(f.position[q]);
-        }
-      LocalFrame row;
-      row.time = f.time;
-      row.force = interpolate(time, r.curve.force, f.time);
-      row.deflection = local_deflection(ref, def, gauges, g);
-      r.local_curve.time.push_back(row.time);
-      r.local_curve.displacement.push_back(row.deflection);
-      r.local_curve.force.push_back(row.force);
-      if (f.time >= t_first_break || f.time > t_peak) continue;
-      row.curvature = curvature_modulus(ref, def, r.centre, r.axis, r.down, g, row.force).curvature;
-      rows.push_back(row);
-    }
-    r.gauges = fit_local_instrumentation(std::move(rows), g, r.analysis.force_max, options.curve);
-    r.gauges.breaks_allowed = allowed;  // for the report's wording
-    r.predicted_local_stiffness =
-        r.gauges.curvature_modulus > 0
-            ? predicted_local_stiffness(g, r.gauges.curvature_modulus, std::clamp(r.voigt.poisson_ratio, 0.0, 0.49))
-            : 0.0;
+  SectionGauges gauges;
+  gauges.centre = r.centre + extent.mid_height * r.down;
+  gauges.axis = r.axis;
+  gauges.down = r.down;
+  gauges.section_width = options.gauge_section > 0 ? options.gauge_section : 2 * r.mean_diameter;
+  gauges.core_height = options.gauge_core > 0 ? options.gauge_core : 0.5 * g.height;
+  std::map<Index, std::size_t> row_of;
+  for (std::size_t k = 0; k < first.id.size(); ++k) row_of[first.id[k]] = k;
+  std::vector<LocalFrame> rows;  // before the first break and the peak: the elastic part
+  std::vector<Vec3> ref, def;
+  for (std::size_t k = 1; k < file.frame_count(); ++k) {
+    const FrameData f = file.read_frame(k);
+    ref.clear(), def.clear();
+    for (std::size_t q = 0; q < f.id.size(); ++q)
+      if (auto it = row_of.find(f.id[q]); it != row_of.end()) {
+        ref.push_back(first.position[it->second]);
+        def.push_back(f.position[q]);
+      }
+    LocalFrame row;
+    row.time = f.time;
+    row.force = interpolate(time, r.curve.force, f.time);
+    row.deflection = local_deflection(ref, def, gauges, g);
+    r.local_curve.time.push_back(row.time);
+    r.local_curve.displacement.push_back(row.deflection);
+    r.local_curve.force.push_back(row.force);
+    if (f.time >= t_first_break || f.time > t_peak) continue;
+    row.curvature = curvature_modulus(ref, def, r.centre, r.axis, r.down, g, row.force).curvature;
+    rows.push_back(row);
   }
+  r.gauges = fit_local_instrumentation(std::move(rows), g, r.analysis.force_max, options.curve);
+  r.gauges.breaks_allowed = allowed;  // for the report's wording
+  r.predicted_local_stiffness =
+      r.gauges.curvature_modulus > 0
+          ? predicted_local_stiffness(g, r.gauges.curvature_modulus, std::clamp(r.voigt.poisson_ratio, 0.0, 0.49))
+          : 0.0;
+}
 
-  // Quasi-static check: kinetic against stored elastic energy while loading, before damage.
+// Quasi-static check: kinetic against stored elastic energy while loading, before damage.
+void quasi_static_check(const RunFile& file, BendingReport& r) {
+  const auto& time = r.curve.time;
   const auto ke = file.read_series("kinetic_energy");
   const auto eb = file.read_series("bond_energy");
   const auto ec = file.read_series("contact_energy");
@@ -268,6 +271,45 @@ BendingReport analyse_bending_run(const std::filesystem::path& path, const Bendi
     r.quasi_static.loading_speed = (r.curve.displacement.back() - r.curve.displacement.front()) / (time.back() - time.front());
   if (r.quasi_static.loading_speed > 0)
     r.quasi_static.load_time = r.analysis.deflection_at_peak / r.quasi_static.loading_speed;
+}
+
+}  // namespace
+
+BendingReport analyse_bending_run(const std::filesystem::path& path, const BendingOptions& options) {
+  const RunFile file(path);
+  BendingReport r;
+  r.run = path;
+  const RunMetadata meta = file.metadata();
+  const toml::table scene = stored_scene(path, meta);
+  r.bond = bond_parameters(meta);
+  r.breakage = scene["simulation"]["breakage"].value_or(true) && r.bond.breakage;
+  const double density = scene["material"]["density"].value_or(0.0);
+
+  // Loading pins and supports, and the beam's frame and spans from them.
+  const PinsAndSupports walls = pins_and_supports(scene, path);
+  r.down = toml_vec3(scene["stop"]["load_direction"].node(), -Vec3::UnitZ()).normalized();
+  BeamFrame frame;
+  std::string source = frame_and_spans(path, walls, options, frame, r);
+
+  if (file.frame_count() == 0) throw std::runtime_error(fmt::format("{}: no frames", path.string()));
+  const FrameData first = file.read_frame(0);
+  const SphereExtent extent = read_specimen(path, first, frame, options, std::move(source), r);
+
+  r.curve = pin_curve(file, walls.load_walls, r.down);
+  r.analysis = analyse_curve(r.curve.displacement, r.curve.force, r.geometry, options.curve);
+
+  // Crack.
+  const auto events = file.read_break_events();
+  std::vector<Vec3> mids;
+  mids.reserve(events.size());
+  for (const auto& e : events) mids.push_back(e.midpoint);
+  const double window = options.crack_window > 0 ? options.crack_window : 2 * r.mean_diameter;
+  r.crack = locate_crack(mids, r.centre, r.axis, window, r.geometry.pin_distance);
+
+  r.fragments = last_frame_fragments(file.read_frame(file.frame_count() - 1), density, options);
+  network_stiffness(first, r);
+  local_instrumentation(file, first, extent, events, options, r);
+  quasi_static_check(file, r);
   return r;
 }
 

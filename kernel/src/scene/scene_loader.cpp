@@ -388,11 +388,9 @@ void refuse_unreadable_characters(const std::string& text, const std::string& fi
   }
 }
 
-}  // namespace
-
-Scene load_scene_text(const std::string& text, const std::filesystem::path& file_path, const PluginHost& host,
-                      const SceneOverrides& overrides) {
-  const std::string file = file_path.string();
+// The scene text as TOML with the --set overrides applied; text the TOML library would misread
+// is refused first, naming its line.
+toml::table parse_scene_toml(const std::string& text, const std::string& file, const SceneOverrides& overrides) {
   refuse_malformed_headers(text, file);
   refuse_unreadable_characters(text, file);
   toml::table root;
@@ -402,7 +400,10 @@ Scene load_scene_text(const std::string& text, const std::filesystem::path& file
     throw SceneError(fmt::format("{}: TOML syntax error: {}", where(file, e.source()), e.description()));
   }
   for (const auto& o : overrides) apply_override(root, o);
+  return root;
+}
 
+void refuse_unknown_sections(const toml::table& root, const std::string& file) {
   static const std::vector<std::string> sections = {"simulation", "material", "output", "generator", "contact",
                                                     "bond",       "wall",     "stop",   "analysis", "grip",
                                                     "body",       "material_pair"};
@@ -414,14 +415,9 @@ Scene load_scene_text(const std::string& text, const std::filesystem::path& file
                                  hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint),
                                  fmt::join(sections, ", ")));
   }
+}
 
-  Scene scene;
-  scene.file = file_path;
-  scene.dir = file_path.has_parent_path() ? file_path.parent_path() : std::filesystem::path(".");
-  std::ostringstream resolved;
-  resolved << root;
-  scene.resolved_text = resolved.str();
-
+void read_simulation_section(const toml::table& root, const std::string& file, Scene& scene) {
   Section sim(root["simulation"].as_table(), file, "simulation");
   if (!sim.present()) throw SceneError(fmt::format("{}: missing [simulation] section (duration, dt, seed)", file));
   scene.dt = sim.number_or_auto("dt");
@@ -433,7 +429,10 @@ Scene load_scene_text(const std::string& text, const std::filesystem::path& file
   scene.global_damping = sim.number("global_damping", 0, 0, 0.99);
   scene.breakage = sim.flag("breakage", true);
   sim.finish();
+}
 
+// [output] and [analysis]; the intervals default to fractions of the duration, so [simulation] is read first.
+void read_output_sections(const toml::table& root, const std::string& file, Scene& scene) {
   Section out(root["output"].as_table(), file, "output");
   scene.output_file = out.text("file", "run.h5");
   // A bare .h5 name: the .xmf index and the checkpoint are named after it in the same folder.
@@ -450,8 +449,10 @@ Scene load_scene_text(const std::string& text, const std::filesystem::path& file
   Section analysis(root["analysis"].as_table(), file, "analysis");
   scene.fragments_every = static_cast<int>(analysis.number("fragments_every", 1, 0, 1e9));
   analysis.finish();
+}
 
-  scene.bodies = read_bodies(root, file, host);
+// The [contact] and [bond] plugins chosen, with their parameters.
+void read_plugin_sections(const toml::table& root, const std::string& file, const PluginHost& host, Scene& scene) {
   if (root["contact"].as_table())
     scene.contact = plugin_choice(root["contact"].as_table(), file, "contact", PluginKind::Contact, host);
   if (const auto* bond = root["bond"].as_table()) {
@@ -463,7 +464,11 @@ Scene load_scene_text(const std::string& text, const std::filesystem::path& file
                                    where(file, flag->source())));
     scene.bond = plugin_choice(bond, file, "bond", PluginKind::Bond, host);
   }
+}
 
+// The [[wall]] entries into scene.walls; returns the material each names, parallel to scene.walls
+// (read with the materials later, which need the walls).
+std::vector<scene_detail::WallMaterial> read_walls(const toml::table& root, const std::string& file, Scene& scene) {
   std::vector<scene_detail::WallMaterial> wall_materials;
   if (const auto* walls = root["wall"].as_array()) {
     std::size_t k = 0;
@@ -484,7 +489,10 @@ Scene load_scene_text(const std::string& text, const std::filesystem::path& file
     throw SceneError(fmt::format("{}: walls are an array of tables: write [[wall]], not [wall]",
                                  where(file, root["wall"].node()->source())));
   }
+  return wall_materials;
+}
 
+void read_grips(const toml::table& root, const std::string& file, Scene& scene) {
   if (const auto* grips = root["grip"].as_array()) {
     for (const auto& g : *grips) {
       const auto* t = g.as_table();
@@ -504,10 +512,10 @@ Scene load_scene_text(const std::string& text, const std::filesystem::path& file
     throw SceneError(fmt::format("{}: grips are an array of tables: write [[grip]], not [grip]",
                                  where(file, root["grip"].node()->source())));
   }
+}
 
-  scene_detail::check_material_overrides(overrides, host, scene);
-  scene_detail::read_materials(root, file, host, wall_materials, scene);
-
+// [stop]: its load walls must be walls of the scene, so the walls are read first.
+void read_stop_section(const toml::table& root, const std::string& file, Scene& scene) {
   Section stop(root["stop"].as_table(), file, "stop");
   scene.stop.load_walls = stop.strings("load_walls");
   scene.stop.load_direction = stop.vec3("load_direction", -Vec3::UnitZ());
@@ -530,9 +538,33 @@ Scene load_scene_text(const std::string& text, const std::filesystem::path& file
                                    name, hint.empty() ? "" : fmt::format(" (did you mean '{}'?)", hint)));
     }
   }
-  if (!scene.breakage && !scene.bond) {
-    // Nothing contradictory: breakage off without bonds simply has no effect.
-  }
+}
+
+}  // namespace
+
+Scene load_scene_text(const std::string& text, const std::filesystem::path& file_path, const PluginHost& host,
+                      const SceneOverrides& overrides) {
+  const std::string file = file_path.string();
+  const toml::table root = parse_scene_toml(text, file, overrides);
+  refuse_unknown_sections(root, file);
+
+  Scene scene;
+  scene.file = file_path;
+  scene.dir = file_path.has_parent_path() ? file_path.parent_path() : std::filesystem::path(".");
+  std::ostringstream resolved;
+  resolved << root;
+  scene.resolved_text = resolved.str();
+
+  // The order of the sections is the order of the checks: each reads what the earlier ones filled.
+  read_simulation_section(root, file, scene);
+  read_output_sections(root, file, scene);
+  scene.bodies = read_bodies(root, file, host);
+  read_plugin_sections(root, file, host, scene);
+  const std::vector<scene_detail::WallMaterial> wall_materials = read_walls(root, file, scene);
+  read_grips(root, file, scene);
+  scene_detail::check_material_overrides(overrides, host, scene);
+  scene_detail::read_materials(root, file, host, wall_materials, scene);
+  read_stop_section(root, file, scene);
   return scene;
 }
 

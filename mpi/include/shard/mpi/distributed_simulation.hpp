@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "shard/checkpoint.hpp"
@@ -183,6 +184,10 @@ class DistributedSimulation {
   void repartition();
   // `initial`: the scene's set-up, taken over (moved from) to build this rank's Simulation.
   void distribute(Owned owned, double longest_bond, SimulationSetup* initial, const SimulationState* resumed = nullptr);
+  void build_local(SimulationSetup s, const SimulationState* resumed, Particles& local,
+                   std::vector<std::pair<Index, Index>>& bond_ends);
+  void import_local(const SimulationState* resumed, Particles local, const std::vector<std::pair<Index, Index>>& bond_ends,
+                    const std::vector<double>& bond_records, std::size_t bond_stride, NeighbourState touching);
   void start(const SimulationSetup& setup);
   void finish_step();
   void fill_whole_figures(SimulationState& s) const;
