@@ -5,9 +5,10 @@
 #include <sstream>
 
 #include "run_file_fixture.hpp"
-#include "shard/analysis/fragments_cli.hpp"
 #include "shard/analysis/fsd_plot.hpp"
+#include "shard/app/fragments_cli.hpp"
 
+using namespace shard;
 using namespace shard::analysis;
 
 namespace {

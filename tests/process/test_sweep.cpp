@@ -11,7 +11,7 @@
 #include <sstream>
 #include <string>
 
-#include "shard/analysis/fragments_command.hpp"
+#include "shard/app/fragments_command.hpp"
 #include "shard/run_file.hpp"
 #include "shard/app/sweep_command.hpp"
 #include "shard/scene.hpp"
@@ -113,12 +113,12 @@ TEST_CASE("a sweep over impact speed and seeds: per-run plates equal --by-body, 
   // The per-run numbers are those of `shard fragments --by-body` on the same run file.
   for (const std::string label : {"v2.5_s1", "v0.8_s0"}) {
     const fs::path body_csv = out / (label + "_bodies.csv");
-    analysis::FragmentsOptions fo;
+    FragmentsOptions fo;
     fo.run_file = out / "runs" / label / "run.h5";
     fo.by_body = true;
     fo.body_csv = body_csv;
     std::ostringstream fout, ferr;
-    REQUIRE(analysis::fragments_command(fo, fout, ferr) == 0);
+    REQUIRE(fragments_command(fo, fout, ferr) == 0);
     const auto rows = read_csv(body_csv);
     std::vector<const analysis::PlateOutcome*> mine;
     for (const auto& p : r.plates)
@@ -137,15 +137,15 @@ TEST_CASE("a sweep over impact speed and seeds: per-run plates equal --by-body, 
 
   // The one-run report of the same file: its speed bins hold the run's three plates.
   {
-    analysis::FragmentsOptions fo;
+    FragmentsOptions fo;
     fo.run_file = out / "runs" / "v2.5_s1" / "run.h5";
     fo.report = out / "one_run";
     std::ostringstream fout, ferr;
-    CHECK(analysis::fragments_command(fo, fout, ferr) == 1);  // --report needs --by-body
+    CHECK(fragments_command(fo, fout, ferr) == 1);  // --report needs --by-body
     CHECK(ferr.str().find("add --by-body") != std::string::npos);
     fo.by_body = true;
     fo.speed_bins = 2;
-    REQUIRE(analysis::fragments_command(fo, fout, ferr) == 0);
+    REQUIRE(fragments_command(fo, fout, ferr) == 0);
     const auto bins = read_csv(out / "one_run" / "breakage_vs_speed.csv");
     REQUIRE(bins.size() == 2);
     CHECK(std::stoi(bins[0].at("plates")) + std::stoi(bins[1].at("plates")) == 3);

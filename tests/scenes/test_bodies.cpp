@@ -12,7 +12,7 @@
 
 #include "shard/analysis/body_statistics.hpp"
 #include "shard/body_impacts.hpp"
-#include "shard/analysis/fragments_command.hpp"
+#include "shard/app/fragments_command.hpp"
 #include "shard/analysis/run_tables.hpp"
 #include "shard/app/run_command.hpp"
 #include "shard/checkpoint.hpp"
@@ -312,13 +312,13 @@ TEST_CASE("two identical bars dropped identically keep their body ids, never bon
   CHECK(report.breakage_probability == (left.broken ? 1.0 : 0.0));
 
   // The command: the table in the run file and the CSV.
-  analysis::FragmentsOptions fo;
+  FragmentsOptions fo;
   fo.run_file = summary.output;
   fo.by_body = true;
   fo.body_csv = dir / "bodies.csv";
   fo.fines_size = 0.005;
   std::ostringstream out, err;
-  const int status = analysis::fragments_command(fo, out, err);
+  const int status = fragments_command(fo, out, err);
   CAPTURE(err.str());
   REQUIRE(status == 0);
   CHECK(out.str().find("bodies 2  broken") != std::string::npos);

@@ -1,4 +1,4 @@
-#include "shard/analysis/fragments_command.hpp"
+#include "shard/app/fragments_command.hpp"
 
 #include <fmt/format.h>
 
@@ -18,7 +18,9 @@
 #include "shard/analysis/size_distribution.hpp"
 #include "shard/run_file.hpp"
 
-namespace shard::analysis {
+namespace shard {
+
+using namespace analysis;
 
 namespace {
 
@@ -231,4 +233,4 @@ int fragments_command(const FragmentsOptions& options, std::ostream& out, std::o
   }
 }
 
-}  // namespace shard::analysis
+}  // namespace shard

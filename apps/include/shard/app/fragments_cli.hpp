@@ -1,13 +1,13 @@
 #pragma once
-// Registers the options of `shard fragments` on a CLI11 (sub)command; header-only so the
-// analysis library itself does not depend on CLI11. Usage in apps/:
+// Registers the options of `shard fragments` on a CLI11 (sub)command; header-only so a
+// test parses the same options without the command table. Usage in apps/:
 //   FragmentsOptions opts; auto* sub = app.add_subcommand("fragments", "...");
 //   add_fragments_options(*sub, opts); sub->callback([&] { rc = fragments_command(opts, std::cout, std::cerr); });
 #include <CLI/CLI.hpp>
 
-#include "shard/analysis/fragments_command.hpp"
+#include "shard/app/fragments_command.hpp"
 
-namespace shard::analysis {
+namespace shard {
 
 inline void add_fragments_options(CLI::App& app, FragmentsOptions& o) {
   app.add_option("run_file", o.run_file, "run.h5 written by `shard run`")->required()->check(CLI::ExistingFile);
@@ -40,4 +40,4 @@ inline void add_fragments_options(CLI::App& app, FragmentsOptions& o) {
       ->expected(2, 1000);
 }
 
-}  // namespace shard::analysis
+}  // namespace shard

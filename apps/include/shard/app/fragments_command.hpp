@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-namespace shard::analysis {
+namespace shard {
 
 struct FragmentsOptions {
   std::filesystem::path run_file;
@@ -40,4 +40,4 @@ struct FragmentsOptions {
 // Returns 0 on success, 1 on an error (reported on err as one line starting "error: ").
 int fragments_command(const FragmentsOptions& options, std::ostream& out, std::ostream& err);
 
-}  // namespace shard::analysis
+}  // namespace shard
