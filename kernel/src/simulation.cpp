@@ -224,6 +224,81 @@ struct ContactWorkspace {
   }
 };
 
+namespace {
+
+// The bonds checked, each stored with i < j, sorted by first particle and without repeats: for
+// locality and a canonical order.
+void canonical_bonds(std::vector<std::pair<Index, Index>>& bonds, std::size_t n) {
+  for (auto& [a, b] : bonds) {
+    if (a < 0 || b < 0 || static_cast<std::size_t>(a) >= n || static_cast<std::size_t>(b) >= n || a == b)
+      throw std::invalid_argument(fmt::format("bond ({}, {}) names a particle that does not exist", a, b));
+    if (a > b) std::swap(a, b);
+  }
+  std::sort(bonds.begin(), bonds.end());
+  bonds.erase(std::unique(bonds.begin(), bonds.end()), bonds.end());
+}
+
+// Every particle's and wall's material must be one of the scene's.
+void check_materials(std::size_t materials, const Particles& p, const std::vector<Wall>& walls) {
+  if (materials == 0 || materials > 1u << 15)
+    throw std::invalid_argument(fmt::format("{} materials: a scene has 1 to 32768", materials));
+  const auto count = static_cast<std::int32_t>(materials);
+  if (count == 1) return;
+  for (std::size_t k = 0; k < p.size(); ++k)
+    if (p.material[k] < 0 || p.material[k] >= count)
+      throw std::invalid_argument(fmt::format("particle {} has material {}, but the scene has materials 0 to {}",
+                                              p.id[k], p.material[k], count - 1));
+  for (const auto& w : walls)
+    if (w.material < 0 || w.material >= count)
+      throw std::invalid_argument(fmt::format("wall '{}' has material {}, but the scene has materials 0 to {}", w.name,
+                                              w.material, count - 1));
+}
+
+// The smallest sphere (the first of that radius), which bounds the contact time step, and the
+// largest, which sizes the skin and the Morton grid.
+struct RadiusRange {
+  double r_min = std::numeric_limits<double>::infinity();
+  std::size_t smallest = 0;
+  double r_max = 0;
+};
+
+RadiusRange radius_range(const Particles& p) {
+  RadiusRange out;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    if (p.radius[k] < out.r_min) {
+      out.r_min = p.radius[k];
+      out.smallest = k;
+    }
+    out.r_max = std::max(out.r_max, p.radius[k]);
+  }
+  return out;
+}
+
+// The contact law's time step limit: over the smallest sphere, or with several materials over
+// each material's smallest (lightest) sphere, since the laws differ per material and pair.
+TimeStepLimit contact_time_step_limit(const ContactModel& contact, const Particles& p, std::size_t materials,
+                                      const RadiusRange& radii) {
+  if (materials == 1) return contact.time_step_limit(radii.r_min, density_of(p, radii.smallest));
+  std::vector<MaterialExtent> extents(materials);
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    MaterialExtent& e = extents[static_cast<std::size_t>(p.material[k])];
+    if (e.min_radius == 0 || p.radius[k] < e.min_radius) e = {p.radius[k], density_of(p, k)};
+  }
+  return contact.time_step_limit(extents);
+}
+
+// The time step given, or with "auto" (<= 0) the smallest every model states.
+double chosen_time_step(double given, const std::vector<TimeStepLimit>& limits) {
+  if (!(given <= 0)) return given;
+  double dt = std::numeric_limits<double>::infinity();
+  for (const auto& l : limits) dt = std::min(dt, l.recommended);
+  if (!std::isfinite(dt))
+    throw std::invalid_argument("dt = \"auto\" needs a contact or bond model to derive a time step from; set [simulation] dt");
+  return dt;
+}
+
+}  // namespace
+
 Simulation::Simulation(SimulationSetup setup)
     : particles_(std::move(setup.particles)),
       contact_(setup.contact),
@@ -237,14 +312,7 @@ Simulation::Simulation(SimulationSetup setup)
   const std::size_t n = particles_.size();
   if (!setup.bonds.empty() && !bond_)
     throw std::invalid_argument("the scene has bonds but no bond model: add a [bond] section (e.g. plugin = \"beam_bond\")");
-  // Bonds sorted by first particle, each stored with i < j, for locality and a canonical order.
-  for (auto& [a, b] : setup.bonds) {
-    if (a < 0 || b < 0 || static_cast<std::size_t>(a) >= n || static_cast<std::size_t>(b) >= n || a == b)
-      throw std::invalid_argument(fmt::format("bond ({}, {}) names a particle that does not exist", a, b));
-    if (a > b) std::swap(a, b);
-  }
-  std::sort(setup.bonds.begin(), setup.bonds.end());
-  setup.bonds.erase(std::unique(setup.bonds.begin(), setup.bonds.end()), setup.bonds.end());
+  canonical_bonds(setup.bonds, n);
   bonds_.stride = bond_ ? bond_->state_size() : 0;
   bonds_.keeps_loads = setup.record_bond_loads;
   bonds_.resize(setup.bonds.size());
@@ -258,51 +326,15 @@ Simulation::Simulation(SimulationSetup setup)
   }
 
   // Time step (docs/explanation/physics.md, "Time step"): every model states its limit; "auto" takes the smallest.
-  double r_min = std::numeric_limits<double>::infinity();
-  std::size_t lightest = 0;
-  double r_max = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    if (particles_.radius[k] < r_min) {
-      r_min = particles_.radius[k];
-      lightest = k;
-    }
-    r_max = std::max(r_max, particles_.radius[k]);
-  }
-  if (setup.materials == 0 || setup.materials > 1u << 15)
-    throw std::invalid_argument(fmt::format("{} materials: a scene has 1 to 32768", setup.materials));
-  if (materials_ > 1) {
-    for (std::size_t k = 0; k < n; ++k)
-      if (particles_.material[k] < 0 || particles_.material[k] >= materials_)
-        throw std::invalid_argument(fmt::format("particle {} has material {}, but the scene has materials 0 to {}",
-                                                particles_.id[k], particles_.material[k], materials_ - 1));
-    for (const auto& w : walls_)
-      if (w.material < 0 || w.material >= materials_)
-        throw std::invalid_argument(fmt::format("wall '{}' has material {}, but the scene has materials 0 to {}",
-                                                w.name, w.material, materials_ - 1));
-  }
-  if (contact_ && n > 0 && materials_ == 1)
-    limits_.push_back(contact_->time_step_limit(r_min, density_of(particles_, lightest)));
-  if (contact_ && n > 0 && materials_ > 1) {
-    // Each material's smallest (lightest) sphere: the laws differ per material and pair.
-    std::vector<MaterialExtent> extents(setup.materials);
-    for (std::size_t k = 0; k < n; ++k) {
-      MaterialExtent& e = extents[static_cast<std::size_t>(particles_.material[k])];
-      if (e.min_radius == 0 || particles_.radius[k] < e.min_radius) e = {particles_.radius[k], density_of(particles_, k)};
-    }
-    limits_.push_back(contact_->time_step_limit(extents));
-  }
+  const RadiusRange radii = radius_range(particles_);
+  check_materials(setup.materials, particles_, walls_);
+  if (contact_ && n > 0) limits_.push_back(contact_time_step_limit(*contact_, particles_, setup.materials, radii));
   if (bond_ && bonds_.size() > 0) limits_.push_back(bond_->time_step_limit(bond_batch()));
-  dt_ = setup.dt;
-  if (dt_ <= 0) {
-    dt_ = std::numeric_limits<double>::infinity();
-    for (const auto& l : limits_) dt_ = std::min(dt_, l.recommended);
-    if (!std::isfinite(dt_))
-      throw std::invalid_argument("dt = \"auto\" needs a contact or bond model to derive a time step from; set [simulation] dt");
-  }
-  const double skin = setup.skin > 0 ? setup.skin : 0.2 * std::max(r_max, 1e-12);
+  dt_ = chosen_time_step(setup.dt, limits_);
+  const double skin = setup.skin > 0 ? setup.skin : 0.2 * std::max(radii.r_max, 1e-12);
   neighbours_ = std::make_unique<NeighbourList>(skin, contact_ ? contact_->history_size() : 0);
   workspace_ = std::make_unique<ContactWorkspace>();
-  workspace_->order_cell = 2 * std::max(r_max, 1e-12) + skin;
+  workspace_->order_cell = 2 * std::max(radii.r_max, 1e-12) + skin;
   for (auto& w : walls_) {
     if (w.shape != WallShape::Mesh) w.axis.normalize();
     if (w.motion.spins) w.motion.spin_axis.normalize();
