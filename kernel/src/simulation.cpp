@@ -89,6 +89,21 @@ struct alignas(64) ThreadShare {
   double contact_energy = 0;
   std::size_t contacts = 0;
   bool bond_broke = false;
+
+  // Empties the share's wall loads and totals for a force pass (the force buffers are left zero by
+  // the previous pass's sum).
+  void start_pass() {
+    std::fill(wall_force.begin(), wall_force.end(), Vec3::Zero());
+    std::fill(wall_torque.begin(), wall_torque.end(), Vec3::Zero());
+    std::fill(wall_stored.begin(), wall_stored.end(), 0.0);
+    std::fill(wall_impacts.begin(), wall_impacts.end(), 0);
+    wall_touches.clear();
+    wall_begun.clear();
+    contact_energy = 0;
+    contacts = 0;
+    bond_broke = false;
+    bond_energy = 0;
+  }
 };
 
 // The work of one wall contact's force and couple on particle a's motion relative to the surface
@@ -130,6 +145,12 @@ double sign_of(double v) { return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0); }
   if (p.flags[k] & (kFixed | kPrescribed)) return;
   p.velocity[k] += h * p.force[k] / p.mass[k];
   p.omega[k] += h * p.torque[k] / p.inertia[k];
+}
+
+// Zero force and torque of particles [begin, end).
+[[gnu::always_inline]] inline void zero_forces(Particles& p, std::size_t begin, std::size_t end) {
+  std::fill(p.force.begin() + static_cast<std::ptrdiff_t>(begin), p.force.begin() + static_cast<std::ptrdiff_t>(end), Vec3::Zero());
+  std::fill(p.torque.begin() + static_cast<std::ptrdiff_t>(begin), p.torque.begin() + static_cast<std::ptrdiff_t>(end), Vec3::Zero());
 }
 
 // to += from and to -= from for a Vec3 stored x, y, z: x and y as one SSE2 pair, z alone, the
@@ -203,6 +224,81 @@ struct ContactWorkspace {
   }
 };
 
+namespace {
+
+// The bonds checked, each stored with i < j, sorted by first particle and without repeats: for
+// locality and a canonical order.
+void canonical_bonds(std::vector<std::pair<Index, Index>>& bonds, std::size_t n) {
+  for (auto& [a, b] : bonds) {
+    if (a < 0 || b < 0 || static_cast<std::size_t>(a) >= n || static_cast<std::size_t>(b) >= n || a == b)
+      throw std::invalid_argument(fmt::format("bond ({}, {}) names a particle that does not exist", a, b));
+    if (a > b) std::swap(a, b);
+  }
+  std::sort(bonds.begin(), bonds.end());
+  bonds.erase(std::unique(bonds.begin(), bonds.end()), bonds.end());
+}
+
+// Every particle's and wall's material must be one of the scene's.
+void check_materials(std::size_t materials, const Particles& p, const std::vector<Wall>& walls) {
+  if (materials == 0 || materials > 1u << 15)
+    throw std::invalid_argument(fmt::format("{} materials: a scene has 1 to 32768", materials));
+  const auto count = static_cast<std::int32_t>(materials);
+  if (count == 1) return;
+  for (std::size_t k = 0; k < p.size(); ++k)
+    if (p.material[k] < 0 || p.material[k] >= count)
+      throw std::invalid_argument(fmt::format("particle {} has material {}, but the scene has materials 0 to {}",
+                                              p.id[k], p.material[k], count - 1));
+  for (const auto& w : walls)
+    if (w.material < 0 || w.material >= count)
+      throw std::invalid_argument(fmt::format("wall '{}' has material {}, but the scene has materials 0 to {}", w.name,
+                                              w.material, count - 1));
+}
+
+// The smallest sphere (the first of that radius), which bounds the contact time step, and the
+// largest, which sizes the skin and the Morton grid.
+struct RadiusRange {
+  double r_min = std::numeric_limits<double>::infinity();
+  std::size_t smallest = 0;
+  double r_max = 0;
+};
+
+RadiusRange radius_range(const Particles& p) {
+  RadiusRange out;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    if (p.radius[k] < out.r_min) {
+      out.r_min = p.radius[k];
+      out.smallest = k;
+    }
+    out.r_max = std::max(out.r_max, p.radius[k]);
+  }
+  return out;
+}
+
+// The contact law's time step limit: over the smallest sphere, or with several materials over
+// each material's smallest (lightest) sphere, since the laws differ per material and pair.
+TimeStepLimit contact_time_step_limit(const ContactModel& contact, const Particles& p, std::size_t materials,
+                                      const RadiusRange& radii) {
+  if (materials == 1) return contact.time_step_limit(radii.r_min, density_of(p, radii.smallest));
+  std::vector<MaterialExtent> extents(materials);
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    MaterialExtent& e = extents[static_cast<std::size_t>(p.material[k])];
+    if (e.min_radius == 0 || p.radius[k] < e.min_radius) e = {p.radius[k], density_of(p, k)};
+  }
+  return contact.time_step_limit(extents);
+}
+
+// The time step given, or with "auto" (<= 0) the smallest every model states.
+double chosen_time_step(double given, const std::vector<TimeStepLimit>& limits) {
+  if (!(given <= 0)) return given;
+  double dt = std::numeric_limits<double>::infinity();
+  for (const auto& l : limits) dt = std::min(dt, l.recommended);
+  if (!std::isfinite(dt))
+    throw std::invalid_argument("dt = \"auto\" needs a contact or bond model to derive a time step from; set [simulation] dt");
+  return dt;
+}
+
+}  // namespace
+
 Simulation::Simulation(SimulationSetup setup)
     : particles_(std::move(setup.particles)),
       contact_(setup.contact),
@@ -216,14 +312,7 @@ Simulation::Simulation(SimulationSetup setup)
   const std::size_t n = particles_.size();
   if (!setup.bonds.empty() && !bond_)
     throw std::invalid_argument("the scene has bonds but no bond model: add a [bond] section (e.g. plugin = \"beam_bond\")");
-  // Bonds sorted by first particle, each stored with i < j, for locality and a canonical order.
-  for (auto& [a, b] : setup.bonds) {
-    if (a < 0 || b < 0 || static_cast<std::size_t>(a) >= n || static_cast<std::size_t>(b) >= n || a == b)
-      throw std::invalid_argument(fmt::format("bond ({}, {}) names a particle that does not exist", a, b));
-    if (a > b) std::swap(a, b);
-  }
-  std::sort(setup.bonds.begin(), setup.bonds.end());
-  setup.bonds.erase(std::unique(setup.bonds.begin(), setup.bonds.end()), setup.bonds.end());
+  canonical_bonds(setup.bonds, n);
   bonds_.stride = bond_ ? bond_->state_size() : 0;
   bonds_.keeps_loads = setup.record_bond_loads;
   bonds_.resize(setup.bonds.size());
@@ -237,51 +326,15 @@ Simulation::Simulation(SimulationSetup setup)
   }
 
   // Time step (docs/explanation/physics.md, "Time step"): every model states its limit; "auto" takes the smallest.
-  double r_min = std::numeric_limits<double>::infinity();
-  std::size_t lightest = 0;
-  double r_max = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    if (particles_.radius[k] < r_min) {
-      r_min = particles_.radius[k];
-      lightest = k;
-    }
-    r_max = std::max(r_max, particles_.radius[k]);
-  }
-  if (setup.materials == 0 || setup.materials > 1u << 15)
-    throw std::invalid_argument(fmt::format("{} materials: a scene has 1 to 32768", setup.materials));
-  if (materials_ > 1) {
-    for (std::size_t k = 0; k < n; ++k)
-      if (particles_.material[k] < 0 || particles_.material[k] >= materials_)
-        throw std::invalid_argument(fmt::format("particle {} has material {}, but the scene has materials 0 to {}",
-                                                particles_.id[k], particles_.material[k], materials_ - 1));
-    for (const auto& w : walls_)
-      if (w.material < 0 || w.material >= materials_)
-        throw std::invalid_argument(fmt::format("wall '{}' has material {}, but the scene has materials 0 to {}",
-                                                w.name, w.material, materials_ - 1));
-  }
-  if (contact_ && n > 0 && materials_ == 1)
-    limits_.push_back(contact_->time_step_limit(r_min, density_of(particles_, lightest)));
-  if (contact_ && n > 0 && materials_ > 1) {
-    // Each material's smallest (lightest) sphere: the laws differ per material and pair.
-    std::vector<MaterialExtent> extents(setup.materials);
-    for (std::size_t k = 0; k < n; ++k) {
-      MaterialExtent& e = extents[static_cast<std::size_t>(particles_.material[k])];
-      if (e.min_radius == 0 || particles_.radius[k] < e.min_radius) e = {particles_.radius[k], density_of(particles_, k)};
-    }
-    limits_.push_back(contact_->time_step_limit(extents));
-  }
+  const RadiusRange radii = radius_range(particles_);
+  check_materials(setup.materials, particles_, walls_);
+  if (contact_ && n > 0) limits_.push_back(contact_time_step_limit(*contact_, particles_, setup.materials, radii));
   if (bond_ && bonds_.size() > 0) limits_.push_back(bond_->time_step_limit(bond_batch()));
-  dt_ = setup.dt;
-  if (dt_ <= 0) {
-    dt_ = std::numeric_limits<double>::infinity();
-    for (const auto& l : limits_) dt_ = std::min(dt_, l.recommended);
-    if (!std::isfinite(dt_))
-      throw std::invalid_argument("dt = \"auto\" needs a contact or bond model to derive a time step from; set [simulation] dt");
-  }
-  const double skin = setup.skin > 0 ? setup.skin : 0.2 * std::max(r_max, 1e-12);
+  dt_ = chosen_time_step(setup.dt, limits_);
+  const double skin = setup.skin > 0 ? setup.skin : 0.2 * std::max(radii.r_max, 1e-12);
   neighbours_ = std::make_unique<NeighbourList>(skin, contact_ ? contact_->history_size() : 0);
   workspace_ = std::make_unique<ContactWorkspace>();
-  workspace_->order_cell = 2 * std::max(r_max, 1e-12) + skin;
+  workspace_->order_cell = 2 * std::max(radii.r_max, 1e-12) + skin;
   for (auto& w : walls_) {
     if (w.shape != WallShape::Mesh) w.axis.normalize();
     if (w.motion.spins) w.motion.spin_axis.normalize();
@@ -354,8 +407,7 @@ void Simulation::integrate_first_half() {
     }
     turn(lanes, r.begin, r.end, angle, rotation);
     if (list) moved2 = std::max(moved2, list->max_displacement2(p, r.begin, r.end));
-    std::fill(p.force.begin() + static_cast<std::ptrdiff_t>(r.begin), p.force.begin() + static_cast<std::ptrdiff_t>(r.end), Vec3::Zero());
-    std::fill(p.torque.begin() + static_cast<std::ptrdiff_t>(r.begin), p.torque.begin() + static_cast<std::ptrdiff_t>(r.end), Vec3::Zero());
+    zero_forces(p, r.begin, r.end);
   }
   ws.drift_moved2 = list ? moved2 : -1;
   ws.forces_zeroed = true;
@@ -376,6 +428,77 @@ void Simulation::update_neighbours() {
   list.rebuild(particles_, walls_);
 }
 
+namespace {
+
+// What a force pass adds to each particle once its pair and bond forces are complete.
+struct BodyForces {
+  bool gravity;      // gravity_ is not zero
+  Vec3 g;
+  double damping;    // Cundall's local damping fraction
+  bool kick;         // the second half-kick of velocity Verlet too
+  double h;          // dt / 2
+};
+
+// Thread t's particles `own`: the other threads' shares added in thread order (and left zero for
+// the next pass); with `body`, gravity, damping and the kick while the forces are in cache (a
+// sub-domain adds them after the reactions come back from the other ranks).
+[[gnu::always_inline]] inline void sum_shares(Particles& p, std::vector<ThreadShare>& threads, const Range own, int nt,
+                                              const BodyForces* body) {
+  for (std::size_t k = own.begin; k < own.end; ++k) {
+    for (int u = 1; u < nt; ++u) {
+      ThreadShare& other = threads[static_cast<std::size_t>(u)];
+      p.force[k] += other.force[k];
+      p.torque[k] += other.torque[k];
+      other.force[k].setZero();
+      other.torque[k].setZero();
+    }
+    if (body) {
+      add_body_forces(p, k, body->gravity, body->g, body->damping);
+      if (body->kick) kick_particle(p, k, body->h);
+    }
+  }
+}
+
+// The totals of a force pass over the threads' shares.
+struct PassTotals {
+  double contact_energy = 0, bond_energy = 0;
+  std::size_t contacts = 0;
+  bool bond_broke = false;
+};
+
+// The threads' shares summed in thread order: the totals, the walls' loads, work and impacts,
+// and the wall contacts begun.
+PassTotals sum_thread_totals(const std::vector<ThreadShare>& threads, int used, const Particles& p, double dt,
+                             std::vector<Wall>& walls, std::vector<WallContactStart>& begun) {
+  PassTotals totals;
+  for (auto& w : walls) {
+    w.force.setZero();
+    w.torque.setZero();
+    w.stored_energy = 0;
+  }
+  begun.clear();
+  for (int t = 0; t < used; ++t) {
+    const ThreadShare& share = threads[static_cast<std::size_t>(t)];
+    totals.contact_energy += share.contact_energy;
+    totals.contacts += share.contacts;
+    totals.bond_energy += share.bond_energy;
+    totals.bond_broke = totals.bond_broke || share.bond_broke;
+    // The particles' whole forces are known now (wall_touch_work). In thread order, without a
+    // barrier in the force pass: a wall's contacts are few next to the particles' pairs.
+    for (const WallTouch& c : share.wall_touches) walls[c.wall].contact_work -= wall_touch_work(p, c, dt);
+    begun.insert(begun.end(), share.wall_begun.begin(), share.wall_begun.end());
+    for (std::size_t w = 0; w < walls.size(); ++w) {
+      walls[w].force += share.wall_force[w];
+      walls[w].torque += share.wall_torque[w];
+      walls[w].stored_energy += share.wall_stored[w];
+      walls[w].impacts += share.wall_impacts[w];
+    }
+  }
+  return totals;
+}
+
+}  // namespace
+
 // One pass over all forces: each thread takes its range of contact pairs and of bonds, computes
 // them with one batch call each, and adds the results to its share (see ThreadShare); then each
 // thread sums the shares over its range of particles and adds gravity and damping, and with
@@ -393,8 +516,7 @@ void Simulation::compute_forces(bool kick) {
   const std::size_t m = bond_ ? bonds_.size() : 0;
   const int team = team_for(n + pairs + m);
   ws.prepare(team, n, walls_.size(), neighbours_->history_stride());
-  const bool gravity = !gravity_.isZero();
-  const double h = 0.5 * dt_;
+  const BodyForces body{!gravity_.isZero(), gravity_, global_damping_, kick, 0.5 * dt_};
   // A sub-domain's arrays change at ghost refresh and migration after the drift zeroed them.
   const bool zeroed_by_drift = std::exchange(ws.forces_zeroed, false);
   const bool zero_fill = !zeroed_by_drift || exchange_ != nullptr;
@@ -404,20 +526,8 @@ void Simulation::compute_forces(bool kick) {
     const int t = omp_get_thread_num(), nt = omp_get_num_threads();
     ThreadShare& share = ws.threads[static_cast<std::size_t>(t)];
     const Range own = range_of(n, t, nt);
-    if (zero_fill) {
-      std::fill(p.force.begin() + static_cast<std::ptrdiff_t>(own.begin), p.force.begin() + static_cast<std::ptrdiff_t>(own.end), Vec3::Zero());
-      std::fill(p.torque.begin() + static_cast<std::ptrdiff_t>(own.begin), p.torque.begin() + static_cast<std::ptrdiff_t>(own.end), Vec3::Zero());
-    }
-    std::fill(share.wall_force.begin(), share.wall_force.end(), Vec3::Zero());
-    std::fill(share.wall_torque.begin(), share.wall_torque.end(), Vec3::Zero());
-    std::fill(share.wall_stored.begin(), share.wall_stored.end(), 0.0);
-    std::fill(share.wall_impacts.begin(), share.wall_impacts.end(), 0);
-    share.wall_touches.clear();
-    share.wall_begun.clear();
-    share.contact_energy = 0;
-    share.contacts = 0;
-    share.bond_broke = false;
-    share.bond_energy = 0;
+    if (zero_fill) zero_forces(p, own.begin, own.end);
+    share.start_pass();
     if (t == 0) used = nt;
     // Thread 0 adds into the particles' arrays, which every thread zeroes over its own range.
     if (zero_fill) {
@@ -434,59 +544,22 @@ void Simulation::compute_forces(bool kick) {
       bond_chunk(r.begin, r.end, force, torque, t);
     }
 #pragma omp barrier
-    for (std::size_t k = own.begin; k < own.end; ++k) {
-      for (int u = 1; u < nt; ++u) {
-        ThreadShare& other = ws.threads[static_cast<std::size_t>(u)];
-        p.force[k] += other.force[k];
-        p.torque[k] += other.torque[k];
-        other.force[k].setZero();
-        other.torque[k].setZero();
-      }
-      if (!exchange_) {
-        add_body_forces(p, k, gravity, gravity_, global_damping_);
-        if (kick) kick_particle(p, k, h);
-      }
-    }
+    sum_shares(p, ws.threads, own, nt, exchange_ ? nullptr : &body);
   }
   if (exchange_) {  // a sub-domain: the reactions computed on other ranks first
     exchange_->return_reactions(p);
     for (std::size_t k = 0; k < n; ++k) {
-      add_body_forces(p, k, gravity, gravity_, global_damping_);
-      if (kick) kick_particle(p, k, h);
+      add_body_forces(p, k, body.gravity, body.g, body.damping);
+      if (kick) kick_particle(p, k, body.h);
     }
   }
-  double energy = 0, bond_energy = 0;
-  std::size_t contacts = 0;
-  bool bond_broke = false;
-  for (auto& w : walls_) {
-    w.force.setZero();
-    w.torque.setZero();
-    w.stored_energy = 0;
-  }
-  wall_contacts_begun_.clear();
-  for (int t = 0; t < used; ++t) {
-    const ThreadShare& share = ws.threads[static_cast<std::size_t>(t)];
-    energy += share.contact_energy;
-    contacts += share.contacts;
-    bond_energy += share.bond_energy;
-    bond_broke = bond_broke || share.bond_broke;
-    // The particles' whole forces are known now (wall_touch_work). In thread order, without a
-    // barrier in the force pass: a wall's contacts are few next to the particles' pairs.
-    for (const WallTouch& c : share.wall_touches) walls_[c.wall].contact_work -= wall_touch_work(p, c, dt_);
-    wall_contacts_begun_.insert(wall_contacts_begun_.end(), share.wall_begun.begin(), share.wall_begun.end());
-    for (std::size_t w = 0; w < walls_.size(); ++w) {
-      walls_[w].force += share.wall_force[w];
-      walls_[w].torque += share.wall_torque[w];
-      walls_[w].stored_energy += share.wall_stored[w];
-      walls_[w].impacts += share.wall_impacts[w];
-    }
-  }
+  const PassTotals totals = sum_thread_totals(ws.threads, used, p, dt_, walls_, wall_contacts_begun_);
   if (contact_) {
-    contacts_ = contacts;
-    contact_energy_ = energy;
+    contacts_ = totals.contacts;
+    contact_energy_ = totals.contact_energy;
   }
-  bond_energy_ = bond_energy;
-  if (bond_broke) record_broken_bonds();
+  bond_energy_ = totals.bond_energy;
+  if (totals.bond_broke) record_broken_bonds();
 }
 
 namespace {

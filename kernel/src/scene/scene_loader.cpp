@@ -307,80 +307,99 @@ bool unsafe_for_toml(unsigned cp) {
 // comment and is checked: the error is only ever "refused", never undefined behaviour.
 enum class TomlLexeme { plain, comment, basic, literal, multiline_basic, multiline_literal };
 
+// What the lexer made of one byte (not a newline): inside a comment (not checked), or else how
+// many further ASCII bytes of a token it consumed.
+struct LexStep {
+  bool comment = false;
+  std::size_t skip = 0;
+};
+
+// The lexer's state after the byte at k, by TOML's string and comment forms (see TomlLexeme).
+LexStep advance_lexeme(const std::string& text, std::size_t k, TomlLexeme& state) {
+  const auto starts = [&](const char* token) { return text.compare(k, std::strlen(token), token) == 0; };
+  // A backslash consumes the next byte when it is ASCII (so \" does not close the string); a
+  // non-ASCII byte after it is still decoded and checked.
+  const auto escaped_ascii = [&]() -> std::size_t {
+    return k + 1 < text.size() && text[k + 1] != '\n' && static_cast<unsigned char>(text[k + 1]) < 0x80u ? 1 : 0;
+  };
+  const char ch = text[k];
+  LexStep step;
+  switch (state) {
+    case TomlLexeme::comment:
+      step.comment = true;
+      break;
+    case TomlLexeme::plain:
+      if (ch == '#') {
+        state = TomlLexeme::comment;
+        step.comment = true;
+      } else if (starts("\"\"\"")) {
+        state = TomlLexeme::multiline_basic;
+        step.skip = 2;
+      } else if (starts("'''")) {
+        state = TomlLexeme::multiline_literal;
+        step.skip = 2;
+      } else if (ch == '"') {
+        state = TomlLexeme::basic;
+      } else if (ch == '\'') {
+        state = TomlLexeme::literal;
+      }
+      break;
+    case TomlLexeme::basic:
+      if (ch == '\\') step.skip = escaped_ascii();
+      else if (ch == '"') state = TomlLexeme::plain;
+      break;
+    case TomlLexeme::literal:
+      if (ch == '\'') state = TomlLexeme::plain;
+      break;
+    case TomlLexeme::multiline_basic:
+      if (ch == '\\') {
+        step.skip = escaped_ascii();
+      } else if (starts("\"\"\"")) {
+        state = TomlLexeme::plain;
+        step.skip = 2;
+      }
+      break;
+    case TomlLexeme::multiline_literal:
+      if (starts("'''")) {
+        state = TomlLexeme::plain;
+        step.skip = 2;
+      }
+      break;
+  }
+  return step;
+}
+
+// The code point of the two- or three-byte UTF-8 sequence starting at k; 0 for any other byte
+// sequence (none of the code points toml++ misreads takes four bytes).
+unsigned code_point_at(const std::string& text, std::size_t k) {
+  const auto b0 = static_cast<unsigned char>(text[k]);
+  const auto cont = [&](std::size_t i) {
+    return i < text.size() && (static_cast<unsigned char>(text[i]) & 0xC0u) == 0x80u;
+  };
+  if ((b0 & 0xE0u) == 0xC0u && cont(k + 1)) return ((b0 & 0x1Fu) << 6) | (static_cast<unsigned char>(text[k + 1]) & 0x3Fu);
+  if ((b0 & 0xF0u) == 0xE0u && cont(k + 1) && cont(k + 2))
+    return ((b0 & 0x0Fu) << 12) | ((static_cast<unsigned char>(text[k + 1]) & 0x3Fu) << 6) |
+           (static_cast<unsigned char>(text[k + 2]) & 0x3Fu);
+  return 0;
+}
+
 void refuse_unreadable_characters(const std::string& text, const std::string& file) {
   std::size_t line = 1, line_start = 0;
   TomlLexeme state = TomlLexeme::plain;
-  const auto starts = [&](std::size_t k, const char* token) { return text.compare(k, std::strlen(token), token) == 0; };
-  // A backslash consumes the next byte when it is ASCII (so \" does not close the string); a
-  // non-ASCII byte after it is still decoded and checked below.
-  const auto escaped_ascii = [&](std::size_t k) -> std::size_t {
-    return k + 1 < text.size() && text[k + 1] != '\n' && static_cast<unsigned char>(text[k + 1]) < 0x80u ? 1 : 0;
-  };
   for (std::size_t k = 0; k < text.size(); ++k) {
-    const char ch = text[k];
-    if (ch == '\n') {
+    if (text[k] == '\n') {
       ++line;
       line_start = k + 1;
       if (state != TomlLexeme::multiline_basic && state != TomlLexeme::multiline_literal) state = TomlLexeme::plain;
       continue;
     }
-    std::size_t skip = 0;  // further ASCII bytes of a token consumed here
-    switch (state) {
-      case TomlLexeme::comment:
-        continue;
-      case TomlLexeme::plain:
-        if (ch == '#') {
-          state = TomlLexeme::comment;
-          continue;
-        }
-        if (starts(k, "\"\"\"")) {
-          state = TomlLexeme::multiline_basic;
-          skip = 2;
-        } else if (starts(k, "'''")) {
-          state = TomlLexeme::multiline_literal;
-          skip = 2;
-        } else if (ch == '"') {
-          state = TomlLexeme::basic;
-        } else if (ch == '\'') {
-          state = TomlLexeme::literal;
-        }
-        break;
-      case TomlLexeme::basic:
-        if (ch == '\\') skip = escaped_ascii(k);
-        else if (ch == '"') state = TomlLexeme::plain;
-        break;
-      case TomlLexeme::literal:
-        if (ch == '\'') state = TomlLexeme::plain;
-        break;
-      case TomlLexeme::multiline_basic:
-        if (ch == '\\') {
-          skip = escaped_ascii(k);
-        } else if (starts(k, "\"\"\"")) {
-          state = TomlLexeme::plain;
-          skip = 2;
-        }
-        break;
-      case TomlLexeme::multiline_literal:
-        if (starts(k, "'''")) {
-          state = TomlLexeme::plain;
-          skip = 2;
-        }
-        break;
-    }
-    const auto b0 = static_cast<unsigned char>(ch);
-    if (b0 < 0x80u) {
-      k += skip;
+    const LexStep step = advance_lexeme(text, k, state);
+    if (step.comment) continue;
+    if (static_cast<unsigned char>(text[k]) < 0x80u) {
+      k += step.skip;
       continue;
     }
-    unsigned cp = 0;
-    const auto cont = [&](std::size_t i) {
-      return i < text.size() && (static_cast<unsigned char>(text[i]) & 0xC0u) == 0x80u;
-    };
-    if ((b0 & 0xE0u) == 0xC0u && cont(k + 1))
-      cp = ((b0 & 0x1Fu) << 6) | (static_cast<unsigned char>(text[k + 1]) & 0x3Fu);
-    else if ((b0 & 0xF0u) == 0xE0u && cont(k + 1) && cont(k + 2))
-      cp = ((b0 & 0x0Fu) << 12) | ((static_cast<unsigned char>(text[k + 1]) & 0x3Fu) << 6) |
-           (static_cast<unsigned char>(text[k + 2]) & 0x3Fu);
+    const unsigned cp = code_point_at(text, k);
     if (unsafe_for_toml(cp))
       throw SceneError(fmt::format("{}:{}:{}: the character U+{:04X} cannot be read safely by the TOML library "
                                    "(toml++ 3.3) outside a comment; write it in ASCII or move it into a # comment",
