@@ -100,6 +100,13 @@ TEST_CASE("scene errors name the file, line, column and key, with a hint") {
   CHECK(error_of(kGood + "\n[stop]\nload_walls = [\"flor\"]\n").find("did you mean 'floor'") != std::string::npos);
   // A malformed --set.
   CHECK(error_of(kGood, {"contact.normal_stiffness"}).find("expected section.key=value") != std::string::npos);
+  // A bad value given by --set is located at the override, not at a line of the file.
+  const auto set_word = error_of(kGood, {"contact.normal_stiffness=stiff"});
+  CHECK(set_word.find("scene.toml (a value given by --set, not in the file): ") == 0);
+  CHECK(set_word.find("normal_stiffness") != std::string::npos);
+  const auto set_misspelt = error_of(kGood, {"contact.normal_stifness=2e4"});
+  CHECK(set_misspelt.find(":0:0") == std::string::npos);
+  CHECK(set_misspelt.find("did you mean 'normal_stiffness'") != std::string::npos);
 }
 
 TEST_CASE("a bond plugin's own refusal (an unknown effect policy) names the [bond] section and the valid names") {

@@ -14,7 +14,10 @@
 
 namespace shard::scene_detail {
 
+// A node with no source position was put there by an override (--set, a sweep, an assumption),
+// so pointing at line 0 of the file would send the user looking in the wrong place.
 inline std::string where(const std::string& file, const toml::source_region& s) {
+  if (s.begin.line == 0) return fmt::format("{} (a value given by --set, not in the file)", file);
   return fmt::format("{}:{}:{}", file, s.begin.line, s.begin.column);
 }
 
