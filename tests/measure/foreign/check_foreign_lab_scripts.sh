@@ -7,7 +7,8 @@
 #     with one true and one false name is one wrong name; "unexplained difference" on an outside
 #     effect is none. Its targets: the outside set never named (met), the pair given a wrong name
 #     (not met), a single effect named in 1 of the 1 draws with p < 1e-3 (met), a null set named
-#     (not met).
+#     (not met). The two-rate sets' own diagnosis (diag_rates) is counted too: a rate set named as
+#     another effect is a third wrong name, and a set in both reports is counted once.
 #   check_foreign_lab_scripts.sh WORK
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -25,7 +26,14 @@ first=$(sed -n 2p "$work/set/curves/a.csv" | cut -d, -f2) last=$(sed -n 3p "$wor
 [[ $last == 0.005376 ]] || fail "at 58 N the frame gave $last m, expected 0.005376 m"
 
 draw=$work/draw
-for s in reference outside pair softening null; do mkdir -p "$draw/sets/$s"; done
+for s in reference outside pair softening null rates; do mkdir -p "$draw/sets/$s"; done
+printf '[test]\nnotes = "truth: bond_viscosity"\n' > "$draw/sets/rates/metadata.toml"
+mkdir -p "$draw/diag_rates"
+cat > "$draw/diag_rates/diagnose.json" <<'JSON'
+{"reference": "reference", "sets": [
+ {"name": "null", "verdict": "no difference", "p_value": 0.4},
+ {"name": "rates", "verdict": "weibull_strength", "p_value": 1e-20}]}
+JSON
 printf '[test]\nnotes = "truth: reference"\n' > "$draw/sets/reference/metadata.toml"
 printf '[test]\nnotes = "truth: outside"\n' > "$draw/sets/outside/metadata.toml"
 printf '[test]\nnotes = "truth: machine_compliance,bond_softening"\n' > "$draw/sets/pair/metadata.toml"
@@ -41,7 +49,9 @@ cat > "$draw/diag/diagnose.json" <<'JSON'
 JSON
 out=$(python3 "$here/foreign_confusion.py" "$draw")
 echo "$out"
-grep -q "wrong names: 2$" <<<"$out" || fail "expected two wrong names"
+grep -q "wrong names: 3$" <<<"$out" || fail "expected three wrong names"
+grep -q "set rates named weibull_strength" <<<"$out" || fail "a wrong name is weibull_strength on rates"
+grep -q "| null | none | weibull_strength 1 |" <<<"$out" || fail "the null set is counted once, from diag"
 grep -q "set pair named support_friction" <<<"$out" || fail "a wrong name is support_friction on pair"
 grep -q "set null named weibull_strength" <<<"$out" || fail "a wrong name is weibull_strength on null"
 grep -q "| outside | never named: 1 of 1 | yes |" <<<"$out" || fail "the outside set's target is met"

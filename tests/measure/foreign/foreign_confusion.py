@@ -3,7 +3,9 @@
 
     foreign_confusion.py DRAW_FOLDER...
       each DRAW_FOLDER holds sets/ (make_foreign_lab_sets.sh: every set's metadata.toml carries
-      [test] notes = "truth: ...") and diag/diagnose.json (`shard diagnose` of those sets)
+      [test] notes = "truth: ...") and diag/diagnose.json (`shard diagnose` of those sets); the
+      two-rate sets' own diagnosis (rates_null and rates against the reference) in
+      diag_rates/diagnose.json is read too when the folder has it
 
 Prints one row per set: its truth and how often each verdict came over the draws, then the wrong
 names: a named effect that is not in the set's truth ("no difference" and "unexplained
@@ -39,8 +41,8 @@ def named_effects(verdict):
     return [] if verdict in UNNAMED else [v.strip() for v in verdict.split("+")]
 
 
-def read_draw(folder):
-    path = os.path.join(folder, "diag", "diagnose.json")
+def read_report(folder, diagnosis):
+    path = os.path.join(folder, diagnosis, "diagnose.json")
     try:
         with open(path) as f:
             report = json.load(f)
@@ -48,6 +50,14 @@ def read_draw(folder):
         sys.exit(f"{path}: {e}; run study_foreign_lab.sh on this draw")
     return [(s["name"], truth_of(os.path.join(folder, "sets", s["name"])), s["verdict"], s["p_value"])
             for s in report["sets"]]
+
+
+def read_draw(folder):
+    rows = read_report(folder, "diag")
+    if os.path.exists(os.path.join(folder, "diag_rates", "diagnose.json")):
+        seen = {name for name, *_ in rows}
+        rows += [row for row in read_report(folder, "diag_rates") if row[0] not in seen]
+    return rows
 
 
 def target(truth, verdicts):

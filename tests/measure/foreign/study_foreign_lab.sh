@@ -12,8 +12,10 @@
 #   study_foreign_lab.sh SHARD DATA DRAW...
 #     SHARD  the shard binary
 #     DATA   folder of the draws (DATA/draw_k/sets made by make_foreign_lab_sets.sh); each
-#            diagnosis goes to DATA/draw_k/diag (kept: a draw already diagnosed is not run again),
-#            the model's run cache to DATA/model (shared by the draws)
+#            diagnosis goes to DATA/draw_k/diag, and the two-rate sets' (rates_null and rates at
+#            20 and 100 mm/s against the reference) to DATA/draw_k/diag_rates (kept: a draw
+#            already diagnosed is not run again), the model's run cache to DATA/model (shared by
+#            the draws)
 #     DRAW   draw numbers, e.g. 0 1 2 3
 set -euo pipefail
 if [[ $# -lt 3 ]]; then
@@ -52,6 +54,27 @@ contrasts() {  # DRAW_FOLDER: each set against the reference, at 0.02 m/s
   done
 }
 
+# diagnose DRAW_FOLDER OUT SET...: the sets against the draw's reference with the default beam.
+diagnose() {
+  local draw=$1 out=$2 start
+  shift 2
+  [[ -f $out/diagnose.json ]] && return 0
+  start=$(date +%s)
+  "$shard" diagnose "$draw/sets/reference" "$@" --reference reference --scene "$source_dir/scenes/four_point_bending.toml" \
+    --effects "$source_dir/scenes/measurements/effects.toml" --work "$data/model" \
+    --param bond.youngs_modulus --param bond.critical_stress --own-scatter 0.01 --workers 2 --out "$out" > "$out.log" 2>&1 ||
+    { tail -20 "$out.log"; echo "$0: diagnose of $out failed (log: $out.log)" >&2; exit 1; }
+  echo "$(basename "$draw") $(basename "$out"): diagnose $(( $(date +%s) - start )) s wall"
+}
+
+# The sets of one rate (every finished set but the reference and the two-rate ones).
+one_rate_sets() {
+  local set
+  for set in $(complete_sets "$1" 2>/dev/null); do
+    case $(basename "$set") in reference | rates | rates_null) ;; *) echo "$set" ;; esac
+  done
+}
+
 folders=()
 for k in "$@"; do
   draw=$data/draw_$k
@@ -59,13 +82,10 @@ for k in "$@"; do
     { echo "$0: $draw/sets/reference not found. Fix: FOREIGN_DRAW=$k bash $here/make_foreign_lab_sets.sh ... $draw/sets ..." >&2; exit 2; }
   echo "draw $k: each set against the reference"
   contrasts "$draw"
-  if [[ ! -f $draw/diag/diagnose.json ]]; then
-    start=$(date +%s)
-    "$shard" diagnose $(complete_sets "$draw" 2>/dev/null) --reference reference --scene "$source_dir/scenes/four_point_bending.toml" \
-      --effects "$source_dir/scenes/measurements/effects.toml" --work "$data/model" \
-      --param bond.youngs_modulus --param bond.critical_stress --own-scatter 0.01 --workers 2 --out "$draw/diag" > "$draw/diag.log" 2>&1 ||
-      { tail -20 "$draw/diag.log"; echo "$0: diagnose of draw $k failed (log: $draw/diag.log)" >&2; exit 1; }
-    echo "draw $k: diagnose $(( $(date +%s) - start )) s wall"
+  # shellcheck disable=SC2046  # one folder per word
+  diagnose "$draw" "$draw/diag" $(one_rate_sets "$draw")
+  if [[ -f $draw/sets/rates/specimens.csv && -f $draw/sets/rates_null/specimens.csv ]]; then
+    diagnose "$draw" "$draw/diag_rates" "$draw/sets/rates_null" "$draw/sets/rates"
   fi
   folders+=("$draw")
 done
