@@ -70,10 +70,11 @@ std::string pair_text(const ContrastReport& r, const SetDiagnosis& d) {
                      ContrastOptions{}.drop_p / static_cast<double>(std::max<std::size_t>(1, d.seconds_tried)));
 }
 
-// The measurement that would tell whether the lead is the physics at work.
-std::string separating_text(const ContrastReport& r, const std::string& lead) {
+// The measurement that would tell whether the lead is the physics at work, on this set's rates.
+std::string separating_text(const ContrastReport& r, const SetDiagnosis& d, const std::string& lead) {
   const CandidateEffect* e = effect_named(r, lead);
-  return e && !e->separated_by.empty() ? fmt::format(" What would tell: {}.", e->separated_by) : "";
+  const std::string how = e ? e->separating_measurement(r.sets.sets[d.set].loading_rates().size()) : "";
+  return how.empty() ? "" : fmt::format(" What would tell: {}.", how);
 }
 
 // A name the component statistics gave and the curve did not bear out: a lead, never a name.
@@ -97,7 +98,7 @@ std::string withheld_text(const ContrastReport& r, const SetDiagnosis& d, const 
                      "look at what remains before adding it to the model.",
                      name, c.chi_square, c.p_value, d.withheld, 100 * d.share, why,
                      d.withheld.substr(0, d.withheld.find(" + "))) +
-         separating_text(r, d.withheld.substr(0, d.withheld.find(" + ")));
+         separating_text(r, d, d.withheld.substr(0, d.withheld.find(" + ")));
 }
 
 std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {

@@ -82,6 +82,21 @@ TEST_CASE("a size is printed with its unit, and a dimensionless ratio with none"
   CHECK(compliance.unit_suffix() == " m/N");
 }
 
+TEST_CASE("a rate effect on data that already have two rates asks for rates farther apart, not a second rate") {
+  const auto lib = read_effect_library(fs::path(SHARD_SOURCE_DIR) / "scenes/measurements/effects.toml");
+  const auto picked = select_effects(lib, {"bond_viscosity", "bond_softening"});
+  REQUIRE(picked.size() == 2);
+  const CandidateEffect& rate = picked[0].rates_needed > 1 ? picked[0] : picked[1];
+  const CandidateEffect& softening = picked[0].rates_needed > 1 ? picked[1] : picked[0];
+  REQUIRE(rate.rates_needed == 2);
+  CHECK(rate.separating_measurement(1) == rate.separated_by);
+  const std::string two = rate.separating_measurement(2);
+  CHECK(two.find("farther apart than these 2") != std::string::npos);
+  CHECK(two.find(rate.separated_by) == std::string::npos);
+  CHECK(softening.separating_measurement(1) == softening.separated_by);
+  CHECK(softening.separating_measurement(3) == softening.separated_by);
+}
+
 TEST_CASE("library errors name the file, line and the valid keys") {
   const auto p = write_file("bad.toml", "[[effect]]\nname = \"a\"\nparameter = \"bond.x\"\nneutral = 0\nplausibel = 1\n");
   try {

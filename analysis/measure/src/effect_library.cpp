@@ -90,6 +90,16 @@ std::string CandidateEffect::unit_suffix() const { return unit.empty() || unit =
 
 std::string CandidateEffect::sized(double value) const { return fmt::format("{:.4g}{}", value, unit_suffix()); }
 
+// A rate effect that stayed within the scatter over the rates the data have is told by a wider
+// span of rates (it grows with the logarithm of the rate) or by a narrower scatter.
+std::string CandidateEffect::separating_measurement(std::size_t rates) const {
+  if (rates_needed > 1 && identifiable_at(rates))
+    return fmt::format("loading rates farther apart than these {} (a rate effect grows with the logarithm of the "
+                       "rate: a decade or more between the slowest and the fastest), or more specimens per rate",
+                       rates);
+  return separated_by;
+}
+
 double CandidateEffect::scale_min() const {
   const double step = plausible - neutral;
   return step > 0 ? (min - neutral) / step : (max - neutral) / step;

@@ -64,6 +64,9 @@ struct CandidateEffect {
 
   // Can the effect be told apart on data tested at `rates` loading rates?
   bool identifiable_at(std::size_t rates) const { return rates >= static_cast<std::size_t>(rates_needed); }
+  // The measurement that would tell this effect from its rivals on data of `rates` loading rates:
+  // separated_by, except for a rate effect on data that already have the rates it needs.
+  std::string separating_measurement(std::size_t rates) const;
 
   bool post_processing() const { return parameter == kMachineCompliance; }
   // The overrides that put the effect at `value` into a scene (none for machine compliance).
