@@ -124,8 +124,10 @@ Outgoing departures(const SimulationState& s, const Partition& partition, int se
   return out;
 }
 
-// The local indices after the re-partition: the particles that stay here first (their order kept),
-// then the arrivals, then the new ghosts. `of_old(k)` for the particle at old index k (-1 when no
+// The local indices after the re-partition: the particles that stay here keep their order; the
+// arrivals (ascending id) are merged in by id when the staying ones are in ascending id (the order
+// of the first partition, which the kernel keeps below its renumbering size), appended otherwise;
+// the new ghosts (ascending id) follow. `of_old(k)` for the particle at old index k (-1 when no
 // longer held), `of_id` for a particle named by an arrived bond or contact.
 class Renumbering {
  public:
@@ -133,41 +135,71 @@ class Renumbering {
   Renumbering(const Particles& p, const Placement& at, int self, const Arrived& in, std::size_t bond_width,
               std::size_t contact_width)
       : in_(in) {
-    of_old_.assign(p.size(), -1);
+    stays_.assign(p.size(), 0);
+    bool ascending = true;
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      if (at.owner[k] != self) continue;
+      ascending = ascending && (staying_ == 0 || p.id[k] > p.id[staying_last_]);
+      stays_[k] = 1;
+      staying_last_ = k;
+      ++staying_;
+    }
+    place_arrivals(p, ascending);
     for (std::size_t k = 0; k < p.size(); ++k)
-      if (at.owner[k] == self) of_old_[k] = static_cast<Index>(staying_++);
-    for (std::size_t k = 0; k < p.size(); ++k)
-      if (at.owner[k] != self) of_old_[k] = of_new(p.id[k]);
-    name_staying(p, at, self, bond_width, contact_width);
+      if (!stays_[k]) of_old_[k] = of_new(p.id[k]);
+    name_staying(p, bond_width, contact_width);
   }
   std::size_t staying() const { return staying_; }
+  std::size_t owned() const { return staying_ + in_.mine.size(); }
   Index of_old(Index k) const { return of_old_[static_cast<std::size_t>(k)]; }
-  bool stays(std::size_t k) const { return of_old_[k] >= 0 && static_cast<std::size_t>(of_old_[k]) < staying_; }
+  bool stays(std::size_t k) const { return stays_[k] != 0; }
   Index of_id(Index id) const {
     const Index k = of_new(id);
     if (k >= 0) return k;
     const auto it = named_.find(id);
     return it != named_.end() ? it->second : Index{-1};
   }
-  // Keeps the staying particles' entries of a per-particle array, closed up in order.
+  Index arrival_at(std::size_t m) const { return arrival_at_[m]; }
+  // A per-particle array with the staying particles' entries at their new places (closed up over
+  // the gaps, then spread from the back over the arrivals' slots) and room for the arrivals and
+  // `ghosts` new ghosts, in place.
   template <class T>
-  void close_up(std::vector<T>& v) const {
+  void place(std::vector<T>& v, std::size_t ghosts) const {
+    std::size_t s = 0;
     for (std::size_t k = 0; k < v.size(); ++k)
-      if (stays(k) && static_cast<std::size_t>(of_old_[k]) != k) v[static_cast<std::size_t>(of_old_[k])] = std::move(v[k]);
-    v.resize(staying_);
+      if (stays_[k]) {
+        if (s != k) v[s] = std::move(v[k]);
+        ++s;
+      }
+    v.resize(owned() + ghosts);
+    for (std::size_t t = staying_; t-- > 0;)
+      if (static_cast<std::size_t>(staying_at_[t]) != t) v[static_cast<std::size_t>(staying_at_[t])] = std::move(v[t]);
   }
 
  private:
+  // The new index of each staying particle and each arrival: merged by id or the arrivals after.
+  void place_arrivals(const Particles& p, bool merge) {
+    of_old_.assign(p.size(), -1);
+    staying_at_.resize(staying_);
+    arrival_at_.resize(in_.mine.size());
+    std::size_t s = 0, m = 0, next = 0;
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      if (!stays_[k]) continue;
+      for (; merge && m < in_.mine.size() && in_.mine[m].id < p.id[k]; ++m) arrival_at_[m] = static_cast<Index>(next++);
+      staying_at_[s++] = static_cast<Index>(next);
+      of_old_[k] = static_cast<Index>(next++);
+    }
+    for (; m < in_.mine.size(); ++m) arrival_at_[m] = static_cast<Index>(next++);
+  }
   // An arrival's or new ghost's index.
   Index of_new(Index id) const {
     const Index m = find_record(in_.mine, id);
-    if (m >= 0) return static_cast<Index>(staying_) + m;
+    if (m >= 0) return arrival_at_[static_cast<std::size_t>(m)];
     const Index g = find_record(in_.ghosts, id);
-    return g >= 0 ? static_cast<Index>(staying_ + in_.mine.size()) + g : Index{-1};
+    return g >= 0 ? static_cast<Index>(owned()) + g : Index{-1};
   }
   // The staying particles that arrived bonds and contacts name (their far ends), found in one pass.
-  void name_staying(const Particles& p, const Placement& at, int self, std::size_t bond_width,
-                    std::size_t contact_width) {
+  void name_staying(const Particles& p, std::size_t bond_width, std::size_t contact_width) {
     const auto ask = [&](const std::vector<double>& records, std::size_t width) {
       for (std::size_t r = 0; r + width <= records.size(); r += width)
         for (std::size_t e = 0; e < 2; ++e)
@@ -178,13 +210,14 @@ class Renumbering {
     ask(in_.contacts, contact_width);
     if (named_.empty()) return;
     for (std::size_t k = 0; k < p.size(); ++k)
-      if (at.owner[k] == self)
+      if (stays_[k])
         if (const auto it = named_.find(p.id[k]); it != named_.end()) it->second = of_old_[k];
   }
 
   const Arrived& in_;
-  std::vector<Index> of_old_;
-  std::size_t staying_ = 0;
+  std::vector<std::uint8_t> stays_;
+  std::vector<Index> of_old_, staying_at_, arrival_at_;
+  std::size_t staying_ = 0, staying_last_ = 0;
   std::unordered_map<Index, Index> named_;
 };
 
@@ -195,31 +228,49 @@ Index held(Index k, Index id, int rank, const char* what) {
   return k;
 }
 
+// Bond record `rec` (smaller id, larger id, state) into slot b, the smaller id's end first.
+void write_bond(Bonds& bonds, std::size_t b, const double* rec, const Renumbering& at, int rank) {
+  bonds.i[b] = held(at.of_id(static_cast<Index>(rec[0])), static_cast<Index>(rec[0]), rank, "bond's");
+  bonds.j[b] = held(at.of_id(static_cast<Index>(rec[1])), static_cast<Index>(rec[1]), rank, "bond's");
+  std::copy_n(rec + 2, bonds.stride, bonds.state.begin() + static_cast<std::ptrdiff_t>(b * bonds.stride));
+}
+
+// Room for `front` new bonds before the others and `back` after them (zero loads, not broken).
+void open_bonds(Bonds& bonds, std::size_t front, std::size_t back) {
+  const auto open = [&](auto& v, std::size_t per, const auto& fill) {
+    v.insert(v.begin(), front * per, fill);
+    v.resize(v.size() + back * per, fill);
+  };
+  open(bonds.i, 1, Index{0});
+  open(bonds.j, 1, Index{0});
+  open(bonds.state, bonds.stride, 0.0);
+  if (bonds.keeps_loads) {
+    open(bonds.force, 1, Vec3::Zero().eval());
+    open(bonds.torque_i, 1, Vec3::Zero().eval());
+    open(bonds.torque_j, 1, Vec3::Zero().eval());
+    open(bonds.energy, 1, 0.0);
+  }
+  open(bonds.broken, 1, std::uint8_t{0});
+  open(bonds.stress, 1, BondStress{});
+}
+
 // The bonds: those that left dropped (the kernel's compaction of broken bonds, order kept), the
-// others' ends renamed, the arrivals appended with their state (the smaller id's end first).
-void settle_bonds(Bonds& bonds, const Particles& p, const Renumbering& at, const std::vector<double>& arrived,
-                  int rank) {
+// others' ends renamed, the arrivals' set in in the order of the first partition's exchange: those
+// from lower ranks before the staying ones, those from higher ranks after.
+void settle_bonds(Bonds& bonds, const Particles& p, const Renumbering& at, const Arrived& in, int rank) {
   for (std::size_t b = 0; b < bonds.size(); ++b) bonds.broken[b] = at.stays(owning_end(p, bonds, b)) ? 0 : 1;
   bonds.remove_broken();
   for (std::size_t b = 0; b < bonds.size(); ++b) {
     bonds.i[b] = held(at.of_old(bonds.i[b]), p.id[static_cast<std::size_t>(bonds.i[b])], rank, "bond's");
     bonds.j[b] = held(at.of_old(bonds.j[b]), p.id[static_cast<std::size_t>(bonds.j[b])], rank, "bond's");
   }
-  const std::size_t width = 2 + bonds.stride;
-  for (std::size_t r = 0; r < arrived.size() / width; ++r) {
-    const double* rec = arrived.data() + r * width;
-    bonds.i.push_back(held(at.of_id(static_cast<Index>(rec[0])), static_cast<Index>(rec[0]), rank, "bond's"));
-    bonds.j.push_back(held(at.of_id(static_cast<Index>(rec[1])), static_cast<Index>(rec[1]), rank, "bond's"));
-    bonds.state.insert(bonds.state.end(), rec + 2, rec + width);
-    if (bonds.keeps_loads) {
-      bonds.force.push_back(Vec3::Zero());
-      bonds.torque_i.push_back(Vec3::Zero());
-      bonds.torque_j.push_back(Vec3::Zero());
-      bonds.energy.push_back(0);
-    }
-    bonds.broken.push_back(0);
-    bonds.stress.emplace_back();
-  }
+  const std::size_t width = 2 + bonds.stride, kept = bonds.size();
+  std::size_t lower = 0;
+  for (int r = 0; r < rank; ++r) lower += in.bonds_from[static_cast<std::size_t>(r)];
+  const std::size_t front = lower / width, back = in.bonds.size() / width - front;
+  open_bonds(bonds, front, back);
+  for (std::size_t r = 0; r < front + back; ++r)
+    write_bond(bonds, r < front ? r : kept + r, in.bonds.data() + r * width, at, rank);
 }
 
 // The touching contacts: those whose first particle stays, their ends renamed (order kept), then the
@@ -256,23 +307,24 @@ void settle_contacts(NeighbourState& list, const Particles& p, const Renumbering
   list.position_at_build.clear();
 }
 
-// The particles: the staying ones closed up in order, then the arrivals and the new ghosts.
+// The particles: the staying ones in place (Renumbering::place), the arrivals and new ghosts written.
 void settle_particles(Particles& p, const Renumbering& at, const Arrived& in) {
-  at.close_up(p.position);
-  at.close_up(p.velocity);
-  at.close_up(p.orientation);
-  at.close_up(p.omega);
-  at.close_up(p.force);
-  at.close_up(p.torque);
-  at.close_up(p.radius);
-  at.close_up(p.mass);
-  at.close_up(p.inertia);
-  at.close_up(p.material);
-  at.close_up(p.flags);
-  at.close_up(p.id);
-  at.close_up(p.body);
-  for (const ParticleRecord& r : in.mine) append(p, r, false);
-  for (const ParticleRecord& r : in.ghosts) append(p, r, true);
+  const std::size_t g = in.ghosts.size();
+  at.place(p.position, g);
+  at.place(p.velocity, g);
+  at.place(p.orientation, g);
+  at.place(p.omega, g);
+  at.place(p.force, g);
+  at.place(p.torque, g);
+  at.place(p.radius, g);
+  at.place(p.mass, g);
+  at.place(p.inertia, g);
+  at.place(p.material, g);
+  at.place(p.flags, g);
+  at.place(p.id, g);
+  at.place(p.body, g);
+  for (std::size_t m = 0; m < in.mine.size(); ++m) write(p, static_cast<std::size_t>(at.arrival_at(m)), in.mine[m], false);
+  for (std::size_t k = 0; k < g; ++k) write(p, at.owned() + k, in.ghosts[k], true);
 }
 
 // The new partition and what it sends where; a rank's state is not touched yet.
@@ -330,10 +382,10 @@ void DistributedSimulation::repartition() {
   for (const ParticleRecord& r : in.mine)
     cells.emplace_back(r.id, cut.grid.key(Vec3(r.position[0], r.position[1], r.position[2])));
   halo_->reset(halo_links(cells, in.ghosts, cut.partition, rank_, R));
-  settle_bonds(s.bonds, s.particles, renumber, in.bonds, rank_);
+  settle_bonds(s.bonds, s.particles, renumber, in, rank_);
   settle_contacts(s.neighbours, s.particles, renumber, in.contacts, rank_);
   settle_particles(s.particles, renumber, in);
-  owned_ = renumber.staying() + in.mine.size();
+  owned_ = renumber.owned();
   local_->import_state(std::move(s));
   position_at_partition_ = local_->particles().position;
   partition_id_ = local_->particles().id;

@@ -21,7 +21,7 @@ Arrived exchange(const Outgoing& out, MPI_Comm comm) {
   Arrived in;
   in.mine = all_to_all(out.to_owner, comm);
   in.ghosts = all_to_all(out.to_ghost, comm);
-  in.bonds = all_to_all(out.bonds_to, comm);
+  in.bonds = all_to_all(out.bonds_to, comm, &in.bonds_from);
   in.contacts = all_to_all(out.contacts_to, comm);
   std::sort(in.mine.begin(), in.mine.end(), by_id);
   std::sort(in.ghosts.begin(), in.ghosts.end(), by_id);

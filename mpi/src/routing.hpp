@@ -50,6 +50,7 @@ struct Outgoing {
 struct Arrived {
   std::vector<ParticleRecord> mine, ghosts;
   std::vector<double> bonds, contacts;
+  std::vector<std::size_t> bonds_from;  // doubles of `bonds` from each rank, in rank order
 };
 
 Arrived exchange(const Outgoing& out, MPI_Comm comm);
