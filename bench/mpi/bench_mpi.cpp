@@ -16,7 +16,8 @@
 // per-step reduction, timed apart, so the exchange time is the transfer without the waiting for
 // the slowest rank. Rank 0 prints one summary line, then one line per rank; times are wall
 // (MPI_Wtime) unless named cpu (getrusage: user + system of the whole process, OpenMP threads and
-// MPI's polling included). The one-line commands of the figures: bench/mpi/measure.sh.
+// MPI's polling included; repartition_cpu_ms: the rank's thread alone, per re-partition, with
+// `migrated` the particles it sent per re-partition). The one-line commands of the figures: bench/mpi/measure.sh.
 #include <fmt/format.h>
 #include <hdf5.h>
 #include <mpi.h>
@@ -87,6 +88,8 @@ std::string arg(const std::vector<std::string>& a, std::size_t k, const std::str
 struct RankFigures {
   double pid, owned, ghosts, neighbours, cpu_ms, pack_ms, exchange_ms, unpack_ms, barrier_ms, reduction_ms, partition_ms,
       compute_ms;
+  // Per re-partition in the timed steps: this rank's CPU time in it, the particles it sent.
+  double repartition_cpu_ms, migrated;
   double step_min_ms, step_median_ms, compute_min_ms, compute_median_ms, halo_min_ms, halo_median_ms, reduction_min_ms;
 };
 
@@ -103,6 +106,7 @@ void timed_distributed(const char* label, mpi::DistributedSimulation& sim, long 
   sim.run(warmup);  // buffers sized, first exchanges made
   const auto p0 = sim.phase_seconds();
   const long repartitions0 = sim.repartitions();
+  const std::size_t migrated0 = sim.migration_total().particles;
   const double load_before = load1();
   const auto n = static_cast<std::size_t>(steps);
   std::vector<double> step_ms(n), compute_ms(n), halo_ms(n), reduction_ms(n);
@@ -139,6 +143,9 @@ void timed_distributed(const char* label, mpi::DistributedSimulation& sim, long 
   f.barrier_ms = per * (p1.barrier - p0.barrier);
   f.reduction_ms = per * (p1.reduction - p0.reduction);
   f.partition_ms = per * (p1.partition - p0.partition);
+  const double cuts = std::max(1.0, static_cast<double>(sim.repartitions() - repartitions0));
+  f.repartition_cpu_ms = 1e3 * (p1.repartition_cpu - p0.repartition_cpu) / cuts;
+  f.migrated = static_cast<double>(sim.migration_total().particles - migrated0) / cuts;
   f.compute_ms = per * mine - (f.pack_ms + f.exchange_ms + f.unpack_ms + f.barrier_ms + f.reduction_ms + f.partition_ms);
   f.step_min_ms = smallest(step_ms);
   f.step_median_ms = median(step_ms);
@@ -166,6 +173,8 @@ void timed_distributed(const char* label, mpi::DistributedSimulation& sim, long 
     m.barrier_ms = std::max(m.barrier_ms, r.barrier_ms);
     m.reduction_ms = std::max(m.reduction_ms, r.reduction_ms);
     m.partition_ms = std::max(m.partition_ms, r.partition_ms);
+    m.repartition_cpu_ms = std::max(m.repartition_cpu_ms, r.repartition_cpu_ms);
+    m.migrated = std::max(m.migrated, r.migrated);
     m.step_min_ms = std::max(m.step_min_ms, r.step_min_ms);
     m.step_median_ms = std::max(m.step_median_ms, r.step_median_ms);
     m.compute_min_ms = std::max(m.compute_min_ms, r.compute_min_ms);
@@ -180,19 +189,20 @@ void timed_distributed(const char* label, mpi::DistributedSimulation& sim, long 
               "compute_ms_max=%.3f pack_ms_max=%.4f exchange_ms_max=%.4f unpack_ms_max=%.4f barrier_ms_max=%.4f "
               "reduction_ms_max=%.4f partition_ms_max=%.4f halo_share=%.3f repartitions=%ld step_min_ms=%.3f "
               "step_median_ms=%.3f compute_min_ms=%.3f compute_median_ms=%.3f halo_min_ms=%.4f halo_median_ms=%.4f "
-              "reduction_min_ms=%.4f\n",
+              "reduction_min_ms=%.4f repartition_cpu_ms_max=%.3f migrated_max=%.0f\n",
               label, sim.ranks(), omp_get_max_threads(), barriers ? 1 : 0, particles, bonds, contacts, ghosts, steps,
               load_before, load1(), setup_seconds, per * seconds, m.cpu_ms, m.compute_ms, m.pack_ms, m.exchange_ms,
               m.unpack_ms, m.barrier_ms, m.reduction_ms, m.partition_ms, halo_share,
               static_cast<long>(sim.repartitions() - repartitions0), m.step_min_ms, m.step_median_ms, m.compute_min_ms,
-              m.compute_median_ms, m.halo_min_ms, m.halo_median_ms, m.reduction_min_ms);
+              m.compute_median_ms, m.halo_min_ms, m.halo_median_ms, m.reduction_min_ms, m.repartition_cpu_ms, m.migrated);
   for (std::size_t r = 0; r < all.size(); ++r) {
     const RankFigures& x = all[r];
     std::printf("bench_mpi_rank %s rank=%zu pid=%.0f owned=%.0f ghosts=%.0f neighbours=%.0f cpu_ms=%.3f compute_ms=%.3f pack_ms=%.4f "
                 "exchange_ms=%.4f unpack_ms=%.4f barrier_ms=%.4f reduction_ms=%.4f partition_ms=%.4f step_min_ms=%.3f "
-                "compute_min_ms=%.3f halo_min_ms=%.4f\n",
+                "compute_min_ms=%.3f halo_min_ms=%.4f repartition_cpu_ms=%.3f migrated=%.0f\n",
                 label, r, x.pid, x.owned, x.ghosts, x.neighbours, x.cpu_ms, x.compute_ms, x.pack_ms, x.exchange_ms, x.unpack_ms,
-                x.barrier_ms, x.reduction_ms, x.partition_ms, x.step_min_ms, x.compute_min_ms, x.halo_min_ms);
+                x.barrier_ms, x.reduction_ms, x.partition_ms, x.step_min_ms, x.compute_min_ms, x.halo_min_ms,
+                x.repartition_cpu_ms, x.migrated);
   }
   std::fflush(stdout);
 }

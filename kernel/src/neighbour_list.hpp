@@ -48,6 +48,10 @@ class NeighbourList {
   double skin() const { return skin_; }
   NeighbourState state() const;  // neighbour_list_restore.cpp: checkpoints
   void restore(const NeighbourState& state);
+  void restore(NeighbourState&& state);
+  // The state moved out (a decomposed run's re-partition edits it in place); restore() before
+  // the list is used again.
+  NeighbourState take_state();
 
  private:
   void bin_particles(const Particles& particles);

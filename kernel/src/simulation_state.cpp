@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <stdexcept>
+#include <utility>
 
 #include "neighbour_list.hpp"
 #include "shard/checkpoint.hpp"
@@ -60,7 +61,36 @@ SimulationState Simulation::export_state() const {
   return s;
 }
 
-void Simulation::import_state(const SimulationState& s) {
+SimulationState Simulation::take_state() {
+  SimulationState s;
+  s.step = step_;
+  s.time = time_;
+  s.dt = dt_;
+  s.particles = std::move(particles_);
+  s.bonds = std::move(bonds_);
+  s.bonds_broken = bonds_broken_;
+  s.events = std::move(events_);
+  s.events_taken = events_taken_;
+  s.walls.reserve(walls_.size());
+  for (const Wall& w : walls_)
+    s.walls.push_back({w.velocity, w.displacement, w.force, w.torque, w.contact_work, w.stored_energy, w.impacts});
+  s.neighbours = neighbours_->take_state();
+  s.contacts = contacts_;
+  s.contact_energy = contact_energy_;
+  s.bond_energy = bond_energy_;
+  // Emptied explicitly (a moved-from vector's size is unspecified); the bonds keep their layout.
+  particles_ = Particles{};
+  Bonds none;
+  none.stride = s.bonds.stride;
+  none.keeps_loads = s.bonds.keeps_loads;
+  bonds_ = std::move(none);
+  events_.clear();
+  return s;
+}
+
+void Simulation::import_state(const SimulationState& s) { import_state(SimulationState(s)); }
+
+void Simulation::import_state(SimulationState&& s) {
   require_consistent(s.particles);
   require_consistent(s.bonds, s.particles.size(), bonds_.stride);
   if (s.walls.size() != walls_.size())
@@ -78,18 +108,18 @@ void Simulation::import_state(const SimulationState& s) {
                                                 "materials 0 to {}: restart with the scene the run was started with",
                                                 s.particles.id[k], s.particles.material[k], materials_ - 1));
   // Everything is checked before anything is replaced: a refused checkpoint leaves this intact.
-  neighbours_->restore(s.neighbours);
+  neighbours_->restore(std::move(s.neighbours));
   step_ = s.step;
   time_ = s.time;
   dt_ = s.dt;
-  particles_ = s.particles;
+  particles_ = std::move(s.particles);
   // The loads are outputs of the last step, not inputs of the next: this run keeps them or not
   // whatever the run that wrote the checkpoint did.
   const bool keeps_loads = bonds_.keeps_loads;
-  bonds_ = s.bonds;
+  bonds_ = std::move(s.bonds);
   if (bonds_.keeps_loads != keeps_loads) bonds_.set_keeps_loads(keeps_loads);
   bonds_broken_ = s.bonds_broken;
-  events_ = s.events;
+  events_ = std::move(s.events);
   events_taken_ = s.events_taken;
   for (std::size_t w = 0; w < walls_.size(); ++w) {
     walls_[w].velocity = s.walls[w].velocity;

@@ -29,9 +29,10 @@ inline int byte_count(std::size_t bytes) {
   return static_cast<int>(bytes);
 }
 
-// out[r]: the records for rank r. Returns the records received, concatenated in source-rank order.
+// out[r]: the records for rank r. Returns the records received, concatenated in source-rank order;
+// with `from`, how many came from each rank.
 template <class T>
-std::vector<T> all_to_all(const std::vector<std::vector<T>>& out, MPI_Comm comm) {
+std::vector<T> all_to_all(const std::vector<std::vector<T>>& out, MPI_Comm comm, std::vector<std::size_t>* from = nullptr) {
   static_assert(std::is_trivially_copyable_v<T>);
   const int n = size_of(comm);
   std::vector<int> send_count(static_cast<std::size_t>(n)), recv_count(static_cast<std::size_t>(n));
@@ -50,6 +51,8 @@ std::vector<T> all_to_all(const std::vector<std::vector<T>>& out, MPI_Comm comm)
     total += static_cast<std::size_t>(recv_count[static_cast<std::size_t>(r)]);
   }
   std::vector<T> in(total / sizeof(T));
+  if (from)
+    for (int r = 0; r < n; ++r) from->push_back(static_cast<std::size_t>(recv_count[static_cast<std::size_t>(r)]) / sizeof(T));
   MPI_Alltoallv(send.data(), send_count.data(), send_at.data(), MPI_BYTE, in.data(), recv_count.data(),
                 recv_at.data(), MPI_BYTE, comm);
   return in;

@@ -6,13 +6,13 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
-#include <unordered_map>
 #include <utility>
 
 #include "comm.hpp"
 #include "halo.hpp"
 #include "partition.hpp"
 #include "records.hpp"
+#include "routing.hpp"
 #include "shard/checkpoint.hpp"
 
 namespace shard::mpi {
@@ -44,20 +44,11 @@ struct FlatRecords {
   Index first_id(std::size_t k) const { return static_cast<Index>(values[k * size]); }
 };
 
-// The grid: one cell reaches every particle an owned one can touch before the next partition
-// (2 r_max + skin), and the far end of every bond. Collective: the origin is below every rank's particles.
-CellGrid partition_grid(const std::vector<ParticleRecord>& particles, double r_max, double longest_bond, double skin,
-                        MPI_Comm comm) {
-  double lo[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-                  std::numeric_limits<double>::infinity()};
-  for (const ParticleRecord& r : particles)
-    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], r.position[a]);
-  double global_lo[3];
-  MPI_Allreduce(lo, global_lo, 3, MPI_DOUBLE, MPI_MIN, comm);
-  CellGrid grid;
-  grid.cell = std::max(2 * r_max, max_over_ranks(longest_bond, comm)) + skin;
-  grid.origin = Vec3(global_lo[0], global_lo[1], global_lo[2]) - Vec3::Constant(grid.cell);
-  return grid;
+// The lower corner of the records' positions (+infinity without any).
+Vec3 lowest(const std::vector<ParticleRecord>& particles) {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  for (const ParticleRecord& r : particles) lo = lo.cwiseMin(Vec3(r.position[0], r.position[1], r.position[2]));
+  return lo;
 }
 
 // Cost of each owned particle's cell: itself, the bonds and contacts it owns; `key` gets each
@@ -77,33 +68,9 @@ std::vector<CellCost> cell_costs(const std::vector<ParticleRecord>& particles, c
   return cells;
 }
 
-// The ranks owning the cells around a cell, looked up once per cell (27 searches each). Keyed by
-// cell only: one instance serves one `self`.
-class RanksAround {
- public:
-  explicit RanksAround(const Partition& partition) : partition_(partition) {}
-  const std::vector<int>& of(std::uint64_t cell, int self) {
-    auto [it, fresh] = around_.try_emplace(cell);
-    if (fresh) partition_.neighbour_ranks(cell, self, it->second);
-    return it->second;
-  }
-
- private:
-  const Partition& partition_;
-  std::unordered_map<std::uint64_t, std::vector<int>> around_;
-};
-
-// What this rank sends to each rank: the particles it will own, the ghost copies it will keep,
-// and the bonds and contacts kept by the owner of their first particle.
-struct Outgoing {
-  std::vector<std::vector<ParticleRecord>> to_owner, to_ghost;
-  std::vector<std::vector<double>> bonds_to, contacts_to;
-};
-
 Outgoing route(const std::vector<ParticleRecord>& particles, const FlatRecords& bonds, const FlatRecords& contacts,
                const Partition& partition, const std::vector<std::uint64_t>& key, std::size_t ranks) {
-  Outgoing out{std::vector<std::vector<ParticleRecord>>(ranks), std::vector<std::vector<ParticleRecord>>(ranks),
-               std::vector<std::vector<double>>(ranks), std::vector<std::vector<double>>(ranks)};
+  Outgoing out(ranks);
   RanksAround around(partition);
   std::vector<int> owner(particles.size());
   for (std::size_t k = 0; k < particles.size(); ++k) {
@@ -124,34 +91,12 @@ Outgoing route(const std::vector<ParticleRecord>& particles, const FlatRecords& 
   return out;
 }
 
-// What this rank received: its particles and their ghosts (each ascending in id), and the bonds
-// and contacts it keeps.
-struct Arrived {
-  std::vector<ParticleRecord> mine, ghosts;
-  std::vector<double> bonds, contacts;
-
-  // The local index of particle `id` (owned ones first, then the ghosts); -1 when not held here.
-  Index local_index(Index id) const {
-    const auto find = [id](const std::vector<ParticleRecord>& v) {
-      const auto it = std::lower_bound(v.begin(), v.end(), id, [](const ParticleRecord& r, Index x) { return r.id < x; });
-      return it != v.end() && it->id == id ? static_cast<Index>(it - v.begin()) : Index{-1};
-    };
-    const Index o = find(mine);
-    if (o >= 0) return o;
-    const Index g = find(ghosts);
-    return g >= 0 ? static_cast<Index>(mine.size()) + g : Index{-1};
-  }
-};
-
-Arrived exchange(const Outgoing& out, MPI_Comm comm) {
-  Arrived in;
-  in.mine = all_to_all(out.to_owner, comm);
-  in.ghosts = all_to_all(out.to_ghost, comm);
-  in.bonds = all_to_all(out.bonds_to, comm);
-  in.contacts = all_to_all(out.contacts_to, comm);
-  std::sort(in.mine.begin(), in.mine.end(), by_id);
-  std::sort(in.ghosts.begin(), in.ghosts.end(), by_id);
-  return in;
+// The local index of particle `id` (owned ones first, then the ghosts); -1 when not held here.
+Index local_index(const Arrived& in, Index id) {
+  const Index o = find_record(in.mine, id);
+  if (o >= 0) return o;
+  const Index g = find_record(in.ghosts, id);
+  return g >= 0 ? static_cast<Index>(in.mine.size()) + g : Index{-1};
 }
 
 // This rank's particles: owned ones first, then the ghosts, each in ascending id.
@@ -163,20 +108,6 @@ Particles local_particles(const Arrived& in) {
   return local;
 }
 
-// The halo: which owned particles each neighbour keeps a ghost of, and which ghosts come from whom.
-std::vector<HaloLink> halo_links(const Arrived& in, const Partition& partition, const CellGrid& grid, int rank,
-                                 std::size_t ranks) {
-  std::vector<HaloLink> links(ranks);
-  for (std::size_t r = 0; r < ranks; ++r) links[r].rank = static_cast<int>(r);
-  RanksAround around(partition);
-  for (const ParticleRecord& r : in.mine)
-    for (int d : around.of(grid.key(Vec3(r.position[0], r.position[1], r.position[2])), rank))
-      links[static_cast<std::size_t>(d)].send.push_back(r.id);
-  for (const ParticleRecord& r : in.ghosts) links[static_cast<std::size_t>(r.owner)].recv.push_back(r.id);
-  std::erase_if(links, [](const HaloLink& l) { return l.send.empty() && l.recv.empty(); });
-  return links;
-}
-
 // The received bonds' ends and touching contacts in local indices.
 struct LocalLinks {
   std::vector<std::pair<Index, Index>> bond_ends;
@@ -186,7 +117,7 @@ struct LocalLinks {
 // Bonds and contacts in local indices; a far end not held here would be a gap in the ghost layer.
 LocalLinks local_links(const Arrived& in, std::size_t bond_stride, std::size_t history_stride, double skin, int rank) {
   const auto held = [&](double id, const char* what) {
-    const Index k = in.local_index(static_cast<Index>(id));
+    const Index k = local_index(in, static_cast<Index>(id));
     if (k < 0)
       throw std::logic_error(fmt::format("partition: the {} end id {} is not within the ghost layer of rank {}", what,
                                          static_cast<Index>(id), rank));
@@ -366,7 +297,7 @@ DistributedSimulation::DistributedSimulation(MPI_Comm comm, SimulationSetup setu
   const std::size_t end = n * static_cast<std::size_t>(rank_ + 1) / static_cast<std::size_t>(ranks_);
   Owned owned;
   const double longest = take_rows(setup, begin, end, owned);
-  distribute(std::move(owned), longest, &setup);
+  distribute(std::move(owned), longest, setup);
 }
 
 DistributedSimulation::DistributedSimulation(MPI_Comm comm, SimulationSetup share, ScatteredScene)
@@ -376,7 +307,7 @@ DistributedSimulation::DistributedSimulation(MPI_Comm comm, SimulationSetup shar
   // Each rank holds its share (rank 0 the whole scene, say): the first partition sends it on.
   Owned owned;
   const double longest = take_rows(share, 0, share.particles.size(), owned);
-  distribute(std::move(owned), longest, &share);
+  distribute(std::move(owned), longest, share);
 }
 
 DistributedSimulation::DistributedSimulation(MPI_Comm comm, SimulationSetup setup, const SimulationState& from)
@@ -440,20 +371,21 @@ DistributedSimulation::DistributedSimulation(MPI_Comm comm, SimulationSetup setu
                           list.history.begin() + static_cast<std::ptrdiff_t>((k + 1) * list.history_stride));
   }
   events_ = from.events;
-  distribute(std::move(owned), max_over_ranks(longest, comm_), &setup, &from);
+  distribute(std::move(owned), max_over_ranks(longest, comm_), setup, &from);
 }
 
 DistributedSimulation::~DistributedSimulation() = default;
 
-// Cuts the grid anew, sends every particle, bond and touching contact to its new owner and the
-// ghost copies to the ranks next to it, then builds (initial) or replaces this rank's Simulation.
-void DistributedSimulation::distribute(Owned owned, double longest_bond, SimulationSetup* initial,
+// The first partition: cuts the grid, sends every particle, bond and touching contact to its owner
+// and the ghost copies to the ranks next to it, then builds this rank's Simulation (the later
+// partitions move only what changes owner: repartition.cpp).
+void DistributedSimulation::distribute(Owned owned, double longest_bond, SimulationSetup& initial,
                                        const SimulationState* resumed) {
   const double start = MPI_Wtime();
   std::sort(owned.particles.begin(), owned.particles.end(), by_id);
   const std::size_t bond_record = 2 + owned.bond_stride;
   const FlatRecords bonds{owned.bonds, bond_record}, contacts{owned.contacts, 2 + owned.history_stride};
-  const CellGrid grid = partition_grid(owned.particles, r_max_, longest_bond, skin_, comm_);
+  const CellGrid grid = partition_grid(lowest(owned.particles), r_max_, longest_bond, skin_, comm_);
   std::vector<std::uint64_t> key;
   const Partition partition =
       Partition::balance(all_gather(cell_costs(owned.particles, bonds, contacts, grid, key), comm_), ranks_, grid.cell);
@@ -467,7 +399,10 @@ void DistributedSimulation::distribute(Owned owned, double longest_bond, Simulat
     in = exchange(out, comm_);
   }
   Particles local = local_particles(in);
-  halo_->reset(halo_links(in, partition, grid, rank_, R));
+  std::vector<std::pair<Index, std::uint64_t>> cells;
+  cells.reserve(in.mine.size());
+  for (const ParticleRecord& r : in.mine) cells.emplace_back(r.id, grid.key(Vec3(r.position[0], r.position[1], r.position[2])));
+  halo_->reset(halo_links(cells, in.ghosts, partition, rank_, R));
 
   // The state values each bond record carries (the same on every rank: none for a new scene's).
   const std::size_t bond_stride = bond_record - 2;
@@ -475,13 +410,12 @@ void DistributedSimulation::distribute(Owned owned, double longest_bond, Simulat
   LocalLinks links = local_links(in, bond_stride, history_stride, skin_, rank_);
   owned_ = in.mine.size();
 
-  if (initial) build_local(std::move(*initial), resumed, local, links.bond_ends);
-  if (!initial || resumed)
-    import_local(resumed, std::move(local), links.bond_ends, in.bonds, bond_stride, std::move(links.touching));
+  build_local(std::move(initial), resumed, local, links.bond_ends);
+  if (resumed) import_local(*resumed, std::move(local), links.bond_ends, in.bonds, bond_stride, std::move(links.touching));
   position_at_partition_ = local_->particles().position;
   partition_id_ = local_->particles().id;
   partition_seconds_ += MPI_Wtime() - start;
-  if (initial && !resumed) finish_step();  // the first force pass's wall loads and breaks
+  if (!resumed) finish_step();  // the first force pass's wall loads and breaks
 }
 
 // The scene's set-up as a serial run takes it (models, materials, walls, settings), with this
@@ -503,16 +437,16 @@ void DistributedSimulation::build_local(SimulationSetup s, const SimulationState
   local_ = std::make_unique<Simulation>(std::move(s));
 }
 
-// This rank's particles, bonds (with their state from `bond_records`) and touching contacts into
-// its Simulation: at a re-partition, or a resumed run's state.
-void DistributedSimulation::import_local(const SimulationState* resumed, Particles local,
+// A resumed run's particles, bonds (with their state from `bond_records`) and touching contacts of
+// this rank into its Simulation.
+void DistributedSimulation::import_local(const SimulationState& resumed, Particles local,
                                          const std::vector<std::pair<Index, Index>>& bond_ends,
                                          const std::vector<double>& bond_records, std::size_t bond_stride,
                                          NeighbourState touching) {
   SimulationState s;
-  s.step = resumed ? resumed->step : local_->step_count();
-  s.time = resumed ? resumed->time : local_->time();
-  s.dt = resumed ? resumed->dt : local_->dt();
+  s.step = resumed.step;
+  s.time = resumed.time;
+  s.dt = resumed.dt;
   s.particles = std::move(local);
   s.bonds.stride = bond_stride;
   s.bonds.resize(bond_ends.size());
@@ -521,45 +455,18 @@ void DistributedSimulation::import_local(const SimulationState* resumed, Particl
     s.bonds.j[b] = std::max(bond_ends[b].first, bond_ends[b].second);
     std::copy_n(bond_records.data() + b * (2 + bond_stride) + 2, bond_stride, s.bonds.state.data() + b * bond_stride);
   }
-  if (resumed) {
-    // The loads are the run's (the same on every rank, as walls() promises); the work and the
-    // impacts a rank counts from here on are its own, summed when gathered: rank 0 keeps the past.
-    for (WallState w : resumed->walls) {
-      if (rank_ != 0) {
-        w.contact_work = 0;
-        w.impacts = 0;
-      }
-      s.walls.push_back(w);
+  // The loads are the run's (the same on every rank, as walls() promises); the work and the
+  // impacts a rank counts from here on are its own, summed when gathered: rank 0 keeps the past.
+  for (WallState w : resumed.walls) {
+    if (rank_ != 0) {
+      w.contact_work = 0;
+      w.impacts = 0;
     }
-  } else {
-    for (const Wall& w : local_->walls())
-      s.walls.push_back({w.velocity, w.displacement, w.force, w.torque, w.contact_work, w.stored_energy, w.impacts});
+    s.walls.push_back(w);
   }
-  touching.rebuilds = resumed ? resumed->neighbours.rebuilds : local_->neighbour_rebuilds();
+  touching.rebuilds = resumed.neighbours.rebuilds;
   s.neighbours = std::move(touching);  // no build positions: the next force pass rebuilds the list
-  local_->import_state(s);
-}
-
-void DistributedSimulation::repartition() {
-  const SimulationState s = local_->export_state();
-  const Particles& p = s.particles;
-  Owned owned;
-  owned.bond_stride = s.bonds.stride;
-  owned.history_stride = s.neighbours.history_stride;
-  for (std::size_t k = 0; k < p.size(); ++k)
-    if (!(p.flags[k] & kGhost)) owned.particles.push_back(record_of(p, k));
-  double longest = 0;
-  for (std::size_t b = 0; b < s.bonds.size(); ++b) {
-    const auto i = static_cast<std::size_t>(s.bonds.i[b]), j = static_cast<std::size_t>(s.bonds.j[b]);
-    owned.bonds.push_back(std::min(p.id[i], p.id[j]));
-    owned.bonds.push_back(std::max(p.id[i], p.id[j]));
-    owned.bonds.insert(owned.bonds.end(), s.bonds.state.begin() + static_cast<std::ptrdiff_t>(b * s.bonds.stride),
-                       s.bonds.state.begin() + static_cast<std::ptrdiff_t>((b + 1) * s.bonds.stride));
-    longest = std::max(longest, (p.position[i] - p.position[j]).norm());
-  }
-  append_touching(s, owned.contacts);
-  ++repartitions_;
-  distribute(std::move(owned), longest, nullptr);
+  local_->import_state(std::move(s));
 }
 
 void DistributedSimulation::step() {
@@ -610,7 +517,8 @@ double DistributedSimulation::halo_seconds() const { return halo_->seconds(); }
 
 DistributedSimulation::PhaseSeconds DistributedSimulation::phase_seconds() const {
   const Halo::Times& h = halo_->times();
-  return {h.pack, h.exchange, h.unpack, h.barrier + reduction_barrier_seconds_, reduction_seconds_, partition_seconds_};
+  return {h.pack, h.exchange, h.unpack, h.barrier + reduction_barrier_seconds_, reduction_seconds_, partition_seconds_,
+          repartition_cpu_seconds_};
 }
 
 void DistributedSimulation::set_timing_barriers(bool on) {

@@ -39,22 +39,44 @@ inline ParticleRecord record_of(const Particles& p, std::size_t k) {
   return r;
 }
 
+// Record `r` into slot k of `p` (a ghost copy with `ghost`).
+inline void write(Particles& p, std::size_t k, const ParticleRecord& r, bool ghost) {
+  p.position[k] = Vec3(r.position[0], r.position[1], r.position[2]);
+  p.velocity[k] = Vec3(r.velocity[0], r.velocity[1], r.velocity[2]);
+  std::copy_n(r.orientation, 4, p.orientation[k].coeffs().data());
+  p.omega[k] = Vec3(r.omega[0], r.omega[1], r.omega[2]);
+  p.force[k] = Vec3(r.force[0], r.force[1], r.force[2]);
+  p.torque[k] = Vec3(r.torque[0], r.torque[1], r.torque[2]);
+  p.radius[k] = r.radius;
+  p.mass[k] = r.mass;
+  p.inertia[k] = r.inertia;
+  p.material[k] = r.material;
+  p.body[k] = r.body;
+  p.id[k] = r.id;
+  p.flags[k] = ghost ? static_cast<std::uint8_t>(r.flags | kGhost) : r.flags;
+}
+
+// Every per-particle array of `p` to n entries (new ones to be written).
+inline void resize(Particles& p, std::size_t n) {
+  p.position.resize(n);
+  p.velocity.resize(n);
+  p.orientation.resize(n);
+  p.omega.resize(n);
+  p.force.resize(n);
+  p.torque.resize(n);
+  p.radius.resize(n);
+  p.mass.resize(n);
+  p.inertia.resize(n);
+  p.material.resize(n);
+  p.flags.resize(n);
+  p.id.resize(n);
+  p.body.resize(n);
+}
+
 inline void append(Particles& p, const ParticleRecord& r, bool ghost) {
-  p.position.emplace_back(r.position[0], r.position[1], r.position[2]);
-  p.velocity.emplace_back(r.velocity[0], r.velocity[1], r.velocity[2]);
-  Quat q;
-  std::copy_n(r.orientation, 4, q.coeffs().data());
-  p.orientation.push_back(q);
-  p.omega.emplace_back(r.omega[0], r.omega[1], r.omega[2]);
-  p.force.emplace_back(r.force[0], r.force[1], r.force[2]);
-  p.torque.emplace_back(r.torque[0], r.torque[1], r.torque[2]);
-  p.radius.push_back(r.radius);
-  p.mass.push_back(r.mass);
-  p.inertia.push_back(r.inertia);
-  p.material.push_back(r.material);
-  p.body.push_back(r.body);
-  p.id.push_back(r.id);
-  p.flags.push_back(ghost ? static_cast<std::uint8_t>(r.flags | kGhost) : r.flags);
+  const std::size_t k = p.size();
+  resize(p, k + 1);
+  write(p, k, r, ghost);
 }
 
 // A break event as plain numbers, for the gather.

@@ -92,6 +92,11 @@ class Simulation {
   // exported state; the models, walls' geometry and settings come from this Simulation's setup.
   SimulationState export_state() const;
   void import_state(const SimulationState& state);
+  // The same without copies: take_state moves the state out (this Simulation then steps again only
+  // after an import_state), so a decomposed run's re-partition (mpi/) edits its particles, bonds
+  // and contact history in place and moves them back.
+  SimulationState take_state();
+  void import_state(SimulationState&& state);
 
  private:
   // With `kick`, the second half-kick of the step is made in the same pass (a parallel region less).

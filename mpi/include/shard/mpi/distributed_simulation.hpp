@@ -86,6 +86,11 @@ class DistributedSimulation {
 
   void step();
   void run(std::int64_t steps);
+  // Cuts the grid anew from the current positions and costs; what step() does by itself when
+  // some particle may have moved half the skin since the last cut. Each rank keeps the particles
+  // it still owns in place and sends only those whose new owner differs, with the bonds and
+  // touching contacts they own (mpi/src/repartition.cpp).
+  void repartition();
 
   // Local, the same on every rank.
   int rank() const { return rank_; }
@@ -101,6 +106,13 @@ class DistributedSimulation {
   std::int64_t wall_contacts_begun_anywhere() const { return wall_contacts_begun_anywhere_; }
   std::int64_t bonds_broken() const { return static_cast<std::int64_t>(events_.size()); }
   std::int64_t repartitions() const { return repartitions_; }
+  // What re-partitions sent from this rank to the others (local): the particles whose owner
+  // changed, and the bonds and touching contacts that travelled with them.
+  struct Migration {
+    std::size_t particles = 0, bonds = 0, contacts = 0;
+  };
+  const Migration& last_migration() const { return last_migration_; }  // the latest re-partition's
+  const Migration& migration_total() const { return migration_total_; }  // the run's
 
   // Local, this rank's share.
   const Simulation& local() const { return *local_; }
@@ -127,8 +139,10 @@ class DistributedSimulation {
   // (all-gather), re-partitions; `barrier` is the time in a barrier put before each exchange and
   // the reduction when `set_timing_barriers(true)`, which separates waiting for the slowest rank
   // from the transfer itself (a measurement aid: it adds synchronisation).
+  // `repartition_cpu`: the CPU time of this rank's thread in the re-partitions after the first
+  // partition (on a shared machine their wall time counts the waiting for a core).
   struct PhaseSeconds {
-    double pack = 0, exchange = 0, unpack = 0, barrier = 0, reduction = 0, partition = 0;
+    double pack = 0, exchange = 0, unpack = 0, barrier = 0, reduction = 0, partition = 0, repartition_cpu = 0;
   };
   PhaseSeconds phase_seconds() const;
   void set_timing_barriers(bool on);
@@ -181,12 +195,11 @@ class DistributedSimulation {
   struct Owned;
   double take_rows(const SimulationSetup& setup, std::size_t begin, std::size_t end, Owned& owned) const;
   void find_largest_radius(const Particles& p);
-  void repartition();
   // `initial`: the scene's set-up, taken over (moved from) to build this rank's Simulation.
-  void distribute(Owned owned, double longest_bond, SimulationSetup* initial, const SimulationState* resumed = nullptr);
+  void distribute(Owned owned, double longest_bond, SimulationSetup& initial, const SimulationState* resumed = nullptr);
   void build_local(SimulationSetup s, const SimulationState* resumed, Particles& local,
                    std::vector<std::pair<Index, Index>>& bond_ends);
-  void import_local(const SimulationState* resumed, Particles local, const std::vector<std::pair<Index, Index>>& bond_ends,
+  void import_local(const SimulationState& resumed, Particles local, const std::vector<std::pair<Index, Index>>& bond_ends,
                     const std::vector<double>& bond_records, std::size_t bond_stride, NeighbourState touching);
   void start(const SimulationSetup& setup);
   void finish_step();
@@ -209,7 +222,8 @@ class DistributedSimulation {
   std::vector<WallContactBegun> begun_;
   std::int64_t wall_contacts_begun_anywhere_ = 0;
   std::int64_t repartitions_ = 0;
-  double partition_seconds_ = 0;
+  Migration last_migration_, migration_total_;
+  double partition_seconds_ = 0, repartition_cpu_seconds_ = 0;
   double reduction_seconds_ = 0, reduction_barrier_seconds_ = 0;
   bool timing_barriers_ = false;
 };
