@@ -7,6 +7,8 @@
 //       `effects` at its neutral values, e.g. an out-of-tree bond effect found on SHARD_PLUGIN_PATH)
 //   bench_kernel settle  [particles=100000] [steps=1000]
 //   bench_kernel scaling [steps=200]   (dense pack at 1e4, 1e5, 3e5 spheres)
+//   bench_kernel scene FILE [steps=200] (a scene file's Simulation as `shard run` builds it; only
+//       the step calls are timed, so `perf record --delay` or the set-up line tells where they start)
 // Threads come from OMP_NUM_THREADS; pin with taskset for stable figures.
 #include <omp.h>
 
@@ -25,6 +27,7 @@
 #include <vector>
 
 #include "bench_scenes.hpp"
+#include "shard/scene.hpp"
 
 using namespace shard;
 using Clock = std::chrono::steady_clock;
@@ -155,6 +158,35 @@ void pack_run(const char* name, std::size_t target, std::int64_t steps) {
       1e9 * cpu / (n * static_cast<double>(steps)), static_cast<unsigned long long>(state_hash(sim.particles())));
 }
 
+// A scene file's whole Simulation (generation included) stepped `steps` times. The set-up line goes
+// out before the first step, so a profiler started on it sees the step loop alone.
+void scene_run(const char* file, std::int64_t steps) {
+  const Scene scene = load_scene(file, std::vector<std::string>{}, bench::host());
+  const auto s0 = Clock::now();
+  SceneInstance inst = instantiate(scene, bench::host(), [](const std::string&) {});
+  Simulation& sim = *inst.simulation;
+  std::printf("bench_kernel scene: set-up %.1f s, stepping\n", seconds_since(s0));
+  std::fflush(stdout);
+  const std::size_t bonds0 = sim.bonds().size();
+  double bond_steps = 0;
+  const auto t0 = Clock::now();
+  const double c0 = cpu_seconds();
+  for (std::int64_t k = 0; k < steps; ++k) {
+    bond_steps += static_cast<double>(sim.bonds().size());
+    sim.step();
+  }
+  const double busy = seconds_since(t0);
+  const double cpu = cpu_seconds() - c0;
+  const double step_count = static_cast<double>(steps);
+  std::printf(
+      "bench_kernel scene: file=%s particles=%zu bonds=%zu threads=%d steps=%lld dt=%.3e contacts=%zu "
+      "broken=%lld rebuilds=%lld seconds=%.3f cpu_seconds=%.3f ms_per_step=%.3f ns_per_bond_step=%.2f "
+      "cpu_ns_per_bond_step=%.2f state_hash=%016llx\n",
+      file, sim.particles().size(), bonds0, omp_get_max_threads(), static_cast<long long>(steps), sim.dt(),
+      sim.contact_count(), static_cast<long long>(sim.bonds_broken()), static_cast<long long>(sim.neighbour_rebuilds()), busy, cpu, 1e3 * busy / step_count, 1e9 * busy / bond_steps,
+      1e9 * cpu / bond_steps, static_cast<unsigned long long>(state_hash(sim.particles())));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -169,8 +201,10 @@ int main(int argc, char** argv) {
     } else if (which == "scaling") {
       const auto steps = static_cast<std::int64_t>(arg(argc, argv, 2, 200));
       for (double n : {1e4, 1e5, 3e5}) pack_run("scaling", static_cast<std::size_t>(n), steps);
+    } else if (which == "scene" && argc > 2) {
+      scene_run(argv[2], static_cast<std::int64_t>(arg(argc, argv, 3, 200)));
     } else {
-      std::fprintf(stderr, "usage: bench_kernel bonded|bonded_effects|settle|scaling [args]  (see the file header)\n");
+      std::fprintf(stderr, "usage: bench_kernel bonded|bonded_effects|settle|scaling|scene [args]  (see the file header)\n");
       return 2;
     }
   } catch (const std::exception& e) {
