@@ -15,6 +15,7 @@
 
 #include "contact_candidates.hpp"
 #include "drift_lanes.hpp"
+#include "huge_pages.hpp"
 #include "neighbour_list.hpp"
 #include "parallel.hpp"
 #include "prefetch_rows.hpp"
@@ -222,8 +223,8 @@ struct ContactWorkspace {
       s.block.reserve(history_stride);
       const std::size_t size = t == 0 ? 0 : n;
       if (s.force.size() != size) {
-        s.force.assign(size, Vec3::Zero());
-        s.torque.assign(size, Vec3::Zero());
+        assign_on_huge_pages(s.force, size, Vec3(Vec3::Zero()));
+        assign_on_huge_pages(s.torque, size, Vec3(Vec3::Zero()));
       }
       if (s.block_force.size() != kBondBlock) {
         s.block_force.resize(kBondBlock);
