@@ -2,7 +2,7 @@
 // Large per-particle, per-bond and per-pair arrays on transparent huge pages (2 MB) where the
 // system hands them out on request (Linux's default "madvise" mode). The force pass reads the
 // larger ends of bonds and pairs a jump away along the Morton curve: with 4 kB pages nearly each
-// such row also missed the TLB (the seed beam's arrays are ~400 MB; the TLB maps a few MB). The
+// such row would also miss the TLB (the seed beam's arrays are ~400 MB; the TLB maps a few MB). The
 // advice is given before the first write, so the pages are huge from the start. Elsewhere, or when
 // the system refuses, the arrays are ordinary and every value the same.
 #include <cstddef>

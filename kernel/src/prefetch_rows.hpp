@@ -3,9 +3,9 @@
 // read and write, issued one block ahead. Bonds and pairs are sorted by their smaller index, so
 // their smaller ends' rows stream in order and the hardware prefetcher fetches them; the larger
 // end lies a jump along the Morton curve ahead. In a scene whose particles do not fit in the
-// caches (the seed beam: 330 283 spheres, ~66 MB of particle rows), each such row came from memory
-// as a miss inside the force law, one group of lanes after another; requested a block ahead, the
-// misses overlap each other and the arithmetic. A prefetch changes no value: the state stays
+// caches (the seed beam: 330 283 spheres, ~70 MB of particle rows), each such row would come from
+// memory as a miss inside the force law, one group of lanes after another; requested a block
+// ahead, the misses overlap each other and the arithmetic. A prefetch changes no value: the state stays
 // bit-identical.
 #include <algorithm>
 #include <cstddef>

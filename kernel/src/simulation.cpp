@@ -129,7 +129,7 @@ double density_of(const Particles& p, std::size_t k) {
 
 // to -= damping |to| sign(v), per component, sign(v) 1, -1 or 0 (0 for NaN too). Without a branch:
 // in a solid the sign of each velocity component is close to random from particle to particle, and
-// the branches GCC made of `v > 0 ? 1 : (v < 0 ? -1 : 0)` were mispredicted (a tenth of the damped
+// the branches GCC makes of `v > 0 ? 1 : (v < 0 ? -1 : 0)` are mispredicted (a tenth of the damped
 // seed beam's step). The same IEEE operations in the same order as the scalar expression.
 [[gnu::always_inline]] inline void damp3(double* to, const double* v, double damping) {
 #if defined(__SSE2__)
