@@ -7,6 +7,9 @@
 //       `effects` at its neutral values, e.g. an out-of-tree bond effect found on SHARD_PLUGIN_PATH)
 //   bench_kernel settle  [particles=100000] [steps=1000]
 //   bench_kernel scaling [steps=200]   (dense pack at 1e4, 1e5, 3e5 spheres)
+//   bench_kernel scene FILE [steps=200] [block=0]  (a scene file's Simulation as `shard run` builds
+//       it; only the step calls are timed, after a set-up line a profiler can wait for; block > 0:
+//       the bonded bench block of that many spheres stepped in turn with it, and the ratio)
 // Threads come from OMP_NUM_THREADS; pin with taskset for stable figures.
 #include <omp.h>
 
@@ -19,12 +22,14 @@
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <utility>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "bench_scenes.hpp"
+#include "shard/scene.hpp"
 
 using namespace shard;
 using Clock = std::chrono::steady_clock;
@@ -155,6 +160,73 @@ void pack_run(const char* name, std::size_t target, std::int64_t steps) {
       1e9 * cpu / (n * static_cast<double>(steps)), static_cast<unsigned long long>(state_hash(sim.particles())));
 }
 
+// Step calls timed on one Simulation, in slices: a run of several Simulations stepped in turn
+// shares whatever load the machine has at each moment between them.
+struct TimedRun {
+  Simulation* sim;
+  std::size_t bonds0;
+  double bond_steps = 0, seconds = 0, cpu = 0;
+  std::int64_t steps = 0;
+
+  explicit TimedRun(Simulation& s) : sim(&s), bonds0(s.bonds().size()) {}
+  void advance(std::int64_t count) {
+    const auto t0 = Clock::now();
+    const double c0 = cpu_seconds();
+    for (std::int64_t k = 0; k < count; ++k) {
+      bond_steps += static_cast<double>(sim->bonds().size());
+      sim->step();
+    }
+    seconds += seconds_since(t0);
+    cpu += cpu_seconds() - c0;
+    steps += count;
+  }
+  void print(const char* what) const {
+    const Simulation& s = *sim;
+    std::printf(
+        "bench_kernel scene: %s particles=%zu bonds=%zu threads=%d steps=%lld dt=%.3e contacts=%zu broken=%lld "
+        "rebuilds=%lld seconds=%.3f cpu_seconds=%.3f ms_per_step=%.3f ns_per_bond_step=%.2f cpu_ns_per_bond_step=%.2f "
+        "state_hash=%016llx\n",
+        what, s.particles().size(), bonds0, omp_get_max_threads(), static_cast<long long>(steps), s.dt(),
+        s.contact_count(), static_cast<long long>(s.bonds_broken()), static_cast<long long>(s.neighbour_rebuilds()),
+        seconds, cpu, 1e3 * seconds / static_cast<double>(steps), 1e9 * seconds / bond_steps, 1e9 * cpu / bond_steps,
+        static_cast<unsigned long long>(state_hash(s.particles())));
+  }
+};
+
+// A scene file's whole Simulation (generation included) stepped `steps` times. The set-up line goes
+// out before the first step, so a profiler started on it sees the step loop alone. With `block` > 0
+// the bonded bench block of that many spheres is stepped in turn with it, 5 timed steps each, and the
+// ratio of their CPU time per bond-step printed: on a shared machine the two figures taken apart
+// move with the load, their ratio taken this way much less.
+void scene_run(const char* file, std::int64_t steps, std::size_t block) {
+  const Scene scene = load_scene(file, std::vector<std::string>{}, bench::host());
+  const auto s0 = Clock::now();
+  SceneInstance inst = instantiate(scene, bench::host(), [](const std::string&) {});
+  const bench::Models models = bench::default_models();
+  std::unique_ptr<Simulation> bench_block;
+  if (block > 0) bench_block = std::make_unique<Simulation>(bench::bonded_block(block, 0.2, models));
+  std::printf("bench_kernel scene: set-up %.1f s, stepping\n", seconds_since(s0));
+  std::fflush(stdout);
+  TimedRun run(*inst.simulation);
+  if (!bench_block) {
+    run.advance(steps);
+  } else {
+    TimedRun other(*bench_block);
+    for (std::int64_t k = 0; k < steps; k += 5) {
+      // Each slice starts with an untimed step that brings its arrays back into the caches the
+      // other Simulation's slice evicted: the block alone runs from warm caches.
+      inst.simulation->step();
+      run.advance(std::min<std::int64_t>(5, steps - k));
+      bench_block->step();
+      other.advance(std::min<std::int64_t>(5, steps - k));
+    }
+    other.print("bench_block");
+    std::printf("bench_kernel scene: cpu_per_bond_step_ratio=%.3f (scene over bench block, stepped in turn)\n",
+                (run.cpu / run.bond_steps) / (other.cpu / other.bond_steps));
+  }
+  run.print((std::string("file=") + file).c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -169,8 +241,10 @@ int main(int argc, char** argv) {
     } else if (which == "scaling") {
       const auto steps = static_cast<std::int64_t>(arg(argc, argv, 2, 200));
       for (double n : {1e4, 1e5, 3e5}) pack_run("scaling", static_cast<std::size_t>(n), steps);
+    } else if (which == "scene" && argc > 2) {
+      scene_run(argv[2], static_cast<std::int64_t>(arg(argc, argv, 3, 200)), static_cast<std::size_t>(arg(argc, argv, 4, 0)));
     } else {
-      std::fprintf(stderr, "usage: bench_kernel bonded|bonded_effects|settle|scaling [args]  (see the file header)\n");
+      std::fprintf(stderr, "usage: bench_kernel bonded|bonded_effects|settle|scaling|scene [args]  (see the file header)\n");
       return 2;
     }
   } catch (const std::exception& e) {

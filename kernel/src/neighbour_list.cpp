@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "huge_pages.hpp"
 #include "parallel.hpp"
 #include "shard/domain_exchange.hpp"
 
@@ -168,8 +169,8 @@ void NeighbourList::find_pairs(const Particles& particles, const std::vector<Wal
   // Concatenate in thread order: the same list as one thread would have made.
   std::size_t total = 0;
   for (int t = 0; t < team; ++t) total += threads_[static_cast<std::size_t>(t)].i.size();
-  new_i_.resize(total);
-  new_j_.resize(total);
+  resize_on_huge_pages(new_i_, total);
+  resize_on_huge_pages(new_j_, total);
   std::size_t offset = 0;
   for (int t = 0; t < team; ++t) {
     const ThreadPairs& p = threads_[static_cast<std::size_t>(t)];
@@ -180,7 +181,7 @@ void NeighbourList::find_pairs(const Particles& particles, const std::vector<Wal
 }
 
 void NeighbourList::carry_history(std::size_t particle_count) {
-  new_history_.assign(new_i_.size() * stride_, 0.0);
+  assign_on_huge_pages(new_history_, new_i_.size() * stride_, 0.0);
   new_touching_.assign(new_i_.size(), 0);
   if (i_.empty()) return;  // without history the touching flags still follow (wall impacts count them)
   // Group the old pairs by their smaller index (counting sort), then look each new pair up in

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "huge_pages.hpp"
 #include "parallel.hpp"
 
 namespace shard {
@@ -20,21 +21,31 @@ std::uint64_t spread_bits(std::uint64_t v) {
   return v;
 }
 
+// The gathers write into scratch arrays on huge pages (huge_pages.hpp), which then become the live
+// ones. The first time, the former live arrays (ordinary pages, as the scene was built) are freed
+// rather than kept as scratch, so the next reordering takes advised storage for them too and the
+// live arrays stay on huge pages from then on.
 template <class T>
-void gather(std::vector<T>& live, std::vector<T>& scratch, const Index* order, std::size_t n) {
-  scratch.resize(n);
-#pragma omp parallel for schedule(static) num_threads(team_for(n))
-  for (std::size_t k = 0; k < n; ++k) scratch[k] = live[static_cast<std::size_t>(order[k])];
+void swap_in(std::vector<T>& live, std::vector<T>& scratch, bool release_old) {
   live.swap(scratch);
+  if (release_old) std::vector<T>().swap(scratch);
 }
 
 template <class T>
-void gather(std::vector<T>& live, std::vector<T>& scratch, const std::vector<std::size_t>& order) {
+void gather(std::vector<T>& live, std::vector<T>& scratch, const Index* order, std::size_t n, bool release_old) {
+  resize_on_huge_pages(scratch, n);
+#pragma omp parallel for schedule(static) num_threads(team_for(n))
+  for (std::size_t k = 0; k < n; ++k) scratch[k] = live[static_cast<std::size_t>(order[k])];
+  swap_in(live, scratch, release_old);
+}
+
+template <class T>
+void gather(std::vector<T>& live, std::vector<T>& scratch, const std::vector<std::size_t>& order, bool release_old) {
   const std::size_t n = order.size();
-  scratch.resize(n);
+  resize_on_huge_pages(scratch, n);
 #pragma omp parallel for schedule(static) num_threads(team_for(n))
   for (std::size_t k = 0; k < n; ++k) scratch[k] = live[order[k]];
-  live.swap(scratch);
+  swap_in(live, scratch, release_old);
 }
 
 }  // namespace
@@ -71,19 +82,21 @@ bool SpatialOrder::compute(const Particles& particles, double cell) {
 void SpatialOrder::apply(Particles& p, Bonds& bonds) {
   const std::size_t n = p.size();
   const Index* order = order_.data();
-  gather(p.position, scratch_.position, order, n);
-  gather(p.velocity, scratch_.velocity, order, n);
-  gather(p.orientation, scratch_.orientation, order, n);
-  gather(p.omega, scratch_.omega, order, n);
-  gather(p.force, scratch_.force, order, n);
-  gather(p.torque, scratch_.torque, order, n);
-  gather(p.radius, scratch_.radius, order, n);
-  gather(p.mass, scratch_.mass, order, n);
-  gather(p.inertia, scratch_.inertia, order, n);
-  gather(p.material, scratch_.material, order, n);
-  gather(p.flags, scratch_.flags, order, n);
-  gather(p.id, scratch_.id, order, n);
-  gather(p.body, scratch_.body, order, n);
+  const bool release = !live_on_huge_pages_;
+  live_on_huge_pages_ = true;
+  gather(p.position, scratch_.position, order, n, release);
+  gather(p.velocity, scratch_.velocity, order, n, release);
+  gather(p.orientation, scratch_.orientation, order, n, release);
+  gather(p.omega, scratch_.omega, order, n, release);
+  gather(p.force, scratch_.force, order, n, release);
+  gather(p.torque, scratch_.torque, order, n, release);
+  gather(p.radius, scratch_.radius, order, n, release);
+  gather(p.mass, scratch_.mass, order, n, release);
+  gather(p.inertia, scratch_.inertia, order, n, release);
+  gather(p.material, scratch_.material, order, n, release);
+  gather(p.flags, scratch_.flags, order, n, release);
+  gather(p.id, scratch_.id, order, n, release);
+  gather(p.body, scratch_.body, order, n, release);
 
   // Bonds: rename the ends (each keeps its orientation: a bond model may store state relative to
   // its first end), then a stable counting sort by the smaller end.
@@ -99,23 +112,23 @@ void SpatialOrder::apply(Particles& p, Bonds& bonds) {
   std::partial_sum(bond_start_.begin(), bond_start_.end(), bond_start_.begin());
   bond_order_.resize(m);
   for (std::size_t k = 0; k < m; ++k) bond_order_[static_cast<std::size_t>(bond_start_[key(k)]++)] = k;
-  gather(bonds.i, bond_scratch_.i, bond_order_);
-  gather(bonds.j, bond_scratch_.j, bond_order_);
+  gather(bonds.i, bond_scratch_.i, bond_order_, release);
+  gather(bonds.j, bond_scratch_.j, bond_order_, release);
   if (bonds.keeps_loads) {
-    gather(bonds.force, bond_scratch_.force, bond_order_);
-    gather(bonds.torque_i, bond_scratch_.torque_i, bond_order_);
-    gather(bonds.torque_j, bond_scratch_.torque_j, bond_order_);
-    gather(bonds.energy, bond_scratch_.energy, bond_order_);
+    gather(bonds.force, bond_scratch_.force, bond_order_, release);
+    gather(bonds.torque_i, bond_scratch_.torque_i, bond_order_, release);
+    gather(bonds.torque_j, bond_scratch_.torque_j, bond_order_, release);
+    gather(bonds.energy, bond_scratch_.energy, bond_order_, release);
   }
-  gather(bonds.broken, bond_scratch_.broken, bond_order_);
-  gather(bonds.stress, bond_scratch_.stress, bond_order_);
+  gather(bonds.broken, bond_scratch_.broken, bond_order_, release);
+  gather(bonds.stress, bond_scratch_.stress, bond_order_, release);
   const std::size_t stride = bonds.stride;
-  bond_scratch_.state.resize(m * stride);
+  resize_on_huge_pages(bond_scratch_.state, m * stride);
 #pragma omp parallel for schedule(static) num_threads(team_for(m))
   for (std::size_t k = 0; k < m; ++k)
     std::copy_n(bonds.state.begin() + static_cast<std::ptrdiff_t>(bond_order_[k] * stride), stride,
                 bond_scratch_.state.begin() + static_cast<std::ptrdiff_t>(k * stride));
-  bonds.state.swap(bond_scratch_.state);
+  swap_in(bonds.state, bond_scratch_.state, release);
 }
 
 }  // namespace shard

@@ -31,6 +31,7 @@ class SpatialOrder {
   Bonds bond_scratch_;
   std::vector<std::int64_t> bond_start_;
   std::vector<std::size_t> bond_order_;
+  bool live_on_huge_pages_ = false;  // a reordering has put the live arrays on advised storage
 };
 
 }  // namespace shard
