@@ -1,4 +1,5 @@
 #include "shard/particles.hpp"
+#include "shard/particle_arrays.hpp"
 
 #include <numbers>
 
@@ -24,19 +25,7 @@ Index Particles::add(const Vec3& x, double r, double density, std::int32_t mater
 }
 
 void Particles::reserve(std::size_t n) {
-  position.reserve(n);
-  velocity.reserve(n);
-  orientation.reserve(n);
-  omega.reserve(n);
-  force.reserve(n);
-  torque.reserve(n);
-  radius.reserve(n);
-  mass.reserve(n);
-  inertia.reserve(n);
-  material.reserve(n);
-  flags.reserve(n);
-  id.reserve(n);
-  body.reserve(n);
+  for_each_particle_array([n](auto& v) { v.reserve(n); }, *this);
 }
 
 ParticleView view_of(const Particles& p) {

@@ -41,43 +41,37 @@ void require_consistent(const Bonds& b, std::size_t particles, std::size_t strid
 
 }  // namespace
 
-SimulationState Simulation::export_state() const {
+SimulationState Simulation::state_without_arrays() const {
   SimulationState s;
   s.step = step_;
   s.time = time_;
   s.dt = dt_;
-  s.particles = particles_;
-  s.bonds = bonds_;
   s.bonds_broken = bonds_broken_;
-  s.events = events_;
   s.events_taken = events_taken_;
   s.walls.reserve(walls_.size());
   for (const Wall& w : walls_)
     s.walls.push_back({w.velocity, w.displacement, w.force, w.torque, w.contact_work, w.stored_energy, w.impacts});
-  s.neighbours = neighbours_->state();
   s.contacts = contacts_;
   s.contact_energy = contact_energy_;
   s.bond_energy = bond_energy_;
   return s;
 }
 
+SimulationState Simulation::export_state() const {
+  SimulationState s = state_without_arrays();
+  s.particles = particles_;
+  s.bonds = bonds_;
+  s.events = events_;
+  s.neighbours = neighbours_->state();
+  return s;
+}
+
 SimulationState Simulation::take_state() {
-  SimulationState s;
-  s.step = step_;
-  s.time = time_;
-  s.dt = dt_;
+  SimulationState s = state_without_arrays();
   s.particles = std::move(particles_);
   s.bonds = std::move(bonds_);
-  s.bonds_broken = bonds_broken_;
   s.events = std::move(events_);
-  s.events_taken = events_taken_;
-  s.walls.reserve(walls_.size());
-  for (const Wall& w : walls_)
-    s.walls.push_back({w.velocity, w.displacement, w.force, w.torque, w.contact_work, w.stored_energy, w.impacts});
   s.neighbours = neighbours_->take_state();
-  s.contacts = contacts_;
-  s.contact_energy = contact_energy_;
-  s.bond_energy = bond_energy_;
   // Emptied explicitly (a moved-from vector's size is unspecified); the bonds keep their layout.
   particles_ = Particles{};
   Bonds none;

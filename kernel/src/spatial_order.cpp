@@ -6,6 +6,7 @@
 
 #include "huge_pages.hpp"
 #include "parallel.hpp"
+#include "shard/particle_arrays.hpp"
 
 namespace shard {
 namespace {
@@ -84,19 +85,7 @@ void SpatialOrder::apply(Particles& p, Bonds& bonds) {
   const Index* order = order_.data();
   const bool release = !live_on_huge_pages_;
   live_on_huge_pages_ = true;
-  gather(p.position, scratch_.position, order, n, release);
-  gather(p.velocity, scratch_.velocity, order, n, release);
-  gather(p.orientation, scratch_.orientation, order, n, release);
-  gather(p.omega, scratch_.omega, order, n, release);
-  gather(p.force, scratch_.force, order, n, release);
-  gather(p.torque, scratch_.torque, order, n, release);
-  gather(p.radius, scratch_.radius, order, n, release);
-  gather(p.mass, scratch_.mass, order, n, release);
-  gather(p.inertia, scratch_.inertia, order, n, release);
-  gather(p.material, scratch_.material, order, n, release);
-  gather(p.flags, scratch_.flags, order, n, release);
-  gather(p.id, scratch_.id, order, n, release);
-  gather(p.body, scratch_.body, order, n, release);
+  for_each_particle_array([&](auto& live, auto& spare) { gather(live, spare, order, n, release); }, p, scratch_);
 
   // Bonds: rename the ends (each keeps its orientation: a bond model may store state relative to
   // its first end), then a stable counting sort by the smaller end.

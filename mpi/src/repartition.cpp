@@ -18,6 +18,7 @@
 #include "routing.hpp"
 #include "shard/checkpoint.hpp"
 #include "shard/mpi/distributed_simulation.hpp"
+#include "shard/particle_arrays.hpp"
 
 namespace shard::mpi {
 namespace {
@@ -310,19 +311,7 @@ void settle_contacts(NeighbourState& list, const Particles& p, const Renumbering
 // The particles: the staying ones in place (Renumbering::place), the arrivals and new ghosts written.
 void settle_particles(Particles& p, const Renumbering& at, const Arrived& in) {
   const std::size_t g = in.ghosts.size();
-  at.place(p.position, g);
-  at.place(p.velocity, g);
-  at.place(p.orientation, g);
-  at.place(p.omega, g);
-  at.place(p.force, g);
-  at.place(p.torque, g);
-  at.place(p.radius, g);
-  at.place(p.mass, g);
-  at.place(p.inertia, g);
-  at.place(p.material, g);
-  at.place(p.flags, g);
-  at.place(p.id, g);
-  at.place(p.body, g);
+  for_each_particle_array([&](auto& v) { at.place(v, g); }, p);
   for (std::size_t m = 0; m < in.mine.size(); ++m) write(p, static_cast<std::size_t>(at.arrival_at(m)), in.mine[m], false);
   for (std::size_t k = 0; k < g; ++k) write(p, at.owned() + k, in.ghosts[k], true);
 }

@@ -99,6 +99,9 @@ class Simulation {
   void import_state(SimulationState&& state);
 
  private:
+  // Everything of the state but the particle, bond, event and neighbour arrays (export_state
+  // copies those, take_state moves them).
+  SimulationState state_without_arrays() const;
   // With `kick`, the second half-kick of the step is made in the same pass (a parallel region less).
   void compute_forces(bool kick = false);
   void integrate_first_half();
