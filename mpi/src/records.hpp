@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "shard/checkpoint.hpp"
+#include "shard/particle_arrays.hpp"
 #include "shard/particles.hpp"
 
 namespace shard::mpi {
@@ -58,19 +59,7 @@ inline void write(Particles& p, std::size_t k, const ParticleRecord& r, bool gho
 
 // Every per-particle array of `p` to n entries (new ones to be written).
 inline void resize(Particles& p, std::size_t n) {
-  p.position.resize(n);
-  p.velocity.resize(n);
-  p.orientation.resize(n);
-  p.omega.resize(n);
-  p.force.resize(n);
-  p.torque.resize(n);
-  p.radius.resize(n);
-  p.mass.resize(n);
-  p.inertia.resize(n);
-  p.material.resize(n);
-  p.flags.resize(n);
-  p.id.resize(n);
-  p.body.resize(n);
+  for_each_particle_array([n](auto& v) { v.resize(n); }, p);
 }
 
 inline void append(Particles& p, const ParticleRecord& r, bool ghost) {
