@@ -77,8 +77,27 @@ std::string separating_text(const ContrastReport& r, const SetDiagnosis& d, cons
   return how.empty() ? "" : fmt::format(" What would tell: {}.", how);
 }
 
+// A rate-independent name for a strength difference that the set's two rates cannot tell from a
+// rate-dependent strength (rate_sensitivity.hpp): a lead, with the specimens that would decide.
+std::string withheld_for_rate_text(const SetDiagnosis& d, const std::string& name) {
+  const ContrastDecision& c = d.decision;
+  const RateSensitivity& s = *d.rate_sensitivity;
+  return fmt::format(
+      "{} differs from the reference (T^2 = {:.1f}, p = {:.2g}): unexplained difference. The closest, {}, explains "
+      "{:.0f} % of T^2 and passes the component and curve tests, but it holds the strength independent of the "
+      "loading rate, and this set cannot tell: its peak force is {:+.1f} % ({:+.1f} +- {:.1f} % in ln F_max) against "
+      "the reference at {:g} mm/s, and from {:g} to {:g} mm/s it changes by {:+.1f} % +- {:.1f} % (95 %) beyond the "
+      "model's own change, where subcritical crack growth (n = {:g}) would change it by {:.1f} %. So a strength "
+      "that grows with the rate explains this set as well. What would tell: about {} specimens at each rate (now "
+      "{}), or rates a decade or more apart.",
+      name, c.chi_square, c.p_value, d.withheld, 100 * d.share, 100 * std::expm1(s.strength_contrast),
+      100 * s.strength_contrast, 100 * s.u_strength_contrast, 1e3 * s.slow_rate, 1e3 * s.slow_rate, 1e3 * s.fast_rate,
+      100 * s.change, 100 * s.half_width, s.exponent, 100 * s.subcritical, s.specimens_needed(), s.specimens_per_rate);
+}
+
 // A name the component statistics gave and the curve did not bear out: a lead, never a name.
 std::string withheld_text(const ContrastReport& r, const SetDiagnosis& d, const std::string& name) {
+  if (d.withheld_for_rate) return withheld_for_rate_text(d, name);
   const ContrastDecision& c = d.decision;
   const bool curve_misses = !curve_agrees(d.after);
   std::string why = !improves_on_base(d)
@@ -416,6 +435,25 @@ io::Json assumptions_json(const SetDiagnosis& d) {
   return out;
 }
 
+io::Json rate_sensitivity_json(const SetDiagnosis& d) {
+  if (!d.rate_sensitivity) return nullptr;
+  const RateSensitivity& s = *d.rate_sensitivity;
+  return {{"slow_rate", s.slow_rate},
+          {"fast_rate", s.fast_rate},
+          {"strength_contrast", s.strength_contrast},
+          {"u_strength_contrast", s.u_strength_contrast},
+          {"change", s.change},
+          {"u_change", s.u_change},
+          {"dof", s.dof},
+          {"half_width", s.half_width},
+          {"subcritical_change", s.subcritical},
+          {"subcritical_exponent", s.exponent},
+          {"resolved", s.resolved()},
+          {"specimens_per_rate", s.specimens_per_rate},
+          {"specimens_needed", s.specimens_needed()},
+          {"withheld_for_rate", d.withheld_for_rate}};
+}
+
 io::Json set_json(const ContrastReport& r, const SetDiagnosis& d) {
   const ContrastDecision& c = d.decision;
   const bool shown = !d.after_effect.empty();
@@ -437,6 +475,7 @@ io::Json set_json(const ContrastReport& r, const SetDiagnosis& d) {
           {"pair", pair_json(d)},
           {"unidentifiable", c.unidentifiable},
           {"rivals", c.rivals},
+          {"rate_sensitivity", rate_sensitivity_json(d)},
           {"assumptions", assumptions_json(d)}};
 }
 

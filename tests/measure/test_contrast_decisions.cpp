@@ -405,3 +405,64 @@ TEST_CASE("what a verdict rests on: a base assumption moved, each shown model re
 }
 
 }  // namespace shard::measure
+
+namespace shard::measure {
+namespace {
+
+// A set tested at two rates: four specimens of `truth` at 0.02 m/s (2 % scatter, a lab's batch)
+// and four at 0.1 m/s scattering by `fast_scatter` (a beam that fractures dynamically at the fast
+// rate scatters wider there).
+MeasurementSet two_rate_set(const std::map<std::string, double>& truth, std::uint64_t first_seed, double fast_scatter) {
+  MeasurementSet set = measured(truth, first_seed);
+  fake::Parameters p;
+  for (const auto& [k, v] : truth) p.values.at(k) = v;
+  for (std::uint64_t k = 0; k < 4; ++k)
+    set.specimens.push_back(recorded_as_tested(fake::specimen_of(p, first_seed + 100 + k, fast_scatter, 0.1),
+                                               ModelPlan{}, {}, "lab"));
+  return set;
+}
+
+}  // namespace
+
+TEST_CASE("a rate-independent name for a strength difference needs the set's two rates to resolve its rate dependence") {
+  Study s;
+  s.options.decide.own_scatter_p = 0.01;
+  // Bonds stiffer in compression raise the peak force by 15 % at both rates: no rate dependence.
+  s.add("tight", two_rate_set({{"fake.compression_ratio", 2}}, 3000, 0.02));
+  s.add("wide", two_rate_set({{"fake.compression_ratio", 2}}, 4000, 0.15));
+  const ContrastDiagnosis d = s.run();
+  CHECK_FALSE(diagnosis_of(d, s, "null").rate_sensitivity);  // one rate: nothing to resolve
+  // Subcritical growth of n = 20 changes the strength by ln(5) / 21 = 0.0766 from 20 to 100 mm/s.
+  const SetDiagnosis& tight = diagnosis_of(d, s, "tight");
+  REQUIRE(tight.rate_sensitivity);
+  CHECK(tight.rate_sensitivity->subcritical == doctest::Approx(std::log(5.0) / 21).epsilon(1e-9));
+  CHECK(tight.rate_sensitivity->strength_contrast == doctest::Approx(std::log(1.15)).epsilon(0.3));
+  // 2 % at each rate over four specimens: u ~ 0.014, a 95 % half-width of ~0.035 resolves it.
+  CHECK(tight.rate_sensitivity->resolved());
+  CHECK(std::abs(tight.rate_sensitivity->change) < tight.rate_sensitivity->half_width);
+  CHECK(tight.decision.verdict == "compression_asymmetry");
+  // 15 % at the fast rate: a half-width of ~0.2, so a strength that grows with the rate fits too.
+  const SetDiagnosis& wide = diagnosis_of(d, s, "wide");
+  REQUIRE(wide.rate_sensitivity);
+  CHECK_FALSE(wide.rate_sensitivity->resolved());
+  CHECK(wide.rate_sensitivity->specimens_needed() > 4);
+  CHECK(wide.decision.verdict == kUnexplainedDifference);
+  CHECK(wide.withheld == "compression_asymmetry");
+  CHECK(wide.withheld_for_rate);
+}
+
+TEST_CASE("the specimens per rate that would resolve a rate dependence scale with the square of the interval") {
+  RateSensitivity r;
+  r.specimens_per_rate = 4;
+  r.subcritical = 0.05;
+  r.half_width = 0.1;  // twice what is needed: four times the specimens
+  CHECK(r.specimens_needed() == 16);
+  r.half_width = 0.04;
+  CHECK(r.resolved());
+  r.strength_contrast = -0.12, r.u_strength_contrast = 0.008;
+  CHECK(r.strength_differs());
+  r.strength_contrast = -0.012;
+  CHECK_FALSE(r.strength_differs());
+}
+
+}  // namespace shard::measure

@@ -203,6 +203,7 @@ ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simula
     require_curve_agreement(out.sets, options.decide);
   }
   name_by_curve(out.sets, out.effects.size(), options.decide);
+  require_resolved_rate_dependence(out.sets, study, trials[0], out.effects, options.decide);
   if (!options.assumptions.empty())
     assess_assumptions(study, out.effects, out.sets, options.assumptions, options.decide, log);
   out.dof = study.dof();

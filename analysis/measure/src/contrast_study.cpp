@@ -15,6 +15,7 @@
 #include "shard/measure/group_scatter.hpp"
 #include "shard/measure/rate_groups.hpp"
 #include "shard/measure/statistics.hpp"
+#include "paired_seeds.hpp"
 #include "square_matrix.hpp"
 
 namespace shard::measure {
@@ -97,21 +98,6 @@ void check_shared_rates(const ContrastSets& s) {
           "difference from the reference mixes the batch with the loading rate. Fix: test some of its specimens at "
           "the reference's rate (or the reference at this set's), or diagnose it on its own (shard diagnose SET)",
           s.sets[k].folder.string(), rates_text(rates), s.names[*s.reference], rates_text(ref)));
-  }
-}
-
-// Mean and sample variance over the seeds of a - b (paired on the seed: common random numbers).
-void paired(const std::vector<std::vector<double>>& a, const std::vector<std::vector<double>>& b, std::vector<double>& mean,
-            std::vector<double>& var_of_mean) {
-  const std::size_t n = a.size(), m = a.front().size();
-  mean.assign(m, 0.0);
-  var_of_mean.assign(m, 0.0);
-  for (std::size_t i = 0; i < m; ++i) {
-    std::vector<double> d(n);
-    for (std::size_t k = 0; k < n; ++k) d[k] = a[k][i] - b[k][i];
-    mean[i] = measure::mean(d);
-    const double s = sample_sd(d);
-    var_of_mean[i] = s * s / static_cast<double>(n);
   }
 }
 

@@ -36,6 +36,12 @@ double equivalent_normal_score(double t, double dof) {
   return std::copysign(z, t);
 }
 
+double student_t_quantile(double level, double dof) {
+  const double tail = 0.5 * (1 - level);
+  if (std::isinf(dof)) return boost::math::quantile(boost::math::complement(boost::math::normal_distribution<double>(), tail));
+  return boost::math::quantile(boost::math::complement(boost::math::students_t_distribution<double>(dof), tail));
+}
+
 double mean(std::span<const double> x) {
   double s = 0;
   for (double v : x) s += v;

@@ -112,6 +112,12 @@ struct ContrastOptions {
   // before); on the default-size foreign draw it names the self-weight set and keeps a
   // frictionless-roller set (272 x) from swamping every other contrast.
   double own_scatter_p = 0;
+  // A rate-independent name for a strength difference on a set tested at several rates needs the
+  // set's rate dependence resolved against subcritical crack growth of this exponent n
+  // (rate_sensitivity.hpp). Glass, ceramics, rock and cement-based materials lie at n 10-50; 20
+  // stands for a typical brittle solid, and a larger n (weaker rate dependence) asks for more
+  // specimens before such a name.
+  double subcritical_exponent = 20;
   // Effects tried for the Bonferroni corrections (0: those passed). A confirmation that decides
   // on the simulated refits of the top few still pays for every effect the ranking looked at.
   std::size_t tried = 0;

@@ -74,6 +74,10 @@ struct SetDiagnosis {
   std::string withheld;
   // Named by its curve (name_by_curve): the components beyond the rising branch differ beyond noise.
   bool named_by_curve = false;
+  // The set's rate dependence of its strength, when it was tested at two or more rates; and whether
+  // a name was withheld because of it (require_resolved_rate_dependence).
+  std::optional<RateSensitivity> rate_sensitivity;
+  bool withheld_for_rate = false;
   // How the shown model (named, or the closest) fares when a condition the base assumes is moved
   // (ContrastDiagnosisOptions::assumptions), one per assumption.
   std::vector<AssumptionSensitivity> assumptions;
@@ -113,6 +117,18 @@ void require_curve_agreement(std::vector<SetDiagnosis>& sets, const ContrastOpti
 // reproduces the contrast curve within the curve rule is named by it (named_by_curve), with the
 // rivals the component rule would list.
 void name_by_curve(std::vector<SetDiagnosis>& sets, std::size_t tried, const ContrastOptions& options);
+
+// A set tested at several rates whose verdict names only rate-independent effects (no rate
+// effect, CandidateEffect::rates_needed 1) for a strength difference (rate_sensitivity.hpp): the
+// name stands only when the set resolves its rate dependence; otherwise the set reads
+// "unexplained difference" with the name as its closest. Fills every multi-rate set's
+// rate_sensitivity for the report.
+void require_resolved_rate_dependence(std::vector<SetDiagnosis>& sets, const ContrastStudy& study,
+                                      const ContrastStudy::Simulated& base,
+                                      const std::vector<CandidateEffect>& effects, const ContrastOptions& options);
+
+// The names a verdict gives: the pair's two, the single effect, or none.
+std::vector<std::string> named_effects(const SetDiagnosis& d, const ContrastOptions& options = {});
 
 // One batch of models; when a run fails (a size the plugin refuses, or an unstable one) the models
 // are run one by one (finished runs are cached) and a failed one is left out (empty) with its

@@ -14,6 +14,7 @@
 #include "shard/measure/contrast.hpp"
 #include "shard/measure/effect_library.hpp"
 #include "shard/measure/group_scatter.hpp"
+#include "shard/measure/rate_sensitivity.hpp"
 #include "shard/measure/simulator.hpp"
 
 namespace shard::measure {
@@ -93,6 +94,9 @@ class ContrastStudy {
   // The loading rates a contrast spans: its groups' and their references' (a rate effect is told
   // apart from a rate-independent one only across two or more).
   std::size_t rate_count(const Contrast& c) const;
+  // The set's rate dependence of its strength (rate_sensitivity.hpp), when the contrast spans two
+  // or more of the set's own rates; `exponent` is subcritical growth's n it is held against.
+  std::optional<RateSensitivity> rate_sensitivity(const Contrast& c, const Simulated& base, double exponent) const;
   // The model's contrast of `set`'s groups: effect minus base on each seed, averaged.
   std::vector<double> model_contrast(const Contrast& c, const Simulated& with_effect, const Simulated& base) const;
 

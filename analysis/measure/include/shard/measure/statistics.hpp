@@ -27,6 +27,9 @@ double satterthwaite_dof(std::span<const VarianceTerm> estimated, double known_v
 // N(0, 1) its tails are far too heavy (t = 4.6 is p 0.01 at nu = 3, not 4e-6). Returns t for
 // infinite dof.
 double equivalent_normal_score(double t, double dof);
+// The two-sided `level` quantile of Student's t with `dof` degrees of freedom (level 0.95: the
+// t that bounds 95 % of draws in |t|); the normal quantile for infinite dof.
+double student_t_quantile(double level, double dof);
 
 double mean(std::span<const double> x);
 // Sample standard deviation (n - 1); 0 for fewer than two values.
