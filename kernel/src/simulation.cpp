@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "contact_candidates.hpp"
+#include "contact_geometry.hpp"
 #include "drift_lanes.hpp"
 #include "huge_pages.hpp"
 #include "neighbour_list.hpp"
@@ -698,21 +699,44 @@ bool wall_geometry(const Particles& p, const Wall& w, Index a, std::size_t c, Co
   return true;
 }
 
+// The geometry of the touching particle pairs among block slots [0, count): 8 slots at a time in
+// AVX-512 lanes where the CPU has them (contact_geometry.hpp), the rest one by one. A wall slot in
+// a group of lanes is written again by `wall_slot`, whose pair is known to touch.
+template <class WallSlot>
+void pair_geometry(const Particles& p, ContactArrays& block, std::size_t count, WallSlot&& wall_slot) {
+  static const bool lanes = pair_geometry_lanes_available();
+  std::size_t c = 0;
+  if (lanes) {
+    const PairGeometryTile tile{p.position.data()->data(), p.velocity.data()->data(), p.omega.data()->data(),
+                                p.radius.data(),            p.mass.data(),             block.i.data(),
+                                block.j.data(),             block.normal.data()->data(),
+                                block.velocity.data()->data(), block.omega_rel.data()->data(),
+                                block.overlap.data(),       block.r_eff.data(),        block.m_eff.data()};
+    const std::size_t groups = count / 8;
+    pair_geometry_avx512(tile, groups);
+    for (c = 0; c < 8 * groups; ++c)
+      if (block.j[c] < 0) wall_slot(c);
+  }
+  for (; c < count; ++c)
+    if (block.j[c] >= 0) particle_pair_geometry(p, block.i[c], block.j[c], c, block);
+}
+
 // Geometry of the touching pairs of the next tile of [k, end) into `block`; pairs that stopped
-// touching lose their history. Returns the first pair not looked at.
+// touching lose their history. Returns the first pair not looked at. The wall pairs are tested
+// (and their geometry made) while the candidates are compacted, so that the particle pairs'
+// geometry runs over the final slots in one pass.
 std::size_t collect_contacts(const Particles& p, const std::vector<Wall>& walls, NeighbourList& list, std::size_t k,
                              std::size_t end, std::int32_t materials, ContactArrays& block) {
   const std::size_t stop = std::min(end, k + kContactBlock);
   const std::size_t candidates = compact_candidates(p, list, k, stop, block);
   const std::size_t stride = list.history_stride();
   const double* history = list.history().data();
+  const auto wall_of = [&](Index b) -> const Wall& { return walls[static_cast<std::size_t>(-1 - b)]; };
   std::size_t c = 0;
   for (std::size_t q = 0; q < candidates; ++q) {
     const std::size_t pair = block.pair[q];
     const Index a = block.i[q], b = block.j[q];
-    if (b >= 0) {
-      particle_pair_geometry(p, a, b, c, block);
-    } else if (!wall_geometry(p, walls[static_cast<std::size_t>(-1 - b)], a, c, block)) {
+    if (b < 0 && !wall_geometry(p, wall_of(b), a, c, block)) {
       std::fill_n(list.history().data() + pair * stride, stride, 0.0);
       list.touching()[pair] = 0;
       continue;
@@ -721,12 +745,11 @@ std::size_t collect_contacts(const Particles& p, const std::vector<Wall>& walls,
     block.j[c] = b;
     block.pair[c] = pair;
     block.touched[c] = block.touched[q];
-    if (materials > 1)
-      block.material_pair[c] =
-          p.material[a] * materials + (b >= 0 ? p.material[b] : walls[static_cast<std::size_t>(-1 - b)].material);
+    if (materials > 1) block.material_pair[c] = p.material[a] * materials + (b >= 0 ? p.material[b] : wall_of(b).material);
     copy_history(history + pair * stride, block.history.data() + c * stride, stride);
     ++c;
   }
+  pair_geometry(p, block, c, [&](std::size_t s) { wall_geometry(p, wall_of(block.j[s]), block.i[s], s, block); });
   block.count = c;
   return stop;
 }

@@ -1,0 +1,39 @@
+#pragma once
+// The contact pass's geometry of touching particle pairs (Simulation::contact_chunk): normal,
+// overlap, relative velocity at the contact point, relative spin, effective radius and mass. The
+// scalar form lives in simulation.cpp; on a CPU with AVX-512 (F, BW, VL) the compacted slots run
+// here 8 at a time (contact_geometry_avx512.cpp, compiled for that set with -ffp-contract=off): the
+// same IEEE operations in the same order per slot, so the same bits. Its square root and five
+// divisions per pair are what the scalar pass waits on when the particles fit in the caches (the
+// divider takes one scalar operation after another), and lanes divide 8 at a time.
+#include <cstddef>
+#include <cstdint>
+
+namespace shard {
+
+// A block's view (indices are shard::Index, 32 bits; this header stays free of Eigen so that the
+// AVX-512 object needs no other instruction-set flags). Rows of 3 doubles per particle or slot.
+struct PairGeometryTile {
+  const double* position;  // the particles' arrays
+  const double* velocity;
+  const double* omega;
+  const double* radius;
+  const double* mass;
+  const std::int32_t* i;  // per slot: the pair's ends; j < 0 is a wall
+  const std::int32_t* j;
+  double* normal;  // per slot, outputs
+  double* velocity_rel;
+  double* omega_rel;
+  double* overlap;
+  double* r_eff;
+  double* m_eff;
+};
+
+// True when this CPU runs the AVX-512 geometry.
+bool pair_geometry_lanes_available();
+
+// Slots [0, 8 * groups) in groups of 8 as particle pairs. A wall slot (j < 0) is computed as the
+// pair (i, i) and must be written again by the caller.
+void pair_geometry_avx512(const PairGeometryTile& t, std::size_t groups);
+
+}  // namespace shard
