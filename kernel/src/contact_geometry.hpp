@@ -29,11 +29,29 @@ struct PairGeometryTile {
   double* m_eff;
 };
 
-// True when this CPU runs the AVX-512 geometry.
+// The torques of a block's particle pairs, from the contact law's force and couple per slot: on
+// end a (arm_a x f) + couple, on end b (arm_b x (-f)) - couple, the arms s n from each centre with
+// s_a = -(r_a - overlap / 2) and s_b = r_b - overlap / 2.
+struct PairLoadsTile {
+  const double* radius;  // the particles'
+  const std::int32_t* i;  // per slot: the pair's ends; j < 0 is a wall
+  const std::int32_t* j;
+  const double* force;  // per slot, rows of 3: the law's outputs and the geometry
+  const double* couple;
+  const double* normal;
+  const double* overlap;
+  double* torque_a;  // per slot, rows of 3, outputs
+  double* torque_b;
+};
+
+// True when this CPU runs the AVX-512 geometry and loads.
 bool pair_geometry_lanes_available();
 
 // Slots [0, 8 * groups) in groups of 8 as particle pairs. A wall slot (j < 0) is computed as the
 // pair (i, i) and must be written again by the caller.
 void pair_geometry_avx512(const PairGeometryTile& t, std::size_t groups);
+
+// Slots [0, 8 * groups) in groups of 8 as particle pairs; a wall slot's values are meaningless.
+void pair_loads_avx512(const PairLoadsTile& t, std::size_t groups);
 
 }  // namespace shard

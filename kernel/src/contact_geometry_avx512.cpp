@@ -91,6 +91,29 @@ void group_geometry(const PairGeometryTile& t, std::size_t s) {
   _mm512_storeu_pd(t.m_eff + s, _mm512_div_pd(_mm512_mul_pd(ma, mb), _mm512_add_pd(ma, mb)));
 }
 
+// The operations of scatter_contacts in simulation.cpp, in its order: arm x f coefficient by
+// coefficient plus the couple on end a, arm_b x (-f) with f negated first minus the couple on b.
+void group_loads(const PairLoadsTile& t, std::size_t s) {
+  const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(t.i + s));
+  const __m256i j = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(t.j + s));
+  const __m256i b = _mm256_mask_blend_epi32(_mm256_cmplt_epi32_mask(j, _mm256_setzero_si256()), j, a);
+  Batch f[3], n[3], c[3];
+  lanes::load3(t.force + 3 * s, f[0], f[1], f[2]);
+  lanes::load3(t.normal + 3 * s, n[0], n[1], n[2]);
+  lanes::load3(t.couple + 3 * s, c[0], c[1], c[2]);
+  const __m512d half_overlap = _mm512_mul_pd(_mm512_set1_pd(0.5), _mm512_loadu_pd(t.overlap + s));
+  const __m512d sa = negate(_mm512_sub_pd(_mm512_i32gather_pd(a, t.radius, 8), half_overlap));
+  const __m512d sb = _mm512_sub_pd(_mm512_i32gather_pd(b, t.radius, 8), half_overlap);
+  const __m512d ax = _mm512_mul_pd(sa, n[0]), ay = _mm512_mul_pd(sa, n[1]), az = _mm512_mul_pd(sa, n[2]);
+  const __m512d bx = _mm512_mul_pd(sb, n[0]), by = _mm512_mul_pd(sb, n[1]), bz = _mm512_mul_pd(sb, n[2]);
+  const __m512d fx = f[0], fy = f[1], fz = f[2];
+  store_rows(t.torque_a + 3 * s, _mm512_add_pd(cross_term(ay, fz, az, fy), c[0]),
+             _mm512_add_pd(cross_term(az, fx, ax, fz), c[1]), _mm512_add_pd(cross_term(ax, fy, ay, fx), c[2]));
+  const __m512d gx = negate(fx), gy = negate(fy), gz = negate(fz);
+  store_rows(t.torque_b + 3 * s, _mm512_sub_pd(cross_term(by, gz, bz, gy), c[0]),
+             _mm512_sub_pd(cross_term(bz, gx, bx, gz), c[1]), _mm512_sub_pd(cross_term(bx, gy, by, gx), c[2]));
+}
+
 }  // namespace
 
 bool pair_geometry_lanes_available() {
@@ -102,10 +125,15 @@ void pair_geometry_avx512(const PairGeometryTile& t, std::size_t groups) {
   for (std::size_t g = 0; g < groups; ++g) group_geometry(t, 8 * g);
 }
 
+void pair_loads_avx512(const PairLoadsTile& t, std::size_t groups) {
+  for (std::size_t g = 0; g < groups; ++g) group_loads(t, 8 * g);
+}
+
 #else
 
 bool pair_geometry_lanes_available() { return false; }
 void pair_geometry_avx512(const PairGeometryTile&, std::size_t) {}
+void pair_loads_avx512(const PairLoadsTile&, std::size_t) {}
 
 #endif
 

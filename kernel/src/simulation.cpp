@@ -40,6 +40,7 @@ struct ContactArrays {
   std::vector<std::int32_t> material_pair;  // per contact: the materials' row of the law table
   std::vector<std::uint8_t> touched;    // per contact: it touched at the last pass too (not a new impact)
   std::vector<Vec3> normal, velocity, omega_rel, force, couple;
+  std::vector<Vec3> torque_a, torque_b;  // a particle pair's loads on its ends besides the force
   std::vector<double> overlap, r_eff, m_eff, energy, history;
   void reserve(std::size_t stride) {
     const std::size_t n = kContactBlock;
@@ -55,6 +56,8 @@ struct ContactArrays {
     omega_rel.resize(n);
     force.resize(n);
     couple.resize(n);
+    torque_a.resize(n);
+    torque_b.resize(n);
     overlap.resize(n);
     r_eff.resize(n);
     m_eff.resize(n);
@@ -777,36 +780,65 @@ void run_model(const ContactModel& model, double dt, bool materials, ContactArra
   model.compute(batch);
 }
 
+// Slot k's torques on the ends of its particle pair (PairLoadsTile), written out component by
+// component in the order of the former Vec3 expressions (the same bits): arm x f coefficient by
+// coefficient, arm_b x (-f) with f negated first, torque += (arm x f + couple).
+[[gnu::always_inline]] inline void pair_loads(const double* radius, ContactArrays& block, std::size_t k) {
+  const Index a = block.i[k], b = block.j[k];
+  const double* f = block.force[k].data();
+  const double* n = block.normal[k].data();
+  const double* couple = block.couple[k].data();
+  const double overlap = block.overlap[k];
+  const double fx = f[0], fy = f[1], fz = f[2];
+  const double sa = -(radius[a] - 0.5 * overlap), sb = radius[b] - 0.5 * overlap;
+  const double ax = sa * n[0], ay = sa * n[1], az = sa * n[2];
+  const double bx = sb * n[0], by = sb * n[1], bz = sb * n[2];
+  double* load_a = block.torque_a[k].data();
+  load_a[0] = (ay * fz - az * fy) + couple[0];
+  load_a[1] = (az * fx - ax * fz) + couple[1];
+  load_a[2] = (ax * fy - ay * fx) + couple[2];
+  const double gx = -fx, gy = -fy, gz = -fz;
+  double* load_b = block.torque_b[k].data();
+  load_b[0] = (by * gz - bz * gy) - couple[0];
+  load_b[1] = (bz * gx - bx * gz) - couple[1];
+  load_b[2] = (bx * gy - by * gx) - couple[2];
+}
+
+// The torques of the block's particle pairs: 8 slots at a time in AVX-512 lanes where the CPU has
+// them (contact_geometry.hpp), the rest one by one.
+void pair_loads(const Particles& p, ContactArrays& block) {
+  static const bool lanes = pair_geometry_lanes_available();
+  std::size_t k = 0;
+  if (lanes) {
+    const PairLoadsTile tile{p.radius.data(),          block.i.data(),         block.j.data(),
+                             block.force.data()->data(), block.couple.data()->data(), block.normal.data()->data(),
+                             block.overlap.data(),     block.torque_a.data()->data(), block.torque_b.data()->data()};
+    const std::size_t groups = block.count / 8;
+    pair_loads_avx512(tile, groups);
+    k = 8 * groups;
+  }
+  for (; k < block.count; ++k)
+    if (block.j[k] >= 0) pair_loads(p.radius.data(), block, k);
+}
+
 // The block's forces into this thread's share, in contact order; the history back to the list.
-// Returns `energy` plus the block's energies, summed in contact order. A particle pair's loads are
-// written out component by component in the order of the former Vec3 expressions (the same bits):
-// arm x f coefficient by coefficient, arm_b x (-f) with f negated first, torque += (arm x f + couple).
+// Returns `energy` plus the block's energies, summed in contact order.
 double scatter_contacts(const Particles& p, const std::vector<Wall>& walls, NeighbourList& list,
-                        const ContactArrays& block, Vec3* force, Vec3* torque, ThreadShare& share, double energy) {
+                        ContactArrays& block, Vec3* force, Vec3* torque, ThreadShare& share, double energy) {
   const std::size_t stride = list.history_stride();
   double* history = list.history().data();
   const double* radius = p.radius.data();
+  pair_loads(p, block);
   for (std::size_t k = 0; k < block.count; ++k) {
     const Index a = block.i[k], b = block.j[k];
     const double* f = block.force[k].data();
-    const double* n = block.normal[k].data();
-    const double* couple = block.couple[k].data();
     const double overlap = block.overlap[k];
     energy += block.energy[k];
     if (b >= 0) {
-      const double fx = f[0], fy = f[1], fz = f[2];
-      const double sa = -(radius[a] - 0.5 * overlap), sb = radius[b] - 0.5 * overlap;
-      const double ax = sa * n[0], ay = sa * n[1], az = sa * n[2];
-      const double bx = sb * n[0], by = sb * n[1], bz = sb * n[2];
-      const double load_a[3] = {(ay * fz - az * fy) + couple[0], (az * fx - ax * fz) + couple[1],
-                                (ax * fy - ay * fx) + couple[2]};
-      const double gx = -fx, gy = -fy, gz = -fz;
-      const double load_b[3] = {(by * gz - bz * gy) - couple[0], (bz * gx - bx * gz) - couple[1],
-                                (bx * gy - by * gx) - couple[2]};
       add3(force[a].data(), f);
-      add3(torque[a].data(), load_a);
+      add3(torque[a].data(), block.torque_a[k].data());
       subtract3(force[b].data(), f);
-      add3(torque[b].data(), load_b);
+      add3(torque[b].data(), block.torque_b[k].data());
     } else {
       const Vec3& fv = block.force[k];
       const Vec3& nv = block.normal[k];

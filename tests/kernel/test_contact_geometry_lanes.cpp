@@ -1,6 +1,6 @@
-// The contact pass's AVX-512 geometry of touching particle pairs (kernel/src/contact_geometry_avx512.cpp)
-// against the rule it implements, written here once more slot by slot as simulation.cpp's scalar
-// particle_pair_geometry writes it. Tolerance: none. The contact law reads these values, so the
+// The contact pass's AVX-512 geometry and torques of touching particle pairs
+// (kernel/src/contact_geometry_avx512.cpp) against the rules they implement, written here once more
+// slot by slot as simulation.cpp's scalar particle_pair_geometry and pair_loads write them. Tolerance: none. The contact law reads these values, so the
 // lanes must give the scalar code's bits for every slot, whatever the sizes, masses, velocities and
 // spins; a fused multiply-add, a reordered sum, a negation written as 0 - x or a lane out of order
 // changes some of them. Wall slots are the caller's to write again: only the particle slots count.
@@ -22,11 +22,16 @@ struct Block {
   std::vector<double> position, velocity, omega, radius, mass;  // particles
   std::vector<std::int32_t> i, j;                               // per slot
   std::vector<double> normal, velocity_rel, omega_rel, overlap, r_eff, m_eff;
+  std::vector<double> force, couple, torque_a, torque_b;
 
   PairGeometryTile view() {
     return {position.data(), velocity.data(), omega.data(),     radius.data(),  mass.data(),  i.data(),
             j.data(),        normal.data(),   velocity_rel.data(), omega_rel.data(), overlap.data(), r_eff.data(),
             m_eff.data()};
+  }
+  PairLoadsTile loads() {
+    return {radius.data(),  i.data(),     j.data(),           force.data(),   couple.data(),
+            normal.data(), overlap.data(), torque_a.data(), torque_b.data()};
   }
 };
 
@@ -65,6 +70,28 @@ void reference(Block& t, std::size_t c) {
   t.m_eff[c] = ma * mb / (ma + mb);
 }
 
+// Slot c's torques by the scalar rule (simulation.cpp, pair_loads).
+void reference_loads(Block& t, std::size_t c) {
+  const std::size_t a = static_cast<std::size_t>(t.i[c]), b = static_cast<std::size_t>(t.j[c]);
+  const double* f = &t.force[3 * c];
+  const double* n = &t.normal[3 * c];
+  const double* couple = &t.couple[3 * c];
+  const double overlap = t.overlap[c];
+  const double fx = f[0], fy = f[1], fz = f[2];
+  const double sa = -(t.radius[a] - 0.5 * overlap), sb = t.radius[b] - 0.5 * overlap;
+  const double ax = sa * n[0], ay = sa * n[1], az = sa * n[2];
+  const double bx = sb * n[0], by = sb * n[1], bz = sb * n[2];
+  double* load_a = &t.torque_a[3 * c];
+  load_a[0] = (ay * fz - az * fy) + couple[0];
+  load_a[1] = (az * fx - ax * fz) + couple[1];
+  load_a[2] = (ax * fy - ay * fx) + couple[2];
+  const double gx = -fx, gy = -fy, gz = -fz;
+  double* load_b = &t.torque_b[3 * c];
+  load_b[0] = (by * gz - bz * gy) - couple[0];
+  load_b[1] = (bz * gx - bx * gz) - couple[1];
+  load_b[2] = (bx * gy - by * gx) - couple[2];
+}
+
 // `particles` spheres of mixed sizes touching their neighbours in a random cloud, with random
 // velocities and spins of mixed signs and scales; `slots` pairs of them, one in nine a wall.
 Block make_block(std::size_t particles, std::size_t slots, std::uint64_t seed) {
@@ -87,7 +114,11 @@ Block make_block(std::size_t particles, std::size_t slots, std::uint64_t seed) {
     t.i.push_back(a);
     t.j.push_back(rng() % 9 == 0 ? -1 - static_cast<std::int32_t>(rng() % 3) : b);
   }
-  for (auto* out : {&t.normal, &t.velocity_rel, &t.omega_rel}) out->assign(3 * slots, 0.0);
+  for (auto* out : {&t.normal, &t.velocity_rel, &t.omega_rel, &t.torque_a, &t.torque_b}) out->assign(3 * slots, 0.0);
+  // The contact law's outputs: forces and couples of mixed signs and scales, some zero.
+  for (auto* out : {&t.force, &t.couple})
+    for (std::size_t k = 0; k < 3 * slots; ++k)
+      out->push_back(rng() % 7 == 0 ? 0.0 : std::ldexp(unit(rng), static_cast<int>(rng() % 30) - 15));
   for (auto* out : {&t.overlap, &t.r_eff, &t.m_eff}) out->assign(slots, 0.0);
   return t;
 }
@@ -127,5 +158,31 @@ TEST_CASE("the AVX-512 pair geometry lanes give the scalar rule's bits slot by s
     CHECK(walls > 4);
     CHECK(overlapping > 10);
     CHECK(overlapping < kSlots - walls);
+  }
+}
+
+TEST_CASE("the AVX-512 pair torque lanes give the scalar rule's bits slot by slot") {
+  if (!pair_geometry_lanes_available()) {
+    MESSAGE("this CPU has no AVX-512 F/BW/VL: the pair torque lanes are not run here");
+    return;
+  }
+  for (const std::uint64_t seed : {4u, 5u, 6u}) {
+    constexpr std::size_t kSlots = 8 * 16;
+    Block lanes = make_block(200, kSlots, seed);
+    for (std::size_t c = 0; c < kSlots; ++c)
+      if (lanes.j[c] >= 0) reference(lanes, c);  // a contact's geometry, as the pass has it
+    Block scalar = lanes;
+    pair_loads_avx512(lanes.loads(), kSlots / 8);
+    std::size_t walls = 0;
+    for (std::size_t c = 0; c < kSlots; ++c) {
+      if (lanes.j[c] < 0) {
+        ++walls;
+        continue;
+      }
+      reference_loads(scalar, c);
+      CHECK(same_bits(lanes.torque_a, scalar.torque_a, 3 * c, 3));
+      CHECK(same_bits(lanes.torque_b, scalar.torque_b, 3 * c, 3));
+    }
+    CHECK(walls > 4);
   }
 }
