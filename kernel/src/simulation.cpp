@@ -18,6 +18,7 @@
 #include "drift_lanes.hpp"
 #include "huge_pages.hpp"
 #include "neighbour_list.hpp"
+#include "pair_exclusion.hpp"
 #include "parallel.hpp"
 #include "prefetch_rows.hpp"
 #include "spatial_order.hpp"
@@ -204,6 +205,7 @@ struct ContactWorkspace {
   std::vector<ThreadShare> threads;
   SpatialOrder order;
   double order_cell = 1;  // m: the Morton grid, one neighbour-search cell
+  PairExclusion bonded;   // the bonded pairs, without contacts when bonded_contacts is off
   // The first half-step's turn per particle: angle, unit axis, rotation quaternion (x, y, z, w).
   std::vector<double> turn_angle, turn_axis, turn_rotation;
   // The largest squared displacement since the neighbour build, found by the last drift; < 0
@@ -327,11 +329,15 @@ Simulation::Simulation(SimulationSetup setup)
       bond_(setup.bond),
       materials_(static_cast<std::int32_t>(setup.materials)),
       breakage_(setup.breakage),
+      bonded_contacts_(setup.bonded_contacts),
       walls_(std::move(setup.walls)),
       gravity_(setup.gravity),
       global_damping_(setup.global_damping),
       exchange_(setup.exchange) {
   const std::size_t n = particles_.size();
+  // A sub-domain holds only some of the bonds of its pairs' ends.
+  if (!bonded_contacts_ && exchange_)
+    throw std::invalid_argument("[simulation] bonded_contacts = false is not available in a decomposed (MPI) run");
   if (!setup.bonds.empty() && !bond_)
     throw std::invalid_argument("the scene has bonds but no bond model: add a [bond] section (e.g. plugin = \"beam_bond\")");
   canonical_bonds(setup.bonds, n);
@@ -447,7 +453,12 @@ void Simulation::update_neighbours() {
     order.apply(particles_, bonds_);
     list.remap(order.new_index());
   }
-  list.rebuild(particles_, walls_);
+  const PairExclusion* excluded = nullptr;
+  if (!bonded_contacts_) {
+    workspace_->bonded.assign(bonds_.i, bonds_.j, particles_.size());
+    excluded = &workspace_->bonded;
+  }
+  list.rebuild(particles_, walls_, excluded);
 }
 
 namespace {
@@ -970,6 +981,8 @@ void Simulation::record_broken_bonds() {
     events_.push_back(e);
   }
   bonds_broken_ += static_cast<std::int64_t>(bonds_.remove_broken());
+  // The failed bonds' pairs may touch: listed from the next force pass on.
+  if (!bonded_contacts_ && contact_) neighbours_->invalidate();
 }
 
 std::vector<BondBreakEvent> Simulation::take_new_break_events() {
