@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "huge_pages.hpp"
+#include "pair_exclusion.hpp"
 #include "parallel.hpp"
 #include "shard/domain_exchange.hpp"
 
@@ -118,7 +119,8 @@ void NeighbourList::bin_particles(const Particles& particles) {
     sorted_[static_cast<std::size_t>(cursor_[static_cast<std::size_t>(cell_of_[k])]++)] = static_cast<Index>(k);
 }
 
-void NeighbourList::find_pairs(const Particles& particles, const std::vector<Wall>& walls) {
+void NeighbourList::find_pairs(const Particles& particles, const std::vector<Wall>& walls,
+                               const PairExclusion* excluded) {
   const std::size_t n = particles.size();
   const int team = team_for(n);
   if (threads_.size() < static_cast<std::size_t>(team)) threads_.resize(static_cast<std::size_t>(team));
@@ -149,7 +151,9 @@ void NeighbourList::find_pairs(const Particles& particles, const std::vector<Wal
             const Index b = sorted_[static_cast<std::size_t>(s)];
             if (static_cast<std::size_t>(b) <= a) continue;
             const double reach = ra + particles.radius[b] + skin_;
-            if ((particles.position[b] - xa).squaredNorm() < reach * reach) out.candidates.push_back(b);
+            if ((particles.position[b] - xa).squaredNorm() < reach * reach &&
+                !(excluded && excluded->contains(static_cast<Index>(a), b)))
+              out.candidates.push_back(b);
           }
         }
       }
@@ -215,14 +219,15 @@ void NeighbourList::carry_history(std::size_t particle_count) {
   }
 }
 
-void NeighbourList::rebuild(const Particles& particles, const std::vector<Wall>& walls) {
+void NeighbourList::rebuild(const Particles& particles, const std::vector<Wall>& walls,
+                            const PairExclusion* excluded) {
   ++rebuilds_;
   const std::size_t n = particles.size();
   new_i_.clear();
   new_j_.clear();
   if (n > 0) {
     bin_particles(particles);
-    find_pairs(particles, walls);
+    find_pairs(particles, walls, excluded);
   }
   carry_history(n);
   std::swap(i_, new_i_);

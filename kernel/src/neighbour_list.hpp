@@ -16,6 +16,7 @@
 namespace shard {
 
 struct NeighbourState;
+class PairExclusion;
 
 class NeighbourList {
  public:
@@ -29,7 +30,10 @@ class NeighbourList {
   // drift does, while the positions are in cache and without a parallel region of its own).
   bool needs_rebuild(const Particles& particles, const std::vector<Wall>& walls, double moved2) const;
   double max_displacement2(const Particles& particles, std::size_t begin, std::size_t end) const;
-  void rebuild(const Particles& particles, const std::vector<Wall>& walls);
+  // `excluded`: particle pairs not to list (pair_exclusion.hpp); null lists every pair in range.
+  void rebuild(const Particles& particles, const std::vector<Wall>& walls, const PairExclusion* excluded = nullptr);
+  // The next update rebuilds (a pair left out may have to be listed now).
+  void invalidate() { position_at_build_.clear(); }
   // The particles were renumbered: old index k is now new_index[k]. Pairs and history follow;
   // call rebuild() next (the build positions are stale).
   void remap(const std::vector<Index>& new_index);
@@ -55,7 +59,7 @@ class NeighbourList {
 
  private:
   void bin_particles(const Particles& particles);
-  void find_pairs(const Particles& particles, const std::vector<Wall>& walls);
+  void find_pairs(const Particles& particles, const std::vector<Wall>& walls, const PairExclusion* excluded);
   void carry_history(std::size_t particle_count);
   double spin_reach(const Particles& particles, const Vec3& centre) const;
 

@@ -14,9 +14,11 @@
 #include <utility>
 
 #include "contact_candidates.hpp"
+#include "contact_geometry.hpp"
 #include "drift_lanes.hpp"
 #include "huge_pages.hpp"
 #include "neighbour_list.hpp"
+#include "pair_exclusion.hpp"
 #include "parallel.hpp"
 #include "prefetch_rows.hpp"
 #include "spatial_order.hpp"
@@ -39,6 +41,7 @@ struct ContactArrays {
   std::vector<std::int32_t> material_pair;  // per contact: the materials' row of the law table
   std::vector<std::uint8_t> touched;    // per contact: it touched at the last pass too (not a new impact)
   std::vector<Vec3> normal, velocity, omega_rel, force, couple;
+  std::vector<Vec3> torque_a, torque_b;  // a particle pair's loads on its ends besides the force
   std::vector<double> overlap, r_eff, m_eff, energy, history;
   void reserve(std::size_t stride) {
     const std::size_t n = kContactBlock;
@@ -54,6 +57,8 @@ struct ContactArrays {
     omega_rel.resize(n);
     force.resize(n);
     couple.resize(n);
+    torque_a.resize(n);
+    torque_b.resize(n);
     overlap.resize(n);
     r_eff.resize(n);
     m_eff.resize(n);
@@ -200,6 +205,7 @@ struct ContactWorkspace {
   std::vector<ThreadShare> threads;
   SpatialOrder order;
   double order_cell = 1;  // m: the Morton grid, one neighbour-search cell
+  PairExclusion bonded;   // the bonded pairs, without contacts when bonded_contacts is off
   // The first half-step's turn per particle: angle, unit axis, rotation quaternion (x, y, z, w).
   std::vector<double> turn_angle, turn_axis, turn_rotation;
   // The largest squared displacement since the neighbour build, found by the last drift; < 0
@@ -323,11 +329,15 @@ Simulation::Simulation(SimulationSetup setup)
       bond_(setup.bond),
       materials_(static_cast<std::int32_t>(setup.materials)),
       breakage_(setup.breakage),
+      bonded_contacts_(setup.bonded_contacts),
       walls_(std::move(setup.walls)),
       gravity_(setup.gravity),
       global_damping_(setup.global_damping),
       exchange_(setup.exchange) {
   const std::size_t n = particles_.size();
+  // A sub-domain holds only some of the bonds of its pairs' ends.
+  if (!bonded_contacts_ && exchange_)
+    throw std::invalid_argument("[simulation] bonded_contacts = false is not available in a decomposed (MPI) run");
   if (!setup.bonds.empty() && !bond_)
     throw std::invalid_argument("the scene has bonds but no bond model: add a [bond] section (e.g. plugin = \"beam_bond\")");
   canonical_bonds(setup.bonds, n);
@@ -443,7 +453,12 @@ void Simulation::update_neighbours() {
     order.apply(particles_, bonds_);
     list.remap(order.new_index());
   }
-  list.rebuild(particles_, walls_);
+  const PairExclusion* excluded = nullptr;
+  if (!bonded_contacts_) {
+    workspace_->bonded.assign(bonds_.i, bonds_.j, particles_.size());
+    excluded = &workspace_->bonded;
+  }
+  list.rebuild(particles_, walls_, excluded);
 }
 
 namespace {
@@ -698,21 +713,44 @@ bool wall_geometry(const Particles& p, const Wall& w, Index a, std::size_t c, Co
   return true;
 }
 
+// The geometry of the touching particle pairs among block slots [0, count): 8 slots at a time in
+// AVX-512 lanes where the CPU has them (contact_geometry.hpp), the rest one by one. A wall slot in
+// a group of lanes is written again by `wall_slot`, whose pair is known to touch.
+template <class WallSlot>
+void pair_geometry(const Particles& p, ContactArrays& block, std::size_t count, WallSlot&& wall_slot) {
+  static const bool lanes = pair_geometry_lanes_available();
+  std::size_t c = 0;
+  if (lanes) {
+    const PairGeometryTile tile{p.position.data()->data(), p.velocity.data()->data(), p.omega.data()->data(),
+                                p.radius.data(),            p.mass.data(),             block.i.data(),
+                                block.j.data(),             block.normal.data()->data(),
+                                block.velocity.data()->data(), block.omega_rel.data()->data(),
+                                block.overlap.data(),       block.r_eff.data(),        block.m_eff.data()};
+    const std::size_t groups = count / 8;
+    pair_geometry_avx512(tile, groups);
+    for (c = 0; c < 8 * groups; ++c)
+      if (block.j[c] < 0) wall_slot(c);
+  }
+  for (; c < count; ++c)
+    if (block.j[c] >= 0) particle_pair_geometry(p, block.i[c], block.j[c], c, block);
+}
+
 // Geometry of the touching pairs of the next tile of [k, end) into `block`; pairs that stopped
-// touching lose their history. Returns the first pair not looked at.
+// touching lose their history. Returns the first pair not looked at. The wall pairs are tested
+// (and their geometry made) while the candidates are compacted, so that the particle pairs'
+// geometry runs over the final slots in one pass.
 std::size_t collect_contacts(const Particles& p, const std::vector<Wall>& walls, NeighbourList& list, std::size_t k,
                              std::size_t end, std::int32_t materials, ContactArrays& block) {
   const std::size_t stop = std::min(end, k + kContactBlock);
   const std::size_t candidates = compact_candidates(p, list, k, stop, block);
   const std::size_t stride = list.history_stride();
   const double* history = list.history().data();
+  const auto wall_of = [&](Index b) -> const Wall& { return walls[static_cast<std::size_t>(-1 - b)]; };
   std::size_t c = 0;
   for (std::size_t q = 0; q < candidates; ++q) {
     const std::size_t pair = block.pair[q];
     const Index a = block.i[q], b = block.j[q];
-    if (b >= 0) {
-      particle_pair_geometry(p, a, b, c, block);
-    } else if (!wall_geometry(p, walls[static_cast<std::size_t>(-1 - b)], a, c, block)) {
+    if (b < 0 && !wall_geometry(p, wall_of(b), a, c, block)) {
       std::fill_n(list.history().data() + pair * stride, stride, 0.0);
       list.touching()[pair] = 0;
       continue;
@@ -721,12 +759,11 @@ std::size_t collect_contacts(const Particles& p, const std::vector<Wall>& walls,
     block.j[c] = b;
     block.pair[c] = pair;
     block.touched[c] = block.touched[q];
-    if (materials > 1)
-      block.material_pair[c] =
-          p.material[a] * materials + (b >= 0 ? p.material[b] : walls[static_cast<std::size_t>(-1 - b)].material);
+    if (materials > 1) block.material_pair[c] = p.material[a] * materials + (b >= 0 ? p.material[b] : wall_of(b).material);
     copy_history(history + pair * stride, block.history.data() + c * stride, stride);
     ++c;
   }
+  pair_geometry(p, block, c, [&](std::size_t s) { wall_geometry(p, wall_of(block.j[s]), block.i[s], s, block); });
   block.count = c;
   return stop;
 }
@@ -754,36 +791,65 @@ void run_model(const ContactModel& model, double dt, bool materials, ContactArra
   model.compute(batch);
 }
 
+// Slot k's torques on the ends of its particle pair (PairLoadsTile), written out component by
+// component in the order of the former Vec3 expressions (the same bits): arm x f coefficient by
+// coefficient, arm_b x (-f) with f negated first, torque += (arm x f + couple).
+[[gnu::always_inline]] inline void pair_loads(const double* radius, ContactArrays& block, std::size_t k) {
+  const Index a = block.i[k], b = block.j[k];
+  const double* f = block.force[k].data();
+  const double* n = block.normal[k].data();
+  const double* couple = block.couple[k].data();
+  const double overlap = block.overlap[k];
+  const double fx = f[0], fy = f[1], fz = f[2];
+  const double sa = -(radius[a] - 0.5 * overlap), sb = radius[b] - 0.5 * overlap;
+  const double ax = sa * n[0], ay = sa * n[1], az = sa * n[2];
+  const double bx = sb * n[0], by = sb * n[1], bz = sb * n[2];
+  double* load_a = block.torque_a[k].data();
+  load_a[0] = (ay * fz - az * fy) + couple[0];
+  load_a[1] = (az * fx - ax * fz) + couple[1];
+  load_a[2] = (ax * fy - ay * fx) + couple[2];
+  const double gx = -fx, gy = -fy, gz = -fz;
+  double* load_b = block.torque_b[k].data();
+  load_b[0] = (by * gz - bz * gy) - couple[0];
+  load_b[1] = (bz * gx - bx * gz) - couple[1];
+  load_b[2] = (bx * gy - by * gx) - couple[2];
+}
+
+// The torques of the block's particle pairs: 8 slots at a time in AVX-512 lanes where the CPU has
+// them (contact_geometry.hpp), the rest one by one.
+void pair_loads(const Particles& p, ContactArrays& block) {
+  static const bool lanes = pair_geometry_lanes_available();
+  std::size_t k = 0;
+  if (lanes) {
+    const PairLoadsTile tile{p.radius.data(),          block.i.data(),         block.j.data(),
+                             block.force.data()->data(), block.couple.data()->data(), block.normal.data()->data(),
+                             block.overlap.data(),     block.torque_a.data()->data(), block.torque_b.data()->data()};
+    const std::size_t groups = block.count / 8;
+    pair_loads_avx512(tile, groups);
+    k = 8 * groups;
+  }
+  for (; k < block.count; ++k)
+    if (block.j[k] >= 0) pair_loads(p.radius.data(), block, k);
+}
+
 // The block's forces into this thread's share, in contact order; the history back to the list.
-// Returns `energy` plus the block's energies, summed in contact order. A particle pair's loads are
-// written out component by component in the order of the former Vec3 expressions (the same bits):
-// arm x f coefficient by coefficient, arm_b x (-f) with f negated first, torque += (arm x f + couple).
+// Returns `energy` plus the block's energies, summed in contact order.
 double scatter_contacts(const Particles& p, const std::vector<Wall>& walls, NeighbourList& list,
-                        const ContactArrays& block, Vec3* force, Vec3* torque, ThreadShare& share, double energy) {
+                        ContactArrays& block, Vec3* force, Vec3* torque, ThreadShare& share, double energy) {
   const std::size_t stride = list.history_stride();
   double* history = list.history().data();
   const double* radius = p.radius.data();
+  pair_loads(p, block);
   for (std::size_t k = 0; k < block.count; ++k) {
     const Index a = block.i[k], b = block.j[k];
     const double* f = block.force[k].data();
-    const double* n = block.normal[k].data();
-    const double* couple = block.couple[k].data();
     const double overlap = block.overlap[k];
     energy += block.energy[k];
     if (b >= 0) {
-      const double fx = f[0], fy = f[1], fz = f[2];
-      const double sa = -(radius[a] - 0.5 * overlap), sb = radius[b] - 0.5 * overlap;
-      const double ax = sa * n[0], ay = sa * n[1], az = sa * n[2];
-      const double bx = sb * n[0], by = sb * n[1], bz = sb * n[2];
-      const double load_a[3] = {(ay * fz - az * fy) + couple[0], (az * fx - ax * fz) + couple[1],
-                                (ax * fy - ay * fx) + couple[2]};
-      const double gx = -fx, gy = -fy, gz = -fz;
-      const double load_b[3] = {(by * gz - bz * gy) - couple[0], (bz * gx - bx * gz) - couple[1],
-                                (bx * gy - by * gx) - couple[2]};
       add3(force[a].data(), f);
-      add3(torque[a].data(), load_a);
+      add3(torque[a].data(), block.torque_a[k].data());
       subtract3(force[b].data(), f);
-      add3(torque[b].data(), load_b);
+      add3(torque[b].data(), block.torque_b[k].data());
     } else {
       const Vec3& fv = block.force[k];
       const Vec3& nv = block.normal[k];
@@ -915,6 +981,8 @@ void Simulation::record_broken_bonds() {
     events_.push_back(e);
   }
   bonds_broken_ += static_cast<std::int64_t>(bonds_.remove_broken());
+  // The failed bonds' pairs may touch: listed from the next force pass on.
+  if (!bonded_contacts_ && contact_) neighbours_->invalidate();
 }
 
 std::vector<BondBreakEvent> Simulation::take_new_break_events() {

@@ -118,6 +118,7 @@ struct Scene {
   double global_damping = 0;
   Vec3 gravity = Vec3::Zero();
   bool breakage = true;
+  bool bonded_contacts = true;  // false: bonded pairs get no contact force until the bond fails
   double density = 0;  // the first material's (what readers of one-material scenes take)
   // Materials (docs/reference/materials.md): one from [material], or the [[material]] entries; with
   // material_table the contact law gets per-material and per-pair parameters

@@ -26,6 +26,9 @@ struct SimulationSetup {
   // [0, materials); with one, every contact uses the one law and the indices are not read.
   std::size_t materials = 1;
   bool breakage = true;                   // false: bonds never fail (elastic calibration)
+  // false: a pair joined by an intact bond gets no contact force (its bond alone acts), and its
+  // contact starts when the bond fails; true: a bonded pair that also overlaps gets both.
+  bool bonded_contacts = true;
   std::vector<Wall> walls;
   Vec3 gravity = Vec3::Zero();
   double dt = 0;                // 0 = auto: min of the models' recommended steps
@@ -119,6 +122,7 @@ class Simulation {
   const BondModel* bond_;
   std::int32_t materials_ = 1;
   bool breakage_;
+  bool bonded_contacts_;
   std::vector<Wall> walls_;
   Vec3 gravity_;
   double dt_ = 0;

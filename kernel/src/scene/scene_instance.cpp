@@ -47,6 +47,7 @@ void set_scene_fields(SimulationSetup& setup, const Scene& scene, const SceneIns
   setup.bond = inst.bond.get();
   setup.materials = scene.material_table ? scene.materials.size() : 1;
   setup.breakage = scene.breakage;
+  setup.bonded_contacts = scene.bonded_contacts;
   setup.walls = scene.walls;
   setup.gravity = scene.gravity;
   setup.skin = scene.skin;

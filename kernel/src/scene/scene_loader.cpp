@@ -447,6 +447,7 @@ void read_simulation_section(const toml::table& root, const std::string& file, S
   scene.skin = sim.number("skin", 0, 0, 1e300, "m");
   scene.global_damping = sim.number("global_damping", 0, 0, 0.99);
   scene.breakage = sim.flag("breakage", true);
+  scene.bonded_contacts = sim.flag("bonded_contacts", true);
   sim.finish();
 }
 

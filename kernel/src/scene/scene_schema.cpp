@@ -12,7 +12,10 @@ SceneSectionSpec simulation() {
            {"gravity", "vec3", "m/s^2", "[0, 0, 0]", "gravitational acceleration"},
            {"skin", "number", "m", "0 (automatic)", "Verlet skin of the neighbour list"},
            {"global_damping", "number", "1", "0", "Cundall's local damping, 0 to 0.99: for quasi-static loading"},
-           {"breakage", "bool", "", "true", "the one switch for bond breakage"}},
+           {"breakage", "bool", "", "true", "the one switch for bond breakage"},
+           {"bonded_contacts", "bool", "", "true",
+            "false: a pair joined by an intact bond gets no contact force, its contact starts when the bond "
+            "fails (as LAMMPS' BPM package); true: a bonded pair that also overlaps gets both"}},
           std::nullopt};
 }
 
