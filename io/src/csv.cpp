@@ -208,9 +208,10 @@ void CsvTable::fail(const CsvRow& row, std::size_t column, const std::string& pr
 
 double CsvTable::number(const CsvRow& row, std::size_t column, const std::string& meaning) const {
   const std::string& s = row.fields.at(column);
+  if (const auto value = parse_csv_number(s, decimal_comma())) return *value * si_factor(column);
+  // Only a field that is not a number needs its column named (large tables read millions of numbers).
   const std::string name = column < header_.size() ? fmt::format("column '{}'", header_[column])
                                                    : fmt::format("field {}", column + 1);
-  if (const auto value = parse_csv_number(s, decimal_comma())) return *value * si_factor(column);
   if (s.empty()) fail(row, column, fmt::format("{} is empty", name), fmt::format("write the {}", meaning));
   std::string lower(s);
   std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
