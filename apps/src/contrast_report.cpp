@@ -162,12 +162,15 @@ std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
                          f.name, fitted_value(r, d, 0), fitted_uncertainty(r, d, 0), e ? e->unit_suffix() : "", 100 * share,
                          c.chi_square, f.chi_square, f.p_drop, f.p_after, f.name, f.name, f.name);
       } else {
-        s += fmt::format(" The closest, {}, takes {:.0f} % of it away and leaves chi^2 {:.1f} (p = {:.2g} for what "
+        // Simulated at its fitted size, the closest can fit worse than no effect at all.
+        const std::string took =
+            share > 0 ? fmt::format("takes {:.0f} % of it away and leaves", 100 * share) : "takes none of it away: it leaves";
+        s += fmt::format(" The closest, {}, {} chi^2 {:.1f} (p = {:.2g} for what "
                          "remains): no library effect in the library's form explains it. The difference is physics "
                          "the library lacks, or one of its effects in a form of the lab's; a missing one is added as "
                          "a plugin parameter with a neutral value (shard new-plugin, docs/how-to/write-a-plugin.md) "
                          "and an [[effect]] entry, then diagnosed again.",
-                         f.name, 100 * share, f.chi_square, f.p_after);
+                         f.name, took, f.chi_square, f.p_after);
       }
     }
     if (d.pair) s += pair_text(r, d);
