@@ -14,7 +14,7 @@
 #if defined(__x86_64__)
 #include <immintrin.h>
 
-#include "shard/lanes/avx512_rows.hpp"
+#include "pair_rows_avx512.hpp"
 #endif
 
 namespace shard {
@@ -31,19 +31,14 @@ std::size_t candidate_groups_avx512(const CandidateTile& t, std::size_t k, std::
   const __m512i lane = _mm512_set_epi64(7, 6, 5, 4, 3, 2, 1, 0);
   alignas(64) std::int64_t row_a[8], row_b[8];
   for (std::size_t g = 0; g < groups; ++g, k += 8) {
-    const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(t.first + k));
-    const __m256i j = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(t.second + k));
-    const __mmask8 wall = _mm256_cmplt_epi32_mask(j, _mm256_setzero_si256());
-    const __m256i b = _mm256_mask_blend_epi32(wall, j, a);  // a wall pair tests its own particle
-    const __m512i a64 = _mm512_cvtepi32_epi64(a), b64 = _mm512_cvtepi32_epi64(b);
-    const __m512i a3 = _mm512_add_epi64(_mm512_slli_epi64(a64, 1), a64);  // 3 a: the row's first double
-    const __m512i b3 = _mm512_add_epi64(_mm512_slli_epi64(b64, 1), b64);
-    _mm512_store_si512(row_a, a3);
-    _mm512_store_si512(row_b, b3);
-    __m512d xa[3], xb[3];
-    lanes::detail::load_rows4<3>(t.position, row_a, xa);
-    lanes::detail::load_rows4<3>(t.position, row_b, xb);
-    const __m512d dx = _mm512_sub_pd(xa[0], xb[0]), dy = _mm512_sub_pd(xa[1], xb[1]), dz = _mm512_sub_pd(xa[2], xb[2]);
+    const pair_rows::Ends e = pair_rows::ends(t.first, t.second, k);  // a wall pair tests its own particle
+    const __m256i a = e.a, b = e.b, j = e.j;
+    const __mmask8 wall = e.wall;
+    pair_rows::row_offsets(a, row_a);
+    pair_rows::row_offsets(b, row_b);
+    __m512d d[3];
+    pair_rows::separation(t.position, row_a, row_b, d);
+    const __m512d dx = d[0], dy = d[1], dz = d[2];
     const __m512d dist2 =
         _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)), _mm512_mul_pd(dz, dz));
     const __m512d reach = _mm512_add_pd(_mm512_i32gather_pd(a, t.radius, 8), _mm512_i32gather_pd(b, t.radius, 8));

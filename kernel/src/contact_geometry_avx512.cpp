@@ -16,6 +16,7 @@
 #endif
 
 #if defined(__x86_64__) && defined(__AVX512F__) && defined(__AVX512BW__) && defined(__AVX512VL__)
+#include "pair_rows_avx512.hpp"
 #include "shard/lanes/avx512_rows.hpp"
 #include "shard/lanes/xsimd_lanes.hpp"
 #endif
@@ -27,12 +28,6 @@ namespace shard {
 namespace {
 
 using Batch = xsimd::batch<double, xsimd::avx512f>;
-
-// Row offsets (3 doubles a row) of the 8 indices, for the row loads.
-[[gnu::always_inline]] inline void row_offsets(__m256i index, std::int64_t* out) {
-  const __m512i k = _mm512_cvtepi32_epi64(index);
-  _mm512_store_si512(out, _mm512_add_epi64(_mm512_slli_epi64(k, 1), k));
-}
 
 [[gnu::always_inline]] inline void store_rows(double* to, __m512d x, __m512d y, __m512d z) {
   lanes::store3(to, Batch(x), Batch(y), Batch(z));
@@ -50,17 +45,14 @@ using Batch = xsimd::batch<double, xsimd::avx512f>;
 }
 
 void group_geometry(const PairGeometryTile& t, std::size_t s) {
-  const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(t.i + s));
-  const __m256i j = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(t.j + s));
-  const __mmask8 wall = _mm256_cmplt_epi32_mask(j, _mm256_setzero_si256());
-  const __m256i b = _mm256_mask_blend_epi32(wall, j, a);  // a wall slot reads its own particle twice
+  const pair_rows::Ends e = pair_rows::ends(t.i, t.j, s);
+  const __m256i a = e.a, b = e.b;
   alignas(64) std::int64_t row_a[8], row_b[8];
-  row_offsets(a, row_a);
-  row_offsets(b, row_b);
-  __m512d xa[3], xb[3];
-  lanes::detail::load_rows4<3>(t.position, row_a, xa);
-  lanes::detail::load_rows4<3>(t.position, row_b, xb);
-  const __m512d dx = _mm512_sub_pd(xa[0], xb[0]), dy = _mm512_sub_pd(xa[1], xb[1]), dz = _mm512_sub_pd(xa[2], xb[2]);
+  pair_rows::row_offsets(a, row_a);
+  pair_rows::row_offsets(b, row_b);
+  __m512d d[3];
+  pair_rows::separation(t.position, row_a, row_b, d);
+  const __m512d dx = d[0], dy = d[1], dz = d[2];
   const __m512d dist =
       _mm512_sqrt_pd(_mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy)), _mm512_mul_pd(dz, dz)));
   const __m512d ra = _mm512_i32gather_pd(a, t.radius, 8), rb = _mm512_i32gather_pd(b, t.radius, 8);
