@@ -18,12 +18,10 @@ struct Ends {
 };
 
 [[gnu::always_inline]] inline Ends ends(const std::int32_t* first, const std::int32_t* second, std::size_t k) {
-  Ends e;
-  e.a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(first + k));
-  e.j = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(second + k));
-  e.wall = _mm256_cmplt_epi32_mask(e.j, _mm256_setzero_si256());
-  e.b = _mm256_mask_blend_epi32(e.wall, e.j, e.a);
-  return e;
+  const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(first + k));
+  const __m256i j = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(second + k));
+  const __mmask8 wall = _mm256_cmplt_epi32_mask(j, _mm256_setzero_si256());
+  return {a, j, _mm256_mask_blend_epi32(wall, j, a), wall};
 }
 
 // Row offsets (3 doubles a row) of the 8 indices, for the row loads.
