@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """docs/reference/cli.md shows every command's --help verbatim: each ```text block under a heading
-"## shard" or "### shard COMMAND" must be what `shard [COMMAND] --help` prints.
+"## shard" or "### shard COMMAND" must be what `shard [COMMAND] --help` prints, and every
+subcommand `shard --help` lists must have such a block.
 
-  check_cli_reference.py --shard BIN PAGE           exit 1 listing the blocks that differ
-  check_cli_reference.py --shard BIN PAGE --write   rewrite those blocks from the binary
+  check_cli_reference.py --shard BIN PAGE           exit 1 listing the blocks that differ or lack
+  check_cli_reference.py --shard BIN PAGE --write   rewrite the differing blocks from the binary
 """
 import argparse
 import re
@@ -18,6 +19,13 @@ def help_text(shard, command):
     out = subprocess.run(args, capture_output=True, text=True, check=True).stdout
     # The usage line names the binary as it was called; the page names it as users call it.
     return [re.sub(r"^Usage: \S+", "Usage: shard", line) for line in out.rstrip("\n").split("\n")]
+
+
+def subcommands(shard):
+    """The subcommands `shard --help` lists, in its order."""
+    listed = help_text(shard, "")
+    start = listed.index("Subcommands:") + 1
+    return [m.group(1) for line in listed[start:] if (m := re.match(r"^\s+([a-z][a-z-]*)\s", line))]
 
 
 def blocks(lines):
@@ -52,8 +60,15 @@ def main():
     for command in reversed(stale):
         print(f"{a.page}: the block of `{command}` differs from the binary's"
               + ("; rewritten" if a.write else ""))
+    documented = {command for command, _, _ in blocks(lines)}
+    missing = [c for c in subcommands(a.shard) if c not in documented]
+    for command in missing:
+        print(f"{a.page}: `shard {command}` has no block (add a heading '### shard {command}' and an"
+              " empty ```text block under it, then run with --write)")
     if stale and not a.write:
         print(f"Fix: python3 {sys.argv[0]} --shard {a.shard} {a.page} --write")
+        return 1
+    if missing:
         return 1
     print(f"{a.page}: {len(stale) if a.write else 0} stale blocks")
     return 0
