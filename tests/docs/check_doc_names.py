@@ -7,6 +7,7 @@ For every page (default: README.md and every docs/**/*.md under REPO) it fails, 
 line, when the page names
   - a repository file or folder that does not exist (a path starting with one of the top-level
     folders below, or a relative Markdown link),
+  - a link to a section (`page.md#anchor`, `#anchor`) whose page has no heading of that anchor,
   - a `shard` subcommand that `shard --help` does not list,
   - a `--option` on a `shard SUBCOMMAND` command line that the subcommand's `--help` does not list.
 Commands are read from code only (fenced blocks and `inline code`), where prose cannot be
@@ -83,6 +84,21 @@ class Options:
         return self.known[command]
 
 
+def heading_anchors(text):
+    """The anchors GitHub gives a page's headings: lower case, punctuation but '-' and '_' dropped,
+    blanks made '-', a repeated anchor numbered -1, -2, ..."""
+    anchors, seen, in_block = set(), {}, False
+    for line in text.splitlines():
+        if line.lstrip().startswith("```"):
+            in_block = not in_block
+        heading = None if in_block else re.match(r"#{1,6}\s+(.*?)\s*#*\s*$", line)
+        if heading:
+            anchor = re.sub(r"[^\w\- ]", "", heading.group(1).lower()).replace(" ", "-")
+            anchors.add(anchor if anchor not in seen else f"{anchor}-{seen[anchor]}")
+            seen[anchor] = seen.get(anchor, 0) + 1
+    return anchors
+
+
 def code_lines(text):
     """(line number, code) for every line of a shell code block (continuations joined) and every
     inline code span."""
@@ -133,11 +149,14 @@ def path_problems(page, text, root):
             if not (root / path).exists():
                 problems.append((number, f"names {path}, which is not in the repository"))
         for target in LINK.findall(line):
-            if re.match(r"[a-z]+:|#", target):
+            if re.match(r"[a-z]+:", target):
                 continue
-            target = target.split("#")[0]
-            if target and not (page.parent / target).exists():
-                problems.append((number, f"links to {target}, which does not exist beside the page"))
+            path, _, anchor = target.partition("#")
+            linked = page.parent / path if path else page
+            if path and not linked.exists():
+                problems.append((number, f"links to {path}, which does not exist beside the page"))
+            elif anchor and linked.suffix == ".md" and anchor not in heading_anchors(linked.read_text(encoding="utf-8")):
+                problems.append((number, f"links to {target}, but {linked.name} has no heading #{anchor}"))
     return problems
 
 
