@@ -1,11 +1,11 @@
 #pragma once
 // The contact pass's per-pair arithmetic of touching particle pairs (Simulation::contact_chunk):
 // the geometry (normal, overlap, relative velocity at the contact point, relative spin, effective
-// radius and mass) before the contact law, and the torques on both ends after it. The scalar forms
-// live in simulation.cpp; on a CPU with AVX-512 (F, BW, VL) the compacted slots run here 8 at a
-// time (contact_geometry_avx512.cpp, compiled for that set with -ffp-contract=off): the same IEEE
-// operations in the same order per slot, so the same bits. The geometry's square root and five
-// divisions per pair go to the divider 8 pairs to an instruction instead of one by one.
+// radius and mass) before the contact law, and the torques on both ends after it. The scalar rule
+// per slot is contact_geometry_scalar.hpp; on a CPU with AVX-512 (F, BW, VL) the compacted slots
+// run here 8 at a time (contact_geometry_avx512.cpp, compiled for that set with -ffp-contract=off):
+// the same IEEE operations in the same order per slot, so the same bits. The geometry's square root
+// and five divisions per pair go to the divider 8 pairs to an instruction instead of one by one.
 #include <cstddef>
 #include <cstdint>
 

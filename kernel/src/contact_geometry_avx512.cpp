@@ -1,7 +1,7 @@
 // The geometry of touching particle pairs 8 slots at a time in AVX-512 lanes (contact_geometry.hpp).
-// Per slot the operations of particle_pair_geometry in simulation.cpp, in its order: d = x_a - x_b,
-// dist = sqrt((dx dx + dy dy) + dz dz), n = d / dist, overlap = (r_a + r_b) - dist, the arms
-// s n with s_a = -(r_a - overlap / 2) and s_b = r_b - overlap / 2, the relative velocity
+// Per slot the operations of particle_pair_geometry (contact_geometry_scalar.hpp), in its order:
+// d = x_a - x_b, dist = sqrt((dx dx + dy dy) + dz dz), n = d / dist, overlap = (r_a + r_b) - dist,
+// the arms s n with s_a = -(r_a - overlap / 2) and s_b = r_b - overlap / 2, the relative velocity
 // (v_a + w_a x arm_a) - (v_b + w_b x arm_b) coefficient by coefficient, w_a - w_b,
 // r_a r_b / (r_a + r_b) and m_a m_b / (m_a + m_b). Square roots and quotients are correctly rounded
 // in lanes as in scalar code, and this file is compiled with -ffp-contract=off, so no product is
@@ -83,8 +83,9 @@ void group_geometry(const PairGeometryTile& t, std::size_t s) {
   _mm512_storeu_pd(t.m_eff + s, _mm512_div_pd(_mm512_mul_pd(ma, mb), _mm512_add_pd(ma, mb)));
 }
 
-// The operations of scatter_contacts in simulation.cpp, in its order: arm x f coefficient by
-// coefficient plus the couple on end a, arm_b x (-f) with f negated first minus the couple on b.
+// The operations of particle_pair_loads (contact_geometry_scalar.hpp), in its order: arm x f
+// coefficient by coefficient plus the couple on end a, arm_b x (-f) with f negated first minus the
+// couple on b.
 void group_loads(const PairLoadsTile& t, std::size_t s) {
   const __m256i a = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(t.i + s));
   const __m256i j = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(t.j + s));

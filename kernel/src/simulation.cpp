@@ -15,6 +15,7 @@
 
 #include "contact_candidates.hpp"
 #include "contact_geometry.hpp"
+#include "contact_geometry_scalar.hpp"
 #include "drift_lanes.hpp"
 #include "huge_pages.hpp"
 #include "neighbour_list.hpp"
@@ -611,11 +612,12 @@ void copy_history(const double* from, double* to, std::size_t stride) {
 
 // The candidates of the tile [k, stop) in pair order into block.pair, with their ends and
 // whether they touched before; a pair that touched and is no longer a candidate loses its history.
-// A candidate is a particle pair within reach (the very test and arithmetic of the geometry below,
-// so both agree bit for bit) or any wall pair (whose test the geometry makes). No branch on the
-// test: whether a listed pair of a solid touches is close to random, and a branch on it is
-// mispredicted; every pair writes its slot and only a candidate advances the count. One pass:
-// the test and the compaction as two loops over the tile cost ~20 % more instructions.
+// A candidate is a particle pair within reach (the very test and arithmetic of the pair geometry in
+// contact_geometry_scalar.hpp, so both agree bit for bit) or any wall pair (whose test the
+// geometry makes). No branch on the test: whether a listed pair of a solid touches is close to
+// random, and a branch on it is mispredicted; every pair writes its slot and only a candidate
+// advances the count. One pass: the test and the compaction as two loops over the tile cost ~20 %
+// more instructions.
 std::size_t compact_candidates(const Particles& p, NeighbourList& list, std::size_t k, std::size_t stop,
                                ContactArrays& block) {
   static_assert(std::is_same_v<Index, std::int32_t>);
@@ -656,45 +658,6 @@ std::size_t compact_candidates(const Particles& p, NeighbourList& list, std::siz
   return c;
 }
 
-// Contact slot c's geometry for the particle pair (a, b): the former Vec3 expressions written out
-// component by component in Eigen's order (a - b, squaredNorm as (x x + y y) + z z, d / dist,
-// s * n, cross products coefficient by coefficient), so the same bits, without the temporaries
-// GCC kept in memory.
-[[gnu::always_inline]] inline void particle_pair_geometry(const Particles& p, Index a, Index b, std::size_t c,
-                                                          ContactArrays& block) {
-  const double* xa = p.position[a].data();
-  const double* xb = p.position[b].data();
-  const double dx = xa[0] - xb[0], dy = xa[1] - xb[1], dz = xa[2] - xb[2];
-  const double dist = std::sqrt((dx * dx + dy * dy) + dz * dz);
-  const double ra = p.radius[a], rb = p.radius[b];
-  const double reach = ra + rb;
-  const double nx = dx / dist, ny = dy / dist, nz = dz / dist;
-  const double overlap = reach - dist;
-  const double sa = -(ra - 0.5 * overlap), sb = rb - 0.5 * overlap;
-  const double ax = sa * nx, ay = sa * ny, az = sa * nz;  // arm_a
-  const double bx = sb * nx, by = sb * ny, bz = sb * nz;  // arm_b
-  const double* va = p.velocity[a].data();
-  const double* vb = p.velocity[b].data();
-  const double* wa = p.omega[a].data();
-  const double* wb = p.omega[b].data();
-  // vel_b = v_b + w_b x arm_b; velocity = (v_a + w_a x arm_a) - vel_b
-  const double ubx = vb[0] + (wb[1] * bz - wb[2] * by);
-  const double uby = vb[1] + (wb[2] * bx - wb[0] * bz);
-  const double ubz = vb[2] + (wb[0] * by - wb[1] * bx);
-  double* n = block.normal[c].data();
-  n[0] = nx, n[1] = ny, n[2] = nz;
-  double* v = block.velocity[c].data();
-  v[0] = (va[0] + (wa[1] * az - wa[2] * ay)) - ubx;
-  v[1] = (va[1] + (wa[2] * ax - wa[0] * az)) - uby;
-  v[2] = (va[2] + (wa[0] * ay - wa[1] * ax)) - ubz;
-  double* w = block.omega_rel[c].data();
-  w[0] = wa[0] - wb[0], w[1] = wa[1] - wb[1], w[2] = wa[2] - wb[2];
-  block.overlap[c] = overlap;
-  block.r_eff[c] = ra * rb / reach;
-  const double ma = p.mass[a], mb = p.mass[b];
-  block.m_eff[c] = ma * mb / (ma + mb);
-}
-
 // Contact slot c's geometry for particle a against wall w; false when it does not touch.
 bool wall_geometry(const Particles& p, const Wall& w, Index a, std::size_t c, ContactArrays& block) {
   const double ra = p.radius[a];
@@ -714,25 +677,26 @@ bool wall_geometry(const Particles& p, const Wall& w, Index a, std::size_t c, Co
 }
 
 // The geometry of the touching particle pairs among block slots [0, count): 8 slots at a time in
-// AVX-512 lanes where the CPU has them (contact_geometry.hpp), the rest one by one. A wall slot in
-// a group of lanes is written again by `wall_slot`, whose pair is known to touch.
+// AVX-512 lanes where the CPU has them (contact_geometry.hpp), the rest one by one by the scalar
+// rule (contact_geometry_scalar.hpp). A wall slot in a group of lanes is written again by
+// `wall_slot`, whose pair is known to touch.
 template <class WallSlot>
 void pair_geometry(const Particles& p, ContactArrays& block, std::size_t count, WallSlot&& wall_slot) {
   static const bool lanes = pair_geometry_lanes_available();
+  const PairGeometryTile tile{p.position.data()->data(), p.velocity.data()->data(), p.omega.data()->data(),
+                              p.radius.data(),            p.mass.data(),             block.i.data(),
+                              block.j.data(),             block.normal.data()->data(),
+                              block.velocity.data()->data(), block.omega_rel.data()->data(),
+                              block.overlap.data(),       block.r_eff.data(),        block.m_eff.data()};
   std::size_t c = 0;
   if (lanes) {
-    const PairGeometryTile tile{p.position.data()->data(), p.velocity.data()->data(), p.omega.data()->data(),
-                                p.radius.data(),            p.mass.data(),             block.i.data(),
-                                block.j.data(),             block.normal.data()->data(),
-                                block.velocity.data()->data(), block.omega_rel.data()->data(),
-                                block.overlap.data(),       block.r_eff.data(),        block.m_eff.data()};
     const std::size_t groups = count / 8;
     pair_geometry_avx512(tile, groups);
     for (c = 0; c < 8 * groups; ++c)
       if (block.j[c] < 0) wall_slot(c);
   }
   for (; c < count; ++c)
-    if (block.j[c] >= 0) particle_pair_geometry(p, block.i[c], block.j[c], c, block);
+    if (block.j[c] >= 0) particle_pair_geometry(tile, c);
 }
 
 // Geometry of the touching pairs of the next tile of [k, end) into `block`; pairs that stopped
@@ -791,45 +755,21 @@ void run_model(const ContactModel& model, double dt, bool materials, ContactArra
   model.compute(batch);
 }
 
-// Slot k's torques on the ends of its particle pair (PairLoadsTile), written out component by
-// component in the order of the former Vec3 expressions (the same bits): arm x f coefficient by
-// coefficient, arm_b x (-f) with f negated first, torque += (arm x f + couple).
-[[gnu::always_inline]] inline void pair_loads(const double* radius, ContactArrays& block, std::size_t k) {
-  const Index a = block.i[k], b = block.j[k];
-  const double* f = block.force[k].data();
-  const double* n = block.normal[k].data();
-  const double* couple = block.couple[k].data();
-  const double overlap = block.overlap[k];
-  const double fx = f[0], fy = f[1], fz = f[2];
-  const double sa = -(radius[a] - 0.5 * overlap), sb = radius[b] - 0.5 * overlap;
-  const double ax = sa * n[0], ay = sa * n[1], az = sa * n[2];
-  const double bx = sb * n[0], by = sb * n[1], bz = sb * n[2];
-  double* load_a = block.torque_a[k].data();
-  load_a[0] = (ay * fz - az * fy) + couple[0];
-  load_a[1] = (az * fx - ax * fz) + couple[1];
-  load_a[2] = (ax * fy - ay * fx) + couple[2];
-  const double gx = -fx, gy = -fy, gz = -fz;
-  double* load_b = block.torque_b[k].data();
-  load_b[0] = (by * gz - bz * gy) - couple[0];
-  load_b[1] = (bz * gx - bx * gz) - couple[1];
-  load_b[2] = (bx * gy - by * gx) - couple[2];
-}
-
 // The torques of the block's particle pairs: 8 slots at a time in AVX-512 lanes where the CPU has
-// them (contact_geometry.hpp), the rest one by one.
+// them (contact_geometry.hpp), the rest one by one by the scalar rule (contact_geometry_scalar.hpp).
 void pair_loads(const Particles& p, ContactArrays& block) {
   static const bool lanes = pair_geometry_lanes_available();
+  const PairLoadsTile tile{p.radius.data(),          block.i.data(),         block.j.data(),
+                           block.force.data()->data(), block.couple.data()->data(), block.normal.data()->data(),
+                           block.overlap.data(),     block.torque_a.data()->data(), block.torque_b.data()->data()};
   std::size_t k = 0;
   if (lanes) {
-    const PairLoadsTile tile{p.radius.data(),          block.i.data(),         block.j.data(),
-                             block.force.data()->data(), block.couple.data()->data(), block.normal.data()->data(),
-                             block.overlap.data(),     block.torque_a.data()->data(), block.torque_b.data()->data()};
     const std::size_t groups = block.count / 8;
     pair_loads_avx512(tile, groups);
     k = 8 * groups;
   }
   for (; k < block.count; ++k)
-    if (block.j[k] >= 0) pair_loads(p.radius.data(), block, k);
+    if (block.j[k] >= 0) particle_pair_loads(tile, k);
 }
 
 // The block's forces into this thread's share, in contact order; the history back to the list.

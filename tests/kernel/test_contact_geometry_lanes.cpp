@@ -1,9 +1,10 @@
 // The contact pass's AVX-512 geometry and torques of touching particle pairs
-// (kernel/src/contact_geometry_avx512.cpp) against the rules they implement, written here once more
-// slot by slot as simulation.cpp's scalar particle_pair_geometry and pair_loads write them. Tolerance: none. The contact law reads these values, so the
-// lanes must give the scalar code's bits for every slot, whatever the sizes, masses, velocities and
-// spins; a fused multiply-add, a reordered sum, a negation written as 0 - x or a lane out of order
-// changes some of them. Wall slots are the caller's to write again: only the particle slots count.
+// (kernel/src/contact_geometry_avx512.cpp) against the scalar rule they implement, slot by slot
+// (kernel/src/contact_geometry_scalar.hpp, which the pass runs where no lanes do). Tolerance: none.
+// The contact law reads these values, so the lanes must give the scalar rule's bits for every slot,
+// whatever the sizes, masses, velocities and spins; a fused multiply-add, a reordered sum, a
+// negation written as 0 - x or a lane out of order changes some of them. Wall slots are the
+// caller's to write again: only the particle slots count.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "contact_geometry.hpp"
+#include "contact_geometry_scalar.hpp"
 
 using namespace shard;
 
@@ -34,63 +36,6 @@ struct Block {
             normal.data(), overlap.data(), torque_a.data(), torque_b.data()};
   }
 };
-
-// Slot c's geometry by the scalar rule (simulation.cpp, particle_pair_geometry).
-void reference(Block& t, std::size_t c) {
-  const std::size_t a = static_cast<std::size_t>(t.i[c]), b = static_cast<std::size_t>(t.j[c]);
-  const double* xa = &t.position[3 * a];
-  const double* xb = &t.position[3 * b];
-  const double dx = xa[0] - xb[0], dy = xa[1] - xb[1], dz = xa[2] - xb[2];
-  const double dist = std::sqrt((dx * dx + dy * dy) + dz * dz);
-  const double ra = t.radius[a], rb = t.radius[b];
-  const double reach = ra + rb;
-  const double nx = dx / dist, ny = dy / dist, nz = dz / dist;
-  const double overlap = reach - dist;
-  const double sa = -(ra - 0.5 * overlap), sb = rb - 0.5 * overlap;
-  const double ax = sa * nx, ay = sa * ny, az = sa * nz;
-  const double bx = sb * nx, by = sb * ny, bz = sb * nz;
-  const double* va = &t.velocity[3 * a];
-  const double* vb = &t.velocity[3 * b];
-  const double* wa = &t.omega[3 * a];
-  const double* wb = &t.omega[3 * b];
-  const double ubx = vb[0] + (wb[1] * bz - wb[2] * by);
-  const double uby = vb[1] + (wb[2] * bx - wb[0] * bz);
-  const double ubz = vb[2] + (wb[0] * by - wb[1] * bx);
-  double* n = &t.normal[3 * c];
-  n[0] = nx, n[1] = ny, n[2] = nz;
-  double* v = &t.velocity_rel[3 * c];
-  v[0] = (va[0] + (wa[1] * az - wa[2] * ay)) - ubx;
-  v[1] = (va[1] + (wa[2] * ax - wa[0] * az)) - uby;
-  v[2] = (va[2] + (wa[0] * ay - wa[1] * ax)) - ubz;
-  double* w = &t.omega_rel[3 * c];
-  w[0] = wa[0] - wb[0], w[1] = wa[1] - wb[1], w[2] = wa[2] - wb[2];
-  t.overlap[c] = overlap;
-  t.r_eff[c] = ra * rb / reach;
-  const double ma = t.mass[a], mb = t.mass[b];
-  t.m_eff[c] = ma * mb / (ma + mb);
-}
-
-// Slot c's torques by the scalar rule (simulation.cpp, pair_loads).
-void reference_loads(Block& t, std::size_t c) {
-  const std::size_t a = static_cast<std::size_t>(t.i[c]), b = static_cast<std::size_t>(t.j[c]);
-  const double* f = &t.force[3 * c];
-  const double* n = &t.normal[3 * c];
-  const double* couple = &t.couple[3 * c];
-  const double overlap = t.overlap[c];
-  const double fx = f[0], fy = f[1], fz = f[2];
-  const double sa = -(t.radius[a] - 0.5 * overlap), sb = t.radius[b] - 0.5 * overlap;
-  const double ax = sa * n[0], ay = sa * n[1], az = sa * n[2];
-  const double bx = sb * n[0], by = sb * n[1], bz = sb * n[2];
-  double* load_a = &t.torque_a[3 * c];
-  load_a[0] = (ay * fz - az * fy) + couple[0];
-  load_a[1] = (az * fx - ax * fz) + couple[1];
-  load_a[2] = (ax * fy - ay * fx) + couple[2];
-  const double gx = -fx, gy = -fy, gz = -fz;
-  double* load_b = &t.torque_b[3 * c];
-  load_b[0] = (by * gz - bz * gy) - couple[0];
-  load_b[1] = (bz * gx - bx * gz) - couple[1];
-  load_b[2] = (bx * gy - by * gx) - couple[2];
-}
 
 // `particles` spheres of mixed sizes touching their neighbours in a random cloud, with random
 // velocities and spins of mixed signs and scales; `slots` pairs of them, one in nine a wall.
@@ -145,7 +90,7 @@ TEST_CASE("the AVX-512 pair geometry lanes give the scalar rule's bits slot by s
         ++walls;
         continue;
       }
-      reference(scalar, c);
+      particle_pair_geometry(scalar.view(), c);
       overlapping += scalar.overlap[c] > 0;
       CHECK(same_bits(lanes.normal, scalar.normal, 3 * c, 3));
       CHECK(same_bits(lanes.velocity_rel, scalar.velocity_rel, 3 * c, 3));
@@ -170,7 +115,7 @@ TEST_CASE("the AVX-512 pair torque lanes give the scalar rule's bits slot by slo
     constexpr std::size_t kSlots = 8 * 16;
     Block lanes = make_block(200, kSlots, seed);
     for (std::size_t c = 0; c < kSlots; ++c)
-      if (lanes.j[c] >= 0) reference(lanes, c);  // a contact's geometry, as the pass has it
+      if (lanes.j[c] >= 0) particle_pair_geometry(lanes.view(), c);  // a contact's geometry, as the pass has it
     Block scalar = lanes;
     pair_loads_avx512(lanes.loads(), kSlots / 8);
     std::size_t walls = 0;
@@ -179,7 +124,7 @@ TEST_CASE("the AVX-512 pair torque lanes give the scalar rule's bits slot by slo
         ++walls;
         continue;
       }
-      reference_loads(scalar, c);
+      particle_pair_loads(scalar.loads(), c);
       CHECK(same_bits(lanes.torque_a, scalar.torque_a, 3 * c, 3));
       CHECK(same_bits(lanes.torque_b, scalar.torque_b, 3 * c, 3));
     }
