@@ -1,9 +1,9 @@
 #pragma once
 // The contact pass's first loop over a tile of listed pairs (Simulation::contact_chunk): which pairs
-// may touch, compacted in pair order. The scalar loop lives in simulation.cpp; on a CPU with
-// AVX-512 (F, BW, VL) and BMI2 the groups of 8 pairs run here in lanes (contact_candidates_avx512.cpp,
-// compiled for that set with -ffp-contract=off): the same IEEE operations per pair, so the same
-// candidates, and the same outputs, byte for byte.
+// may touch, compacted in pair order. The scalar rule per pair is contact_candidates_scalar.hpp;
+// on a CPU with AVX-512 (F, BW, VL) and BMI2 the groups of 8 pairs run here in lanes
+// (contact_candidates_avx512.cpp, compiled for that set with -ffp-contract=off): the same IEEE
+// operations per pair, so the same candidates, and the same outputs, byte for byte.
 #include <cstddef>
 #include <cstdint>
 

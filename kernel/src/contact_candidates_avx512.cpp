@@ -1,10 +1,10 @@
 // The candidate test of 8 listed pairs at a time in AVX-512 lanes (contact_candidates.hpp). Per
-// pair the very operations of the scalar loop in simulation.cpp: d = x_a - x_b per component,
-// dist2 = (dx dx + dy dy) + dz dz, reach = r_a + r_b, candidate = wall or (not dist2 >= reach^2 and
-// dist2 != 0), NaN counted as touching; this file is compiled with -ffp-contract=off, so no
-// product is fused into a sum. The rows of the ends' positions are loaded whole and transposed
-// (shard/lanes/avx512_rows.hpp), the radii gathered; the candidates are compacted with compress
-// instructions, the touching bytes with BMI2's pdep/pext.
+// pair the very operations of candidate_pair (contact_candidates_scalar.hpp): d = x_a - x_b per
+// component, dist2 = (dx dx + dy dy) + dz dz, reach = r_a + r_b, candidate = wall or
+// (not dist2 >= reach^2 and dist2 != 0), NaN counted as touching; this file is compiled with
+// -ffp-contract=off, so no product is fused into a sum. The rows of the ends' positions are loaded
+// whole and transposed (shard/lanes/avx512_rows.hpp), the radii gathered; the candidates are
+// compacted with compress instructions, the touching bytes with BMI2's pdep/pext.
 #include "contact_candidates.hpp"
 
 #include <algorithm>

@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "contact_candidates.hpp"
+#include "contact_candidates_scalar.hpp"
 #include "contact_geometry.hpp"
 #include "contact_geometry_scalar.hpp"
 #include "drift_lanes.hpp"
@@ -611,50 +612,25 @@ void copy_history(const double* from, double* to, std::size_t stride) {
 }
 
 // The candidates of the tile [k, stop) in pair order into block.pair, with their ends and
-// whether they touched before; a pair that touched and is no longer a candidate loses its history.
-// A candidate is a particle pair within reach (the very test and arithmetic of the pair geometry in
-// contact_geometry_scalar.hpp, so both agree bit for bit) or any wall pair (whose test the
-// geometry makes). No branch on the test: whether a listed pair of a solid touches is close to
-// random, and a branch on it is mispredicted; every pair writes its slot and only a candidate
-// advances the count. One pass: the test and the compaction as two loops over the tile cost ~20 %
-// more instructions.
+// whether they touched before; a pair that touched and is no longer a candidate loses its history
+// (the rule per pair: contact_candidates_scalar.hpp). One pass: the test and the compaction as two
+// loops over the tile cost ~20 % more instructions.
 std::size_t compact_candidates(const Particles& p, NeighbourList& list, std::size_t k, std::size_t stop,
                                ContactArrays& block) {
   static_assert(std::is_same_v<Index, std::int32_t>);
-  const std::size_t stride = list.history_stride();
-  const Index* first = list.first().data();
-  const Index* second = list.second().data();
-  const double* x = p.position.data()->data();
-  const double* radius = p.radius.data();
-  std::uint8_t* touching = list.touching().data();
-  double* history = list.history().data();
+  const CandidateTile tile{list.first().data(),   list.second().data(),   p.position.data()->data(),
+                           p.radius.data(),       list.touching().data(), list.history().data(),
+                           list.history_stride(), block.pair.data(),      block.i.data(),
+                           block.j.data(),        block.touched.data()};
   std::size_t c = 0;
   // Whole groups of 8 pairs in AVX-512 lanes where the CPU has them (contact_candidates.hpp).
   static const bool lanes = candidate_lanes_available();
   if (lanes && stop - k >= 8) {
-    const CandidateTile tile{first, second, x, radius, touching, history, stride,
-                             block.pair.data(), block.i.data(), block.j.data(), block.touched.data()};
     const std::size_t groups = (stop - k) / 8;
     c = candidate_groups_avx512(tile, k, groups, c);
     k += 8 * groups;
   }
-  for (std::size_t q = k; q < stop; ++q) {
-    const Index a = first[q], j = second[q];
-    const bool wall = j < 0;
-    const Index b = wall ? a : j;
-    const double dx = x[3 * a] - x[3 * b], dy = x[3 * a + 1] - x[3 * b + 1], dz = x[3 * a + 2] - x[3 * b + 2];
-    const double dist2 = (dx * dx + dy * dy) + dz * dz;  // Eigen's squaredNorm order
-    const double reach = radius[a] + radius[b];
-    const std::uint8_t now = static_cast<std::uint8_t>(wall | (!(dist2 >= reach * reach) & (dist2 != 0.0)));
-    const std::uint8_t before = touching[q];
-    if (before & ~now) std::fill_n(history + q * stride, stride, 0.0);
-    touching[q] = now;
-    block.touched[c] = before;
-    block.pair[c] = q;
-    block.i[c] = a;
-    block.j[c] = j;
-    c += now;
-  }
+  for (std::size_t q = k; q < stop; ++q) c = candidate_pair(tile, q, c);
   return c;
 }
 

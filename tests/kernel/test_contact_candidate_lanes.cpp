@@ -1,10 +1,11 @@
 // The contact pass's AVX-512 candidate lanes (kernel/src/contact_candidates_avx512.cpp) against the
-// rule they implement, written here once more pair by pair: a particle pair is a candidate when
-// not (dist2 >= (r_a + r_b)^2) and dist2 != 0, dist2 = (dx dx + dy dy) + dz dz (NaN counts as
-// touching), a wall pair always. Tolerance: none. The outputs are bytes and indices, and the lanes
-// must make the same decision as the scalar loop for every pair, including pairs exactly at reach,
-// one ulp either side, coincident centres and NaN positions; a changed comparison, a fused
-// multiply-add or a lane out of order changes some of them.
+// scalar rule they implement, pair by pair (kernel/src/contact_candidates_scalar.hpp, which the pass
+// runs where no lanes do): a particle pair is a candidate when not (dist2 >= (r_a + r_b)^2) and
+// dist2 != 0, dist2 = (dx dx + dy dy) + dz dz (NaN counts as touching), a wall pair always.
+// Tolerance: none. The outputs are bytes and indices, and the lanes must make the same decision as
+// the scalar rule for every pair, including pairs exactly at reach, one ulp either side, coincident
+// centres and NaN positions; a changed comparison, a fused multiply-add or a lane out of order
+// changes some of them.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "contact_candidates.hpp"
+#include "contact_candidates_scalar.hpp"
 
 using namespace shard;
 
@@ -35,30 +37,10 @@ struct Tile {
   }
 };
 
-// The scalar rule, pair by pair (simulation.cpp's loop).
-std::size_t reference(CandidateTile t, std::size_t k, std::size_t stop) {
+// The scalar rule over pairs [k, stop), as the contact pass runs it.
+std::size_t reference(const CandidateTile& t, std::size_t k, std::size_t stop) {
   std::size_t c = 0;
-  for (std::size_t q = k; q < stop; ++q) {
-    const std::int32_t a = t.first[q], j = t.second[q];
-    const bool wall = j < 0;
-    const std::int32_t b = wall ? a : j;
-    const double* x = t.position;
-    const double dx = x[3 * a] - x[3 * b], dy = x[3 * a + 1] - x[3 * b + 1], dz = x[3 * a + 2] - x[3 * b + 2];
-    const double dist2 = (dx * dx + dy * dy) + dz * dz;
-    const double reach = t.radius[a] + t.radius[b];
-    const bool now = wall || (!(dist2 >= reach * reach) && dist2 != 0.0);
-    const std::uint8_t before = t.touching[q];
-    if (before && !now)
-      for (std::size_t s = 0; s < t.stride; ++s) t.history[q * t.stride + s] = 0.0;
-    t.touching[q] = now;
-    if (now) {
-      t.pair[c] = q;
-      t.i[c] = a;
-      t.j[c] = j;
-      t.touched[c] = before;
-      ++c;
-    }
-  }
+  for (std::size_t q = k; q < stop; ++q) c = candidate_pair(t, q, c);
   return c;
 }
 
