@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "../common/restitution_inverse.hpp"
+
 namespace shard::hertz {
 namespace {
 
@@ -48,21 +50,7 @@ double restitution_for_damping(double c, double h) {
 }
 
 double damping_for_restitution(double e) {
-  if (!(e > 0.0 && e <= 1.0)) throw std::invalid_argument("restitution must lie in (0, 1]");
-  if (e == 1.0) return 0.0;
-  double low = 0.0;
-  double high = 1.0;
-  while (restitution_for_damping(high) > e) {
-    low = high;
-    high *= 2.0;
-    if (high > 1e6) throw std::invalid_argument("restitution too small to realise");
-  }
-  // e(c) falls monotonically: more damping, less rebound.
-  while (high - low > 1e-12 * high) {
-    const double mid = 0.5 * (low + high);
-    (restitution_for_damping(mid) > e ? low : high) = mid;
-  }
-  return 0.5 * (low + high);
+  return contact::damping_for_restitution(e, [](double c) { return restitution_for_damping(c); }, 1e-12);
 }
 
 }  // namespace shard::hertz

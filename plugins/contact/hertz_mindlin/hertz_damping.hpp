@@ -15,7 +15,7 @@ namespace shard::hertz {
 // Restitution realised by the dimensionless collision above for damping c >= 0 (RK4, step h).
 double restitution_for_damping(double c, double h = 2e-4);
 
-// The c >= 0 with restitution_for_damping(c) == e, for 0 < e <= 1 (bisection to 1e-12 in e).
+// The c >= 0 with restitution_for_damping(c) == e, for 0 < e <= 1 (bisection to 1e-12 of c).
 double damping_for_restitution(double e);
 
 }  // namespace shard::hertz

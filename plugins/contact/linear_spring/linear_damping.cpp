@@ -4,6 +4,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "../common/restitution_inverse.hpp"
+
 namespace shard::linear {
 
 // In units with k = m* = v0 = 1 the overlap is x(t) with x'' = -x - 2 zeta x'.
@@ -26,21 +28,7 @@ double restitution_for_damping_ratio(double zeta) {
 }
 
 double damping_ratio_for_restitution(double e) {
-  if (!(e > 0.0 && e <= 1.0)) throw std::invalid_argument("restitution must lie in (0, 1]");
-  if (e == 1.0) return 0.0;
-  double low = 0.0;
-  double high = 1.0;
-  while (restitution_for_damping_ratio(high) > e) {
-    low = high;
-    high *= 2.0;
-    if (high > 1e6) throw std::invalid_argument("restitution too small to realise");
-  }
-  // e(zeta) falls monotonically: more damping, less rebound.
-  while (high - low > 1e-14 * high) {
-    const double mid = 0.5 * (low + high);
-    (restitution_for_damping_ratio(mid) > e ? low : high) = mid;
-  }
-  return 0.5 * (low + high);
+  return contact::damping_for_restitution(e, restitution_for_damping_ratio, 1e-14);
 }
 
 }  // namespace shard::linear
