@@ -114,10 +114,7 @@ TimeStepLimit HertzMindlin::time_step_limit(const std::vector<MaterialExtent>& p
 void HertzMindlin::compute(ContactBatch& batch) const { kernel_(contact::arrays_of(batch), laws_.data(), effects_.sizes()); }
 
 void HertzMindlin::compute_with(contact::LaneSet set, ContactBatch& batch) const {
-  if (!contact::lane_set_available(set))
-    throw std::invalid_argument(std::string("hertz_mindlin: this machine cannot run the ") +
-                                std::string(contact::lane_set_name(set)) + " lanes");
-  hertz::hertz_kernel(set, effects_.on)(contact::arrays_of(batch), laws_.data(), effects_.sizes());
+  hertz::hertz_kernel.required(set, effects_.on, "hertz_mindlin")(contact::arrays_of(batch), laws_.data(), effects_.sizes());
 }
 
 }  // namespace shard

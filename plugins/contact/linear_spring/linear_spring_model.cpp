@@ -120,10 +120,7 @@ TimeStepLimit LinearSpring::time_step_limit(const std::vector<MaterialExtent>& p
 void LinearSpring::compute(ContactBatch& batch) const { kernel_(contact::arrays_of(batch), laws_.data(), effects_.sizes()); }
 
 void LinearSpring::compute_with(contact::LaneSet set, ContactBatch& batch) const {
-  if (!contact::lane_set_available(set))
-    throw std::invalid_argument(std::string("linear_spring: this machine cannot run the ") +
-                                std::string(contact::lane_set_name(set)) + " lanes");
-  linear::linear_kernel(set, effects_.on)(contact::arrays_of(batch), laws_.data(), effects_.sizes());
+  linear::linear_kernel.required(set, effects_.on, "linear_spring")(contact::arrays_of(batch), laws_.data(), effects_.sizes());
 }
 
 }  // namespace shard
