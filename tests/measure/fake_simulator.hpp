@@ -3,13 +3,15 @@
 // each model plan's overrides set the parameters of a closed-form curve, so a diagnosis runs in
 // milliseconds and its verdicts can be asserted against a known truth. The curve rises as
 // F = F_p x (1 + n (1 - x)), x = w / w_p, to its peak and falls linearly to zero over d w_p:
-//   stiffness    k   = 1e-3 E (1 + 0.8 r)                     [N/m]   E: bond.youngs_modulus
-//   peak force   F_p = 2.5e-4 S (1 + 0.5 r) (1 + 0.15 (c - 1))          S: bond.critical_stress
+//   stiffness    k   = 1e-3 E (1 + 0.8 r) (1 + 0.5 (1 - exp(-g)))      [N/m]   E: bond.youngs_modulus
+//   peak force   F_p = 2.5e-4 S (1 + 0.5 r) (1 + 0.15 (c - 1)) (1 + 0.2 g)  S: bond.critical_stress
 //   nonlinearity n   = 0.08 + 0.1 s,  ductility d = 0.15 + 0.4 s         s: fake.softening
 // r = mu - 0.3 above the reference's roller friction mu = 0.3, a quarter of that below (support.friction:
 // no mirror image either way), c: fake.compression_ratio, and the library's
 // machine compliance through recorded_as_tested. fake.softening_twin acts as fake.softening (a
-// rival with the same signature); fake.toe (outside any library) adds slack before the rise.
+// rival with the same signature); fake.toe (outside any library) adds slack before the rise;
+// g: fake.stiffening, whose response bends with its size (the stiffness saturates while the
+// strength keeps growing), so its contrast at one size is no multiple of its contrast at another.
 // Each packing seed scatters k, F_p, n and d by ~1 %, as a random packing does.
 #include <cmath>
 #include <cstdint>
@@ -28,7 +30,8 @@ inline const std::map<std::string, double>& defaults() {
   static const std::map<std::string, double> d{{"bond.youngs_modulus", 1e7}, {"bond.critical_stress", 2e5},
                                                {"fake.softening", 0},         {"fake.softening_twin", 0},
                                                {"support.friction", 0.3},     {"fake.compression_ratio", 1},
-                                               {"fake.toe", 0},               {"generator.diameter_min", 0.005},
+                                               {"fake.toe", 0},               {"fake.stiffening", 0},
+                                               {"generator.diameter_min", 0.005},
                                                {"generator.diameter_max", 0.0065}};
   return d;
 }
@@ -66,9 +69,12 @@ inline Curve curve_of(const Parameters& p, std::uint64_t seed, double scatter, d
   const double mu = p.at("support.friction"), s = p.at("fake.softening") + p.at("fake.softening_twin");
   // Roller friction restrains the beam more the more there is, and saturates towards none.
   const double restraint = mu >= 0.3 ? mu - 0.3 : 0.25 * (mu - 0.3);
-  const double k = 1e-3 * p.at("bond.youngs_modulus") * (1 + 0.8 * restraint) * std::exp(scatter * normal_draw(seed, 1));
+  const double g = p.at("fake.stiffening");
+  const double k = 1e-3 * p.at("bond.youngs_modulus") * (1 + 0.8 * restraint) * (1 + 0.5 * (1 - std::exp(-g))) *
+                   std::exp(scatter * normal_draw(seed, 1));
   const double f_p = 2.5e-4 * p.at("bond.critical_stress") * (1 + 0.5 * restraint) *
-                     (1 + 0.15 * (p.at("fake.compression_ratio") - 1)) * std::exp(scatter * normal_draw(seed, 2));
+                     (1 + 0.15 * (p.at("fake.compression_ratio") - 1)) * (1 + 0.2 * g) *
+                     std::exp(scatter * normal_draw(seed, 2));
   // The curve's form scatters too (a packing's weakest bonds are its own), so no component of a
   // contrast is free of noise and its covariance is not singular.
   const double n = (0.08 + 0.1 * s) * std::exp(0.25 * scatter * normal_draw(seed, 3));

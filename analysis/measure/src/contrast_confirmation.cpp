@@ -44,14 +44,54 @@ std::vector<std::optional<ContrastStudy::Simulated>> simulate_each(ContrastStudy
 
 namespace {
 
-// One effect of one set, simulated at its fitted size.
+// A run's size (in trial steps from neutral) and its simulated contrast.
+struct SizedContrast {
+  double scale = 0;
+  std::vector<double> contrast;
+};
+
+// One effect of one set, simulated at its fitted size. `previous` is the run before the latest,
+// the secant's other point; `best` the run whose contrast fitted the set best so far (an effect's
+// response bends with its size, so a step can overshoot).
 struct Trial {
   std::size_t effect = 0;
   double scale = 0;
   ContrastStudy::Simulated run;
   bool has_run = false;
   bool failed = false;
+  bool settled = false;  // no further size: a resized run failed, and the best run stands
+  std::optional<SizedContrast> previous;
+  struct Best {
+    double scale = 0, chi_square = 0;
+    ContrastStudy::Simulated run;
+  };
+  std::optional<Best> best;
 };
+
+// A size step is not worth a run when it moves the size by less than this share (the pair step's
+// limit as well): the decision refits the run's contrast linearly around it anyway.
+constexpr double kResizeShare = 0.1;
+
+// The size minimising the generalised chi^2 on the secant through two sized runs (t(s) linear
+// between them), kept within half and twice the latest size so one bent response cannot throw it
+// far. None when the two contrasts do not differ along the weight.
+std::optional<double> secant_size(const SizedContrast& a, const SizedContrast& b, const std::vector<double>& d,
+                                  const std::vector<std::vector<double>>& w) {
+  const std::size_t m = d.size();
+  if (b.scale == a.scale) return std::nullopt;
+  std::vector<double> slope(m), residual(m);
+  for (std::size_t i = 0; i < m; ++i) {
+    slope[i] = (b.contrast[i] - a.contrast[i]) / (b.scale - a.scale);
+    residual[i] = d[i] - b.contrast[i];
+  }
+  double gwg = 0, gwr = 0;
+  for (std::size_t i = 0; i < m; ++i)
+    for (std::size_t j = 0; j < m; ++j) gwg += slope[i] * w[i][j] * slope[j], gwr += slope[i] * w[i][j] * residual[j];
+  if (!(gwg > 0)) return std::nullopt;
+  const double next = b.scale + gwr / gwg;
+  const double lo = std::min(0.5 * b.scale, 2 * b.scale), hi = std::max(0.5 * b.scale, 2 * b.scale);
+  return std::clamp(next, lo, hi);
+}
 using SetTrials = std::vector<std::vector<Trial>>;  // [set][trial]
 
 // Each set's best `count` effects of the linear fit (none for a set of no difference).
@@ -64,7 +104,11 @@ SetTrials first_trials(const std::vector<SetDiagnosis>& sets, const std::vector<
       if (taken >= count) break;
       if (f.scale == 0 || !(f.drop > 0)) continue;
       for (std::size_t e = 0; e < effects.size(); ++e)
-        if (effects[e].name == f.name) trials[s].push_back({e, f.scale, {}, false});
+        if (effects[e].name == f.name) {
+          Trial& t = trials[s].emplace_back();
+          t.effect = e;
+          t.scale = f.scale;
+        }
       ++taken;
     }
   }
@@ -77,20 +121,24 @@ class Confirmation {
                std::vector<SetDiagnosis>& sets, int count)
       : study_(study), effects_(effects), base_(base), sets_(sets), trials_(first_trials(sets, effects, count)) {}
 
-  // One batch: trials without a run are run, and a run whose simulated contrast asks for a size
-  // more than 20 % away is run again there. False when nothing was left to run.
+  // One batch: trials without a run are run, and a run whose secant asks for a size more than
+  // kResizeShare away is run again there. False when nothing was left to run.
   bool pass(int index, std::ostream& log) {
     std::vector<ModelPlan> models;
     std::vector<std::pair<std::size_t, std::size_t>> owner;
+    std::string sizes;
     for (std::size_t s = 0; s < sets_.size(); ++s)
       for (std::size_t k = 0; k < trials_[s].size(); ++k) {
         Trial& t = trials_[s][k];
-        if (t.has_run && !resized(sets_[s], t)) continue;
+        if (t.has_run && (t.settled || !resized(sets_[s], t))) continue;
         models.push_back(with_effect(study_.base(), effects_[t.effect], effects_[t.effect].value_at(t.scale)));
         owner.emplace_back(s, k);
+        sizes += fmt::format("  {}: {} at {:.4g}\n", study_.sets().names[sets_[s].set], effects_[t.effect].name,
+                             effects_[t.effect].value_at(t.scale));
       }
     if (models.empty()) return false;
-    log << fmt::format("diagnose: confirmation pass {}: {} runs of effects at their fitted sizes\n", index + 1, models.size());
+    log << fmt::format("diagnose: confirmation pass {}: {} runs of effects at their fitted sizes\n", index + 1, models.size())
+        << sizes;
     auto runs = simulate_each(
         study_, models,
         [&](std::size_t m) {
@@ -103,6 +151,10 @@ class Confirmation {
       if (runs[m]) {
         t.run = std::move(*runs[m]);
         t.has_run = true;
+      } else if (t.best) {  // a size the plugin refuses or that goes unstable: the best run stands
+        t.scale = t.best->scale;
+        t.run = t.best->run;
+        t.settled = true;
       } else {
         t.failed = true;
       }
@@ -111,10 +163,12 @@ class Confirmation {
     return true;
   }
 
-  // Each set decided on its simulated contrasts; the named (or closest) effect's run shown.
+  // Each set decided on its best-fitting runs; the named (or closest) effect's run shown.
   void decide(const ContrastOptions& options) {
-    for (std::size_t s = 0; s < sets_.size(); ++s)
+    for (std::size_t s = 0; s < sets_.size(); ++s) {
+      for (Trial& t : trials_[s]) take_best(sets_[s], t);
       if (!trials_[s].empty()) decide_set(sets_[s], trials_[s], options);
+    }
   }
 
  private:
@@ -124,16 +178,37 @@ class Confirmation {
                            e.identifiable_at(study_.rate_count(d.contrast))};
   }
 
-  // The simulated contrast at this size, scaled by a*, fits best: a new size when a* is more
-  // than 20 % from 1 (an effect's signature is not linear in its size).
+  // The set's chi^2 left by the run's contrast as simulated: what the decision reads.
+  double run_chi_square(const SetDiagnosis& d, const EffectSignature& sig) const {
+    return decide_contrast(d.contrast.difference, d.contrast.weight, {sig}, study_.dof()).fits.front().chi_square;
+  }
+
+  void note_best(const SetDiagnosis& d, Trial& t, const EffectSignature& sig) const {
+    const double chi_square = run_chi_square(d, sig);
+    if (!t.best || chi_square < t.best->chi_square) t.best = Trial::Best{t.scale, chi_square, t.run};
+  }
+
+  void take_best(const SetDiagnosis& d, Trial& t) const {
+    note_best(d, t, signature_of(d, t));
+    t.scale = t.best->scale;
+    t.run = t.best->run;
+  }
+
+  // The next size: on the secant through this run and the one before it, or for the first run
+  // through neutral (whose contrast is zero); a new run when that moves the size by more than
+  // kResizeShare. Keeps the best-fitting run of those made.
   bool resized(const SetDiagnosis& d, Trial& t) const {
     const EffectSignature sig = signature_of(d, t);
-    const auto fit = decide_contrast(d.contrast.difference, d.contrast.weight,
-                                     {{sig.name, sig.trial_size, sig.signature, 0, 1e9}}, study_.dof());
-    const double a = fit.fits.front().scale;
-    if (!(std::abs(a - 1) > 0.2) || a == 0) return false;
+    note_best(d, t, sig);
+    const SizedContrast latest{t.scale, sig.signature};
+    const SizedContrast origin{0, std::vector<double>(sig.signature.size(), 0.0)};
+    const auto next = secant_size(t.previous.value_or(origin), latest, d.contrast.difference, d.contrast.weight);
+    if (!next) return false;
     const CandidateEffect& e = effects_[t.effect];
-    t.scale = std::clamp(t.scale * a, e.scale_min(), e.scale_max());
+    const double scale = std::clamp(*next, e.scale_min(), e.scale_max());
+    if (!(std::abs(scale - t.scale) > kResizeShare * std::abs(t.scale)) || scale == 0) return false;
+    t.previous = latest;
+    t.scale = scale;
     return true;
   }
 

@@ -172,7 +172,7 @@ struct ContrastDiagnosisOptions {
   std::vector<std::string> params;  // base parameters section.key fitted to the reference
   int base_iterations = 3;          // Gauss-Newton iterations of the base fit
   int confirm = 2;                  // best effects per set confirmed by simulated runs
-  int confirm_iterations = 2;
+  int confirm_iterations = 4;
   int pairs = 2;                    // pairs simulated per set (0: single effects only)
   int pair_iterations = 3;
   double finer = 0;                 // > 0: the base also fitted at diameters this factor smaller
