@@ -139,7 +139,8 @@ std::vector<std::optional<ContrastStudy::Simulated>> simulate_each(ContrastStudy
                                                                    std::ostream& log);
 
 // Simulates each set's best `count` effects at their linear sizes, then (up to `iterations` in
-// all) at the size the simulated contrast asks for; the decision is taken on those runs.
+// all) at the size the secant through the effect's last two runs asks for; the decision is taken
+// on each effect's best-fitting run.
 void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>& effects,
                        const ContrastStudy::Simulated& base, std::vector<SetDiagnosis>& sets, int count, int iterations,
                        ContrastOptions decide, std::ostream& log);
