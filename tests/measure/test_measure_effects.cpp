@@ -82,6 +82,27 @@ TEST_CASE("a size is printed with its unit, and a dimensionless ratio with none"
   CHECK(compliance.unit_suffix() == " m/N");
 }
 
+TEST_CASE("effects on a plugin another effect switches away from are not combined") {
+  CandidateEffect asymmetry{.name = "compression_asymmetry", .parameter = "bond.compression_stiffness_ratio"};
+  CandidateEffect crushing{.name = "bond_crushing", .parameter = "bond.crushing_ratio"};
+  crushing.set = {"bond.plugin=crushing_bond"};
+  CandidateEffect friction{.name = "support_friction", .parameter = "contact.support_friction_ratio"};
+  CandidateEffect compliance{.name = "machine_compliance", .parameter = "machine_compliance"};
+  CandidateEffect crushing_strength{.name = "crushing_strength", .parameter = "bond.crushing_strength"};
+  crushing_strength.set = {"bond.plugin=crushing_bond"};
+  CandidateEffect other_law{.name = "other_law", .parameter = "bond.other"};
+  other_law.set = {"bond.plugin=other_bond"};
+  CHECK(crushing.plugin_set_for("bond") == "crushing_bond");
+  CHECK(crushing.plugin_set_for("contact").empty());
+  CHECK_FALSE(combinable(crushing, asymmetry));  // the crushing law has no beam bond's ratio
+  CHECK_FALSE(combinable(asymmetry, crushing));
+  CHECK_FALSE(combinable(crushing, other_law));  // one section, two plugins
+  CHECK(combinable(crushing, crushing_strength));  // both on the crushing law
+  CHECK(combinable(crushing, friction));  // another section
+  CHECK(combinable(crushing, compliance));  // not a scene parameter
+  CHECK(combinable(asymmetry, friction));
+}
+
 TEST_CASE("a rate effect on data that already have two rates asks for rates farther apart, not a second rate") {
   const auto lib = read_effect_library(fs::path(SHARD_SOURCE_DIR) / "scenes/measurements/effects.toml");
   const auto picked = select_effects(lib, {"bond_viscosity", "bond_softening"});

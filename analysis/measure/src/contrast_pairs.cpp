@@ -140,7 +140,8 @@ class PairSearch {
                                            d.closest->scale, false);
     std::vector<PairTrial> mine;
     for (std::size_t e = 0; e < effects_.size(); ++e) {
-      if (e == f || !effects_[e].identifiable_at(study_.rate_count(d.contrast))) continue;
+      if (e == f || !effects_[e].identifiable_at(study_.rate_count(d.contrast)) || !combinable(effects_[f], effects_[e]))
+        continue;
       ++d.seconds_tried;
       EffectSignature second;
       ContrastPairFit fit;

@@ -86,6 +86,35 @@ std::string CandidateEffect::scene_value(double value) const {
   return out;
 }
 
+std::string CandidateEffect::plugin_set_for(const std::string& section) const {
+  const std::string key = section + ".plugin=";
+  for (const auto& o : set)
+    if (o.rfind(key, 0) == 0) return o.substr(key.size());
+  return "";
+}
+
+namespace {
+
+std::string section_of(const std::string& parameter) {
+  const auto dot = parameter.find('.');
+  return dot == std::string::npos ? "" : parameter.substr(0, dot);
+}
+
+// b's parameter lives under the plugin the scene (or b's own `set`) gives its section: a plugin
+// that `a` switches that section to does not take it.
+bool switches_away_from(const CandidateEffect& a, const CandidateEffect& b) {
+  const std::string section = section_of(b.parameter);
+  if (section.empty()) return false;
+  const std::string plugin = a.plugin_set_for(section);
+  return !plugin.empty() && plugin != b.plugin_set_for(section);
+}
+
+}  // namespace
+
+bool combinable(const CandidateEffect& a, const CandidateEffect& b) {
+  return !switches_away_from(a, b) && !switches_away_from(b, a);
+}
+
 std::string CandidateEffect::unit_suffix() const { return unit.empty() || unit == "1" ? "" : " " + unit; }
 
 std::string CandidateEffect::sized(double value) const { return fmt::format("{:.4g}{}", value, unit_suffix()); }

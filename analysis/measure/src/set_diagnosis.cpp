@@ -81,12 +81,17 @@ void StepwiseDiagnoser::run() {
   else if (out_.verdict.empty()) out_.verdict = kUnexplained;
 }
 
+// The effects not kept yet that can be on beside every kept one (combinable: a kept effect's
+// plugin switch can leave another effect's parameter without a plugin to take it).
 std::vector<const CandidateEffect*> StepwiseDiagnoser::candidates() const {
   std::vector<const CandidateEffect*> out;
   for (const auto& e : out_.effects) {
-    bool kept = false;
-    for (const auto& k : out_.model.kept) kept = kept || k.first->name == e.name;
-    if (!kept) out.push_back(&e);
+    bool kept = false, fits_in = true;
+    for (const auto& k : out_.model.kept) {
+      kept = kept || k.first->name == e.name;
+      fits_in = fits_in && combinable(*k.first, e);
+    }
+    if (!kept && fits_in) out.push_back(&e);
   }
   return out;
 }

@@ -69,6 +69,9 @@ struct CandidateEffect {
   std::string separating_measurement(std::size_t rates) const;
 
   bool post_processing() const { return parameter == kMachineCompliance; }
+  // The plugin this effect switches its section to ("crushing_bond" for set = ["bond.plugin=
+  // crushing_bond"] and section "bond"), or "" when it keeps the scene's.
+  std::string plugin_set_for(const std::string& section) const;
   // The overrides that put the effect at `value` into a scene (none for machine compliance).
   std::vector<std::string> overrides(double value) const;
   // The scene's text for the parameter at `value` (value_format applied).
@@ -86,6 +89,11 @@ struct CandidateEffect {
   // drops out of the diagnosis), and at the bound neutral + scale * step can round past it.
   double value_at(double scale) const;
 };
+
+// Can the two effects be on in one model? Not when one switches a section's plugin (its `set`)
+// that the other's parameter belongs to under another plugin, or both switch one section to
+// different plugins: a crushing bond law has no compression ratio of the beam bond's.
+bool combinable(const CandidateEffect& a, const CandidateEffect& b);
 
 // The neutral value a plugin's schema declares for a scene parameter "section.key", if any.
 using SchemaNeutral = std::function<std::optional<double>(const std::string& parameter)>;
