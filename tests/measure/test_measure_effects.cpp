@@ -83,15 +83,19 @@ TEST_CASE("a size is printed with its unit, and a dimensionless ratio with none"
 }
 
 TEST_CASE("effects on a plugin another effect switches away from are not combined") {
-  CandidateEffect asymmetry{.name = "compression_asymmetry", .parameter = "bond.compression_stiffness_ratio"};
-  CandidateEffect crushing{.name = "bond_crushing", .parameter = "bond.crushing_ratio"};
-  crushing.set = {"bond.plugin=crushing_bond"};
-  CandidateEffect friction{.name = "support_friction", .parameter = "contact.support_friction_ratio"};
-  CandidateEffect compliance{.name = "machine_compliance", .parameter = "machine_compliance"};
-  CandidateEffect crushing_strength{.name = "crushing_strength", .parameter = "bond.crushing_strength"};
-  crushing_strength.set = {"bond.plugin=crushing_bond"};
-  CandidateEffect other_law{.name = "other_law", .parameter = "bond.other"};
-  other_law.set = {"bond.plugin=other_bond"};
+  auto effect_on = [](const std::string& parameter, const std::string& plugin_switch = "") {
+    CandidateEffect e;
+    e.name = parameter;
+    e.parameter = parameter;
+    if (!plugin_switch.empty()) e.set = {plugin_switch};
+    return e;
+  };
+  const CandidateEffect asymmetry = effect_on("bond.compression_stiffness_ratio");
+  const CandidateEffect crushing = effect_on("bond.crushing_ratio", "bond.plugin=crushing_bond");
+  const CandidateEffect friction = effect_on("contact.support_friction_ratio");
+  const CandidateEffect compliance = effect_on(kMachineCompliance);
+  const CandidateEffect crushing_strength = effect_on("bond.crushing_strength", "bond.plugin=crushing_bond");
+  const CandidateEffect other_law = effect_on("bond.other", "bond.plugin=other_bond");
   CHECK(crushing.plugin_set_for("bond") == "crushing_bond");
   CHECK(crushing.plugin_set_for("contact").empty());
   CHECK_FALSE(combinable(crushing, asymmetry));  // the crushing law has no beam bond's ratio
