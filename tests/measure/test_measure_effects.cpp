@@ -98,6 +98,7 @@ TEST_CASE("effects on a plugin another effect switches away from are not combine
   const CandidateEffect other_law = effect_on("bond.other", "bond.plugin=other_bond");
   CHECK(crushing.plugin_set_for("bond") == "crushing_bond");
   CHECK(crushing.plugin_set_for("contact").empty());
+  CHECK(effect_on("bond.crushing_ratio", "bond.plugin=\"crushing_bond\"").plugin_set_for("bond") == "crushing_bond");
   CHECK_FALSE(combinable(crushing, asymmetry));  // the crushing law has no beam bond's ratio
   CHECK_FALSE(combinable(asymmetry, crushing));
   CHECK_FALSE(combinable(crushing, other_law));  // one section, two plugins

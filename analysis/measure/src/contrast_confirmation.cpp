@@ -7,6 +7,7 @@
 
 #include "shard/measure/contrast_diagnosis.hpp"
 #include "shard/measure/effect_scaling.hpp"
+#include "square_matrix.hpp"
 
 namespace shard::measure {
 
@@ -77,21 +78,19 @@ constexpr double kResizeShare = 0.1;
 // far. None when the two contrasts do not differ along the weight.
 std::optional<double> secant_size(const SizedContrast& a, const SizedContrast& b, const std::vector<double>& d,
                                   const std::vector<std::vector<double>>& w) {
-  const std::size_t m = d.size();
   if (b.scale == a.scale) return std::nullopt;
-  std::vector<double> slope(m), residual(m);
-  for (std::size_t i = 0; i < m; ++i) {
-    slope[i] = (b.contrast[i] - a.contrast[i]) / (b.scale - a.scale);
-    residual[i] = d[i] - b.contrast[i];
-  }
-  double gwg = 0, gwr = 0;
-  for (std::size_t i = 0; i < m; ++i)
-    for (std::size_t j = 0; j < m; ++j) gwg += slope[i] * w[i][j] * slope[j], gwr += slope[i] * w[i][j] * residual[j];
-  if (!(gwg > 0)) return std::nullopt;
-  const double next = b.scale + gwr / gwg;
+  const auto vector = [](const std::vector<double>& v) {
+    return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+  };
+  const Eigen::VectorXd slope = (vector(b.contrast) - vector(a.contrast)) / (b.scale - a.scale);
+  const Eigen::VectorXd weighted = to_matrix(w) * slope;
+  const double curvature = slope.dot(weighted);
+  if (!(curvature > 0)) return std::nullopt;
+  const double next = b.scale + weighted.dot(vector(d) - vector(b.contrast)) / curvature;
   const double lo = std::min(0.5 * b.scale, 2 * b.scale), hi = std::max(0.5 * b.scale, 2 * b.scale);
   return std::clamp(next, lo, hi);
 }
+
 using SetTrials = std::vector<std::vector<Trial>>;  // [set][trial]
 
 // Each set's best `count` effects of the linear fit (none for a set of no difference).

@@ -8,10 +8,12 @@
 #include <memory>
 #include <stdexcept>
 #include <toml++/toml.h>
+#include <variant>
 
 #include "shard/measure/features.hpp"
 #include "shard/measure/statistics.hpp"
 #include "shard/plugin_host.hpp"
+#include "shard/scene_override.hpp"
 
 namespace shard::measure {
 namespace {
@@ -87,9 +89,9 @@ std::string CandidateEffect::scene_value(double value) const {
 }
 
 std::string CandidateEffect::plugin_set_for(const std::string& section) const {
-  const std::string key = section + ".plugin=";
-  for (const auto& o : set)
-    if (o.rfind(key, 0) == 0) return o.substr(key.size());
+  for (const SceneOverride& o : parse_overrides(set))
+    if (o.key == section + ".plugin")
+      if (const auto* plugin = std::get_if<std::string>(&o.value)) return *plugin;
   return "";
 }
 
