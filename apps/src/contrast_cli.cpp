@@ -36,6 +36,10 @@ void add_contrast_options(CLI::App* cmd, ContrastOptionsCli& o) {
   cmd->add_option("--confirm-iterations", o.diagnosis.confirm_iterations,
                   "confirmation passes: the first at the linear size, later ones at the size the runs ask for")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--confirm-probes", o.diagnosis.confirm_probes,
+                  "rounds of runs a factor sqrt(2) either side of a closest effect's size that leaves a remainder "
+                  "beyond noise (0: none)")
+      ->check(CLI::NonNegativeNumber);
 }
 
 std::vector<CandidateEffect> contrast_effects(const ContrastOptionsCli& o) {

@@ -12,6 +12,10 @@
 // rival with the same signature); fake.toe (outside any library) adds slack before the rise;
 // g: fake.stiffening, whose response bends with its size (the stiffness saturates while the
 // strength keeps growing), so its contrast at one size is no multiple of its contrast at another.
+// h: fake.onset, whose response changes direction with its size: stiffness and strength grow
+// together up to h = 2 and stay there, and beyond h = 2.5 only the ductility grows (a second
+// mechanism sets in, as a crack that moves to another site once the effect is strong enough):
+//   k, F_p x (1 + 0.2 min(h, 2)),   d + 0.03 max(0, h - 2.5).
 // Each packing seed scatters k, F_p, n and d by ~1 %, as a random packing does.
 #include <cmath>
 #include <cstdint>
@@ -31,6 +35,7 @@ inline const std::map<std::string, double>& defaults() {
                                                {"fake.softening", 0},         {"fake.softening_twin", 0},
                                                {"support.friction", 0.3},     {"fake.compression_ratio", 1},
                                                {"fake.toe", 0},               {"fake.stiffening", 0},
+                                               {"fake.onset", 0},
                                                {"generator.diameter_min", 0.005},
                                                {"generator.diameter_max", 0.0065}};
   return d;
@@ -70,15 +75,17 @@ inline Curve curve_of(const Parameters& p, std::uint64_t seed, double scatter, d
   // Roller friction restrains the beam more the more there is, and saturates towards none.
   const double restraint = mu >= 0.3 ? mu - 0.3 : 0.25 * (mu - 0.3);
   const double g = p.at("fake.stiffening");
+  const double h = p.at("fake.onset");
+  const double onset_gain = 1 + 0.2 * std::min(h, 2.0);
   const double k = 1e-3 * p.at("bond.youngs_modulus") * (1 + 0.8 * restraint) * (1 + 0.5 * (1 - std::exp(-g))) *
-                   std::exp(scatter * normal_draw(seed, 1));
+                   onset_gain * std::exp(scatter * normal_draw(seed, 1));
   const double f_p = 2.5e-4 * p.at("bond.critical_stress") * (1 + 0.5 * restraint) *
-                     (1 + 0.15 * (p.at("fake.compression_ratio") - 1)) * (1 + 0.2 * g) *
+                     (1 + 0.15 * (p.at("fake.compression_ratio") - 1)) * (1 + 0.2 * g) * onset_gain *
                      std::exp(scatter * normal_draw(seed, 2));
   // The curve's form scatters too (a packing's weakest bonds are its own), so no component of a
   // contrast is free of noise and its covariance is not singular.
   const double n = (0.08 + 0.1 * s) * std::exp(0.25 * scatter * normal_draw(seed, 3));
-  const double d = (0.15 + 0.4 * s) * std::exp(0.25 * scatter * normal_draw(seed, 4));
+  const double d = (0.15 + 0.4 * s + 0.03 * std::max(0.0, h - 2.5)) * std::exp(0.25 * scatter * normal_draw(seed, 4));
   const double toe = p.at("fake.toe");
   const double w_p = f_p * (1 + n) / k;
   Curve c;

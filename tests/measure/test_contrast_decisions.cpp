@@ -126,6 +126,32 @@ TEST_CASE("an effect whose response bends with its size is confirmed at the size
   CHECK(value_of(set, "stiffening") == doctest::Approx(3).epsilon(0.1));
 }
 
+TEST_CASE("an effect whose response turns with its size is found beyond where the secant settles") {
+  // fake.onset: stiffness and strength stop growing at 2 and only the ductility grows beyond 2.5.
+  // The secant settles on the plateau (its chord matches the stiffness and strength and is blind
+  // to the ductility), leaving a remainder that a second effect takes up; probes sqrt(2) either
+  // side of the best size find the second mechanism and the truth (3.5).
+  Study s;
+  s.add("onset", measured({{"fake.onset", 3.5}}, 6000));
+  // Without roller friction, whose stiffening and strengthening would rival the plateau's.
+  std::vector<CandidateEffect> effects = library();
+  std::erase_if(effects, [](const CandidateEffect& e) { return e.name == "support_friction"; });
+  effects.push_back(effect("onset", "fake.onset", 0, 1, 0, 10));
+  SUBCASE("with probes: the one effect, at its size") {
+    const ContrastDiagnosis d = s.run(effects);
+    const SetDiagnosis& set = diagnosis_of(d, s, "onset");
+    REQUIRE(set.decision.verdict == "onset");
+    // The probes lie a factor sqrt(2) apart: the best of them is within half a step (2^(1/4),
+    // 19 %) of the size that fits.
+    CHECK(value_of(set, "onset") == doctest::Approx(3.5).epsilon(0.19));
+  }
+  SUBCASE("without probes: a wrong second name") {
+    s.options.confirm_probes = 0;
+    const ContrastDiagnosis d = s.run(effects);
+    CHECK(diagnosis_of(d, s, "onset").decision.verdict == "onset + bond_softening");
+  }
+}
+
 TEST_CASE("a set that scatters seven times wider carries its own scatter and leaves the others' contrasts as they were") {
   auto study = [](bool with_wild) {
     auto s = std::make_unique<Study>();

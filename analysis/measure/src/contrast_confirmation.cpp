@@ -73,6 +73,10 @@ struct Trial {
 // limit as well): the decision refits the run's contrast linearly around it anyway.
 constexpr double kResizeShare = 0.1;
 
+// A probe's step in size: far enough that a rough response shows its trend, near enough that two
+// steps span the factor of two the secant's clamp allows.
+constexpr double kProbeFactor = 1.41421356237;
+
 // The size minimising the generalised chi^2 on the secant through two sized runs (t(s) linear
 // between them), kept within half and twice the latest size so one bent response cannot throw it
 // far. None when the two contrasts do not differ along the weight.
@@ -162,6 +166,48 @@ class Confirmation {
     return true;
   }
 
+  // Bracketing probes beyond the secant. A brittle beam's response to an effect is not smooth in
+  // its size (which bond breaks first moves the peak), so the secant can settle where the
+  // contrast's linear part balances while a larger or smaller size fits the whole contrast. A set
+  // whose closest effect takes at least min_share of its difference but leaves a remainder beyond
+  // noise has that effect run kProbeFactor either side of its best size, then further the way
+  // that fitted better, `rounds` runs in all on each side taken; the best-fitting run stands.
+  void probe(int rounds, const ContrastOptions& options, std::ostream& log) {
+    std::vector<Probe> probes = probes_wanted(options);
+    for (int round = 0; round < rounds && !probes.empty(); ++round) {
+      std::vector<ModelPlan> models;
+      std::vector<std::pair<std::size_t, double>> owner;  // (probe, scale)
+      std::string sizes;
+      for (std::size_t p = 0; p < probes.size(); ++p)
+        for (const double scale : probes[p].next_scales(trials_[probes[p].set][probes[p].trial], effects_)) {
+          const Trial& t = trials_[probes[p].set][probes[p].trial];
+          const CandidateEffect& e = effects_[t.effect];
+          models.push_back(with_effect(study_.base(), e, e.value_at(scale)));
+          owner.emplace_back(p, scale);
+          sizes += fmt::format("  {}: {} at {:.4g}\n", study_.sets().names[sets_[probes[p].set].set], e.name, e.value_at(scale));
+        }
+      if (models.empty()) break;
+      log << fmt::format("diagnose: size probes, round {}: {} runs either side of the best size\n", round + 1, models.size())
+          << sizes;
+      auto runs = simulate_each(
+          study_, models, [&](std::size_t m) { return fmt::format("a probe at {:.4g} trial steps", owner[m].second); }, log);
+      std::vector<int> improved(probes.size(), 0);
+      for (std::size_t m = 0; m < models.size(); ++m) {
+        if (!runs[m]) continue;
+        Probe& pr = probes[owner[m].first];
+        Trial& t = trials_[pr.set][pr.trial];
+        const SetDiagnosis& d = sets_[pr.set];
+        const double chi_square = run_chi_square(d, signature_of(d, t.effect, owner[m].second, *runs[m]));
+        if (chi_square < t.best->chi_square) {
+          t.best = Trial::Best{owner[m].second, chi_square, std::move(*runs[m])};
+          improved[owner[m].first] = std::abs(owner[m].second) > std::abs(pr.centre) ? 1 : -1;
+        }
+      }
+      for (std::size_t p = 0; p < probes.size(); ++p) probes[p].advance(improved[p]);
+      std::erase_if(probes, [](const Probe& pr) { return pr.done; });
+    }
+  }
+
   // Each set decided on its best-fitting runs; the named (or closest) effect's run shown.
   void decide(const ContrastOptions& options) {
     for (std::size_t s = 0; s < sets_.size(); ++s) {
@@ -171,10 +217,14 @@ class Confirmation {
   }
 
  private:
-  EffectSignature signature_of(const SetDiagnosis& d, const Trial& t) const {
-    const CandidateEffect& e = effects_[t.effect];
-    return EffectSignature{e.name, e.value_at(t.scale) - e.neutral, study_.model_contrast(d.contrast, t.run, base_), 1, 1,
+  EffectSignature signature_of(const SetDiagnosis& d, std::size_t effect, double scale,
+                               const ContrastStudy::Simulated& run) const {
+    const CandidateEffect& e = effects_[effect];
+    return EffectSignature{e.name, e.value_at(scale) - e.neutral, study_.model_contrast(d.contrast, run, base_), 1, 1,
                            e.identifiable_at(study_.rate_count(d.contrast))};
+  }
+  EffectSignature signature_of(const SetDiagnosis& d, const Trial& t) const {
+    return signature_of(d, t.effect, t.scale, t.run);
   }
 
   // The set's chi^2 left by the run's contrast as simulated: what the decision reads.
@@ -209,6 +259,55 @@ class Confirmation {
     t.previous = latest;
     t.scale = scale;
     return true;
+  }
+
+  // One set's probe of its closest effect: multiplicative steps of the size in trial steps from
+  // neutral, which keeps the size on its side of neutral.
+  struct Probe {
+    std::size_t set = 0, trial = 0;
+    double centre = 0;   // the best size when the last round was planned
+    int direction = 0;   // 0: both sides still to try; +1 / -1: further out / further in
+    bool done = false;
+
+    std::vector<double> next_scales(const Trial& t, const std::vector<CandidateEffect>& effects) {
+      centre = t.best->scale;
+      const CandidateEffect& e = effects[t.effect];
+      std::vector<double> scales;
+      const auto take = [&](double factor) {
+        const double s = std::clamp(centre * factor, e.scale_min(), e.scale_max());
+        if (std::abs(s - centre) > kResizeShare * std::abs(centre)) scales.push_back(s);
+      };
+      if (direction >= 0) take(kProbeFactor);
+      if (direction <= 0) take(1 / kProbeFactor);
+      if (scales.empty()) done = true;
+      return scales;
+    }
+    // `improved`: the side whose run fitted better than the best before it (0: neither).
+    void advance(int improved) {
+      if (improved == 0) done = true;
+      direction = improved;
+    }
+  };
+
+  std::vector<Probe> probes_wanted(const ContrastOptions& options) {
+    std::vector<Probe> probes;
+    for (std::size_t s = 0; s < sets_.size(); ++s) {
+      if (trials_[s].empty()) continue;
+      std::vector<EffectSignature> sig;
+      for (Trial& t : trials_[s]) {
+        take_best(sets_[s], t);
+        sig.push_back(signature_of(sets_[s], t));
+      }
+      const ContrastDecision tentative =
+          decide_contrast(sets_[s].contrast.difference, sets_[s].contrast.weight, sig, study_.dof(), options);
+      if (tentative.fits.empty() || !(tentative.chi_square > 0)) continue;
+      const ContrastFit& closest = tentative.fits.front();
+      if (closest.drop < options.min_share * tentative.chi_square || closest.p_after >= options.remaining_p) continue;
+      for (std::size_t k = 0; k < trials_[s].size(); ++k)
+        if (effects_[trials_[s][k].effect].name == closest.name && trials_[s][k].scale != 0)
+          probes.push_back(Probe{s, k});
+    }
+    return probes;
   }
 
   void decide_set(SetDiagnosis& d, const std::vector<Trial>& trials, const ContrastOptions& options) const {
@@ -250,11 +349,12 @@ class Confirmation {
 
 void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>& effects,
                        const ContrastStudy::Simulated& base, std::vector<SetDiagnosis>& sets, int count, int iterations,
-                       ContrastOptions decide, std::ostream& log) {
+                       int probes, ContrastOptions decide, std::ostream& log) {
   Confirmation confirmation(study, effects, base, sets, count);
   for (int pass = 0; pass < iterations; ++pass)
     if (!confirmation.pass(pass, log)) break;
   decide.tried = effects.size();
+  confirmation.probe(probes, decide, log);
   confirmation.decide(decide);
 }
 

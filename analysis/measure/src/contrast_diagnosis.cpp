@@ -193,7 +193,7 @@ ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simula
     if (!sets.reference || *sets.reference != s)
       out.sets.push_back(linear_diagnosis(study, s, out.effects, trials, plan.mirror, options.decide));
   confirm_contrasts(study, out.effects, trials[0], out.sets, options.confirm, options.confirm_iterations,
-                    options.decide, log);
+                    options.confirm_probes, options.decide, log);
   // A single name the curve does not bear out may be half of a pair: the pairs are sought after
   // the curve rule, and a named pair is held to the same rule.
   require_curve_agreement(out.sets, options.decide);

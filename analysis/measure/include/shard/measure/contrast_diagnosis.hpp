@@ -139,11 +139,13 @@ std::vector<std::optional<ContrastStudy::Simulated>> simulate_each(ContrastStudy
                                                                    std::ostream& log);
 
 // Simulates each set's best `count` effects at their linear sizes, then (up to `iterations` in
-// all) at the size the secant through the effect's last two runs asks for; the decision is taken
+// all) at the size the secant through the effect's last two runs asks for; then, for a set whose
+// closest effect takes most of its difference but leaves a remainder beyond noise, up to `probes`
+// rounds of runs a factor sqrt(2) either side of that effect's best size. The decision is taken
 // on each effect's best-fitting run.
 void confirm_contrasts(ContrastStudy& study, const std::vector<CandidateEffect>& effects,
                        const ContrastStudy::Simulated& base, std::vector<SetDiagnosis>& sets, int count, int iterations,
-                       ContrastOptions decide, std::ostream& log);
+                       int probes, ContrastOptions decide, std::ostream& log);
 
 // Sets whose closest single effect takes a significant share of the difference but leaves a
 // remainder beyond noise: that effect kept at its confirmed size, each other library effect added
@@ -174,6 +176,7 @@ struct ContrastDiagnosisOptions {
   int base_iterations = 3;          // Gauss-Newton iterations of the base fit
   int confirm = 2;                  // best effects per set confirmed by simulated runs
   int confirm_iterations = 4;
+  int confirm_probes = 2;           // rounds of size probes beyond the secant (0: none)
   int pairs = 2;                    // pairs simulated per set (0: single effects only)
   int pair_iterations = 3;
   double finer = 0;                 // > 0: the base also fitted at diameters this factor smaller
