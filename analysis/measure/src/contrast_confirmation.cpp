@@ -289,6 +289,13 @@ class Confirmation {
     }
   };
 
+  // The closest effect as run already carries a name by its curve (contrast_diagnosis.hpp): no
+  // probe needed.
+  bool named_by_its_curve(const SetDiagnosis& d, const Trial& t, double share, const ContrastOptions& options) const {
+    const ContrastStudy::CurveContrast after = study_.curve_contrast(d.contrast, t.run, base_);
+    return share >= options.curve_name_share && curve_agrees(after, options) && after.nrmse < d.before.nrmse;
+  }
+
   std::vector<Probe> probes_wanted(const ContrastOptions& options) {
     std::vector<Probe> probes;
     for (std::size_t s = 0; s < sets_.size(); ++s) {
@@ -304,7 +311,8 @@ class Confirmation {
       const ContrastFit& closest = tentative.fits.front();
       if (closest.drop < options.min_share * tentative.chi_square || closest.p_after >= options.remaining_p) continue;
       for (std::size_t k = 0; k < trials_[s].size(); ++k)
-        if (effects_[trials_[s][k].effect].name == closest.name && trials_[s][k].scale != 0)
+        if (effects_[trials_[s][k].effect].name == closest.name && trials_[s][k].scale != 0 &&
+            !named_by_its_curve(sets_[s], trials_[s][k], closest.drop / tentative.chi_square, options))
           probes.push_back(Probe{s, k});
     }
     return probes;
