@@ -152,6 +152,21 @@ TEST_CASE("an effect whose response turns with its size is found beyond where th
   }
 }
 
+TEST_CASE("a size far beyond the library's trial is not confirmed: the data then describe another effect") {
+  // The library expects a load frame of 1e-6 m/N; the set's frame is 50 times that. Confirmation
+  // runs stay within kFarthestTrialSteps (8) of neutral, as calibrate's search and a pair's second
+  // do, so the run at the farthest size leaves most of the difference: not named.
+  Study s;
+  s.add("compliance", measured({}, 4000, 5e-5));
+  std::vector<CandidateEffect> effects = library();
+  for (auto& e : effects)
+    if (e.name == kMachineCompliance) e.plausible = 1e-6;
+  const ContrastDiagnosis d = s.run(effects);
+  const SetDiagnosis& set = diagnosis_of(d, s, "compliance");
+  CHECK(set.decision.verdict != kMachineCompliance);
+  CHECK(s.log.str().find("machine_compliance at 8e-06") != std::string::npos);
+}
+
 TEST_CASE("a set that scatters seven times wider carries its own scatter and leaves the others' contrasts as they were") {
   auto study = [](bool with_wild) {
     auto s = std::make_unique<Study>();

@@ -77,6 +77,14 @@ constexpr double kResizeShare = 0.1;
 // steps span the factor of two the secant's clamp allows.
 constexpr double kProbeFactor = 1.41421356237;
 
+// The sizes a confirmation run may take: the effect's physical range, and at most
+// kFarthestTrialSteps from neutral, as everywhere the data choose a size freely.
+double lowest_size(const CandidateEffect& e) { return std::max(e.scale_min(), -kFarthestTrialSteps); }
+double highest_size(const CandidateEffect& e) { return std::min(e.scale_max(), kFarthestTrialSteps); }
+double within_reach(const CandidateEffect& e, double scale) {
+  return std::clamp(scale, lowest_size(e), highest_size(e));
+}
+
 // The size minimising the generalised chi^2 on the secant through two sized runs (t(s) linear
 // between them), kept within half and twice the latest size so one bent response cannot throw it
 // far. None when the two contrasts do not differ along the weight.
@@ -110,7 +118,7 @@ SetTrials first_trials(const std::vector<SetDiagnosis>& sets, const std::vector<
         if (effects[e].name == f.name) {
           Trial& t = trials[s].emplace_back();
           t.effect = e;
-          t.scale = f.scale;
+          t.scale = within_reach(effects[e], f.scale);
         }
       ++taken;
     }
@@ -254,7 +262,7 @@ class Confirmation {
     const auto next = secant_size(t.previous.value_or(origin), latest, d.contrast.difference, d.contrast.weight);
     if (!next) return false;
     const CandidateEffect& e = effects_[t.effect];
-    const double scale = std::clamp(*next, e.scale_min(), e.scale_max());
+    const double scale = within_reach(e, *next);
     if (!(std::abs(scale - t.scale) > kResizeShare * std::abs(t.scale)) || scale == 0) return false;
     t.previous = latest;
     t.scale = scale;
@@ -274,7 +282,7 @@ class Confirmation {
       const CandidateEffect& e = effects[t.effect];
       std::vector<double> scales;
       const auto take = [&](double factor) {
-        const double s = std::clamp(centre * factor, e.scale_min(), e.scale_max());
+        const double s = within_reach(e, centre * factor);
         if (std::abs(s - centre) > kResizeShare * std::abs(centre)) scales.push_back(s);
       };
       if (direction >= 0) take(kProbeFactor);
@@ -328,7 +336,7 @@ class Confirmation {
         if (effects_[t.effect].name == f.name) {
           d.confirmed_values.push_back(effects_[t.effect].value_at(t.scale));
           // A run's size is fixed; it is at a bound when the size it was run at is.
-          f.at_bound = t.scale <= effects_[t.effect].scale_min() || t.scale >= effects_[t.effect].scale_max();
+          f.at_bound = t.scale <= lowest_size(effects_[t.effect]) || t.scale >= highest_size(effects_[t.effect]);
         }
     // A named effect is shown with its run; for an unexplained difference the closest effect, so
     // the plot shows how far the library gets; nothing when there is no difference to explain.
