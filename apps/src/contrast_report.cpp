@@ -239,7 +239,7 @@ std::string scatter_markdown(const ContrastReport& r) {
                              r.result.dof, group_name(r, *widest), widest->component, widest->ratio, widest->p_value);
   std::string md = fmt::format(
       "Specimen scatter pooled over the sets that scatter alike ({:g} degrees of freedom). These scatter beyond the "
-      "others and carry their own (their contrasts are weighed with it, which can only make a name less likely):\n\n"
+      "others and carry their own (their contrasts are weighed with it: it lowers their T^2 and their remainders alike):\n\n"
       "| set | widest component | its variance against the others' | p |\n| --- | --- | --- | --- |\n",
       r.result.dof);
   for (const auto& g : lines)

@@ -14,8 +14,10 @@
 // ties stiffness, peak force and peak displacement together, and that trace then set apart
 // most sets with an effect, taking their degrees of freedom from the others.)
 // A group set apart keeps the pooled correlation with, in each component, the larger of its own
-// and the pooled standard deviation: a wider contrast covariance for that set alone, which can
-// only make a name less likely.
+// and the pooled standard deviation: a wider contrast covariance for that set alone. It lowers
+// the set's T^2 and its remainders alike, so a remainder can pass as noise that the pool would
+// have rejected; the confirmation's size bound and the curve rule keep such a set from a name
+// its difference does not bear out.
 #include <cstddef>
 #include <vector>
 
