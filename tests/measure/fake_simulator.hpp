@@ -19,6 +19,7 @@
 // Each packing seed scatters k, F_p, n and d by ~1 %, as a random packing does.
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <ostream>
 #include <stdexcept>
@@ -141,10 +142,15 @@ class FakeSimulator final : public Simulator {
  public:
   explicit FakeSimulator(int seeds = 3) : seeds_(seeds) {}
 
+  // A run softened beyond this fails, as a DEM beam that breaks before the pins load it.
+  double softening_limit = std::numeric_limits<double>::infinity();
+
   std::vector<std::vector<Specimen>> simulate(const std::vector<ModelPlan>& models, std::ostream&) override {
     std::vector<std::vector<Specimen>> out;
     for (const auto& m : models) {
       const Parameters p = parameters_of(m);
+      if (p.at("fake.softening") > softening_limit)
+        throw std::runtime_error("fake run: the curve never reaches the seating preload (softened beyond the limit)");
       std::vector<Specimen> replicates;
       for (int seed = 1; seed <= seeds_; ++seed)
         replicates.push_back(recorded_as_tested(specimen_of(p, static_cast<std::uint64_t>(seed), 0.01, m.loading_rate),

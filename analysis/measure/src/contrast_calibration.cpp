@@ -21,6 +21,9 @@ ModelPlan with_sized_effects(const ModelPlan& model, const std::vector<Candidate
   return with_effects(model, sized);
 }
 
+// The objective of a size whose run failed: finite, so the optimiser's arithmetic stays finite.
+constexpr double kFailedRun = 1e30;
+
 struct EffectFit {
   ContrastStudy* study = nullptr;
   const std::vector<CandidateEffect>* effects = nullptr;
@@ -34,25 +37,36 @@ struct EffectFit {
 
   double chi_square(const std::vector<double>& scales) { return chi_squares({scales}).front(); }
 
-  // Several sizes in one batch (the runs go to the workers together).
+  std::string sizes_of(const std::vector<double>& scales) const {
+    std::string sizes;
+    for (std::size_t e = 0; e < effects->size(); ++e)
+      sizes += fmt::format("{}{} = {:.4g}", e ? ", " : "", (*effects)[e].parameter, (*effects)[e].value_at(scales[e]));
+    return sizes;
+  }
+
+  // Several sizes in one batch (the runs go to the workers together). A size whose run fails (the
+  // beam breaks under its own weight before the pins load it, a plugin refuses the value) is left
+  // out: kFailedRun, which the scan skips and the optimiser steps away from.
   std::vector<double> chi_squares(const std::vector<std::vector<double>>& points) {
     std::vector<ModelPlan> models;
     for (const auto& scales : points) models.push_back(with_sized_effects(study->base(), *effects, scales));
-    std::vector<ContrastStudy::Simulated> runs = study->simulate(models, *log);
+    auto runs = simulate_each(
+        *study, models, [&](std::size_t m) { return "calibrate: " + sizes_of(points[m]); }, *log);
     std::vector<double> chi2s;
     for (std::size_t k = 0; k < points.size(); ++k) {
-      const std::vector<double> t = study->model_contrast(*contrast, runs[k], *base);
+      if (!runs[k]) {
+        chi2s.push_back(kFailedRun);
+        continue;
+      }
+      const std::vector<double> t = study->model_contrast(*contrast, *runs[k], *base);
       double chi2 = 0;
       const auto& w = contrast->weight;
       const auto& d = contrast->difference;
       for (std::size_t i = 0; i < d.size(); ++i)
         for (std::size_t j = 0; j < d.size(); ++j) chi2 += (d[i] - t[i]) * w[i][j] * (d[j] - t[j]);
       ++evaluations;
-      std::string sizes;
-      for (std::size_t e = 0; e < effects->size(); ++e)
-        sizes += fmt::format("{}{} = {:.4g}", e ? ", " : "", (*effects)[e].parameter, (*effects)[e].value_at(points[k][e]));
-      *log << fmt::format("calibrate: evaluation {}: {}, contrast chi^2 {:.2f}\n", evaluations, sizes, chi2);
-      if (chi2 < best) best = chi2, best_scales = points[k], best_run = std::move(runs[k]);
+      *log << fmt::format("calibrate: evaluation {}: {}, contrast chi^2 {:.2f}\n", evaluations, sizes_of(points[k]), chi2);
+      if (chi2 < best) best = chi2, best_scales = points[k], best_run = std::move(*runs[k]);
       chi2s.push_back(chi2);
     }
     return chi2s;
@@ -132,7 +146,8 @@ ContrastCalibration calibrate_contrast(const ContrastSets& sets, std::size_t tar
     std::vector<std::vector<double>> points;
     for (double x : scales) points.push_back({x});
     const std::vector<double> chi2s = fit.chi_squares(points);
-    for (std::size_t k = 0; k < scales.size(); ++k) out.scan.emplace_back(effects[0].value_at(scales[k]), chi2s[k]);
+    for (std::size_t k = 0; k < scales.size(); ++k)
+      if (chi2s[k] < kFailedRun) out.scan.emplace_back(effects[0].value_at(scales[k]), chi2s[k]);
   }
   std::vector<double> x = options.scan && n == 1 ? fit.best_scales : linear_start;
   std::vector<double> steps;
