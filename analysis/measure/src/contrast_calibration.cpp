@@ -51,7 +51,7 @@ struct EffectFit {
     std::vector<ModelPlan> models;
     for (const auto& scales : points) models.push_back(with_sized_effects(study->base(), *effects, scales));
     auto runs = simulate_each(
-        *study, models, [&](std::size_t m) { return "calibrate: " + sizes_of(points[m]); }, *log);
+        *study, models, [&](std::size_t m) { return sizes_of(points[m]); }, *log, "calibrate");
     std::vector<double> chi2s;
     for (std::size_t k = 0; k < points.size(); ++k) {
       if (!runs[k]) {
@@ -121,7 +121,7 @@ ContrastCalibration calibrate_contrast(const ContrastSets& sets, std::size_t tar
   // most kFarthestTrialSteps out; it starts at the linear size (two effects: their joint linear fit).
   std::vector<double> lo(n), hi(n), linear_start(n);
   for (std::size_t k = 0; k < n; ++k) {
-    lo[k] = std::max(effects[k].scale_min(), -kFarthestTrialSteps), hi[k] = std::min(effects[k].scale_max(), kFarthestTrialSteps);
+    lo[k] = lowest_free_size(effects[k]), hi[k] = highest_free_size(effects[k]);
     double s0 = 1.0;
     for (const auto& f : linear.fits)
       if (f.name == effects[k].name && f.scale != 0) s0 = f.scale;

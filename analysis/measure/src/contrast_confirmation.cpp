@@ -27,7 +27,7 @@ std::vector<CandidateEffect> scaled_to_base_run(std::vector<CandidateEffect> eff
 std::vector<std::optional<ContrastStudy::Simulated>> simulate_each(ContrastStudy& study,
                                                                    const std::vector<ModelPlan>& models,
                                                                    const std::function<std::string(std::size_t)>& label,
-                                                                   std::ostream& log) {
+                                                                   std::ostream& log, const std::string& command) {
   std::vector<std::optional<ContrastStudy::Simulated>> runs(models.size());
   try {
     auto all = study.simulate(models, log);
@@ -37,7 +37,7 @@ std::vector<std::optional<ContrastStudy::Simulated>> simulate_each(ContrastStudy
         runs[m] = std::move(study.simulate({models[m]}, log).front());
       } catch (const std::exception& e) {
         const std::string what = e.what();
-        log << fmt::format("diagnose: {} did not run and is left out: {}\n", label(m), what.substr(0, what.find('\n')));
+        log << fmt::format("{}: {} did not run and is left out: {}\n", command, label(m), what.substr(0, what.find('\n')));
       }
   }
   return runs;
@@ -77,12 +77,9 @@ constexpr double kResizeShare = 0.1;
 // steps span the factor of two the secant's clamp allows.
 constexpr double kProbeFactor = 1.41421356237;
 
-// The sizes a confirmation run may take: the effect's physical range, and at most
-// kFarthestTrialSteps from neutral, as everywhere the data choose a size freely.
-double lowest_size(const CandidateEffect& e) { return std::max(e.scale_min(), -kFarthestTrialSteps); }
-double highest_size(const CandidateEffect& e) { return std::min(e.scale_max(), kFarthestTrialSteps); }
+// A confirmation run's size: the data choose it, so it stays within the effect's free sizes.
 double within_reach(const CandidateEffect& e, double scale) {
-  return std::clamp(scale, lowest_size(e), highest_size(e));
+  return std::clamp(scale, lowest_free_size(e), highest_free_size(e));
 }
 
 // The size minimising the generalised chi^2 on the secant through two sized runs (t(s) linear
@@ -135,30 +132,19 @@ class Confirmation {
   // One batch: trials without a run are run, and a run whose secant asks for a size more than
   // kResizeShare away is run again there. False when nothing was left to run.
   bool pass(int index, std::ostream& log) {
-    std::vector<ModelPlan> models;
-    std::vector<std::pair<std::size_t, std::size_t>> owner;
-    std::string sizes;
+    std::vector<SizedRun> wanted;
     for (std::size_t s = 0; s < sets_.size(); ++s)
       for (std::size_t k = 0; k < trials_[s].size(); ++k) {
         Trial& t = trials_[s][k];
         if (t.has_run && (t.settled || !resized(sets_[s], t))) continue;
-        models.push_back(with_effect(study_.base(), effects_[t.effect], effects_[t.effect].value_at(t.scale)));
-        owner.emplace_back(s, k);
-        sizes += fmt::format("  {}: {} at {:.4g}\n", study_.sets().names[sets_[s].set], effects_[t.effect].name,
-                             effects_[t.effect].value_at(t.scale));
+        wanted.push_back({s, k, t.scale});
       }
-    if (models.empty()) return false;
-    log << fmt::format("diagnose: confirmation pass {}: {} runs of effects at their fitted sizes\n", index + 1, models.size())
-        << sizes;
-    auto runs = simulate_each(
-        study_, models,
-        [&](std::size_t m) {
-          const Trial& t = trials_[owner[m].first][owner[m].second];
-          return fmt::format("{} at {:.4g}", effects_[t.effect].name, effects_[t.effect].value_at(t.scale));
-        },
-        log);
-    for (std::size_t m = 0; m < models.size(); ++m) {
-      Trial& t = trials_[owner[m].first][owner[m].second];
+    if (wanted.empty()) return false;
+    auto runs = run_sized(wanted, fmt::format("confirmation pass {}: {} runs of effects at their fitted sizes", index + 1,
+                                              wanted.size()),
+                          log);
+    for (std::size_t m = 0; m < wanted.size(); ++m) {
+      Trial& t = trials_[wanted[m].set][wanted[m].trial];
       if (runs[m]) {
         t.run = std::move(*runs[m]);
         t.has_run = true;
@@ -183,32 +169,28 @@ class Confirmation {
   void probe(int rounds, const ContrastOptions& options, std::ostream& log) {
     std::vector<Probe> probes = probes_wanted(options);
     for (int round = 0; round < rounds && !probes.empty(); ++round) {
-      std::vector<ModelPlan> models;
-      std::vector<std::pair<std::size_t, double>> owner;  // (probe, scale)
-      std::string sizes;
+      std::vector<SizedRun> wanted;
+      std::vector<std::size_t> owner;  // the probe of each run
       for (std::size_t p = 0; p < probes.size(); ++p)
         for (const double scale : probes[p].next_scales(trials_[probes[p].set][probes[p].trial], effects_)) {
-          const Trial& t = trials_[probes[p].set][probes[p].trial];
-          const CandidateEffect& e = effects_[t.effect];
-          models.push_back(with_effect(study_.base(), e, e.value_at(scale)));
-          owner.emplace_back(p, scale);
-          sizes += fmt::format("  {}: {} at {:.4g}\n", study_.sets().names[sets_[probes[p].set].set], e.name, e.value_at(scale));
+          wanted.push_back({probes[p].set, probes[p].trial, scale});
+          owner.push_back(p);
         }
-      if (models.empty()) break;
-      log << fmt::format("diagnose: size probes, round {}: {} runs either side of the best size\n", round + 1, models.size())
-          << sizes;
-      auto runs = simulate_each(
-          study_, models, [&](std::size_t m) { return fmt::format("a probe at {:.4g} trial steps", owner[m].second); }, log);
+      if (wanted.empty()) break;
+      auto runs = run_sized(
+          wanted, fmt::format("size probes, round {}: {} runs either side of the best size", round + 1, wanted.size()),
+          log);
       std::vector<int> improved(probes.size(), 0);
-      for (std::size_t m = 0; m < models.size(); ++m) {
+      for (std::size_t m = 0; m < wanted.size(); ++m) {
         if (!runs[m]) continue;
-        Probe& pr = probes[owner[m].first];
+        const Probe& pr = probes[owner[m]];
         Trial& t = trials_[pr.set][pr.trial];
         const SetDiagnosis& d = sets_[pr.set];
-        const double chi_square = run_chi_square(d, signature_of(d, t.effect, owner[m].second, *runs[m]));
+        const double scale = wanted[m].scale;
+        const double chi_square = run_chi_square(d, signature_of(d, t.effect, scale, *runs[m]));
         if (chi_square < t.best->chi_square) {
-          t.best = Trial::Best{owner[m].second, chi_square, std::move(*runs[m])};
-          improved[owner[m].first] = std::abs(owner[m].second) > std::abs(pr.centre) ? 1 : -1;
+          t.best = Trial::Best{scale, chi_square, std::move(*runs[m])};
+          improved[owner[m]] = std::abs(scale) > std::abs(pr.centre) ? 1 : -1;
         }
       }
       for (std::size_t p = 0; p < probes.size(); ++p) probes[p].advance(improved[p]);
@@ -225,6 +207,27 @@ class Confirmation {
   }
 
  private:
+  // A trial's effect at a size of its own (the trial's, or a probe's).
+  struct SizedRun {
+    std::size_t set = 0, trial = 0;
+    double scale = 0;
+  };
+
+  // One batch of sized runs, listed in the log under `header`; a failed run is left out (empty).
+  std::vector<std::optional<ContrastStudy::Simulated>> run_sized(const std::vector<SizedRun>& wanted,
+                                                                 const std::string& header, std::ostream& log) {
+    std::vector<ModelPlan> models;
+    std::vector<std::string> labels;
+    for (const SizedRun& r : wanted) {
+      const CandidateEffect& e = effects_[trials_[r.set][r.trial].effect];
+      models.push_back(with_effect(study_.base(), e, e.value_at(r.scale)));
+      labels.push_back(fmt::format("{}: {} at {:.4g}", study_.sets().names[sets_[r.set].set], e.name, e.value_at(r.scale)));
+    }
+    log << "diagnose: " << header << "\n";
+    for (const auto& l : labels) log << "  " << l << "\n";
+    return simulate_each(study_, models, [&](std::size_t m) { return labels[m]; }, log);
+  }
+
   EffectSignature signature_of(const SetDiagnosis& d, std::size_t effect, double scale,
                                const ContrastStudy::Simulated& run) const {
     const CandidateEffect& e = effects_[effect];
@@ -287,10 +290,9 @@ class Confirmation {
       };
       if (direction >= 0) take(kProbeFactor);
       if (direction <= 0) take(1 / kProbeFactor);
-      if (scales.empty()) done = true;
       return scales;
     }
-    // `improved`: the side whose run fitted better than the best before it (0: neither).
+    // `improved`: the side whose run fitted better than the best before it (0: neither, or no run).
     void advance(int improved) {
       if (improved == 0) done = true;
       direction = improved;
@@ -300,8 +302,8 @@ class Confirmation {
   // The closest effect as run already carries a name by its curve (contrast_diagnosis.hpp): no
   // probe needed.
   bool named_by_its_curve(const SetDiagnosis& d, const Trial& t, double share, const ContrastOptions& options) const {
-    const ContrastStudy::CurveContrast after = study_.curve_contrast(d.contrast, t.run, base_);
-    return share >= options.curve_name_share && curve_agrees(after, options) && after.nrmse < d.before.nrmse;
+    return share >= options.curve_name_share &&
+           curve_bears_out(study_.curve_contrast(d.contrast, t.run, base_), d.before, options);
   }
 
   std::vector<Probe> probes_wanted(const ContrastOptions& options) {
@@ -336,7 +338,7 @@ class Confirmation {
         if (effects_[t.effect].name == f.name) {
           d.confirmed_values.push_back(effects_[t.effect].value_at(t.scale));
           // A run's size is fixed; it is at a bound when the size it was run at is.
-          f.at_bound = t.scale <= lowest_size(effects_[t.effect]) || t.scale >= highest_size(effects_[t.effect]);
+          f.at_bound = t.scale <= lowest_free_size(effects_[t.effect]) || t.scale >= highest_free_size(effects_[t.effect]);
         }
     // A named effect is shown with its run; for an unexplained difference the closest effect, so
     // the plot shows how far the library gets; nothing when there is no difference to explain.

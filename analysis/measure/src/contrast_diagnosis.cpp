@@ -125,12 +125,16 @@ bool curve_agrees(const ContrastStudy::CurveContrast& c, const ContrastOptions& 
 
 bool improves_on_base(const SetDiagnosis& d) { return d.after.nrmse < d.before.nrmse; }
 
+bool curve_bears_out(const ContrastStudy::CurveContrast& after, const ContrastStudy::CurveContrast& before,
+                     const ContrastOptions& options) {
+  return curve_agrees(after, options) && after.nrmse < before.nrmse;
+}
+
 namespace {
 
-// What a name asks of the shown model's contrast curve: its rising branch within the floor, and
-// the whole curve fitted better than by the base.
+// The curve rule on the set's shown model.
 bool curve_bears_out(const SetDiagnosis& d, const ContrastOptions& options) {
-  return curve_agrees(d.after, options) && improves_on_base(d);
+  return curve_bears_out(d.after, d.before, options);
 }
 
 }  // namespace

@@ -20,7 +20,7 @@ constexpr double kPairFirstShare = 0.5;
 // second effect, whose size the pair's fit chooses freely, at most kFarthestTrialSteps from neutral).
 EffectSignature in_units(const CandidateEffect& e, std::vector<double> signature, double unit, bool second) {
   double lo = e.scale_min(), hi = e.scale_max();
-  if (second) lo = std::max(lo, -kFarthestTrialSteps), hi = std::min(hi, kFarthestTrialSteps);
+  if (second) lo = lowest_free_size(e), hi = highest_free_size(e);
   lo /= unit, hi /= unit;
   if (unit < 0) std::swap(lo, hi);
   return {e.name, e.value_at(unit) - e.neutral, std::move(signature), lo, hi, true};
@@ -194,8 +194,7 @@ class PairSearch {
     const CandidateEffect& b = effects_[p.second];
     auto at = [](double x, double lo, double hi) { return x <= lo + 1e-9 * std::abs(lo) || x >= hi - 1e-9 * std::abs(hi); };
     sized.at_bound = at(p.scale_first, a.scale_min(), a.scale_max()) ||
-                     at(p.scale_second, std::max(b.scale_min(), -kFarthestTrialSteps),
-                        std::min(b.scale_max(), kFarthestTrialSteps));
+                     at(p.scale_second, lowest_free_size(b), highest_free_size(b));
     p.fit = judge_simulated_pair(d.contrast.difference, d.contrast.weight,
                                  study_.model_contrast(d.contrast, *p.run, trials_.front()), sized,
                                  d.decision.fits.front().chi_square, study_.dof(), decide_);

@@ -12,6 +12,7 @@
 //    kept and the next sought as a pair with it.
 // The statistics are contrast.hpp; the study (sets, base fit, simulated contrasts) is
 // contrast_study.hpp; everything runs through a Simulator.
+#include <algorithm>
 #include <functional>
 #include <iosfwd>
 #include <optional>
@@ -35,6 +36,11 @@ std::vector<CandidateEffect> scaled_to_base_run(std::vector<CandidateEffect> eff
 // search, a pair's second effect), in trial steps (its library size): a size the library's
 // plausible value misjudges by more is a different effect.
 inline constexpr double kFarthestTrialSteps = 8.0;
+
+// An effect's sizes, in trial steps, where the data choose them freely: its physical range within
+// kFarthestTrialSteps of neutral.
+inline double lowest_free_size(const CandidateEffect& e) { return std::max(e.scale_min(), -kFarthestTrialSteps); }
+inline double highest_free_size(const CandidateEffect& e) { return std::min(e.scale_max(), kFarthestTrialSteps); }
 
 // One base assumption moved (roller friction, damping, self-weight, ...): the shown model rerun
 // on the moved base, its simulated contrast against the measured one.
@@ -106,6 +112,11 @@ bool curve_agrees(const ContrastStudy::CurveContrast& c, const ContrastOptions& 
 // its contrast NRMSE rose from 2.9 % to 4.7 %; every right name lowered it.
 bool improves_on_base(const SetDiagnosis& d);
 
+// What a name asks of a model's contrast curve (`after`, against the base's `before`): its rising
+// branch within the floor (curve_agrees) and the whole curve fitted better than by the base.
+bool curve_bears_out(const ContrastStudy::CurveContrast& after, const ContrastStudy::CurveContrast& before,
+                     const ContrastOptions& options);
+
 // The last word on a name (ContrastOptions::curve_floor_factor, min_share): a set named by the
 // component statistics whose named model does not reproduce the contrast curve to within its
 // noise floor, does not improve on the base's contrast curve, or explains less than min_share of
@@ -132,11 +143,12 @@ std::vector<std::string> named_effects(const SetDiagnosis& d, const ContrastOpti
 
 // One batch of models; when a run fails (a size the plugin refuses, or an unstable one) the models
 // are run one by one (finished runs are cached) and a failed one is left out (empty) with its
-// reason in the log, named by `label`.
+// reason in the log, named by `label` after the `command` that asked for it.
 std::vector<std::optional<ContrastStudy::Simulated>> simulate_each(ContrastStudy& study,
                                                                    const std::vector<ModelPlan>& models,
                                                                    const std::function<std::string(std::size_t)>& label,
-                                                                   std::ostream& log);
+                                                                   std::ostream& log,
+                                                                   const std::string& command = "diagnose");
 
 // Simulates each set's best `count` effects at their linear sizes, then (up to `iterations` in
 // all) at the size the secant through the effect's last two runs asks for; then, for a set whose

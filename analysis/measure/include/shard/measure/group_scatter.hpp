@@ -16,8 +16,8 @@
 // A group set apart keeps the pooled correlation with, in each component, the larger of its own
 // and the pooled standard deviation: a wider contrast covariance for that set alone. It lowers
 // the set's T^2 and its remainders alike, so a remainder can pass as noise that the pool would
-// have rejected; the confirmation's size bound and the curve rule keep such a set from a name
-// its difference does not bear out.
+// have rejected (a frictionless-roller set of the foreign study is named a wrong effect at 525
+// trial sizes unless confirmation runs stay within kFarthestTrialSteps).
 #include <cstddef>
 #include <vector>
 
