@@ -84,7 +84,7 @@ TEST_CASE("one library effect: named with its size; a null set: no difference") 
   Study s;
   s.add("softening", measured({{"fake.softening", 1.5}}, 3000));
   s.add("compliance", measured({}, 4000, 5e-5));
-  s.add("less friction", measured({{"support.friction", 0.1}}, 5000));
+  s.add("less friction", measured({{"support.friction", 0.0}}, 5000));
   s.add("more friction", measured({{"support.friction", 0.45}}, 8000));
   const ContrastDiagnosis d = s.run();
   CHECK(diagnosis_of(d, s, "null").decision.verdict == kNoDifference);
@@ -93,12 +93,12 @@ TEST_CASE("one library effect: named with its size; a null set: no difference") 
   CHECK(value_of(soft, "bond_softening") == doctest::Approx(1.5).epsilon(0.2));
   const SetDiagnosis& comp = diagnosis_of(d, s, "compliance");
   REQUIRE(comp.decision.verdict == kMachineCompliance);
-  CHECK(value_of(comp, kMachineCompliance) == doctest::Approx(5e-5).epsilon(0.2));
-  // Roller friction below and above the reference's: the effect moves the model both ways from
-  // the fitted state, each side from a trial of its own (the response is 4x steeper above).
+  CHECK(value_of(comp, kMachineCompliance) == doctest::Approx(5e-5).epsilon(0.2).scale(0));
+  // Roller friction below (none) and above the reference's: the effect moves the model both ways
+  // from the fitted state, each side from a trial of its own (the response is 4x steeper above).
   const SetDiagnosis& slip = diagnosis_of(d, s, "less friction");
   REQUIRE(slip.decision.verdict == "support_friction");
-  CHECK(value_of(slip, "support_friction") == doctest::Approx(0.1).epsilon(0.5));
+  CHECK(value_of(slip, "support_friction") <= 0.05);  // at or near the bound 0: a sixth of the way back to 0.3
   const SetDiagnosis& grip = diagnosis_of(d, s, "more friction");
   REQUIRE(grip.decision.verdict == "support_friction");
   CHECK(value_of(grip, "support_friction") == doctest::Approx(0.45).epsilon(0.1));
@@ -129,8 +129,8 @@ TEST_CASE("an effect whose response bends with its size is confirmed at the size
 TEST_CASE("an effect whose response turns with its size is found beyond where the secant settles") {
   // fake.onset: stiffness and strength stop growing at 2 and only the ductility grows beyond 2.5.
   // The secant settles on the plateau (its chord matches the stiffness and strength and is blind
-  // to the ductility), leaving a remainder that a second effect takes up; probes sqrt(2) either
-  // side of the best size find the second mechanism and the truth (3.5).
+  // to the ductility), leaving a remainder beyond noise; probes sqrt(2) either side of the best
+  // size find the second mechanism and the truth (3.5).
   Study s;
   s.add("onset", measured({{"fake.onset", 3.5}}, 6000));
   // Without roller friction, whose stiffening and strengthening would rival the plateau's.
@@ -145,10 +145,13 @@ TEST_CASE("an effect whose response turns with its size is found beyond where th
     // 19 %) of the size that fits.
     CHECK(value_of(set, "onset") == doctest::Approx(3.5).epsilon(0.19));
   }
-  SUBCASE("without probes: a wrong second name") {
+  SUBCASE("without probes: unexplained") {
     s.options.confirm_probes = 0;
     const ContrastDiagnosis d = s.run(effects);
-    CHECK(diagnosis_of(d, s, "onset").decision.verdict == "onset + bond_softening");
+    const SetDiagnosis& set = diagnosis_of(d, s, "onset");
+    CHECK(set.decision.verdict == kUnexplainedDifference);
+    REQUIRE(!set.decision.fits.empty());
+    CHECK(set.decision.fits.front().name == "onset");  // the closest, on its plateau
   }
 }
 
@@ -352,6 +355,9 @@ TEST_CASE("an effect moves the model from the reference's state, not from the li
   // friction than the reference, which a trial from the library's neutral 0.3 could not express.
   Study s({{"support.friction", 0.6}});
   s.base.overrides.push_back(SceneOverride::parse("support.friction=0.6"));
+  // A third batch made like the reference: three sets of four leave 9 degrees of freedom for the
+  // 8 components' scatter, too few to call any one direction significant (Rao's F(1, 2)).
+  s.add("repeat", measured({{"support.friction", 0.6}}, 7000));
   s.add("less friction", measured({{"support.friction", 0.3}}, 5000));
   const ContrastDiagnosis d = s.run();
   CHECK(d.effects[1].neutral == doctest::Approx(0.6));
@@ -359,7 +365,7 @@ TEST_CASE("an effect moves the model from the reference's state, not from the li
   CHECK(diagnosis_of(d, s, "null").decision.verdict == kNoDifference);
   const SetDiagnosis& slip = diagnosis_of(d, s, "less friction");
   REQUIRE(slip.decision.verdict == "support_friction");
-  CHECK(value_of(slip, "support_friction") == doctest::Approx(0.3).epsilon(0.1));
+  CHECK(value_of(slip, "support_friction") == doctest::Approx(0.3).epsilon(0.1).scale(0));
   CHECK(s.log.str().find("support_friction moves from the reference's support.friction = 0.6") != std::string::npos);
 }
 

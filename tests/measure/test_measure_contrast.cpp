@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 #include <vector>
 
 #include "shard/measure/contrast.hpp"
@@ -40,13 +41,84 @@ Curve brittle(double k, double f_max, double dw) {
 
 TEST_CASE("Hotelling's test of one component is Student's two-sided t test") {
   // t(0.975, 10) = 2.228139 (tables): T^2 = t^2 with nu = 10 has p = 0.05.
-  CHECK(hotelling_p(2.228139 * 2.228139, 1, 10) == doctest::Approx(0.05).epsilon(1e-4));
+  CHECK(hotelling_p(2.228139 * 2.228139, 1, 10, 1) == doctest::Approx(0.05).epsilon(1e-4));
   // More degrees of freedom approach the normal: t(0.975, 1e6) -> 1.959964.
-  CHECK(hotelling_p(1.959964 * 1.959964, 1, 1e6) == doctest::Approx(0.05).epsilon(1e-3));
-  CHECK(hotelling_p(0, 3, 20) == 1.0);
+  CHECK(hotelling_p(1.959964 * 1.959964, 1, 1e6, 1) == doctest::Approx(0.05).epsilon(1e-3));
+  CHECK(hotelling_p(0, 3, 20, 3) == 1.0);
   // Fewer specimens than components: the F test has no denominator degrees of freedom and the
   // chi-square(m) limit is used (P(chi^2(2) > 2 ln 20) = 0.05 exactly).
-  CHECK(hotelling_p(2 * std::log(20.0), 2, 1) == doctest::Approx(0.05).epsilon(1e-9));
+  CHECK(hotelling_p(2 * std::log(20.0), 2, 1, 2) == doctest::Approx(0.05).epsilon(1e-9));
+}
+
+// Null contrasts judged against an estimated scatter: p = 8 components, their covariance
+// estimated from nu + 1 specimens (Sigma = identity), a difference d ~ N(0, A (x) Sigma) with
+// A = [[2, 1], [1, 2]] / 4 at two rates (own mean and a shared reference) or 1 / 2 at one rate.
+struct NullContrasts {
+  NullContrasts(int rates_, int dof_, int draws_) : rates(rates_), dof(dof_), draws(draws_) {}
+  int rates, dof, draws;
+  std::mt19937 rng{20261205};
+  std::normal_distribution<double> unit;
+
+  std::vector<double> normals(std::size_t n) {
+    std::vector<double> v(n);
+    for (double& x : v) x = unit(rng);
+    return v;
+  }
+  // The share of draws whose `p_of(decision)` falls below `level`, the effect a fixed direction.
+  template <class P>
+  double share_below(double level, P p_of) {
+    const std::size_t m = 8;
+    const std::vector<double> direction = normals(m * static_cast<std::size_t>(rates));
+    const double inf = std::numeric_limits<double>::infinity();
+    const std::vector<EffectSignature> effect{{"e", 1, direction, -inf, inf}};
+    int below = 0;
+    for (int k = 0; k < draws; ++k) {
+      std::vector<std::vector<double>> rows;
+      for (int r = 0; r <= dof; ++r) rows.push_back(normals(m));
+      double nu = 0;
+      const auto sigma = pooled_covariance({rows}, 0, nu);
+      const std::size_t n = m * static_cast<std::size_t>(rates);
+      std::vector<std::vector<double>> cov(n, std::vector<double>(n, 0.0));
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = 0; j < n; ++j)
+          cov[i][j] = sigma[i % m][j % m] * (rates == 1 ? 0.5 : (i / m == j / m ? 0.5 : 0.25));
+      // d = (chol(A) (x) I) z, so that its covariance is A (x) I.
+      const std::vector<double> z = normals(n);
+      std::vector<double> d(n);
+      for (std::size_t i = 0; i < m; ++i) {
+        if (rates == 1) {
+          d[i] = std::sqrt(0.5) * z[i];
+        } else {
+          d[i] = std::sqrt(0.5) * z[i];
+          d[m + i] = std::sqrt(0.125) * z[i] + std::sqrt(0.375) * z[m + i];
+        }
+      }
+      if (p_of(decide_contrast(d, spd_inverse(cov), effect, {nu, static_cast<double>(m)})) < level) ++below;
+    }
+    return static_cast<double>(below) / draws;
+  }
+};
+
+TEST_CASE("a chance direction is called significant as often as its level says") {
+  // 20,000 null draws: a share of 0.01 has a binomial sd of 0.0007, so 0.0025 is 3.5 sd.
+  NullContrasts one_rate{1, 15, 20000};
+  CHECK(one_rate.share_below(0.01, [](const ContrastDecision& c) { return c.fits.front().p_drop; }) ==
+        doctest::Approx(0.01).epsilon(0.25));
+  // The drop alone against F(1, nu - p + 1), the estimate's error left out, is 11 x too bold.
+  NullContrasts bold{1, 15, 20000};
+  const double old_rule = bold.share_below(0.01, [](const ContrastDecision& c) {
+    return hotelling_p(c.fits.front().drop, 1, 15 - 8 + 1, 1);
+  });
+  CHECK(old_rule > 0.08);
+  // At two rates on one estimate the tests err on the safe side, never the bold one.
+  NullContrasts two_rates{2, 15, 20000};
+  const double drops = two_rates.share_below(0.01, [](const ContrastDecision& c) { return c.fits.front().p_drop; });
+  CHECK(drops < 0.0125);
+  CHECK(drops > 0.001);
+  NullContrasts differences{2, 15, 20000};
+  const double t_square = differences.share_below(0.05, [](const ContrastDecision& c) { return c.p_value; });
+  CHECK(t_square < 0.055);
+  CHECK(t_square > 0.025);
 }
 
 TEST_CASE("pooled covariance: each group about its own mean, off-diagonal shrunk") {
@@ -91,7 +163,7 @@ TEST_CASE("decision: the effect that made the difference is named with its size"
   std::vector<EffectSignature> effects{{"a", 1, a, 0, inf}, {"b", 1, b, 0, inf}};
   // d = 3 a + noise of unit scale: chi^2_0 = 11.25 + ..., the drop is 3^2 |a|^2.
   const std::vector<double> d{3.0 + 0.3, 1.5 - 0.2, 0.4, 0.5};
-  const auto c = decide_contrast(d, w, effects, 40);
+  const auto c = decide_contrast(d, w, effects, {40, 4});
   CHECK(c.verdict == "a");
   REQUIRE(c.fits.size() == 2);
   CHECK(c.fits.front().name == "a");
@@ -109,14 +181,14 @@ TEST_CASE("decision: no difference, and a difference no effect explains") {
   const auto w = identity(4);
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<EffectSignature> effects{{"a", 1, {1, 0.5, 0, 0}, 0, inf}, {"b", 1, {0, 0, 1, -1}, 0, inf}};
-  CHECK(decide_contrast({0.5, -0.3, 0.2, 0.1}, w, effects, 40).verdict == kNoDifference);
+  CHECK(decide_contrast({0.5, -0.3, 0.2, 0.1}, w, effects, {40, 4}).verdict == kNoDifference);
   // Large, and orthogonal to both signatures: something outside the library.
-  const auto c = decide_contrast({1.0, -2.0, 4.0, 4.0}, w, effects, 40);
+  const auto c = decide_contrast({1.0, -2.0, 4.0, 4.0}, w, effects, {40, 4});
   CHECK(c.p_value < 1e-3);
   CHECK(c.verdict == kUnexplainedDifference);
   // Two effects that explain it equally are rivals.
   std::vector<EffectSignature> twins{{"a", 1, {1, 1, 0, 0}, 0, inf}, {"a2", 1, {1, 1, 0.01, 0}, 0, inf}};
-  const auto t = decide_contrast({4.0, 4.1, 0.1, 0.0}, w, twins, 40);
+  const auto t = decide_contrast({4.0, 4.1, 0.1, 0.0}, w, twins, {40, 4});
   CHECK((t.verdict == "a" || t.verdict == "a2"));
   CHECK(t.rivals.size() == 1);
 }
@@ -129,20 +201,20 @@ TEST_CASE("decision: an effect of another form is named within the form toleranc
   const std::vector<double> d{10.0, 5.0, 2.5 * 1.3, 0.0};
   ContrastOptions exact;
   exact.form_tolerance = 0;
-  const auto strict = decide_contrast(d, w, effects, 60, exact);
+  const auto strict = decide_contrast(d, w, effects, {60, 4}, exact);
   // a = (40 + 10 + 3.25) / 21 = 2.536; the third component misses by 0.71 of unit noise, the
   // others by -0.14 and -0.07: chi^2 after ~0.53, noise. A larger miss is needed to fail:
   CHECK(strict.verdict == "a");
   const std::vector<double> far{10.0, 5.0, 2.5 * 3.0, 0.0};  // third component 200 % off: 5 sigma
-  const auto strict_far = decide_contrast(far, w, effects, 60, exact);
+  const auto strict_far = decide_contrast(far, w, effects, {60, 4}, exact);
   CHECK(strict_far.verdict == kUnexplainedDifference);
   // With a 20 % form tolerance the third component's variance grows by (0.2 a t_3)^2 ~ 0.28: a
   // 5-sigma miss stays a miss, the model's shape is not stretched to fit anything.
-  CHECK(decide_contrast(far, w, effects, 60).verdict == kUnexplainedDifference);
+  CHECK(decide_contrast(far, w, effects, {60, 4}).verdict == kUnexplainedDifference);
   // A miss of 40 % on a large component is 4 sigma without the tolerance, about 2 with it.
   const std::vector<double> shaped{4.0 * 5 * 1.4, 2.0 * 5, 1.0 * 5, 0.0};
-  CHECK(decide_contrast(shaped, w, effects, 60, exact).verdict == kUnexplainedDifference);
-  CHECK(decide_contrast(shaped, w, effects, 60).verdict == "a");
+  CHECK(decide_contrast(shaped, w, effects, {60, 4}, exact).verdict == kUnexplainedDifference);
+  CHECK(decide_contrast(shaped, w, effects, {60, 4}).verdict == "a");
 }
 
 TEST_CASE("decision: a rate effect at one rate is never the verdict, a rival at most") {
@@ -150,19 +222,19 @@ TEST_CASE("decision: a rate effect at one rate is never the verdict, a rival at 
   const double inf = std::numeric_limits<double>::infinity();
   // d = 3 a: "a" explains it exactly; "v" (a rate effect on a contrast of one rate) nearly as well.
   std::vector<EffectSignature> effects{{"a", 1, {1, 0.5, 0, 0}, 0, inf}, {"v", 1, {1, 0.52, 0, 0}, 0, inf, false}};
-  const auto both = decide_contrast({3.0, 1.5, 0.1, -0.1}, w, effects, 40);
+  const auto both = decide_contrast({3.0, 1.5, 0.1, -0.1}, w, effects, {40, 4});
   CHECK(both.verdict == "a");
   REQUIRE(both.rivals.size() == 1);
   CHECK(both.rivals.front() == "v");
   CHECK(both.unidentifiable.empty());
   // Only the rate effect fits: the difference stays unexplained, and the report names what would fit.
   effects.front().signature = {0, 0, 1, -1};
-  const auto alone = decide_contrast({3.0, 1.56, 0.1, -0.1}, w, effects, 40);
+  const auto alone = decide_contrast({3.0, 1.56, 0.1, -0.1}, w, effects, {40, 4});
   CHECK(alone.verdict == kUnexplainedDifference);
   CHECK(alone.unidentifiable == "v");
   // The same effect with two rates behind the contrast is named.
   effects.back().identifiable = true;
-  CHECK(decide_contrast({3.0, 1.56, 0.1, -0.1}, w, effects, 40).verdict == "v");
+  CHECK(decide_contrast({3.0, 1.56, 0.1, -0.1}, w, effects, {40, 4}).verdict == "v");
 }
 
 TEST_CASE("pair: two effects at once are sized jointly; the second is named only for what it adds") {
@@ -172,10 +244,10 @@ TEST_CASE("pair: two effects at once are sized jointly; the second is named only
       c{"c", 1, {0, 0, 0, 0, 0, 1}, 0, inf};
   // d = 4 a + 3 b + noise below one standard unit.
   const std::vector<double> d{8 + 0.9 + 0.2, 4 - 0.3, 3 + 0.1, -3 - 0.4, 1.6 + 0.3, -0.2};
-  const auto single = decide_contrast(d, w, {a, b, c}, 60);
+  const auto single = decide_contrast(d, w, {a, b, c}, {60, 6});
   REQUIRE(single.fits.front().name == "a");
   CHECK(single.verdict == kUnexplainedDifference);  // a alone leaves b's 3 x sqrt(2) units
-  const auto pair = fit_contrast_pair(d, w, a, b, single.fits.front().chi_square, 60);
+  const auto pair = fit_contrast_pair(d, w, a, b, single.fits.front().chi_square, {60, 6});
   // The joint least squares of d on (a, b): solved here from its 2 x 2 normal equations (Cramer).
   auto dot = [](const std::vector<double>& u, const std::vector<double>& v) {
     double s = 0;
@@ -197,14 +269,14 @@ TEST_CASE("pair: two effects at once are sized jointly; the second is named only
   CHECK(pair.p_after > 0.05);
   CHECK(pair_is_named(pair, 2));
   // A second that adds nothing but noise is not named: c carries only the 0.2 of noise.
-  const auto noise = fit_contrast_pair(d, w, a, c, single.fits.front().chi_square, 60);
+  const auto noise = fit_contrast_pair(d, w, a, c, single.fits.front().chi_square, {60, 6});
   CHECK(noise.scale_second == 0.0);  // it would be wanted reversed: held at its neutral bound
   CHECK(noise.at_bound);
   CHECK(!pair_is_named(noise, 2));
   // The sizes stay in their ranges: b capped at 1 leaves a to take what it can.
   EffectSignature capped = b;
   capped.scale_max = 1;
-  const auto held = fit_contrast_pair(d, w, a, capped, single.fits.front().chi_square, 60);
+  const auto held = fit_contrast_pair(d, w, a, capped, single.fits.front().chi_square, {60, 6});
   CHECK(held.scale_second == 1.0);
   CHECK(held.at_bound);
   const double a_given_b = (ad - ab) / aa;
@@ -213,7 +285,7 @@ TEST_CASE("pair: two effects at once are sized jointly; the second is named only
   // Judged on a simulated combined contrast (effects interact): the drop and remainder read it.
   std::vector<double> combined(6);
   for (int i = 0; i < 6; ++i) combined[i] = 4 * a.signature[i] + 3 * b.signature[i];
-  const auto sim = judge_simulated_pair(d, w, combined, pair, single.fits.front().chi_square, 60);
+  const auto sim = judge_simulated_pair(d, w, combined, pair, single.fits.front().chi_square, {60, 6});
   double expected = 0;
   for (int i = 0; i < 6; ++i) expected += (d[i] - combined[i]) * (d[i] - combined[i]);
   CHECK(sim.chi_square == doctest::Approx(expected).epsilon(1e-12));

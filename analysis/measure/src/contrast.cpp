@@ -49,14 +49,20 @@ double form_chi_square(const Eigen::VectorXd& d, const Eigen::MatrixXd& w, const
   return r.dot(c.llt().solve(r));
 }
 
+// A remainder's p: Hotelling's test of the components left once `fitted` directions are taken
+// out, of the contrast's m and of the estimate's p alike.
+double remainder_p(double chi_square, double m, const ScatterEstimate& noise, double fitted) {
+  return hotelling_p(chi_square, std::max(1.0, m - fitted), noise.dof, std::max(1.0, noise.dimension - fitted));
+}
+
 void judge_pair(ContrastPairFit& p, const Eigen::VectorXd& d, const Eigen::MatrixXd& w, const Eigen::VectorXd& model,
-                double first_chi_square, double dof, const ContrastOptions& options) {
+                double first_chi_square, const ScatterEstimate& noise, const ContrastOptions& options) {
   const auto m = static_cast<double>(d.size());
   p.chi_square = quadratic_chi_square(d, w, model);
   p.drop = first_chi_square - p.chi_square;
-  p.p_drop = p.drop > 0 ? hotelling_p(p.drop, 1, dof - m + 1) : 1.0;
+  p.p_drop = added_direction_p(p.drop, p.chi_square, noise.dof, std::max(1.0, noise.dimension - 1));
   p.chi_square_form = form_chi_square(d, w, model, options.form_tolerance);
-  p.p_after = hotelling_p(p.chi_square_form, std::max(1.0, m - 2), dof);
+  p.p_after = remainder_p(p.chi_square_form, m, noise, 2);
 }
 
 }  // namespace
@@ -152,12 +158,20 @@ std::vector<std::vector<double>> pooled_covariance(const std::vector<std::vector
   return from_matrix(s);
 }
 
-double hotelling_p(double t_square, double m, double nu) {
+double hotelling_p(double t_square, double k, double nu, double p) {
   if (!(t_square > 0)) return 1;
-  const double d2 = nu - m + 1;
-  if (d2 < 1) return chi_square_survival(t_square, m);
-  const boost::math::fisher_f_distribution<double> f(m, d2);
-  return boost::math::cdf(boost::math::complement(f, d2 / (nu * m) * t_square));
+  const double d2 = nu - p + 1;
+  if (d2 < 1) return chi_square_survival(t_square, k);
+  const boost::math::fisher_f_distribution<double> f(k, d2);
+  return boost::math::cdf(boost::math::complement(f, d2 / (nu * k) * t_square));
+}
+
+double added_direction_p(double drop, double after, double nu, double p) {
+  if (!(drop > 0)) return 1;
+  const double d2 = nu - p + 1;
+  if (d2 < 1) return chi_square_survival(drop, 1);
+  const boost::math::fisher_f_distribution<double> f(1, d2);
+  return boost::math::cdf(boost::math::complement(f, d2 * drop / (nu + std::max(0.0, after))));
 }
 
 std::vector<std::vector<double>> spd_inverse(const std::vector<std::vector<double>>& a) {
@@ -170,14 +184,15 @@ std::vector<std::vector<double>> spd_inverse(const std::vector<std::vector<doubl
 }
 
 ContrastDecision decide_contrast(const std::vector<double>& difference, const std::vector<std::vector<double>>& weight,
-                                 const std::vector<EffectSignature>& effects, double dof, const ContrastOptions& options) {
+                                 const std::vector<EffectSignature>& effects, const ScatterEstimate& noise,
+                                 const ContrastOptions& options) {
   const Eigen::VectorXd d = to_vector(difference);
   const Eigen::MatrixXd w = to_matrix(weight);
   if (w.rows() != d.size()) throw std::invalid_argument("contrast: weight and difference differ in size");
   const auto m = static_cast<double>(d.size());
   ContrastDecision out;
   out.chi_square = d.dot(w * d);
-  out.p_value = hotelling_p(out.chi_square, m, dof);
+  out.p_value = hotelling_p(out.chi_square, m, noise.dof, noise.dimension);
   for (const auto& e : effects) {
     if (e.signature.size() != difference.size())
       throw std::invalid_argument(fmt::format("contrast: the signature of '{}' has the wrong length", e.name));
@@ -192,13 +207,12 @@ ContrastDecision decide_contrast(const std::vector<double>& difference, const st
     fit.u_scale = tt > 0 ? 1 / std::sqrt(tt) : std::numeric_limits<double>::infinity();
     fit.chi_square = out.chi_square - 2 * fit.scale * td + fit.scale * fit.scale * tt;
     fit.drop = out.chi_square - fit.chi_square;
-    // The weight is estimated from nu specimens' scatter, so the drop is referred to Hotelling's
-    // distribution of one component with the degrees of freedom the m-dimensional estimate leaves
-    // (a t test with nu - m + 1 of them): chi^2(1) made a null set's chance direction significant.
-    fit.p_drop = fit.drop > 0 ? hotelling_p(fit.drop, 1, dof - m + 1) : 1.0;
+    // The weight is estimated from the specimens' scatter, and its error enters the drop as well
+    // as the remainder: Rao's test weighs the one by the other.
+    fit.p_drop = added_direction_p(fit.drop, fit.chi_square, noise.dof, noise.dimension);
     // The remainder judged with the effect's form tolerance (ContrastOptions::form_tolerance).
     fit.chi_square_form = form_chi_square(d, w, fit.scale * t, options.form_tolerance);
-    fit.p_after = hotelling_p(fit.chi_square_form, std::max(1.0, m - 1), dof);
+    fit.p_after = remainder_p(fit.chi_square_form, m, noise, 1);
     out.fits.push_back(fit);
   }
   std::sort(out.fits.begin(), out.fits.end(), [](const auto& a, const auto& b) { return a.chi_square < b.chi_square; });
@@ -244,7 +258,7 @@ namespace shard::measure {
 
 ContrastPairFit fit_contrast_pair(const std::vector<double>& difference, const std::vector<std::vector<double>>& weight,
                                   const EffectSignature& first, const EffectSignature& second, double first_chi_square,
-                                  double dof, const ContrastOptions& options) {
+                                  const ScatterEstimate& noise, const ContrastOptions& options) {
   const Eigen::VectorXd d = to_vector(difference), t1 = to_vector(first.signature), t2 = to_vector(second.signature);
   const Eigen::MatrixXd w = to_matrix(weight);
   if (t1.size() != d.size() || t2.size() != d.size())
@@ -301,17 +315,17 @@ ContrastPairFit fit_contrast_pair(const std::vector<double>& difference, const s
   } else {
     p.u_scale_first = p.u_scale_second = std::numeric_limits<double>::infinity();
   }
-  judge_pair(p, d, w, p.scale_first * t1 + p.scale_second * t2, first_chi_square, dof, options);
+  judge_pair(p, d, w, p.scale_first * t1 + p.scale_second * t2, first_chi_square, noise, options);
   return p;
 }
 
 ContrastPairFit judge_simulated_pair(const std::vector<double>& difference,
                                      const std::vector<std::vector<double>>& weight, const std::vector<double>& combined,
-                                     ContrastPairFit sized, double first_chi_square, double dof,
+                                     ContrastPairFit sized, double first_chi_square, const ScatterEstimate& noise,
                                      const ContrastOptions& options) {
   if (combined.size() != difference.size())
     throw std::invalid_argument("contrast: the pair's simulated contrast has the wrong length");
-  judge_pair(sized, to_vector(difference), to_matrix(weight), to_vector(combined), first_chi_square, dof, options);
+  judge_pair(sized, to_vector(difference), to_matrix(weight), to_vector(combined), first_chi_square, noise, options);
   return sized;
 }
 

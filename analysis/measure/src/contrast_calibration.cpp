@@ -114,7 +114,7 @@ ContrastCalibration calibrate_contrast(const ContrastSets& sets, std::size_t tar
   for (std::size_t k = 0; k < n; ++k)
     sig.push_back({effects[k].name, effects[k].plausible - effects[k].neutral,
                    study.model_contrast(contrast, sims[1 + k], sims[0]), effects[k].scale_min(), effects[k].scale_max()});
-  const ContrastDecision linear = decide_contrast(contrast.difference, contrast.weight, sig, study.dof(), options.decide);
+  const ContrastDecision linear = decide_contrast(contrast.difference, contrast.weight, sig, study.noise(), options.decide);
   out.before = study.curve_contrast(contrast, sims[0], sims[0]);
 
   // The optimiser moves in trial steps from neutral, inside each effect's physical range and at
@@ -129,7 +129,7 @@ ContrastCalibration calibrate_contrast(const ContrastSets& sets, std::size_t tar
   }
   if (n == 2) {
     const ContrastPairFit pair =
-        fit_contrast_pair(contrast.difference, contrast.weight, sig[0], sig[1], linear.chi_square, study.dof(), options.decide);
+        fit_contrast_pair(contrast.difference, contrast.weight, sig[0], sig[1], linear.chi_square, study.noise(), options.decide);
     linear_start = {pair.scale_first == 0 ? 1.0 : pair.scale_first, pair.scale_second == 0 ? 1.0 : pair.scale_second};
   }
   for (std::size_t k = 0; k < n; ++k) linear_start[k] = std::clamp(linear_start[k], lo[k], hi[k]);

@@ -240,7 +240,7 @@ class Confirmation {
 
   // The set's chi^2 left by the run's contrast as simulated: what the decision reads.
   double run_chi_square(const SetDiagnosis& d, const EffectSignature& sig) const {
-    return decide_contrast(d.contrast.difference, d.contrast.weight, {sig}, study_.dof()).fits.front().chi_square;
+    return decide_contrast(d.contrast.difference, d.contrast.weight, {sig}, study_.noise()).fits.front().chi_square;
   }
 
   void note_best(const SetDiagnosis& d, Trial& t, const EffectSignature& sig) const {
@@ -316,7 +316,7 @@ class Confirmation {
         sig.push_back(signature_of(sets_[s], t));
       }
       const ContrastDecision tentative =
-          decide_contrast(sets_[s].contrast.difference, sets_[s].contrast.weight, sig, study_.dof(), options);
+          decide_contrast(sets_[s].contrast.difference, sets_[s].contrast.weight, sig, study_.noise(), options);
       if (tentative.fits.empty() || !(tentative.chi_square > 0)) continue;
       const ContrastFit& closest = tentative.fits.front();
       if (closest.drop < options.min_share * tentative.chi_square || closest.p_after >= options.remaining_p) continue;
@@ -331,7 +331,7 @@ class Confirmation {
   void decide_set(SetDiagnosis& d, const std::vector<Trial>& trials, const ContrastOptions& options) const {
     std::vector<EffectSignature> sig;
     for (const auto& t : trials) sig.push_back(signature_of(d, t));
-    d.decision = decide_contrast(d.contrast.difference, d.contrast.weight, sig, study_.dof(), options);
+    d.decision = decide_contrast(d.contrast.difference, d.contrast.weight, sig, study_.noise(), options);
     d.confirmed_values.clear();
     for (auto& f : d.decision.fits)
       for (const auto& t : trials)

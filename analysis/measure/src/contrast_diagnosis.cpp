@@ -63,7 +63,7 @@ EffectSignature signature_for(const ContrastStudy& study, const SetDiagnosis& d,
   const EffectSignature up{e.name, step, t_plus, 0, e.scale_max(), nameable};
   const EffectSignature down{e.name, step, t_minus, e.scale_min(), 0, nameable};
   auto chi_square = [&](const EffectSignature& s) {
-    return decide_contrast(d.contrast.difference, d.contrast.weight, {s}, study.dof()).fits.front().chi_square;
+    return decide_contrast(d.contrast.difference, d.contrast.weight, {s}, study.noise()).fits.front().chi_square;
   };
   return chi_square(down) < chi_square(up) ? down : up;
 }
@@ -78,7 +78,7 @@ SetDiagnosis linear_diagnosis(const ContrastStudy& study, std::size_t set, const
   std::vector<EffectSignature> signatures;
   for (std::size_t e = 0; e < effects.size(); ++e)
     signatures.push_back(signature_for(study, d, effects[e], trials, 1 + e, mirror[e]));
-  d.linear = decide_contrast(d.contrast.difference, d.contrast.weight, signatures, study.dof(), decide);
+  d.linear = decide_contrast(d.contrast.difference, d.contrast.weight, signatures, study.noise(), decide);
   d.decision = d.linear;
   d.before = study.curve_contrast(d.contrast, trials[0], trials[0]);
   return d;

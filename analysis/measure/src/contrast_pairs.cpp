@@ -147,7 +147,7 @@ class PairSearch {
       ContrastPairFit fit;
       for (const EffectSignature& column : second_columns(study_, d, effects_[e], trials_, 1 + e, mirror_[e])) {
         const ContrastPairFit f2 = fit_contrast_pair(d.contrast.difference, d.contrast.weight, first, column,
-                                                     closest.chi_square, study_.dof(), decide_);
+                                                     closest.chi_square, study_.noise(), decide_);
         if (second.name.empty() || f2.chi_square < fit.chi_square) second = column, fit = f2;
       }
       if (fit.scale_second == 0 || !(fit.drop > 0)) continue;
@@ -169,7 +169,7 @@ class PairSearch {
     EffectSignature c1 = p.first_column, c2 = p.second_column;
     const double x1 = p.scale_first / d.closest->scale, x2 = p.scale_second;
     c1.scale_min -= x1, c1.scale_max -= x1, c2.scale_min -= x2, c2.scale_max -= x2;
-    const ContrastPairFit step = fit_contrast_pair(residual, d.contrast.weight, c1, c2, p.fit.chi_square, study_.dof(), decide_);
+    const ContrastPairFit step = fit_contrast_pair(residual, d.contrast.weight, c1, c2, p.fit.chi_square, study_.noise(), decide_);
     const double next_first = (x1 + step.scale_first) * d.closest->scale, next_second = x2 + step.scale_second;
     // Not worth a run when the step is small against the sizes (the linear step's limit).
     if (std::abs(next_first - p.scale_first) <= 0.1 * std::abs(p.scale_first) &&
@@ -197,7 +197,7 @@ class PairSearch {
                      at(p.scale_second, lowest_free_size(b), highest_free_size(b));
     p.fit = judge_simulated_pair(d.contrast.difference, d.contrast.weight,
                                  study_.model_contrast(d.contrast, *p.run, trials_.front()), sized,
-                                 d.decision.fits.front().chi_square, study_.dof(), decide_);
+                                 d.decision.fits.front().chi_square, study_.noise(), decide_);
   }
 
   const PairTrial* best_of(std::size_t s) const {

@@ -64,6 +64,10 @@ class ContrastStudy {
   ContrastStudy(const ContrastSets& sets, Simulator& simulator, ModelPlan base, double own_scatter_p = 0);
 
   double dof() const { return scatter_.dof; }
+  // The pooled scatter as the contrasts' decisions read it (contrast.hpp: ScatterEstimate).
+  ScatterEstimate noise() const {
+    return {scatter_.dof, static_cast<double>(contrast_component_names().size())};
+  }
   // The specimens' scatter: pooled, and the groups that carry their own (group_scatter.hpp).
   const GroupScatter& scatter() const { return scatter_; }
   const std::vector<ContrastGroup>& groups() const { return groups_; }
