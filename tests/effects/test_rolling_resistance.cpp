@@ -33,19 +33,19 @@ void check_rolls_to_rest(const ContactModel& model, double e_star, double mu_r) 
   const double deceleration = (v1 - v2) / (t2 - t1);
   MESSAGE("mu_r ", mu_r, ": deceleration ", deceleration, " m/s^2 against 5/7 mu_r g = ", a);
   // The normal force rings around m g at the start (restitution 0.5 damps it): 1 %, as for sliding.
-  CHECK(deceleration == doctest::Approx(a).epsilon(0.01));
+  CHECK(deceleration == doctest::Approx(a).epsilon(0.01).scale(0));
   // Still rolling without slip: the contact point's speed is a small share of the sphere's.
   const Particles& p = s.sim->particles();
   const double slip = (p.velocity[0] + p.omega[0].cross(Vec3(0, 0, -SphereOnPlane::radius))).norm();
   CHECK(slip < 1e-3 * std::abs(v2));
   s.run_to(1.5 * t_stop);
   const double rolled = p.position[0].x();
-  CHECK(rolled == doctest::Approx(SphereOnPlane::v0 * SphereOnPlane::v0 / (2 * a)).epsilon(0.01));
+  CHECK(rolled == doctest::Approx(SphereOnPlane::v0 * SphereOnPlane::v0 / (2 * a)).epsilon(0.01).scale(0));
   // At rest, and it stays there: what the rolling spring still rocks decays (c_r).
   CHECK(std::abs(p.velocity[0].x()) < 1e-4 * SphereOnPlane::v0);
   s.run_to(2.0 * t_stop);
   CHECK(std::abs(p.velocity[0].x()) < 1e-5 * SphereOnPlane::v0);
-  CHECK(p.position[0].x() == doctest::Approx(rolled).epsilon(1e-4));
+  CHECK(p.position[0].x() == doctest::Approx(rolled).epsilon(1e-4).scale(0));
 }
 
 }  // namespace
@@ -73,7 +73,7 @@ TEST_CASE("rolling resistance off: a rolling sphere keeps rolling; named at mu_r
   b.run_to(0.05);
   // Rolling without slip dissipates nothing: 50 ms later it rolls at v0 (measured -1.2e-4 of it,
   // lost while the normal spring rings in at the start; mu_r = 0.05 would have taken 35 %).
-  CHECK(a.sim->particles().velocity[0].x() == doctest::Approx(SphereOnPlane::v0).epsilon(1e-3));
+  CHECK(a.sim->particles().velocity[0].x() == doctest::Approx(SphereOnPlane::v0).epsilon(1e-3).scale(0));
   for (int c = 0; c < 3; ++c) {
     CHECK(a.sim->particles().position[0][c] == b.sim->particles().position[0][c]);
     CHECK(a.sim->particles().velocity[0][c] == b.sim->particles().velocity[0][c]);
@@ -95,14 +95,14 @@ TEST_CASE("rolling couple: elastic step -k_r w dt - c_r w, cap mu_r R* F_n again
   const double s_t = 8 * model.effective_shear_modulus() * std::sqrt(R * delta);
   const double c_t = model.damping() * std::sqrt(s_t * m);
   const double k_r = s_t * R * R, c_r = c_t * R * R;
-  CHECK(c.couple[0].y() == doctest::Approx(-k_r * w * dt - c_r * w).epsilon(1e-12));
+  CHECK(c.couple[0].y() == doctest::Approx(-k_r * w * dt - c_r * w).epsilon(1e-12).scale(0));
   CHECK(c.couple[0].x() == 0.0);
   CHECK(c.couple[0].z() == 0.0);
   CHECK(c.couple[1].norm() == 0.0);
   // Wound on, the spring reaches the cap and holds it.
   for (int step = 0; step < 20000; ++step) c.compute(model, dt);
   const double f_n = c.force[0].z();
-  CHECK(c.couple[0].y() == doctest::Approx(-mu_r * R * f_n).epsilon(1e-12));
+  CHECK(c.couple[0].y() == doctest::Approx(-mu_r * R * f_n).epsilon(1e-12).scale(0));
   CHECK(c.couple[0].x() == 0.0);
   // The energy holds the spring's k_r theta^2 / 2 with theta = M / k_r at the cap.
   ContactScene plain(1, 3);
@@ -111,7 +111,7 @@ TEST_CASE("rolling couple: elastic step -k_r w dt - c_r w, cap mu_r R* F_n again
   plain.m_eff = {m};
   plain.compute(HertzMindlin(HertzMindlinMaterial{}), dt);
   const double m_cap = mu_r * R * f_n;
-  CHECK(c.energy[0] - plain.energy[0] == doctest::Approx(m_cap * m_cap / (2 * k_r)).epsilon(1e-9));
+  CHECK(c.energy[0] - plain.energy[0] == doctest::Approx(m_cap * m_cap / (2 * k_r)).epsilon(1e-9).scale(0));
 }
 
 }  // namespace shard::effects_test
