@@ -34,7 +34,7 @@ TEST_CASE("binary and ASCII STL of the same cube give the same mesh") {
   REQUIRE(ascii.faces == binary.faces);
   for (std::size_t i = 0; i < ascii.vertices.size(); ++i) CHECK(ascii.vertices[i] == binary.vertices[i]);
   // Exactly 1e-6 m^3 up to the rounding of 0.001 * 10.
-  CHECK(signed_volume(binary) == doctest::Approx(1e-6).epsilon(1e-12));
+  CHECK(signed_volume(binary) == doctest::Approx(1e-6).epsilon(1e-12).scale(0));
   const auto box = bounding_box(binary);
   CHECK(box.upper.x() == doctest::Approx(0.01).epsilon(1e-12));
   CHECK_NOTHROW(require_closed_solid(binary, "cube_10mm.stl"));
@@ -48,10 +48,10 @@ TEST_CASE("the scene bodies are closed, outward and free of crossings") {
   }
   // Beam volume 180 x 30 x 35 mm^3 exactly; the shell is the outer minus the inner polyhedron.
   CHECK(signed_volume(read_stl(test::geometry_dir() + "/beam_180x30x35.stl", 0.001)) ==
-        doctest::Approx(180e-3 * 30e-3 * 35e-3).epsilon(1e-9));
+        doctest::Approx(180e-3 * 30e-3 * 35e-3).epsilon(1e-9).scale(0));
   const double outer = signed_volume(read_stl(test::geometry_dir() + "/sphere_r10mm.stl", 0.001));
   const double shell = signed_volume(read_stl(test::geometry_dir() + "/shell_r10_r6mm.stl", 0.001));
-  CHECK(shell == doctest::Approx(outer * (1.0 - 0.216)).epsilon(1e-6));  // (6/10)^3 = 0.216
+  CHECK(shell == doctest::Approx(outer * (1.0 - 0.216)).epsilon(1e-6).scale(0));  // (6/10)^3 = 0.216
 }
 
 TEST_CASE("a missing file and an empty file are named in the error") {
@@ -117,7 +117,7 @@ TEST_CASE("a torus whose seam vertices differ in the last bits is welded shut") 
   const double tolerance = default_weld_tolerance(mesh);
   // 1e-6 of the 40.4 mm diagonal: 4.0e-8 m, 14 times the up to 3 float32 ulps (3 x 9.5e-10 m at
   // 14 mm) that separate the seams, and 1/10^4 of the 0.39 mm shortest edge.
-  CHECK(tolerance == doctest::Approx(1e-6 * std::sqrt(2 * 28e-3 * 28e-3 + 8e-3 * 8e-3)).epsilon(1e-6));
+  CHECK(tolerance == doctest::Approx(1e-6 * std::sqrt(2 * 28e-3 * 28e-3 + 8e-3 * 8e-3)).epsilon(1e-6).scale(0));
   const SolidRepair repair = repair_closed_solid(mesh, "torus.stl");
   CHECK(repair.weld.vertices_welded == 145);
   CHECK(repair.weld.faces_dropped == 0);
@@ -239,7 +239,7 @@ TEST_CASE("where two rays pass through cracks, the winding number decides") {
   CHECK(repair.edges.largest_gap == doctest::Approx(0.01).epsilon(1e-9));
   // (The divergence-theorem volume misses the slits' flux, 2 x 10 x 0.1 / 3, measured from the origin.)
   CHECK(repair.edges.volume_ambiguity ==
-        doctest::Approx(0.1 * std::sqrt(2.0) * std::sqrt(300.0) / (3.0 * (1000.0 - 2.0 / 3.0))).epsilon(1e-9));
+        doctest::Approx(0.1 * std::sqrt(2.0) * std::sqrt(300.0) / (3.0 * (1000.0 - 2.0 / 3.0))).epsilon(1e-9).scale(0));
   // From the centre the +x and +y rays leave through the slits: one crossing of three, so the ray
   // majority calls the centre outside. Seen from there each slit (0.01 x 10 at distance 5)
   // subtends ~0.003 sr, so the winding number is 1 - 2 x 0.003 / (4 pi) = 0.9995: inside.

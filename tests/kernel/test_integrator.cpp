@@ -34,7 +34,7 @@ TEST_CASE("a fixed particle does not move under gravity") {
   Simulation sim(std::move(setup));
   sim.run(100);
   CHECK(sim.particles().position[0] == Vec3(0, 0, 1));
-  CHECK(sim.particles().force[0].z() == doctest::Approx(-9.81 * sim.particles().mass[0]));
+  CHECK(sim.particles().force[0].z() == doctest::Approx(-9.81 * sim.particles().mass[0]).scale(0));
 }
 
 TEST_CASE("auto time step needs a model") {

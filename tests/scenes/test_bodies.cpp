@@ -273,7 +273,7 @@ TEST_CASE("two identical bars dropped identically keep their body ids, never bon
       // Recorded at the end of the first step in contact: up to one step (~1e-5 s) late, after one
       // step of contact force on the touching spheres; measured 0.064 % below free fall, 3.9e-6 s late.
       CHECK(i.speed() == doctest::Approx(expected_speed).epsilon(1e-3));
-      CHECK(i.time == doctest::Approx(expected_time).epsilon(0.01));
+      CHECK(i.time == doctest::Approx(expected_time).epsilon(0.01).scale(0));
       CHECK(i.angle_degrees() < 0.5);
     }
     CHECK(impacts[0].step == impacts[1].step);
