@@ -2,6 +2,7 @@
 // hollowness, determinism, and every bad-geometry error asserted on its message.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <numbers>
@@ -68,7 +69,7 @@ TEST_CASE("the signed distance field matches the exact distance of a cube to wit
   const double voxel = 1e-4;
   const SignedDistanceField field(cube, voxel, 2e-3);
   for (const Vec3& p : {Vec3(0.005, 0.005, 0.0005), Vec3(0.001, 0.004, 0.006), Vec3(0.0099, 0.002, 0.005)})
-    CHECK(field.distance(p) == doctest::Approx(convex_distance(cube, p)).epsilon(0).scale(1).epsilon(voxel / 1e-3));
+    CHECK(std::abs(field.distance(p) - convex_distance(cube, p)) <= voxel);  // absolute: the test's own claim
   // Deep inside reads minus the band (stored as float32: relative rounding 1e-7).
   CHECK(field.distance(Vec3(0.005, 0.005, 0.005)) <= -2e-3 * (1 - 1e-6));
   CHECK(field.distance(Vec3(0.02, 0.005, 0.005)) > 0.0);      // far outside stays outside
@@ -278,7 +279,7 @@ TEST_CASE("an L-prism with T-junction caps fills like the same prism triangulate
   // differ by far less than 1 %.
   CHECK(static_cast<double>(t_body.position.size()) ==
         doctest::Approx(static_cast<double>(c_body.position.size())).epsilon(0.01));
-  CHECK(quality(t_body, "solid_fraction") == doctest::Approx(quality(c_body, "solid_fraction")).epsilon(0.01));
+  CHECK(quality(t_body, "solid_fraction") == doctest::Approx(quality(c_body, "solid_fraction")).epsilon(0.01).scale(0));
 }
 
 TEST_CASE("a box with one face missing is refused by stl_fill") {
