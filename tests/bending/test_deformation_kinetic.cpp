@@ -61,10 +61,10 @@ TEST_CASE("rigid-body motion carries no deformation kinetic energy; a strain rat
   c /= m;
   for (std::size_t k = 0; k < q.size(); ++k) q.velocity[k] = 0.5 * (q.position[k] - c);
   const double breathing = total_kinetic(q);
-  CHECK(shard::analysis::deformation_kinetic_energy(q) == doctest::Approx(breathing).epsilon(1e-9));
+  CHECK(shard::analysis::deformation_kinetic_energy(q) == doctest::Approx(breathing).epsilon(1e-9).scale(0));
   add_rigid_motion(q, {0.3, 0.0, -0.1}, {0.0, 2.0, 0.0});
   CHECK(total_kinetic(q) > 2 * breathing);
-  CHECK(shard::analysis::deformation_kinetic_energy(q) == doctest::Approx(breathing).epsilon(1e-9));
+  CHECK(shard::analysis::deformation_kinetic_energy(q) == doctest::Approx(breathing).epsilon(1e-9).scale(0));
   CHECK(shard::analysis::deformation_kinetic_energy(cloud(1, 9)) == 0.0);
 }
 
