@@ -49,7 +49,7 @@ TEST_CASE("features of a bilinear curve match their closed forms") {
   const FeatureValues f = curve_features(c);
   CHECK(*f[Feature::Stiffness] == doctest::Approx(k).epsilon(1e-9));
   CHECK(*f[Feature::PeakForce] == doctest::Approx(k * w_p));
-  CHECK(*f[Feature::PeakDisplacement] == doctest::Approx(w_p));
+  CHECK(*f[Feature::PeakDisplacement] == doctest::Approx(w_p).scale(0));
   // Triangles: 0.5 F_max w_p before and after the peak (the trapezoid rule is exact on lines).
   CHECK(*f[Feature::WorkToPeak] == doctest::Approx(0.5 * k * w_p * w_p).epsilon(1e-9));
   CHECK(*f[Feature::PostPeakWork] == doctest::Approx(0.5 * k * w_p * w_p).epsilon(1e-9));
@@ -59,7 +59,7 @@ TEST_CASE("features of a bilinear curve match their closed forms") {
   const Curve soft = curve(k, w_p, 0.2, 0, rng, 0.1);
   const FeatureValues fs = curve_features(soft);
   const ElasticFit fit = elastic_fit(soft);
-  CHECK(*fs[Feature::Nonlinearity] == doctest::Approx(1 - 0.8 * k * w_p / (fit.stiffness * (w_p - fit.toe_offset))));
+  CHECK(*fs[Feature::Nonlinearity] == doctest::Approx(1 - 0.8 * k * w_p / (fit.stiffness * (w_p - fit.toe_offset))).scale(0));
   CHECK(*fs[Feature::Nonlinearity] > 0.1);  // 20 % softening at the peak, less in the fit window
 }
 
@@ -70,10 +70,10 @@ TEST_CASE("fragment x50 is the mass-weighted median") {
 }
 
 TEST_CASE("chi-square survival and normal p-values at tabulated points") {
-  CHECK(chi_square_survival(3.841459, 1) == doctest::Approx(0.05).epsilon(1e-5));
-  CHECK(chi_square_survival(18.307038, 10) == doctest::Approx(0.05).epsilon(1e-5));
+  CHECK(chi_square_survival(3.841459, 1) == doctest::Approx(0.05).epsilon(1e-5).scale(0));
+  CHECK(chi_square_survival(18.307038, 10) == doctest::Approx(0.05).epsilon(1e-5).scale(0));
   CHECK(chi_square_survival(2.0, 2) == doctest::Approx(std::exp(-1.0)).epsilon(1e-12));
-  CHECK(normal_two_sided(1.959964) == doctest::Approx(0.05).epsilon(1e-5));
+  CHECK(normal_two_sided(1.959964) == doctest::Approx(0.05).epsilon(1e-5).scale(0));
 }
 
 TEST_CASE("same truth, independent noise: adequate; stiffer model: elastic regime and stiffness fail") {
@@ -95,14 +95,14 @@ TEST_CASE("same truth, independent noise: adequate; stiffer model: elastic regim
   CHECK_FALSE(bad.adequate);
   const auto& elastic = bad.regimes[static_cast<std::size_t>(Regime::Elastic)];
   CHECK(elastic.beyond_noise);
-  CHECK(elastic.relative_error == doctest::Approx(0.2).epsilon(0.05));  // 20 % stiffer on the rise
+  CHECK(elastic.relative_error == doctest::Approx(0.2).epsilon(0.05).scale(0));  // 20 % stiffer on the rise
   CHECK(elastic.mean_residual > 2);
   CHECK(bad.verdict.find("elastic") != std::string::npos);
   bool stiffness_flagged = false;
   for (const auto& f : bad.features)
     if (f.feature == Feature::Stiffness) {
       stiffness_flagged = f.beyond_noise;
-      CHECK(f.relative_error == doctest::Approx(0.2).epsilon(0.02));
+      CHECK(f.relative_error == doctest::Approx(0.2).epsilon(0.02).scale(0));
     }
   CHECK(stiffness_flagged);
   // Regimes cover the grid without gaps, in order.
@@ -156,7 +156,7 @@ TEST_CASE("fracture transients: crack initiation at the first significant drop, 
   // load falls to 1.0 N, rings back up to 1.6 N and falls to 0: two reversals of dF/dw.
   const Curve c = polyline({{0, 0}, {1e-3, 2.0}, {1.05e-3, 1.8}, {1.5e-3, 2.5}, {1.7e-3, 1.0}, {1.8e-3, 1.6}, {2.2e-3, 0}},
                            1e-5, 0.01);
-  CHECK(significant_drop(c) == doctest::Approx(0.05));
+  CHECK(significant_drop(c) == doctest::Approx(0.05).scale(0));
   const FeatureValues f = curve_features(c);
   CHECK(*f[Feature::PeakForce] == doctest::Approx(2.5));
   CHECK(*f[Feature::InitiationForce] == doctest::Approx(2.0));
@@ -176,14 +176,14 @@ TEST_CASE("fracture transients: crack initiation at the first significant drop, 
   // w = 1.052 mm: initiation is the last point before, at 2.05 N; the overshoot is 27 %.
   const Curve bent = polyline({{0, 0}, {1e-3, 2.0}, {1.6e-3, 2.6}, {2e-3, 0}}, 1e-5, 0.01);
   const CrackInitiation at_bend = crack_initiation(bent);
-  CHECK(at_bend.displacement == doctest::Approx(1.05e-3).epsilon(0.01));
+  CHECK(at_bend.displacement == doctest::Approx(1.05e-3).epsilon(0.01).scale(0));
   CHECK(at_bend.force == doctest::Approx(2.05).epsilon(0.01));
   CHECK(*curve_features(bent)[Feature::InitiationForce] == doctest::Approx(at_bend.force));
   // The first drop of the cracked curve above: at 2.0 N and 1 mm, before its overshoot to 2.5 N.
-  CHECK(crack_initiation(c).displacement == doctest::Approx(1e-3));
+  CHECK(crack_initiation(c).displacement == doctest::Approx(1e-3).scale(0));
   // A record cut while the load is still 60 % of F_max: the failure point is its end (a lower bound).
   const Curve cut = polyline({{0, 0}, {1e-3, 2.5}, {1.2e-3, 1.5}}, 1e-5, 0.01);
-  CHECK(*curve_features(cut)[Feature::FailureDisplacement] == doctest::Approx(1.2e-3));
+  CHECK(*curve_features(cut)[Feature::FailureDisplacement] == doctest::Approx(1.2e-3).scale(0));
 }
 
 TEST_CASE("a model that fails later than the specimens is penalised by the failure point") {

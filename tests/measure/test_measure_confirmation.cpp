@@ -29,7 +29,7 @@ TEST_CASE("a refit that helps but leaves structure is a partial explanation, not
   const auto d = decide_from_refits(60, {{"machine_compliance", 17}}, 11, 2);
   CHECK(d.effects[0].share_explained > 0.5);
   CHECK(d.effects[0].delta_aic < 0);
-  CHECK(d.effects[0].p_after == doctest::Approx(0.030).epsilon(0.05));
+  CHECK(d.effects[0].p_after == doctest::Approx(0.030).epsilon(0.05).scale(0));
   CHECK(d.verdict == kUnexplained);
   CHECK(d.best_partial == "machine_compliance");
 }
@@ -77,8 +77,8 @@ TEST_CASE("a base refit that is already within noise makes the data adequate, wh
   const auto d = decide_from_refits(
       13.7, {{"bond_softening", 16.2}, {"compression_asymmetry", 34.2}, {"weibull_strength", 20.3}, {"bond_viscosity", 9.8}},
       11, 2);
-  CHECK(d.base_p == doctest::Approx(0.133).epsilon(0.02));
-  CHECK(d.effects[3].p_drop == doctest::Approx(0.048).epsilon(0.02));
+  CHECK(d.base_p == doctest::Approx(0.133).epsilon(0.02).scale(0));
+  CHECK(d.effects[3].p_drop == doctest::Approx(0.048).epsilon(0.02).scale(0));
   CHECK_FALSE(d.effects[3].named);
   CHECK(d.verdict == kAdequate);
   CHECK(d.best_partial.empty());
@@ -94,7 +94,7 @@ TEST_CASE("the drop of a named refit must be significant for the number of refit
   // p_drop = 0.0077, below 0.05 / 2 with two refits and below 0.05 / 6 = 0.0083 with six, not
   // below 0.05 / 7 = 0.0071 with seven.
   const auto two = decide_from_refits(19.4, {{"asymmetry", 12.3}, {"other", 25.0}}, 11, 2);
-  CHECK(two.effects[0].p_drop == doctest::Approx(0.0077).epsilon(0.02));
+  CHECK(two.effects[0].p_drop == doctest::Approx(0.0077).epsilon(0.02).scale(0));
   CHECK(two.verdict == "asymmetry");
   std::vector<RefitOutcome> seven{{"asymmetry", 12.3}};
   for (int k = 0; k < 6; ++k) seven.push_back({"other" + std::to_string(k), 25.0});
@@ -129,7 +129,7 @@ TEST_CASE("a refit that explains most of the excess but leaves structure is kept
   const auto d = decide_from_refits(RefitOutcome{"base refit", 60, 0.256},
                                     {{"machine_compliance", 20, 0.114}, {"bond_softening", 45, 0.20}}, 11, 2);
   CHECK(d.effects[0].share_explained == doctest::Approx(40.0 / 51));
-  CHECK(d.effects[0].p_after == doctest::Approx(0.0103).epsilon(0.02));
+  CHECK(d.effects[0].p_after == doctest::Approx(0.0103).epsilon(0.02).scale(0));
   CHECK(d.effects[0].qualifies);
   CHECK_FALSE(d.effects[0].named);
   CHECK(d.verdict == kUnexplained);
@@ -162,7 +162,7 @@ TEST_CASE("a later step's converged refits: a real second effect passes the path
   // degrees of freedom, p 0.41); converged compliance drops it to 2.112, p_drop 0.0248: below the
   // step's own level 0.05 / 2, above the path's 0.05 / 4. Nothing to name: the remainder is noise.
   const auto toe = decide_from_refits(7.149, {{"self_weight", 6.752}, {"machine_compliance", 2.112}}, 10, 3, path);
-  CHECK(toe.effects[1].p_drop == doctest::Approx(0.0248).epsilon(0.01));
+  CHECK(toe.effects[1].p_drop == doctest::Approx(0.0248).epsilon(0.01).scale(0));
   CHECK(toe.verdict == kAdequate);
   CHECK(decide_from_refits(7.149, {{"self_weight", 6.752}, {"machine_compliance", 2.112}}, 10, 3).verdict ==
         "machine_compliance");
@@ -175,12 +175,12 @@ TEST_CASE("a calibration's gain is credited to the base parameters unless the ef
   CHECK(base_made.total == doctest::Approx(61));
   CHECK(base_made.by_base == doctest::Approx(60));
   CHECK(base_made.by_effect == doctest::Approx(1));
-  CHECK(base_made.effect_p == doctest::Approx(0.3173).epsilon(1e-3));  // P(chi^2(1) > 1)
+  CHECK(base_made.effect_p == doctest::Approx(0.3173).epsilon(1e-3).scale(0));  // P(chi^2(1) > 1)
   CHECK_FALSE(base_made.effect_supported);
   // An effect that drops chi^2 by 10 more (p = 0.0016) earns its parameter.
   const GainCredit earned = credit_gain(100, 40, 30);
   CHECK(earned.effect_supported);
-  CHECK(earned.effect_p == doctest::Approx(0.00157).epsilon(0.01));
+  CHECK(earned.effect_p == doctest::Approx(0.00157).epsilon(0.01).scale(0));
   // A drop of 3: p = 0.083, not significant although above the AIC penalty 2.
   CHECK_FALSE(credit_gain(100, 40, 37).effect_supported);
 }
@@ -206,7 +206,7 @@ TEST_CASE("a rate effect refit on one loading rate is neither named nor kept, bu
   // The unidentifiable refit does not share the Bonferroni level: one nameable refit, 0.05 / 1.
   // A drop of 5 (p 0.025) passes at 0.05 / 1 and would fail at 0.05 / 2.
   const auto one = decide_from_refits({"base refit", 13.5, 0.1}, {{"a", 8.5, 0.08}, viscosity}, 11, 2);
-  CHECK(one.effects[0].p_drop == doctest::Approx(0.0253).epsilon(0.01));
+  CHECK(one.effects[0].p_drop == doctest::Approx(0.0253).epsilon(0.01).scale(0));
   CHECK(one.effects[0].qualifies);
   // Alone, it would have been named: unexplained, with its name kept for the report; not kept either.
   const auto alone = decide_from_refits({"base refit", 60, 0.12}, {{"bond_softening", 40, 0.1}, viscosity}, 11, 2);

@@ -202,14 +202,14 @@ plausible_factor = 0.25
     return s;
   };
   const TestScales scales = test_scales({{specimen_peaking_at(0.05)}, {specimen_peaking_at(0.01)}});
-  CHECK(scales.time_to_peak == doctest::Approx(0.01));
+  CHECK(scales.time_to_peak == doctest::Approx(0.01).scale(0));
   CHECK(scales.peak_force == doctest::Approx(2.5));
-  CHECK(scales.secant_compliance == doctest::Approx(4e-4));
+  CHECK(scales.secant_compliance == doctest::Approx(4e-4).scale(0));
   const auto resolved = with_test_plausible(lib, scales);
-  CHECK(resolved[0].plausible == doctest::Approx(1e-3));
-  CHECK(resolved[1].plausible == doctest::Approx(1e-4));
+  CHECK(resolved[0].plausible == doctest::Approx(1e-3).scale(0));
+  CHECK(resolved[1].plausible == doctest::Approx(1e-4).scale(0));
   // With the model run 5 x faster (--time-compression 5) its times are a fifth.
-  CHECK(test_scales({{specimen_peaking_at(0.01)}}, 5).time_to_peak == doctest::Approx(0.002));
+  CHECK(test_scales({{specimen_peaking_at(0.01)}}, 5).time_to_peak == doctest::Approx(0.002).scale(0));
   // A rule that puts the size outside the range is refused, naming the effect and the fix.
   auto negative = lib;
   negative[0].plausible_factor = -0.1;

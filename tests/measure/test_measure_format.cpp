@@ -59,16 +59,16 @@ TEST_CASE("a valid folder reads back with uncertainties from the metadata") {
   REQUIRE(set.specimens.size() == 2);
   const Specimen& a = set.specimens[0];
   CHECK(a.id == "A");
-  CHECK(a.height == doctest::Approx(0.035));
-  CHECK(a.pin_distance == doctest::Approx(0.08));
+  CHECK(a.height == doctest::Approx(0.035).scale(0));
+  CHECK(a.pin_distance == doctest::Approx(0.08).scale(0));
   REQUIRE(a.crack_position);
-  CHECK(*a.crack_position == doctest::Approx(0.004));
+  CHECK(*a.crack_position == doctest::Approx(0.004).scale(0));
   CHECK(*a.fragment_count == doctest::Approx(3));
   CHECK(!set.specimens[1].crack_position);
   REQUIRE(a.curve.size() == 6);
   CHECK(a.curve.force[3] == doctest::Approx(5.5));
   CHECK(a.curve.u_force[3] == doctest::Approx(0.5));
-  CHECK(a.curve.u_displacement[0] == doctest::Approx(1e-6));
+  CHECK(a.curve.u_displacement[0] == doctest::Approx(1e-6).scale(0));
   CHECK(a.fragment_sizes.size() == 3);
   CHECK(set.specimens[1].fragment_sizes.empty());
   CHECK(set.loading_rates().size() == 1);
@@ -85,7 +85,7 @@ TEST_CASE("writer and reader round-trip") {
   REQUIRE(back.specimens.size() == 2);
   CHECK(back.specimens[0].curve.u_force[2] == doctest::Approx(0.75));
   CHECK(back.specimens[0].curve.force == set.specimens[0].curve.force);
-  CHECK(*back.specimens[0].crack_position == doctest::Approx(0.004));
+  CHECK(*back.specimens[0].crack_position == doctest::Approx(0.004).scale(0));
   CHECK(back.metadata.load_cell_uncertainty == doctest::Approx(0.5));
 }
 

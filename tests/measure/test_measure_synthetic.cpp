@@ -46,17 +46,17 @@ TEST_CASE("noise, offset and quantisation have the requested sizes") {
     CHECK(std::abs(rec.displacement[k] - truth.displacement[k]) <= 0.5 * s.displacement_step + 1e-12);
   }
   // 1001 readings: the sample sd is within 3 x 0.3 / sqrt(2 x 1000) of 0.3.
-  CHECK(sample_sd(err) == doctest::Approx(0.3).epsilon(0.07));
+  CHECK(sample_sd(err) == doctest::Approx(0.3).epsilon(0.07).scale(0));
   CHECK(std::abs(mean(err)) < 3 * 0.3 / std::sqrt(1000.0));
   CHECK(rec.u_force[0] == doctest::Approx(0.3));
-  CHECK(rec.u_displacement[0] == doctest::Approx(5e-6 / std::sqrt(12.0)));
+  CHECK(rec.u_displacement[0] == doctest::Approx(5e-6 / std::sqrt(12.0)).scale(0));
 
   // Specimen scatter: force scale sd over many specimens.
   SensorModel scatter;
   scatter.specimen_scatter = 0.05;
   std::vector<double> scales;
   for (int i = 0; i < 400; ++i) scales.push_back(record(truth, scatter, rng).force.back() / truth.force.back());
-  CHECK(sample_sd(scales) == doctest::Approx(0.05).epsilon(0.15));  // sd of an sd estimate: 1/sqrt(2 x 400) = 3.5 %
+  CHECK(sample_sd(scales) == doctest::Approx(0.05).epsilon(0.15).scale(0));  // sd of an sd estimate: 1/sqrt(2 x 400) = 3.5 %
 }
 
 TEST_CASE("seating closure: hyperbolic toe in series, half the gap at F_h, the full gap at large force") {
@@ -103,12 +103,12 @@ TEST_CASE("a synthetic set: each rate's specimens recorded, zeroed at the preloa
   CHECK(set.specimens[0].span == 0.16);
   CHECK(set.specimens[0].crack_position == 0.004);
   CHECK(set.specimens[0].fragment_sizes.size() == 2);
-  CHECK(set.metadata.load_cell_uncertainty == doctest::Approx(0.05));  // hypot(0.03, 0.04)
+  CHECK(set.metadata.load_cell_uncertainty == doctest::Approx(0.05).scale(0));  // hypot(0.03, 0.04)
   // Zeroed where the (noisy) force first reaches 0.5 N: d = 0 there, the force read 0.5 N plus
   // the known offset, within the noise's few sigma.
   const Curve& c = set.specimens[0].curve;
   CHECK(c.displacement.front() == 0);
-  CHECK(c.force.front() == doctest::Approx(0.5 + 0.2).epsilon(0.3));
+  CHECK(c.force.front() == doctest::Approx(0.5 + 0.2).epsilon(0.3).scale(0));
   // One noise stream over the set: the second rate's record is another draw of the same truth.
   CHECK(set.specimens[1].curve.force != c.force);
 }

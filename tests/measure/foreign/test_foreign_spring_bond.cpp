@@ -21,12 +21,12 @@ TEST_CASE("foreign spring bond: pure axial stretch and compression give F = k_n 
     pair.compute(model);
     REQUIRE_FALSE(pair.broken());
     // r - r0 is one rounding of (r0 + dx) - r0: relative 1e-16 of r0 / dx <= 1.7e-9 at dx = 1e-7.
-    CHECK(pair.force_on_first().x() == doctest::Approx(p.normal_stiffness * dx).epsilon(1e-8));
+    CHECK(pair.force_on_first().x() == doctest::Approx(p.normal_stiffness * dx).epsilon(1e-8).scale(0));
     CHECK(pair.force_on_first().y() == 0);
     CHECK(pair.force_on_first().z() == 0);
     CHECK(pair.scene.torque_i[0].norm() == 0);
     CHECK(pair.scene.torque_j[0].norm() == 0);
-    CHECK(pair.scene.energy[0] == doctest::Approx(0.5 * p.normal_stiffness * dx * dx).epsilon(1e-8));
+    CHECK(pair.scene.energy[0] == doctest::Approx(0.5 * p.normal_stiffness * dx * dx).epsilon(1e-8).scale(0));
   }
 }
 
@@ -156,8 +156,8 @@ TEST_CASE("foreign spring bond: bending and twisting springs, shear by translati
   pair.place(0, 0, Quat::Identity(), Quat(Eigen::AngleAxisd(phi, Vec3::UnitX())));
   pair.compute(model);
   // Twist of the second sphere by phi: torque -k_t phi on it, +k_t phi on the first.
-  CHECK(pair.scene.torque_j[0].x() == doctest::Approx(-p.twisting_stiffness * phi).epsilon(1e-9));
-  CHECK(pair.scene.torque_i[0].x() == doctest::Approx(p.twisting_stiffness * phi).epsilon(1e-9));
+  CHECK(pair.scene.torque_j[0].x() == doctest::Approx(-p.twisting_stiffness * phi).epsilon(1e-9).scale(0));
+  CHECK(pair.scene.torque_i[0].x() == doctest::Approx(p.twisting_stiffness * phi).epsilon(1e-9).scale(0));
   CHECK(pair.force_on_first().norm() < 1e-12);
 
   // A small sideways offset dy without turning the spheres: shear force k_s dy on the first
@@ -165,9 +165,9 @@ TEST_CASE("foreign spring bond: bending and twisting springs, shear by translati
   const double dy = 1e-7;
   pair.place(0, dy);
   pair.compute(model);
-  CHECK(pair.force_on_first().y() == doctest::Approx(p.shear_stiffness * dy).epsilon(1e-6));
-  CHECK(pair.scene.torque_i[0].z() == doctest::Approx(0.5 * SpringPair::rest * p.shear_stiffness * dy).epsilon(1e-6));
-  CHECK(pair.scene.torque_j[0].z() == doctest::Approx(pair.scene.torque_i[0].z()).epsilon(1e-12));
+  CHECK(pair.force_on_first().y() == doctest::Approx(p.shear_stiffness * dy).epsilon(1e-6).scale(0));
+  CHECK(pair.scene.torque_i[0].z() == doctest::Approx(0.5 * SpringPair::rest * p.shear_stiffness * dy).epsilon(1e-6).scale(0));
+  CHECK(pair.scene.torque_j[0].z() == doctest::Approx(pair.scene.torque_i[0].z()).epsilon(1e-12).scale(0));
 }
 
 TEST_CASE("foreign spring bond: the stable step is 0.17 sqrt(m / k) of the stiffest spring") {
