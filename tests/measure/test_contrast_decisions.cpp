@@ -90,7 +90,7 @@ TEST_CASE("one library effect: named with its size; a null set: no difference") 
   CHECK(diagnosis_of(d, s, "null").decision.verdict == kNoDifference);
   const SetDiagnosis& soft = diagnosis_of(d, s, "softening");
   REQUIRE(soft.decision.verdict == "bond_softening");
-  CHECK(value_of(soft, "bond_softening") == doctest::Approx(1.5).epsilon(0.2));
+  CHECK(value_of(soft, "bond_softening") == doctest::Approx(1.5).epsilon(0.2).scale(0));
   const SetDiagnosis& comp = diagnosis_of(d, s, "compliance");
   REQUIRE(comp.decision.verdict == kMachineCompliance);
   CHECK(value_of(comp, kMachineCompliance) == doctest::Approx(5e-5).epsilon(0.2).scale(0));
@@ -101,11 +101,11 @@ TEST_CASE("one library effect: named with its size; a null set: no difference") 
   CHECK(value_of(slip, "support_friction") <= 0.05);  // at or near the bound 0: a sixth of the way back to 0.3
   const SetDiagnosis& grip = diagnosis_of(d, s, "more friction");
   REQUIRE(grip.decision.verdict == "support_friction");
-  CHECK(value_of(grip, "support_friction") == doctest::Approx(0.45).epsilon(0.1));
+  CHECK(value_of(grip, "support_friction") == doctest::Approx(0.45).epsilon(0.1).scale(0));
   // Already the linear size, before any confirmation run: from the trial on the data's side (0.5),
   // not extrapolated from the lubricated trial (0.1), which would ask for ~0.9.
   for (const auto& f : grip.linear.fits)
-    if (f.name == "support_friction") CHECK(library()[1].value_at(f.scale) == doctest::Approx(0.45).epsilon(0.15));
+    if (f.name == "support_friction") CHECK(library()[1].value_at(f.scale) == doctest::Approx(0.45).epsilon(0.15).scale(0));
   // The named effect's simulated contrast reproduces the measured contrast curve.
   CHECK(soft.after.nrmse < 0.5 * soft.before.nrmse);
 }
@@ -265,7 +265,7 @@ TEST_CASE("a pair whose second effect lies on the other side of the reference th
   const std::set<std::string> named{both.pair->first, both.pair->second};
   CHECK(named == std::set<std::string>{"bond_softening", "support_friction"});
   const double friction = both.pair->first == "support_friction" ? both.pair_values[0] : both.pair_values[1];
-  CHECK(friction == doctest::Approx(0.5).epsilon(0.15));
+  CHECK(friction == doctest::Approx(0.5).epsilon(0.15).scale(0));
 }
 
 TEST_CASE("calibrating the named effect cuts the contrast NRMSE") {
@@ -278,7 +278,7 @@ TEST_CASE("calibrating the named effect cuts the contrast NRMSE") {
   REQUIRE(s.sets.names[2] == "softening");
   const ContrastCalibration c =
       calibrate_contrast(s.sets, 2, s.simulator, base, {library()[0]}, options, s.log);
-  CHECK(c.values[0] == doctest::Approx(1.5).epsilon(0.15));
+  CHECK(c.values[0] == doctest::Approx(1.5).epsilon(0.15).scale(0));
   CHECK(c.after.nrmse < 0.5 * c.before.nrmse);
 }
 
@@ -293,7 +293,7 @@ TEST_CASE("a calibration whose scan reaches a size that does not run leaves that
   ModelPlan base;
   base.scene = "fake.toml";
   const ContrastCalibration c = calibrate_contrast(s.sets, 2, s.simulator, base, {library()[0]}, options, s.log);
-  CHECK(c.values[0] == doctest::Approx(1.5).epsilon(0.15));
+  CHECK(c.values[0] == doctest::Approx(1.5).epsilon(0.15).scale(0));
   CHECK(s.log.str().find("did not run and is left out") != std::string::npos);
   for (const auto& [value, chi_square] : c.scan) CHECK(value <= 6);
 }
@@ -309,8 +309,8 @@ TEST_CASE("the model at the lab's reported grain size") {
   s.sets.sets[0].metadata.test.grain_size = 0.004;
   const ModelPlan lab = base_at_grain_size(s.sets, s.simulator, base, true, log);
   // The scene's 5.0-6.5 mm (mean 5.75 mm) scaled by 4 / 5.75: 3.478-4.522 mm, mean 4 mm.
-  CHECK(s.simulator.parameter(lab, "generator.diameter_min") == doctest::Approx(0.005 * 4 / 5.75));
-  CHECK(s.simulator.parameter(lab, "generator.diameter_max") == doctest::Approx(0.0065 * 4 / 5.75));
+  CHECK(s.simulator.parameter(lab, "generator.diameter_min") == doctest::Approx(0.005 * 4 / 5.75).scale(0));
+  CHECK(s.simulator.parameter(lab, "generator.diameter_max") == doctest::Approx(0.0065 * 4 / 5.75).scale(0));
   CHECK(log.str().find("4.3x the cost") != std::string::npos);  // (5.75 / 4)^4 = 4.27
 }
 
@@ -336,7 +336,7 @@ TEST_CASE("a name the curve does not bear out is withheld") {
     d.after.u_simulated = {0.02};
     return d;
   };
-  REQUIRE(naming_floor(named(0, 0).after) == doctest::Approx(0.04123).epsilon(1e-3));
+  REQUIRE(naming_floor(named(0, 0).after) == doctest::Approx(0.04123).epsilon(1e-3).scale(0));
   std::vector<SetDiagnosis> sets{named(0.0615, 90), named(0.0625, 90), named(0.02, 40), named(0.0615, 90)};
   sets[3].after.nrmse = 0.25;  // the whole contrast curve worse than the base's: the foreign friction batch's case
   require_curve_agreement(sets, ContrastOptions{});
@@ -379,13 +379,13 @@ TEST_CASE("the state of an effect in a model: overrides, then the scene; the mov
   CHECK(*effect_state(m, gravity) == doctest::Approx(-4.9));
   const CandidateEffect compliance = effect(kMachineCompliance, kMachineCompliance, 0, 3e-5, 0, 1e-2);
   m.machine_compliance = 2e-5;
-  CHECK(*effect_state(m, compliance) == doctest::Approx(2e-5));
+  CHECK(*effect_state(m, compliance) == doctest::Approx(2e-5).scale(0));
   // A compliance effect adds to the model's own: it is not moved, or it would count the
   // reference's compliance twice.
   std::ostringstream log;
   const auto centred = centred_on_reference({compliance, gravity}, m, log);
   CHECK(centred[0].neutral == 0);
-  CHECK(centred[0].plausible == doctest::Approx(3e-5));
+  CHECK(centred[0].plausible == doctest::Approx(3e-5).scale(0));
   CHECK(centred[1].neutral == doctest::Approx(-4.9));  // the gravity the model already has
   CHECK(centred[1].plausible == doctest::Approx(-14.71));
 }
@@ -477,9 +477,9 @@ TEST_CASE("what a verdict rests on: a base assumption moved, each shown model re
   REQUIRE(soft.assumptions.size() == 1);
   REQUIRE(comp.assumptions.size() == 1);
   CHECK(soft.assumptions[0].assumption == "support.friction=0.6");
-  CHECK(soft.assumptions[0].size_ratio == doctest::Approx(1).epsilon(0.05));
+  CHECK(soft.assumptions[0].size_ratio == doctest::Approx(1).epsilon(0.05).scale(0));
   CHECK(soft.assumptions[0].curve_agrees);
-  CHECK(comp.assumptions[0].size_ratio == doctest::Approx(0.84).epsilon(0.06));
+  CHECK(comp.assumptions[0].size_ratio == doctest::Approx(0.84).epsilon(0.06).scale(0));
   CHECK(diagnosis_of(d, s, "null").assumptions.empty());  // nothing shown, nothing to rerun
 }
 
@@ -515,7 +515,7 @@ TEST_CASE("a rate-independent name for a strength difference needs the set's two
   const SetDiagnosis& tight = diagnosis_of(d, s, "tight");
   REQUIRE(tight.rate_sensitivity);
   CHECK(tight.rate_sensitivity->subcritical == doctest::Approx(std::log(5.0) / 21).epsilon(1e-9));
-  CHECK(tight.rate_sensitivity->strength_contrast == doctest::Approx(std::log(1.15)).epsilon(0.3));
+  CHECK(tight.rate_sensitivity->strength_contrast == doctest::Approx(std::log(1.15)).epsilon(0.3).scale(0));
   // 2 % at each rate over four specimens: u ~ 0.014, a 95 % half-width of ~0.035 resolves it.
   CHECK(tight.rate_sensitivity->resolved());
   CHECK(std::abs(tight.rate_sensitivity->change) < tight.rate_sensitivity->half_width);

@@ -41,9 +41,9 @@ Curve brittle(double k, double f_max, double dw) {
 
 TEST_CASE("Hotelling's test of one component is Student's two-sided t test") {
   // t(0.975, 10) = 2.228139 (tables): T^2 = t^2 with nu = 10 has p = 0.05.
-  CHECK(hotelling_p(2.228139 * 2.228139, 1, 10, 1) == doctest::Approx(0.05).epsilon(1e-4));
+  CHECK(hotelling_p(2.228139 * 2.228139, 1, 10, 1) == doctest::Approx(0.05).epsilon(1e-4).scale(0));
   // More degrees of freedom approach the normal: t(0.975, 1e6) -> 1.959964.
-  CHECK(hotelling_p(1.959964 * 1.959964, 1, 1e6, 1) == doctest::Approx(0.05).epsilon(1e-3));
+  CHECK(hotelling_p(1.959964 * 1.959964, 1, 1e6, 1) == doctest::Approx(0.05).epsilon(1e-3).scale(0));
   CHECK(hotelling_p(0, 3, 20, 3) == 1.0);
   // Fewer specimens than components: the F test has no denominator degrees of freedom and the
   // chi-square(m) limit is used (P(chi^2(2) > 2 ln 20) = 0.05 exactly).
@@ -103,7 +103,7 @@ TEST_CASE("a chance direction is called significant as often as its level says")
   // 20,000 null draws: a share of 0.01 has a binomial sd of 0.0007, so 0.0025 is 3.5 sd.
   NullContrasts one_rate{1, 15, 20000};
   CHECK(one_rate.share_below(0.01, [](const ContrastDecision& c) { return c.fits.front().p_drop; }) ==
-        doctest::Approx(0.01).epsilon(0.25));
+        doctest::Approx(0.01).epsilon(0.25).scale(0));
   // The drop alone against F(1, nu - p + 1), the estimate's error left out, is 11 x too bold.
   NullContrasts bold{1, 15, 20000};
   const double old_rule = bold.share_below(0.01, [](const ContrastDecision& c) {
@@ -142,7 +142,7 @@ TEST_CASE("components of an analytic brittle curve") {
   const Curve c = brittle(k, f_max, dw);
   const ContrastScale scale = contrast_scale({c});
   CHECK(scale.f_ref == doctest::Approx(f_max));
-  CHECK(scale.w_ref == doctest::Approx(f_max / k));
+  CHECK(scale.w_ref == doctest::Approx(f_max / k).scale(0));
   const auto x = contrast_components(c);
   REQUIRE(x.size() == contrast_component_names().size());
   CHECK(x[0] == doctest::Approx(std::log(k)).epsilon(1e-9));          // the elastic fit of a line is exact
@@ -150,7 +150,7 @@ TEST_CASE("components of an analytic brittle curve") {
   CHECK(x[2] == doctest::Approx(std::log(f_max / k)));
   CHECK(x[3] == doctest::Approx(std::log(0.5 * f_max * f_max / k)).epsilon(1e-6));  // trapezoids of a line
   CHECK(x[4] == doctest::Approx(0).epsilon(1e-9));                    // linear to the peak
-  CHECK(x[5] == doctest::Approx(std::log((f_max / k + dw) / (f_max / k))));  // 0.4 F_max < F_max / 2: parted at the first reading after the peak
+  CHECK(x[5] == doctest::Approx(std::log((f_max / k + dw) / (f_max / k))).scale(0));  // 0.4 F_max < F_max / 2: parted at the first reading after the peak
   Curve flat = c;
   for (auto& f : flat.force) f = -f;
   CHECK_THROWS(contrast_components(flat));  // no rise: a sign convention error, said so
