@@ -39,9 +39,9 @@ TEST_CASE("the notched bar of scenes/bar_pull parts at its notch into two fragme
     const bool left = frame.id[k] < 90;
     CHECK((result.labels[k] == expected_fragment_of_id0) == left);
   }
-  // Once the notch has parted the pulled half rings along the bar (fundamental ~1 ms: gaps of
-  // 9 x 2.0e4 N/m between layers of 1.4e-4 kg, modal damping ~1 %), so its centre's velocity at any
-  // one frame is off 10 mm/s by several cm/s (0.029 m/s at the last). What it does follow is the
+  // Once the notch has parted the pulled half rings along the bar (fundamental ~1 ms: 9 gaps
+  // of 1.8e5 N/m in series between layers of 1.4e-4 kg, modal damping ~1 %), so its centre's
+  // velocity at any one frame is off 10 mm/s by several cm/s (0.029 m/s at the last). What it does follow is the
   // puller's displacement, up to the stretch the half held when the notch bond broke: its
   // sigma_crit pi r_b^2 = 0.75 N over 9 gaps of 1.8e5 N/m, 3.8e-5 m.
   const auto& pulled = result.fragments[result.labels[0] == 0 ? 1 : 0];
