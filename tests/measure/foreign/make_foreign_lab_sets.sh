@@ -37,7 +37,7 @@
 # Sensor model for all: 2 % specimen scatter, 0.05 N load-cell noise, 0.02 N per-specimen zero
 # error (tare sd), 1 um displacement steps; lab conditions recorded in metadata.toml [test]: the
 # pins reach their rate along a 1-cos ramp over 25 ms, each curve starts at a 0.5 N seating
-# preload, the load cell reads 0.05 N at zero load.
+# preload, the load cell reads 0.05 N at zero load, the grains are 3.9 mm across.
 set -euo pipefail
 if [[ $# -lt 4 || $# -gt 5 ]]; then
   echo "usage: $0 SHARD PLUGIN_DIR OUT WORK [WORKERS]" >&2
@@ -54,8 +54,10 @@ fi
 mkdir -p "$out" "$work"
 
 step=1e-6
+# The lab reports its grain size ([test] grain_size): the lattice's 3.7-4.1 mm spheres, 3.9 mm mean.
 sensor=(--scatter 0.02 --force-noise 0.05 --force-offset 0.02 --displacement-step "$step" --seeds 4
-        --ramp 1-cos --ramp-time 0.025 --seating-preload 0.5 --zero-offset 0.05 --workers "$workers")
+        --ramp 1-cos --ramp-time 0.025 --seating-preload 0.5 --zero-offset 0.05 --grain-size 3.9e-3
+        --workers "$workers")
 frame=(3e-5 1.15e-4)   # foreign_frame.py's C [m/N] and H [m/N^(2/3)]
 draw=${FOREIGN_DRAW:-0}
 
