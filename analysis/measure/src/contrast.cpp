@@ -49,10 +49,13 @@ double form_chi_square(const Eigen::VectorXd& d, const Eigen::MatrixXd& w, const
   return r.dot(c.llt().solve(r));
 }
 
+// The estimate's components not yet fitted once `fitted` directions are taken out.
+double unfitted(const ScatterEstimate& noise, double fitted) { return std::max(1.0, noise.dimension - fitted); }
+
 // A remainder's p: Hotelling's test of the components left once `fitted` directions are taken
 // out, of the contrast's m and of the estimate's p alike.
 double remainder_p(double chi_square, double m, const ScatterEstimate& noise, double fitted) {
-  return hotelling_p(chi_square, std::max(1.0, m - fitted), noise.dof, std::max(1.0, noise.dimension - fitted));
+  return hotelling_p(chi_square, std::max(1.0, m - fitted), noise.dof, unfitted(noise, fitted));
 }
 
 void judge_pair(ContrastPairFit& p, const Eigen::VectorXd& d, const Eigen::MatrixXd& w, const Eigen::VectorXd& model,
@@ -60,7 +63,7 @@ void judge_pair(ContrastPairFit& p, const Eigen::VectorXd& d, const Eigen::Matri
   const auto m = static_cast<double>(d.size());
   p.chi_square = quadratic_chi_square(d, w, model);
   p.drop = first_chi_square - p.chi_square;
-  p.p_drop = added_direction_p(p.drop, p.chi_square, noise.dof, std::max(1.0, noise.dimension - 1));
+  p.p_drop = added_direction_p(p.drop, p.chi_square, noise.dof, unfitted(noise, 1));
   p.chi_square_form = form_chi_square(d, w, model, options.form_tolerance);
   p.p_after = remainder_p(p.chi_square_form, m, noise, 2);
 }
@@ -209,7 +212,7 @@ ContrastDecision decide_contrast(const std::vector<double>& difference, const st
     fit.drop = out.chi_square - fit.chi_square;
     // The weight is estimated from the specimens' scatter, and its error enters the drop as well
     // as the remainder: Rao's test weighs the one by the other.
-    fit.p_drop = added_direction_p(fit.drop, fit.chi_square, noise.dof, noise.dimension);
+    fit.p_drop = added_direction_p(fit.drop, fit.chi_square, noise.dof, unfitted(noise, 0));
     // The remainder judged with the effect's form tolerance (ContrastOptions::form_tolerance).
     fit.chi_square_form = form_chi_square(d, w, fit.scale * t, options.form_tolerance);
     fit.p_after = remainder_p(fit.chi_square_form, m, noise, 1);

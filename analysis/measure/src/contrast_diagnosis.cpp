@@ -210,7 +210,7 @@ ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simula
   require_resolved_rate_dependence(out.sets, study, trials[0], out.effects, options.decide);
   if (!options.assumptions.empty())
     assess_assumptions(study, out.effects, out.sets, options.assumptions, options.decide, log);
-  out.dof = study.dof();
+  out.dof = study.noise().dof;
   for (std::size_t gi = 0; gi < study.groups().size(); ++gi)
     out.scatter.push_back({study.groups()[gi].set, study.groups()[gi].rate, study.scatter().ratio[gi],
                            contrast_component_names()[study.scatter().component[gi]], study.scatter().p_value[gi],

@@ -75,8 +75,8 @@ struct ScatterEstimate {
 // whose covariance is an estimate of dimension p with nu degrees of freedom (k = p: exact). With
 // k = q p (q rates on one estimate) the same F keeps the statistic's mean q p nu / (nu - p - 1)
 // and errs on the safe side in its tail (simulated: 3.9 % below 0.05 at p 8, q 2, nu 15-60);
-// chi^2(k) there, the estimate ignored, called 100 % of such null sets different. Falls back to
-// chi^2(k) when nu - p + 1 < 1 (fewer specimens than components).
+// chi^2(k) there, the estimate ignored, called over 95 % of such null sets different. Falls
+// back to chi^2(k) when nu - p + 1 < 1 (fewer specimens than components).
 double hotelling_p(double t_square, double k, double nu, double p);
 
 // P(F > (nu - p + 1) drop / (nu + after)) for F ~ F(1, nu - p + 1): Rao's test of the

@@ -63,7 +63,6 @@ class ContrastStudy {
   // `own_scatter_p`: ContrastOptions::own_scatter_p (0: every set in the pooled scatter).
   ContrastStudy(const ContrastSets& sets, Simulator& simulator, ModelPlan base, double own_scatter_p = 0);
 
-  double dof() const { return scatter_.dof; }
   // The pooled scatter as the contrasts' decisions read it (contrast.hpp: ScatterEstimate).
   ScatterEstimate noise() const {
     return {scatter_.dof, static_cast<double>(contrast_component_names().size())};
