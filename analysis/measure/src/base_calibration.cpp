@@ -30,7 +30,6 @@ struct BaseTargets {
   std::vector<Specimen> reference;  // the specimens at the scale rate the form is compared with
   const Metadata* metadata = nullptr;
   bool form = false;  // the post-peak regime is a target too
-  StiffnessBand band;  // the study's elastic line (contrast_components)
 };
 
 BaseTargets base_targets(const ContrastSets& sets, const std::vector<ContrastGroup>& groups,
@@ -66,7 +65,7 @@ BaseTargets base_targets(const ContrastSets& sets, const std::vector<ContrastGro
 Eigen::VectorXd base_residual(const BaseTargets& t, const std::vector<Specimen>& sims, const Comparison* band,
                               Comparison& own) {
   std::vector<std::vector<double>> rows;
-  for (const auto& s : sims) rows.push_back(contrast_components(s.curve, t.band));
+  for (const auto& s : sims) rows.push_back(contrast_components(s.curve));
   const std::vector<double> f = component_mean(rows);
   Eigen::VectorXd z(static_cast<Eigen::Index>(kScaleTargets + (t.form ? 1 : 0)));
   for (std::size_t i = 0; i < kScaleTargets; ++i) z(static_cast<Eigen::Index>(i)) = (f[i] - t.target[i]) / t.u_target[i];
@@ -167,8 +166,7 @@ BaseCalibration ContrastStudy::calibrate_base(const std::vector<std::string>& ke
   cal.uncertainty.assign(keys.size(), 0.0);
   cal.at_range_bound.assign(keys.size(), false);
   cal.form_targets = keys.size() > 2;
-  BaseTargets t = base_targets(sets_, groups_, scatter_, scale_rate_, cal.form_targets);
-  t.band = band_;
+  const BaseTargets t = base_targets(sets_, groups_, scatter_, scale_rate_, cal.form_targets);
   std::vector<Specimen> final_sims;
   Eigen::MatrixXd last_jacobian;
   for (int it = 0; it <= iterations; ++it) {

@@ -107,20 +107,16 @@ std::size_t peak_index(const Curve& c) {
 }
 
 ElasticFit elastic_fit(const Curve& c) {
-  const double f_max = c.force[peak_index(c)];
-  return elastic_fit_between(c, kElasticLow * f_max, kElasticHigh * f_max);
-}
-
-ElasticFit elastic_fit_between(const Curve& c, double low, double high) {
   const std::size_t p = peak_index(c);
+  const double f_max = c.force[p];
   std::vector<std::size_t> rows;
   for (std::size_t k = 0; k <= p; ++k)
-    if (c.force[k] >= low && c.force[k] <= high) rows.push_back(k);
+    if (c.force[k] >= kElasticLow * f_max && c.force[k] <= kElasticHigh * f_max) rows.push_back(k);
   if (rows.size() < 2) {
     // A coarse curve: take the secant between the last point below and the first point above the
     // middle of the window, so that the fit is still a slope of the rising branch.
     std::size_t above = 0;
-    while (above < p && c.force[above] < 0.5 * (low + high)) ++above;
+    while (above < p && c.force[above] < 0.5 * f_max) ++above;
     rows = {above > 0 ? above - 1 : 0, std::max<std::size_t>(above, 1)};
   }
   const double n = static_cast<double>(rows.size());

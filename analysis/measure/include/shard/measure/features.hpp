@@ -78,10 +78,7 @@ struct ElasticFit {
 };
 
 std::size_t peak_index(const Curve& c);
-// The least-squares line of the rise between 10 % and 60 % of the curve's own F_max.
 ElasticFit elastic_fit(const Curve& c);
-// The same between two forces (N) on the rise to the peak.
-ElasticFit elastic_fit_between(const Curve& c, double low, double high);
 // The threshold a load drop or swing must exceed to count (initiation_force, oscillations).
 double significant_drop(const Curve& c);
 FeatureValues curve_features(const Curve& c);
