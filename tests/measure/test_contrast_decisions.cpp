@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "contrast_report.hpp"
 #include "fake_simulator.hpp"
 #include "shard/measure/contrast_calibration.hpp"
 #include "shard/measure/contrast_diagnosis.hpp"
@@ -202,6 +203,30 @@ TEST_CASE("a set that scatters seven times wider carries its own scatter and lea
   CHECK(soft.decision.verdict == "bond_softening");
   const std::string wild_verdict = diagnosis_of(with, *wild, "wild").decision.verdict;
   CHECK((wild_verdict == kNoDifference || wild_verdict == kUnexplainedDifference));
+}
+
+TEST_CASE("a 'no difference' says how large a difference the specimens would have seen") {
+  // Five sets of four: 15 degrees of freedom for 8 components, whose 5 % point is
+  // 15 x 8 / 8 x F(8, 8; 0.95) = 51.6, 3.3 x chi^2(8)'s 15.5: the report says a smaller difference
+  // goes unseen. Eleven sets of four (33): 33 x 8 / 26 x F(8, 26; 0.95) = 23.6, and nothing more.
+  const auto null_section = [](Study& s) {
+    const ContrastDiagnosis d = s.run();
+    const std::string md = shard::contrast_markdown(shard::ContrastReport{s.sets, d});
+    REQUIRE(diagnosis_of(d, s, "null").decision.verdict == kNoDifference);
+    const std::size_t from = md.find("\n## null\n");
+    return md.substr(from, md.find("\n## ", from + 1) - from);
+  };
+  Study starved;
+  for (std::uint64_t k = 0; k < 3; ++k) starved.add("batch " + std::to_string(k), measured({}, 20000 + 1000 * k));
+  const std::string few = null_section(starved);
+  CHECK(few.find("A difference would have been seen from T^2 = 51.6 on") != std::string::npos);
+  CHECK(few.find("a smaller difference goes unseen with these specimens") != std::string::npos);
+  Study pooled;
+  for (std::uint64_t k = 0; k < 9; ++k) pooled.add("batch " + std::to_string(k), measured({}, 20000 + 1000 * k));
+  const std::string many = null_section(pooled);
+  CHECK(many.find("A difference would have been seen from T^2 = 23.6 on (at 0.05; 15.5 with the scatter known)") !=
+        std::string::npos);
+  CHECK(many.find("goes unseen") == std::string::npos);
 }
 
 TEST_CASE("an effect outside the library: unexplained difference, no name") {

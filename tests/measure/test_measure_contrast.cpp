@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "shard/measure/contrast.hpp"
@@ -48,6 +49,16 @@ TEST_CASE("Hotelling's test of one component is Student's two-sided t test") {
   // Fewer specimens than components: the F test has no denominator degrees of freedom and the
   // chi-square(m) limit is used (P(chi^2(2) > 2 ln 20) = 0.05 exactly).
   CHECK(hotelling_p(2 * std::log(20.0), 2, 1, 2) == doctest::Approx(0.05).epsilon(1e-9));
+}
+
+TEST_CASE("the smallest T^2 the test sees at a level: the inverse of its p, and the t test's square") {
+  CHECK(hotelling_critical(0.05, 1, 10, 1) == doctest::Approx(2.228139 * 2.228139).epsilon(1e-6));
+  for (const auto& [k, nu] : {std::pair{8.0, 30.0}, std::pair{16.0, 9.0}, std::pair{8.0, 15.0}})
+    CHECK(hotelling_p(hotelling_critical(0.05, k, nu, 8), k, nu, 8) == doctest::Approx(0.05).epsilon(1e-9));
+  // A starved pool: 9 degrees of freedom for 8 components leave F(16, 2), whose 5 % point is
+  // 19.43 (tables): T^2 1399, fifty times chi^2(16)'s 26.30.
+  CHECK(hotelling_critical(0.05, 16, 9, 8) == doctest::Approx(9.0 * 16 / 2 * 19.43).epsilon(1e-3));
+  CHECK(hotelling_critical(0.05, 2, 1, 2) == doctest::Approx(2 * std::log(20.0)).epsilon(1e-9));  // the chi^2 limit
 }
 
 // Null contrasts judged against an estimated scatter: p = 8 components, their covariance

@@ -169,6 +169,13 @@ double hotelling_p(double t_square, double k, double nu, double p) {
   return boost::math::cdf(boost::math::complement(f, d2 / (nu * k) * t_square));
 }
 
+double hotelling_critical(double level, double k, double nu, double p) {
+  const double d2 = nu - p + 1;
+  if (d2 < 1) return chi_square_critical(level, k);
+  const boost::math::fisher_f_distribution<double> f(k, d2);
+  return nu * k / d2 * boost::math::quantile(boost::math::complement(f, level));
+}
+
 double added_direction_p(double drop, double after, double nu, double p) {
   if (!(drop > 0)) return 1;
   const double d2 = nu - p + 1;

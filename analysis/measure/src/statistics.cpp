@@ -15,6 +15,8 @@ double chi_square_survival(double x, double dof) {
   return boost::math::gamma_q(dof / 2, x / 2);  // the regularised upper incomplete gamma
 }
 
+double chi_square_critical(double level, double dof) { return 2 * boost::math::gamma_q_inv(dof / 2, level); }
+
 double normal_two_sided(double z) { return std::erfc(std::abs(z) / std::sqrt(2.0)); }
 
 double satterthwaite_dof(std::span<const VarianceTerm> estimated, double known_variance) {

@@ -7,6 +7,8 @@ namespace shard::measure {
 // P(X > x) for X ~ chi-square with `dof` degrees of freedom (Boost.Math's regularised upper
 // incomplete gamma); NaN for a NaN x or dof <= 0.
 double chi_square_survival(double x, double dof);
+// The x with chi_square_survival(x, dof) = level (Boost.Math's inverse of the same gamma).
+double chi_square_critical(double level, double dof);
 // Two-sided p-value of a standard normal score z.
 double normal_two_sided(double z);
 
