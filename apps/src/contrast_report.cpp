@@ -101,9 +101,32 @@ std::string withheld_for_rate_text(const SetDiagnosis& d, const std::string& nam
       100 * s.change, 100 * s.half_width, s.exponent, 100 * s.subcritical, s.specimens_needed(), s.specimens_per_rate);
 }
 
+// A name withheld because the set carries its own scatter (withhold_names_of_own_scatter): the
+// widest of its groups, and what would let the set be tested on its own.
+std::string withheld_for_scatter_text(const ContrastReport& r, const SetDiagnosis& d, const std::string& name) {
+  const ContrastDecision& c = d.decision;
+  const ContrastDiagnosis::GroupScatterLine* widest = nullptr;
+  for (const auto& g : r.result.scatter)
+    if (g.set == d.set && g.own && (!widest || g.ratio > widest->ratio)) widest = &g;
+  const std::size_t specimens = r.sets.sets[d.set].specimens.size();
+  const std::string scatter =
+      widest ? fmt::format("its {} varies {:.1f} x as much as the other sets' (p {:.2g})", widest->component,
+                           widest->ratio, widest->p_value)
+             : std::string("its specimens scatter beyond the other sets'");
+  return fmt::format(
+      "{} differs from the reference (T^2 = {:.1f}, p = {:.2g}): unexplained difference. The closest, {}, explains "
+      "{:.0f} % of T^2, but {}, so the set carries its own scatter, estimated from {} specimens: too few to test what "
+      "the name leaves unexplained. A scatter that wide is a difference of its own (beams that slide on their "
+      "supports, a strength that scatters more, a batch that is not one population), which no shift of the mean "
+      "describes: look at this set's curves one by one before `shard calibrate` `--with {}`.",
+      name, c.chi_square, c.p_value, d.withheld, 100 * d.share, scatter, specimens,
+      d.withheld.substr(0, d.withheld.find(" + ")));
+}
+
 // A name the component statistics gave and the curve did not bear out: a lead, never a name.
 std::string withheld_text(const ContrastReport& r, const SetDiagnosis& d, const std::string& name) {
-  if (d.withheld_for_rate) return withheld_for_rate_text(d, name);
+  if (d.withheld_by == WithheldBy::rate) return withheld_for_rate_text(d, name);
+  if (d.withheld_by == WithheldBy::own_scatter) return withheld_for_scatter_text(r, d, name);
   const ContrastDecision& c = d.decision;
   const bool curve_misses = !curve_agrees(d.after);
   std::string why = !improves_on_base(d)
@@ -463,6 +486,15 @@ io::Json assumptions_json(const SetDiagnosis& d) {
   return out;
 }
 
+const char* withheld_by_name(WithheldBy by) {
+  switch (by) {
+    case WithheldBy::curve: return "curve";
+    case WithheldBy::rate: return "rate";
+    case WithheldBy::own_scatter: return "own_scatter";
+  }
+  return "";
+}
+
 io::Json rate_sensitivity_json(const SetDiagnosis& d) {
   if (!d.rate_sensitivity) return nullptr;
   const RateSensitivity& s = *d.rate_sensitivity;
@@ -478,8 +510,7 @@ io::Json rate_sensitivity_json(const SetDiagnosis& d) {
           {"subcritical_exponent", s.exponent},
           {"resolved", s.resolved()},
           {"specimens_per_rate", s.specimens_per_rate},
-          {"specimens_needed", s.specimens_needed()},
-          {"withheld_for_rate", d.withheld_for_rate}};
+          {"specimens_needed", s.specimens_needed()}};
 }
 
 io::Json set_json(const ContrastReport& r, const SetDiagnosis& d) {
@@ -490,6 +521,7 @@ io::Json set_json(const ContrastReport& r, const SetDiagnosis& d) {
           {"p_value", c.p_value},
           {"verdict", c.verdict},
           {"withheld", d.withheld},
+          {"withheld_by", d.withheld.empty() ? "" : withheld_by_name(d.withheld_by)},
           {"named_by_curve", d.named_by_curve},
           {"share_explained", d.share},
           {"nrmse_base", d.before.nrmse},

@@ -205,6 +205,32 @@ TEST_CASE("a set that scatters seven times wider carries its own scatter and lea
   CHECK((wild_verdict == kNoDifference || wild_verdict == kUnexplainedDifference));
 }
 
+TEST_CASE("a set that carries its own scatter is not named: its closest is a lead") {
+  // A softened batch whose specimens scatter seven times wider than the others'. Pooled in, its
+  // contrast fits the softening and is named; set apart (--own-scatter 0.01), its covariance
+  // rests on its own four specimens and the name is withheld, the softening its closest.
+  auto study = [](double own_scatter_p) {
+    auto s = std::make_unique<Study>();
+    for (std::uint64_t k = 0; k < 4; ++k) s->add("null " + std::to_string(k), measured({}, 6000 + 1000 * k));
+    s->add("wild softening", fake::measured_set({{"fake.softening", 1.5}}, 11000, 0, 0.14));
+    s->options.decide.own_scatter_p = own_scatter_p;
+    return s;
+  };
+  auto pooled = study(0);
+  CHECK(diagnosis_of(pooled->run(), *pooled, "wild softening").decision.verdict == "bond_softening");
+  auto apart = study(0.01);
+  const ContrastDiagnosis d = apart->run();
+  const SetDiagnosis& wild = diagnosis_of(d, *apart, "wild softening");
+  CHECK(wild.decision.verdict == kUnexplainedDifference);
+  CHECK(wild.withheld == "bond_softening");
+  CHECK(wild.withheld_by == WithheldBy::own_scatter);
+  CHECK(wild.share > 0.9);  // the closest still explains most of T^2: a lead worth following
+  const std::string md = shard::contrast_markdown(shard::ContrastReport{apart->sets, d});
+  CHECK(md.find("so the set carries its own scatter, estimated from 4 specimens") != std::string::npos);
+  for (const auto& set : d.sets)
+    if (apart->sets.names[set.set] != "wild softening") CHECK(set.withheld_by != WithheldBy::own_scatter);
+}
+
 TEST_CASE("a 'no difference' says how large a difference the specimens would have seen") {
   // Five sets of four: 15 degrees of freedom for 8 components, whose 5 % point is
   // 15 x 8 / 8 x F(8, 8; 0.95) = 51.6, 3.3 x chi^2(8)'s 15.5: the report says a smaller difference
@@ -552,7 +578,7 @@ TEST_CASE("a rate-independent name for a strength difference needs the set's two
   CHECK(wide.rate_sensitivity->specimens_needed() > 4);
   CHECK(wide.decision.verdict == kUnexplainedDifference);
   CHECK(wide.withheld == "compression_asymmetry");
-  CHECK(wide.withheld_for_rate);
+  CHECK(wide.withheld_by == WithheldBy::rate);
 }
 
 TEST_CASE("the specimens per rate that would resolve a rate dependence scale with the square of the interval") {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "shard/measure/contrast.hpp"
+#include "shard/measure/features.hpp"
 
 using namespace shard::measure;
 
@@ -32,6 +33,23 @@ Curve brittle(double k, double f_max, double dw) {
   }
   c.displacement.push_back(w_peak + dw), c.force.push_back(0.4 * f_max);
   c.displacement.push_back(w_peak + 2 * dw), c.force.push_back(0.0);
+  for (std::size_t i = 0; i < c.size(); ++i) c.time.push_back(static_cast<double>(i));
+  c.u_displacement.assign(c.size(), 1e-7);
+  c.u_force.assign(c.size(), 1e-3);
+  return c;
+}
+
+// A rise that stiffens with the load, F = k w (1 + w / w0) (seating contacts that flatten), to
+// a brittle drop at f_max.
+Curve stiffening(double k, double w0, double f_max, double dw) {
+  Curve c;
+  c.id = "stiffening";
+  double w = 0;
+  for (; k * w * (1 + w / w0) <= f_max; w += dw) {
+    c.displacement.push_back(w);
+    c.force.push_back(k * w * (1 + w / w0));
+  }
+  c.displacement.push_back(w), c.force.push_back(0.3 * f_max);
   for (std::size_t i = 0; i < c.size(); ++i) c.time.push_back(static_cast<double>(i));
   c.u_displacement.assign(c.size(), 1e-7);
   c.u_force.assign(c.size(), 1e-3);
@@ -165,6 +183,53 @@ TEST_CASE("components of an analytic brittle curve") {
   Curve flat = c;
   for (auto& f : flat.force) f = -f;
   CHECK_THROWS(contrast_components(flat));  // no rise: a sign convention error, said so
+}
+
+TEST_CASE("the contrast's stiffness is a chord between fixed loads: a higher peak on the same rise leaves it") {
+  // One stiffening rise (slope 2e4 N/m at rest, 5x that at 40 N), broken at 40 N and at 52 N:
+  // the same material, one stronger. Between the study's fixed loads (10-40 % of the reference's
+  // 40 N) both have one slope, to the sampling's round-off; between 10 % and 60 % of each curve's
+  // own peak the stronger one reads stiffer, and its nonlinearity moves with it.
+  const double k = 2e4, w0 = 5e-4, dw = 1e-7;
+  const Curve weak = stiffening(k, w0, 40, dw), strong = stiffening(k, w0, 52, dw);
+  const StiffnessBand band = stiffness_band(contrast_scale({weak}));
+  const double peak = weak.force[peak_index(weak)];  // the last sample below 40 N
+  CHECK(band.low == doctest::Approx(0.1 * peak).scale(0));
+  CHECK(band.high == doctest::Approx(0.4 * peak).scale(0));
+  const auto a = contrast_components(weak, band), b = contrast_components(strong, band);
+  CHECK(b[0] - a[0] == doctest::Approx(0).epsilon(1e-4));  // the rows differ by one sample at most
+  const auto own_a = contrast_components(weak), own_b = contrast_components(strong);
+  CHECK(own_b[0] - own_a[0] > 0.1);  // the own window climbs the rise: > +10 % in stiffness
+  // A batch too weak for the band (peak 20 N < 16 / 0.6 N): its line is taken below 60 % of its
+  // own peak, still on the rise (between 3 and 12 N: a slope between those of the rise there).
+  const auto weakest = contrast_components(stiffening(k, w0, 20, dw), band);
+  const auto slope_at = [&](double f) { return k * std::sqrt(1 + 4 * f / (k * w0)); };  // dF/dw at F
+  CHECK(std::exp(weakest[0]) > slope_at(3));
+  CHECK(std::exp(weakest[0]) < slope_at(12));
+}
+
+TEST_CASE("the line between fixed loads takes the rise's first passage: a slip and a second climb leave it") {
+  // A straight rise of 2e4 N/m to 20 N, a slip back to 5 N at constant load-point speed, and a
+  // second climb at half the slope to a 40 N peak. Between 4 and 16 N only the first passage
+  // counts: its slope is the first rise's; all samples in that range together would mix both.
+  Curve c;
+  const double k = 2e4, dw = 1e-6;
+  double w = 0, f = 0;
+  const auto push = [&] {
+    c.displacement.push_back(w), c.force.push_back(f);
+  };
+  for (; f < 20; w += dw, f = k * w) push();
+  const double w_slip = w;
+  for (; f > 5; w += dw) f = 20 - 1e4 * (w - w_slip), push();
+  const double w_climb = w, f_climb = f;
+  for (; f < 40; w += dw) f = f_climb + 0.5 * k * (w - w_climb), push();
+  w += dw, f = 10, push();
+  for (std::size_t i = 0; i < c.size(); ++i) c.time.push_back(static_cast<double>(i));
+  c.u_displacement.assign(c.size(), 1e-7);
+  c.u_force.assign(c.size(), 1e-3);
+  const ElasticFit line = elastic_fit_between(c, 4, 16);
+  CHECK(line.stiffness == doctest::Approx(k).epsilon(1e-6));
+  CHECK(line.toe_offset == doctest::Approx(0).scale(1e-9));
 }
 
 TEST_CASE("decision: the effect that made the difference is named with its size") {

@@ -32,6 +32,17 @@ struct BaseTargets {
   bool form = false;  // the post-peak regime is a target too
 };
 
+// The reference's components with each curve's own elastic window (contrast_components without a
+// band), the window the simulated base is scored with: the base and the reference share their
+// peak, so the own window compares like with like, and the study's band serves the contrasts
+// between batches of different strength.
+std::vector<double> own_window_mean(const ContrastSets& sets, const ContrastGroup& g) {
+  std::vector<std::vector<double>> rows;
+  for (const auto& sp : sets.sets[g.set].specimens)
+    if (same_rate(sp.loading_rate, g.rate)) rows.push_back(contrast_components(sp.curve));
+  return component_mean(rows);
+}
+
 BaseTargets base_targets(const ContrastSets& sets, const std::vector<ContrastGroup>& groups,
                          const GroupScatter& scatter, double scale_rate, bool form) {
   BaseTargets t;
@@ -43,7 +54,7 @@ BaseTargets base_targets(const ContrastSets& sets, const std::vector<ContrastGro
   for (std::size_t gi = 0; gi < groups.size(); ++gi) {
     const ContrastGroup& g = groups[gi];
     if (same_rate(g.rate, scale_rate) && (!sets.reference || g.set == *sets.reference)) {
-      means.push_back(component_mean(g.components));
+      means.push_back(own_window_mean(sets, g));
       rows.insert(rows.end(), g.components.begin(), g.components.end());
       if (sets.reference) sigma = &scatter.covariance[gi];
     }

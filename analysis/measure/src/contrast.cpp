@@ -21,6 +21,11 @@ namespace {
 // ductility component reads how far past the peak that happens.
 constexpr double kPartedShare = 0.5;
 
+// The stiffness band in shares of the reference's F_max (StiffnessBand): above the seating toe,
+// and its top below 60 % of the peak (the own-window's top) of a batch down to 0.4 / 0.6 of the
+// reference's strength; a weaker specimen's band is scaled down to that 60 % of its own peak.
+constexpr double kBandLow = 0.10, kBandHigh = 0.40, kWeakBatchTop = 0.60;
+
 Eigen::VectorXd to_vector(const std::vector<double>& v) {
   return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
 }
@@ -91,12 +96,28 @@ const std::vector<std::string>& contrast_component_names() {
   return names;
 }
 
-std::vector<double> contrast_components(const Curve& c) {
+StiffnessBand stiffness_band(const ContrastScale& reference) {
+  return {kBandLow * reference.f_ref, kBandHigh * reference.f_ref};
+}
+
+namespace {
+
+ElasticFit contrast_line(const Curve& c, double f_max, const StiffnessBand& band) {
+  if (!(band.high > 0)) return elastic_fit(c);
+  const double high = std::min(band.high, kWeakBatchTop * f_max);
+  return elastic_fit_between(c, band.low * high / band.high, high);
+}
+
+}  // namespace
+
+std::vector<double> contrast_components(const Curve& c, const StiffnessBand& band) {
   const std::size_t p = peak_index(c);
   const FeatureValues f = curve_features(c);
   const CrackInitiation initiation = crack_initiation(c);
   const double f_max = c.force[p];
   const double w_peak = c.displacement[p];
+  const ElasticFit line = contrast_line(c, f_max, band);
+  const double elastic_force_at_peak = line.stiffness * (w_peak - line.toe_offset);
   double w_parted = c.displacement.back();
   for (std::size_t k = p; k < c.size(); ++k)
     if (c.force[k] < kPartedShare * f_max) {
@@ -104,11 +125,11 @@ std::vector<double> contrast_components(const Curve& c) {
       break;
     }
   return {
-      positive_log(*f[Feature::Stiffness], "the stiffness", c),
+      positive_log(line.stiffness, "the stiffness", c),
       positive_log(f_max, "the peak force", c),
       positive_log(w_peak, "the displacement at peak", c),
       positive_log(*f[Feature::WorkToPeak], "the work to peak", c),
-      *f[Feature::Nonlinearity],
+      elastic_force_at_peak > 0 ? 1 - f_max / elastic_force_at_peak : 0.0,
       positive_log(w_parted / w_peak, "the parting-to-peak displacement ratio", c),
       positive_log(initiation.force, "the force at crack initiation", c),
       positive_log(initiation.displacement, "the displacement at crack initiation", c),

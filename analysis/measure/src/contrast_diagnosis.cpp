@@ -150,6 +150,7 @@ void require_curve_agreement(std::vector<SetDiagnosis>& sets, const ContrastOpti
     if (verdict == kNoDifference || verdict == kUnexplainedDifference) continue;
     if (curve_bears_out(d, options) && d.share >= options.min_share) continue;
     d.withheld = verdict;
+    d.withheld_by = WithheldBy::curve;
     d.decision.verdict = kUnexplainedDifference;
     d.decision.rivals.clear();
   }
@@ -171,6 +172,23 @@ void name_by_curve(std::vector<SetDiagnosis>& sets, std::size_t tried, const Con
     d.withheld.clear();
     d.share = share;
     d.named_by_curve = true;
+  }
+}
+
+void withhold_names_of_own_scatter(std::vector<SetDiagnosis>& sets, const ContrastStudy& study) {
+  const auto carries_own_scatter = [&](std::size_t set) {
+    for (std::size_t gi = 0; gi < study.groups().size(); ++gi)
+      if (study.groups()[gi].set == set && study.scatter().own[gi]) return true;
+    return false;
+  };
+  for (auto& d : sets) {
+    const std::string& v = d.decision.verdict;
+    if (v == kNoDifference || v == kUnexplainedDifference || !carries_own_scatter(d.set)) continue;
+    d.withheld = v;
+    d.withheld_by = WithheldBy::own_scatter;
+    d.decision.verdict = kUnexplainedDifference;
+    d.decision.rivals.clear();
+    d.named_by_curve = false;
   }
 }
 
@@ -208,6 +226,7 @@ ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simula
   }
   name_by_curve(out.sets, out.effects.size(), options.decide);
   require_resolved_rate_dependence(out.sets, study, trials[0], out.effects, options.decide);
+  withhold_names_of_own_scatter(out.sets, study);
   if (!options.assumptions.empty())
     assess_assumptions(study, out.effects, out.sets, options.assumptions, options.decide, log);
   out.dof = study.noise().dof;

@@ -188,6 +188,7 @@ ContrastStudy::ContrastStudy(const ContrastSets& sets, Simulator& simulator, Mod
       for (const auto& sp : sets_.sets[k].specimens)
         if (same_rate(sp.loading_rate, scale_rate_)) scale_curves.push_back(sp.curve);
   measured_scale_ = contrast_scale(scale_curves);
+  band_ = stiffness_band(measured_scale_);
 
   std::vector<std::vector<std::vector<double>>> pooled;
   for (std::size_t k = 0; k < sets_.sets.size(); ++k) {
@@ -201,7 +202,7 @@ ContrastStudy::ContrastStudy(const ContrastSets& sets, Simulator& simulator, Mod
       group.reference_rate = *std::min_element(reference_rates.begin(), reference_rates.end(), [&](double a, double b) {
         return std::abs(std::log(a / group.rate)) < std::abs(std::log(b / group.rate));
       });
-      for (const auto& sp : g.specimens[r]) group.components.push_back(contrast_components(sp.curve));
+      for (const auto& sp : g.specimens[r]) group.components.push_back(contrast_components(sp.curve, band_));
       pooled.push_back(group.components);
       groups_.push_back(std::move(group));
     }
@@ -258,7 +259,7 @@ ContrastScale ContrastStudy::simulated_scale(const Simulated& base) const {
 
 std::vector<std::vector<double>> ContrastStudy::components(const Simulated& model, double rate) const {
   std::vector<std::vector<double>> rows;
-  for (const auto& c : model.curves[rate_index(rate)]) rows.push_back(contrast_components(c));
+  for (const auto& c : model.curves[rate_index(rate)]) rows.push_back(contrast_components(c, band_));
   return rows;
 }
 

@@ -106,17 +106,16 @@ std::size_t peak_index(const Curve& c) {
   return static_cast<std::size_t>(std::max_element(c.force.begin(), c.force.end()) - c.force.begin());
 }
 
-ElasticFit elastic_fit(const Curve& c) {
+namespace {
+
+// The least-squares line through the rows of the rise; with fewer than two, the secant between the
+// last point below and the first point above `middle`, so that the fit is still a slope of the
+// rising branch of a coarse curve.
+ElasticFit line_through(const Curve& c, std::vector<std::size_t> rows, double middle) {
   const std::size_t p = peak_index(c);
-  const double f_max = c.force[p];
-  std::vector<std::size_t> rows;
-  for (std::size_t k = 0; k <= p; ++k)
-    if (c.force[k] >= kElasticLow * f_max && c.force[k] <= kElasticHigh * f_max) rows.push_back(k);
   if (rows.size() < 2) {
-    // A coarse curve: take the secant between the last point below and the first point above the
-    // middle of the window, so that the fit is still a slope of the rising branch.
     std::size_t above = 0;
-    while (above < p && c.force[above] < 0.5 * f_max) ++above;
+    while (above < p && c.force[above] < middle) ++above;
     rows = {above > 0 ? above - 1 : 0, std::max<std::size_t>(above, 1)};
   }
   const double n = static_cast<double>(rows.size());
@@ -134,6 +133,26 @@ ElasticFit elastic_fit(const Curve& c) {
   fit.toe_offset = fit.stiffness != 0 ? mw - mf / fit.stiffness : 0;
   fit.u_stiffness = std::sqrt(uf2 / sww);
   return fit;
+}
+
+}  // namespace
+
+ElasticFit elastic_fit(const Curve& c) {
+  const std::size_t p = peak_index(c);
+  const double f_max = c.force[p];
+  std::vector<std::size_t> rows;
+  for (std::size_t k = 0; k <= p; ++k)
+    if (c.force[k] >= kElasticLow * f_max && c.force[k] <= kElasticHigh * f_max) rows.push_back(k);
+  return line_through(c, std::move(rows), 0.5 * f_max);
+}
+
+ElasticFit elastic_fit_between(const Curve& c, double low, double high) {
+  const std::size_t p = peak_index(c);
+  std::size_t first = 0;
+  while (first < p && c.force[first] < low) ++first;
+  std::vector<std::size_t> rows;
+  for (std::size_t k = first; k <= p && c.force[k] <= high; ++k) rows.push_back(k);
+  return line_through(c, std::move(rows), 0.5 * (low + high));
 }
 
 FeatureValues curve_features(const Curve& c) {

@@ -100,7 +100,7 @@ void require_resolved_rate_dependence(std::vector<SetDiagnosis>& sets, const Con
     const RateSensitivity& r = *d.rate_sensitivity;
     if (!rate_independent || !r.strength_differs() || r.resolved()) continue;
     d.withheld = d.decision.verdict;
-    d.withheld_for_rate = true;
+    d.withheld_by = WithheldBy::rate;
     d.decision.verdict = kUnexplainedDifference;
     d.decision.rivals.clear();
   }

@@ -49,9 +49,24 @@ struct ContrastScale {
 };
 ContrastScale contrast_scale(const std::vector<Curve>& curves);
 
+// The load range of a contrast's elastic line (its stiffness, and the nonlinearity measured from
+// it): one range in newtons for every curve a study's contrasts compare, measured and simulated,
+// as a chord modulus is taken between fixed loads. A range that follows each curve's own peak climbs a
+// curved rising branch with the peak: on the default beam, whose rise stiffens with the load, a
+// bond softening that raised F_max 30 % raised that slope 14 % (the same slope between fixed
+// loads: 0 %), a stiffness change no lab's softening shows.
+struct StiffnessBand {
+  double low = 0, high = 0;  // N; high 0: each curve's own 10-60 % of its F_max
+};
+// 10-40 % of the reference's mean F_max (ContrastScale::f_ref): below 60 % of the peak of a
+// batch down to two thirds of the reference's strength.
+StiffnessBand stiffness_band(const ContrastScale& reference);
+
 const std::vector<std::string>& contrast_component_names();
-// The components of one curve; throws when the curve has no rise to a peak.
-std::vector<double> contrast_components(const Curve& c);
+// The components of one curve; throws when the curve has no rise to a peak. A curve whose peak
+// lies below the band's top / 0.6 has its line taken over the band scaled down to 60 % of its
+// own peak.
+std::vector<double> contrast_components(const Curve& c, const StiffnessBand& band = {});
 
 // The rows' mean, component by component.
 std::vector<double> component_mean(const std::vector<std::vector<double>>& rows);

@@ -53,6 +53,13 @@ struct AssumptionSensitivity {
   bool curve_agrees = false;           // within curve_floor_factor x naming_floor, as a name needs
 };
 
+// The rule that withheld a set's name (SetDiagnosis::withheld).
+enum class WithheldBy {
+  curve,        // its curve or its share of T^2 does not bear it out (require_curve_agreement)
+  rate,         // its rates cannot resolve its strength's rate dependence (require_resolved_rate_dependence)
+  own_scatter,  // the set carries its own scatter (withhold_names_of_own_scatter)
+};
+
 struct SetDiagnosis {
   std::size_t set = 0;
   ContrastStudy::Contrast contrast;
@@ -80,10 +87,11 @@ struct SetDiagnosis {
   std::string withheld;
   // Named by its curve (name_by_curve): the components beyond the rising branch differ beyond noise.
   bool named_by_curve = false;
-  // The set's rate dependence of its strength, when it was tested at two or more rates; and whether
-  // a name was withheld because of it (require_resolved_rate_dependence).
+  // Which rule withheld it.
+  WithheldBy withheld_by = WithheldBy::curve;
+  // The set's rate dependence of its strength, when it was tested at two or more rates
+  // (require_resolved_rate_dependence).
   std::optional<RateSensitivity> rate_sensitivity;
-  bool withheld_for_rate = false;
   // How the shown model (named, or the closest) fares when a condition the base assumes is moved
   // (ContrastDiagnosisOptions::assumptions), one per assumption.
   std::vector<AssumptionSensitivity> assumptions;
@@ -137,6 +145,16 @@ void name_by_curve(std::vector<SetDiagnosis>& sets, std::size_t tried, const Con
 void require_resolved_rate_dependence(std::vector<SetDiagnosis>& sets, const ContrastStudy& study,
                                       const ContrastStudy::Simulated& base,
                                       const std::vector<CandidateEffect>& effects, const ContrastOptions& options);
+
+// A set that carries its own scatter (GroupScatter::own) is not named: its verdict reads
+// "unexplained difference" with the name as its closest. Its covariance takes, component by
+// component, the larger of its own standard deviation and the pool's, the first from n - 1 = 3
+// degrees of freedom for four specimens, yet its tests refer it to the pool's: the widened
+// covariance lets a remainder pass as noise that the pool would reject. On the default-size
+// foreign study a frictionless-roller set, whose beams slid off their supports in 2-3 of 4
+// specimens, was named weibull_strength that way. A scatter that wide is a difference of its
+// own, which no shift of the mean describes.
+void withhold_names_of_own_scatter(std::vector<SetDiagnosis>& sets, const ContrastStudy& study);
 
 // The names a verdict gives: the pair's two, the single effect, or none.
 std::vector<std::string> named_effects(const SetDiagnosis& d, const ContrastOptions& options = {});

@@ -78,7 +78,12 @@ struct ElasticFit {
 };
 
 std::size_t peak_index(const Curve& c);
+// The least-squares line of the rise between 10 % and 60 % of the curve's own F_max.
 ElasticFit elastic_fit(const Curve& c);
+// The same over the rise's first passage from `low` to `high` (N): from its first sample at `low`
+// or above to its last before it exceeds `high`, so a rise that slips back and climbs again is
+// taken once.
+ElasticFit elastic_fit_between(const Curve& c, double low, double high);
 // The threshold a load drop or swing must exceed to count (initiation_force, oscillations).
 double significant_drop(const Curve& c);
 FeatureValues curve_features(const Curve& c);
