@@ -110,7 +110,7 @@ std::string withheld_for_scatter_text(const ContrastReport& r, const SetDiagnosi
     if (g.set == d.set && g.own && (!widest || g.ratio > widest->ratio)) widest = &g;
   const std::size_t specimens = r.sets.sets[d.set].specimens.size();
   const std::string scatter =
-      widest ? fmt::format("its {} varies {:.1f} x as much as the other sets' (p {:.2g})", widest->component,
+      widest ? fmt::format("its {} has {:.3g} x the other sets' variance (p {:.2g})", widest->component,
                            widest->ratio, widest->p_value)
              : std::string("its specimens scatter beyond the other sets'");
   return fmt::format(
@@ -118,7 +118,7 @@ std::string withheld_for_scatter_text(const ContrastReport& r, const SetDiagnosi
       "{:.0f} % of T^2, but {}, so the set carries its own scatter, estimated from {} specimens: too few to test what "
       "the name leaves unexplained. A scatter that wide is a difference of its own (beams that slide on their "
       "supports, a strength that scatters more, a batch that is not one population), which no shift of the mean "
-      "describes: look at this set's curves one by one before `shard calibrate` `--with {}`.",
+      "describes: look at this set's curves one by one before you `shard calibrate` this set `--with {}`.",
       name, c.chi_square, c.p_value, d.withheld, 100 * d.share, scatter, specimens,
       d.withheld.substr(0, d.withheld.find(" + ")));
 }
