@@ -82,12 +82,12 @@ struct SetDiagnosis {
   double pair_values[2] = {0, 0};
   std::size_t seconds_tried = 0;
   // The share of T^2 the verdict explains (for an unexplained difference: the closest effect's or
-  // pair's), and the name the statistics gave but the curve did not bear out (empty otherwise).
+  // pair's), and the name the statistics gave but a rule withheld (empty otherwise).
   double share = 0;
   std::string withheld;
   // Named by its curve (name_by_curve): the components beyond the rising branch differ beyond noise.
   bool named_by_curve = false;
-  // Which rule withheld it.
+  // The rule that withheld `withheld`.
   WithheldBy withheld_by = WithheldBy::curve;
   // The set's rate dependence of its strength, when it was tested at two or more rates
   // (require_resolved_rate_dependence).
