@@ -117,7 +117,6 @@ std::vector<double> contrast_components(const Curve& c, const StiffnessBand& ban
   const double f_max = c.force[p];
   const double w_peak = c.displacement[p];
   const ElasticFit line = contrast_line(c, f_max, band);
-  const double elastic_force_at_peak = line.stiffness * (w_peak - line.toe_offset);
   double w_parted = c.displacement.back();
   for (std::size_t k = p; k < c.size(); ++k)
     if (c.force[k] < kPartedShare * f_max) {
@@ -129,7 +128,7 @@ std::vector<double> contrast_components(const Curve& c, const StiffnessBand& ban
       positive_log(f_max, "the peak force", c),
       positive_log(w_peak, "the displacement at peak", c),
       positive_log(*f[Feature::WorkToPeak], "the work to peak", c),
-      elastic_force_at_peak > 0 ? 1 - f_max / elastic_force_at_peak : 0.0,
+      line.nonlinearity(f_max, w_peak),
       positive_log(w_parted / w_peak, "the parting-to-peak displacement ratio", c),
       positive_log(initiation.force, "the force at crack initiation", c),
       positive_log(initiation.displacement, "the displacement at crack initiation", c),

@@ -169,8 +169,8 @@ FeatureValues curve_features(const Curve& c) {
   f.sensor_uncertainty[2] = c.u_displacement[p];
   f[Feature::WorkToPeak] = work(c, 0, p);
   f.sensor_uncertainty[3] = work_uncertainty(c, 0, p);
-  const double elastic_force_at_peak = fit.stiffness * (w_peak - fit.toe_offset);
-  f[Feature::Nonlinearity] = elastic_force_at_peak > 0 ? 1 - f_max / elastic_force_at_peak : 0.0;
+  const double elastic_force_at_peak = fit.force_at(w_peak);
+  f[Feature::Nonlinearity] = fit.nonlinearity(f_max, w_peak);
   // d(nonlinearity) / dF_max = -1 / (k (w_peak - w0)); the stiffness term is a second-order effect.
   f.sensor_uncertainty[4] = elastic_force_at_peak > 0 ? c.u_force[p] / elastic_force_at_peak : 0.0;
   f[Feature::PostPeakWork] = work(c, p, c.size() - 1);
@@ -216,7 +216,7 @@ CrackInitiation crack_initiation(const Curve& c) {
   for (; k < c.size(); ++k) {
     if (c.force[k] > c.force[top]) top = k;
     if (c.force[top] - c.force[k] > drop) break;
-    const double on_line = line.stiffness * (c.displacement[k] - line.toe_offset);
+    const double on_line = line.force_at(c.displacement[k]);
     if (c.force[k] > line_from && on_line - c.force[k] > drop) break;
   }
   // The last point before the break: the running maximum after a drop, the previous point after

@@ -133,7 +133,7 @@ class ContrastStudy {
   ModelPlan base_;
   std::vector<ContrastGroup> groups_;
   measure::ContrastScale measured_scale_;
-  StiffnessBand band_;     // every curve's elastic line, measured and simulated (stiffness_band)
+  StiffnessBand band_;     // the contrasts' elastic line, measured and simulated (stiffness_band)
   double scale_rate_ = 0;  // the rate whose curves set both scales
   GroupScatter scatter_;
 };

@@ -75,6 +75,14 @@ struct ElasticFit {
   double stiffness = 0;     // N/m
   double toe_offset = 0;    // m, w at which the elastic line reaches F = 0
   double u_stiffness = 0;   // N/m, standard uncertainty from the force noise
+
+  // The line's force at w (N).
+  double force_at(double w) const { return stiffness * (w - toe_offset); }
+  // 1 - F_max / (the line's force at w_peak): how far the curve has left the line at its peak
+  // (0 when the line has no force there).
+  double nonlinearity(double f_max, double w_peak) const {
+    return force_at(w_peak) > 0 ? 1 - f_max / force_at(w_peak) : 0.0;
+  }
 };
 
 std::size_t peak_index(const Curve& c);
