@@ -20,23 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Offset s along the unit direction n at which a cylinder wall (axis a, radius R, centre p + s n)
-// touches the sphere (x, r): the two roots of |(x - p - s n)_perp| = R + r. `first` is the smaller
-// root (the wall arriving from -n), otherwise the larger one; NaN when the sphere is beside it.
-double touch_offset(const Wall& w, const Vec3& n, const Vec3& x, double r, bool first) {
-  const Vec3 a = w.axis.normalized();
-  Vec3 d = x - w.point;
-  if (std::abs(d.dot(a)) > 0.5 * w.length + r) return std::numeric_limits<double>::quiet_NaN();
-  d -= d.dot(a) * a;
-  const Vec3 n_perp = (n - n.dot(a) * a).normalized();
-  const double along = d.dot(n_perp);
-  const double lateral2 = (d - along * n_perp).squaredNorm();
-  const double reach2 = (w.radius + r) * (w.radius + r);
-  if (lateral2 >= reach2) return std::numeric_limits<double>::quiet_NaN();
-  const double h = std::sqrt(reach2 - lateral2);
-  return first ? along - h : along + h;
-}
-
 // A [stop] load wall: a loading pin of the test.
 bool is_load_wall(const Scene& scene, const Wall& w) {
   return std::find(scene.stop.load_walls.begin(), scene.stop.load_walls.end(), w.name) != scene.stop.load_walls.end();
@@ -59,7 +42,7 @@ SceneOverrides BendingFixture::seating_overrides(const fs::path& scene_file, con
     // side and is brought against the body along -n (largest offset).
     double best = loading ? std::numeric_limits<double>::infinity() : -std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < p.size(); ++k) {
-      const double s = touch_offset(w, n, p.position[k], p.radius[k], loading);
+      const double s = cylinder_touch_offset(w, n, p.position[k], p.radius[k], loading);
       if (std::isnan(s)) continue;
       best = loading ? std::min(best, s) : std::max(best, s);
     }

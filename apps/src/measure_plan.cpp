@@ -101,6 +101,7 @@ std::vector<std::vector<Specimen>> EnsembleSimulator::simulate(const std::vector
       Specimen s;
       s.id = fmt::format("sim_seed{}", options_.first_seed + k);
       s.curve = results[i].curve;
+      s.curve.id = fmt::format("{} (run {})", s.id, results[i].key);  // what a message about the curve names
       s.crack_position = results[i].crack_position;
       s.fragment_sizes = results[i].fragment_sizes;
       s = recorded_as_tested(std::move(s), models[m], test_,

@@ -4,8 +4,10 @@
 #include <hdf5.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "health_watch.hpp"
@@ -32,6 +34,54 @@ void start_backend(RunBackend& backend, const RunSpec& spec, const RunStart& sta
                                         e.what()));
     throw SceneError(fmt::format("{}: {}", start.scene.file.string(), e.what()));
   }
+}
+
+// A lab seats its pins on the settled specimen before the test starts, so they do not meet it at
+// the test's speed: each [stop] load wall (a cylinder) is brought along load_direction until it
+// touches the body.
+void seat_load_walls(RunBackend& backend, const Scene& scene, const RunLog& log) {
+  const Vec3 n = scene.stop.load_direction.normalized();
+  const auto& names = scene.stop.load_walls;
+  for (std::size_t w = 0; w < backend.local().walls().size(); ++w) {
+    const Wall& wall = backend.local().walls()[w];
+    if (std::find(names.begin(), names.end(), wall.name) == names.end()) continue;
+    const Particles& p = backend.local().particles();
+    double first = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      const double s = backend.owns(k) ? cylinder_touch_offset(wall, n, p.position[k], p.radius[k], true)
+                                      : std::numeric_limits<double>::quiet_NaN();
+      if (!std::isnan(s)) first = std::min(first, s);
+    }
+    const std::vector<double> each = backend.gather_over_ranks({first});
+    first = *std::min_element(each.begin(), each.end());
+    if (!std::isfinite(first) || first <= 0) continue;  // nothing under it, or on the body already
+    backend.on_all([&] { backend.local().shift_wall(w, first * n); });
+    if (log.info) log.info(fmt::format("seated {} {:.4g} mm along the load direction onto the settled body", wall.name, first * 1e3));
+  }
+}
+
+// The body at rest under gravity before the loading ([simulation] settle_time): the walls held,
+// the settling damping, the clock from -settle_time to 0. Says how far from rest it came, as the
+// kinetic energy left against the work its weight did while it settled.
+void settle(RunBackend& backend, const Scene& scene, const RunLog& log) {
+  const double dt = backend.local().dt();
+  const auto steps = static_cast<std::int64_t>(std::ceil(scene.settle_time / dt));
+  const Energies before = backend.energies();
+  backend.on_all([&] { backend.local().begin_settling(static_cast<double>(steps) * dt, scene.settle_damping); });
+  for (std::int64_t k = 0; k < steps; ++k) backend.step();
+  backend.on_all([&] { backend.local().end_settling(); });
+  const Energies after = backend.energies();
+  const double weight_work = before.gravity - after.gravity;
+  const double left = weight_work > 0 ? after.kinetic / weight_work : 0.0;
+  if (log.info)
+    log.info(fmt::format("settled {:g} s ({} steps, damping {:g}): kinetic energy {:.3g} J left, {:.2g} of the "
+                         "{:.3g} J its weight did",
+                         scene.settle_time, steps, scene.settle_damping, after.kinetic, left, weight_work));
+  if (left > 0.01 && log.warning)
+    log.warning(fmt::format("{}: the body is still moving after settling ({:.2g} of its weight's work is kinetic "
+                            "energy); raise [simulation] settle_time or settle_damping",
+                            scene.file.string(), left));
+  seat_load_walls(backend, scene, log);
 }
 
 // Opens `writer` on the run file: a new one, or on a restart a new one holding the interrupted run's content up to
@@ -196,6 +246,7 @@ RunResult run_scene(const RunSpec& spec, const PluginHost& host, const std::vect
   RunResult result;
   result.particles = start.restart_point ? start.restart_point->simulation.particles.size() : part.whole.particles;
   start_backend(backend, spec, start, part);
+  if (!start.restarting && scene.settle_time > 0) settle(backend, scene, log);
   Simulation& sim = backend.local();
   // The network as the run began: a restart counts the bonds broken before it too, so the progress
   // line's intact / initial and broken add up.

@@ -225,7 +225,9 @@ void write_walls(hid_t file, const std::vector<WallState>& walls, const Layout& 
   std::vector<Vec3> velocity, displacement, force, torque;
   std::vector<double> contact_work, stored_energy;
   std::vector<std::int64_t> impacts;
+  std::vector<Vec3> point;
   for (const auto& w : walls) {
+    point.push_back(w.point);
     velocity.push_back(w.velocity);
     displacement.push_back(w.displacement);
     force.push_back(w.force);
@@ -241,6 +243,7 @@ void write_walls(hid_t file, const std::vector<WallState>& walls, const Layout& 
   put(g.get(), "contact_work", contact_work, l, Table::shared);
   put(g.get(), "stored_energy", stored_energy, l, Table::shared);
   put(g.get(), "impacts", impacts, l, Table::shared);
+  put(g.get(), "point", point, l, Table::shared);
 }
 
 // A column that checkpoints written before it existed lack: `fallback` for each of n rows.
@@ -261,12 +264,14 @@ std::vector<WallState> read_walls(hid_t file) {
   const auto contact_work = get_or<double>(g.get(), "contact_work", n, 0.0);
   const auto stored_energy = get_or<double>(g.get(), "stored_energy", n, 0.0);
   const auto impacts = get_or<std::int64_t>(g.get(), "impacts", n, 0);
-  if (displacement.size() != n || force.size() != n || torque.size() != n || contact_work.size() != n ||
+  // Checkpoints before walls could be seated after settling: the scene's point (WallState::point).
+  const auto point = h5::path_exists(g.get(), "point") ? get_vec3(g.get(), "point") : std::vector<Vec3>(n, WallState{}.point);
+  if (point.size() != n || displacement.size() != n || force.size() != n || torque.size() != n || contact_work.size() != n ||
       stored_energy.size() != n || impacts.size() != n)
     throw CheckpointError("the wall columns differ in length");
   std::vector<WallState> walls(n);
   for (std::size_t k = 0; k < n; ++k)
-    walls[k] = {velocity[k], displacement[k], force[k], torque[k], contact_work[k], stored_energy[k], impacts[k]};
+    walls[k] = {velocity[k], displacement[k], force[k], torque[k], contact_work[k], stored_energy[k], impacts[k], point[k]};
   return walls;
 }
 

@@ -406,6 +406,39 @@ void Simulation::run(std::int64_t steps) {
   for (std::int64_t s = 0; s < steps; ++s) step();
 }
 
+void Simulation::begin_settling(double duration, double damping) {
+  if (!held_walls_.empty()) throw std::logic_error("begin_settling: the simulation is settling already");
+  held_walls_.reserve(walls_.size());
+  for (Wall& w : walls_) {
+    held_walls_.push_back({w.motion, w.velocity, w.surface_velocity});
+    w.motion = WallMotion{};
+    w.velocity = w.surface_velocity = Vec3::Zero();
+  }
+  loading_damping_ = std::exchange(global_damping_, damping);
+  time_ = -duration;
+}
+
+void Simulation::shift_wall(std::size_t k, const Vec3& offset) {
+  Wall& w = walls_.at(k);
+  w.point += offset;
+  w.motion.spin_centre += offset;
+  neighbours_->invalidate();  // the wall's candidates are found again at the next step
+}
+
+void Simulation::end_settling() {
+  for (std::size_t k = 0; k < held_walls_.size(); ++k) {
+    Wall& w = walls_[k];
+    w.motion = std::move(held_walls_[k].motion);
+    w.velocity = held_walls_[k].velocity;
+    w.surface_velocity = held_walls_[k].surface_velocity;
+    place_wall(w, 0.0);
+  }
+  held_walls_.clear();
+  global_damping_ = loading_damping_;
+  time_ = 0;
+  step_ = 0;
+}
+
 // Spheres have isotropic inertia: the lab-frame angular velocity is constant over the drift, so the
 // exact rotation is one turn of |omega| dt about omega. The kick and drift and the turn run in
 // SIMD lanes (drift_lanes.hpp); only the turn's sin and cos, from libm, one particle at a time.

@@ -50,7 +50,7 @@ SimulationState Simulation::state_without_arrays() const {
   s.events_taken = events_taken_;
   s.walls.reserve(walls_.size());
   for (const Wall& w : walls_)
-    s.walls.push_back({w.velocity, w.displacement, w.force, w.torque, w.contact_work, w.stored_energy, w.impacts});
+    s.walls.push_back({w.velocity, w.displacement, w.force, w.torque, w.contact_work, w.stored_energy, w.impacts, w.point});
   s.contacts = contacts_;
   s.contact_energy = contact_energy_;
   s.bond_energy = bond_energy_;
@@ -123,6 +123,7 @@ void Simulation::import_state(SimulationState&& s) {
     walls_[w].contact_work = s.walls[w].contact_work;
     walls_[w].stored_energy = s.walls[w].stored_energy;
     walls_[w].impacts = s.walls[w].impacts;
+    if (s.walls[w].point.allFinite()) walls_[w].point = s.walls[w].point;
     place_wall(walls_[w], time_);  // the rotation is a function of time, not kept
   }
   contacts_ = s.contacts;

@@ -128,6 +128,21 @@ void move_wall(Wall& wall, double t, double dt) {
   set_rotation(wall, t);
 }
 
+double cylinder_touch_offset(const Wall& w, const Vec3& n, const Vec3& x, double r, bool first) {
+  if (w.shape != WallShape::Cylinder) return std::numeric_limits<double>::quiet_NaN();
+  const Vec3 a = w.axis.normalized();
+  Vec3 d = x - w.point;
+  if (std::abs(d.dot(a)) > 0.5 * w.length + r) return std::numeric_limits<double>::quiet_NaN();
+  d -= d.dot(a) * a;
+  const Vec3 n_perp = (n - n.dot(a) * a).normalized();
+  const double along = d.dot(n_perp);
+  const double lateral2 = (d - along * n_perp).squaredNorm();
+  const double reach2 = (w.radius + r) * (w.radius + r);
+  if (lateral2 >= reach2) return std::numeric_limits<double>::quiet_NaN();
+  const double h = std::sqrt(reach2 - lateral2);
+  return first ? along - h : along + h;
+}
+
 void place_wall(Wall& wall, double t) {
   if (wall.motion.is_profile()) {  // a ramp starts at rest
     wall.displacement = wall.motion.displacement_at(t);

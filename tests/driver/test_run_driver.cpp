@@ -163,6 +163,31 @@ TEST_CASE("the result is what the run file holds: the curve, the breaks, the fra
   CHECK(std::accumulate(sizes.begin(), sizes.end(), std::size_t{0}) == r.particles);
 }
 
+TEST_CASE("a settled run starts its clock, its pins and its curve at rest under the body's weight") {
+  MaxDisplacementStop rule;
+  RunSpec spec = tiny_spec("settled");
+  spec.overrides = {{"simulation.gravity", Vec3(0, 0, -9.81)},
+                    {"simulation.settle_time", 0.02},
+                    {"stop.max_displacement", 2e-4}};
+  std::vector<std::string> lines;
+  const RunResult r = run(spec, plugins(), {&rule}, RunLog{[&](const std::string& l) { lines.push_back(l); }, {}});
+  const auto settled = std::find_if(lines.begin(), lines.end(), [](const std::string& l) { return l.rfind("settled", 0) == 0; });
+  REQUIRE(settled != lines.end());
+  MESSAGE(*settled);
+  // The beam sank onto its rollers; the pins were brought down onto it before the test began.
+  for (const char* pin : {"seated pin_left ", "seated pin_right "})
+    CHECK(std::any_of(lines.begin(), lines.end(), [&](const std::string& l) { return l.rfind(pin, 0) == 0; }));
+  // The curve starts where the loading does: t = 0, the pins not yet moved. The pins were held
+  // while the beam settled, so their first row is where the scene put them.
+  REQUIRE(r.curve.size() >= 2);
+  CHECK(r.curve.time.front() == 0.0);
+  CHECK(r.curve.displacement.front() == 0.0);
+  // The loading then runs as without settling: 0.02 m/s from t = 0 (no ramp), whole steps.
+  for (std::size_t k = 0; k < r.curve.size(); ++k)
+    CHECK(r.curve.displacement[k] == doctest::Approx(0.02 * r.curve.time[k]).epsilon(1e-9).scale(1e-12));
+  CHECK(r.stop == StopReason::MaxDisplacement);
+}
+
 TEST_CASE("a typed override resolves the scene exactly as the --set text of the same value") {
   const Scene typed = load_scene(kTinyBeam, plugins(),
                                  {{"bond.youngs_modulus", 13.5e6},

@@ -181,6 +181,14 @@ TEST_CASE("fracture transients: crack initiation at the first significant drop, 
   CHECK(*curve_features(bent)[Feature::InitiationForce] == doctest::Approx(at_bend.force));
   // The first drop of the cracked curve above: at 2.0 N and 1 mm, before its overshoot to 2.5 N.
   CHECK(crack_initiation(c).displacement == doctest::Approx(1e-3).scale(0));
+  // Pins that meet the specimen at speed bounce in the seating toe: 0.2 N up, back to 0.05 N
+  // (a fall of 0.15 N, beyond the 0.05 N threshold, at 8 % of F_max), then the cracked curve's
+  // rise. The bounce is no crack: initiation stays at the first drop above the toe, 2.0 N at 1 mm.
+  const Curve bounced = polyline({{0, 0}, {0.05e-3, 0.2}, {0.1e-3, 0.05}, {1e-3, 2.0}, {1.05e-3, 1.8}, {1.5e-3, 2.5},
+                                  {1.7e-3, 1.0}, {2.2e-3, 0}},
+                                 1e-5, 0.01);
+  CHECK(crack_initiation(bounced).force == doctest::Approx(2.0));
+  CHECK(crack_initiation(bounced).displacement == doctest::Approx(1e-3).scale(0));
   // A record cut while the load is still 60 % of F_max: the failure point is its end (a lower bound).
   const Curve cut = polyline({{0, 0}, {1e-3, 2.5}, {1.2e-3, 1.5}}, 1e-5, 0.01);
   CHECK(*curve_features(cut)[Feature::FailureDisplacement] == doctest::Approx(1.2e-3).scale(0));

@@ -210,12 +210,16 @@ CrackInitiation crack_initiation(const Curve& c) {
   const ElasticFit line = elastic_fit(c);
   // The line is judged from the middle of its fit window on: below it a seating toe, a ramp or
   // the first points of a coarse record bend away from a line that they did not determine.
-  const double line_from = 0.5 * (kElasticLow + kElasticHigh) * c.force[peak_index(c)];
+  const double f_max = c.force[peak_index(c)];
+  const double line_from = 0.5 * (kElasticLow + kElasticHigh) * f_max;
+  // A drop in the seating toe is the pins and rollers finding their contact (a bounce when they
+  // meet the specimen at speed), not a crack: drops count from the line's fit window up.
+  const double drops_from = kElasticLow * f_max;
   std::size_t top = 0;  // row of the running maximum
   std::size_t k = 0;
   for (; k < c.size(); ++k) {
     if (c.force[k] > c.force[top]) top = k;
-    if (c.force[top] - c.force[k] > drop) break;
+    if (c.force[top] > drops_from && c.force[top] - c.force[k] > drop) break;
     const double on_line = line.force_at(c.displacement[k]);
     if (c.force[k] > line_from && on_line - c.force[k] > drop) break;
   }

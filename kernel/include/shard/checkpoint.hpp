@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,6 +27,9 @@ struct WallState {
   double contact_work = 0;           // J, since the start (Wall::contact_work)
   double stored_energy = 0;          // J, in the wall's contacts at the last step
   std::int64_t impacts = 0;
+  // m, where the wall stands at displacement zero: the scene's point, or where settling seated it.
+  // NaN in a checkpoint written before walls could be seated: the scene's point then stands.
+  Vec3 point = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
 };
 
 struct NeighbourState {

@@ -116,6 +116,8 @@ struct Scene {
   double duration = 0;
   double skin = 0;
   double global_damping = 0;
+  double settle_time = 0;        // s before the loading (Simulation::begin_settling)
+  double settle_damping = 0.5;   // Cundall's damping while settling
   Vec3 gravity = Vec3::Zero();
   bool breakage = true;
   bool bonded_contacts = true;  // false: bonded pairs get no contact force until the bond fails

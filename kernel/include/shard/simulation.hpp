@@ -71,6 +71,17 @@ class Simulation {
   void step();
   void run(std::int64_t steps);
 
+  // Settling before the loading ([simulation] settle_time): a lab's specimen rests on its supports
+  // under its own weight before the pins move. begin_settling holds every wall where it is, sets
+  // Cundall damping `damping` and puts the clock at -duration; the caller steps up to t = 0, then
+  // end_settling gives the walls their motion and the scene's damping back and restarts the clock
+  // and the step count at 0, so profiles, ramps and outputs run as from a body that was at rest.
+  void begin_settling(double duration, double damping);
+  void end_settling();
+  // Moves wall k's geometry by `offset` (its point, and the centre it spins about): a pin seated
+  // on the settled specimen. Its displacement stays what it was; a checkpoint keeps the new point.
+  void shift_wall(std::size_t k, const Vec3& offset);
+
   double time() const { return time_; }
   std::int64_t step_count() const { return step_; }
   double dt() const { return dt_; }
@@ -140,6 +151,13 @@ class Simulation {
   double contact_energy_ = 0;
   double bond_energy_ = 0;
   DomainExchange* exchange_ = nullptr;
+  // While settling: each wall's motion, velocity and surface velocity, and the scene's damping.
+  struct HeldWall {
+    WallMotion motion;
+    Vec3 velocity, surface_velocity;
+  };
+  std::vector<HeldWall> held_walls_;
+  double loading_damping_ = 0;
 };
 
 }  // namespace shard

@@ -79,6 +79,12 @@ void move_wall(Wall& wall, double t, double dt);
 // and the rotation from t; a constant velocity keeps the displacement it has.
 void place_wall(Wall& wall, double t);
 
+// Offset s along the unit direction n at which a cylinder wall (axis a, radius R, centre at its point
+// + s n) touches the sphere (x, r): the two roots of |(x - point - s n)_perp| = R + r. `first` is the
+// smaller root (the wall arriving from -n), otherwise the larger one; NaN when the sphere is beside
+// it or the wall is no cylinder. How far a pin is brought down onto a specimen to seat it.
+double cylinder_touch_offset(const Wall& wall, const Vec3& n, const Vec3& x, double r, bool first);
+
 // Closest point of the wall surface to x and the distance along the outward normal; returns
 // false when x is outside the wall's reach (beyond the cylinder ends, outside every triangle's
 // distance `max_gap`). `normal` points from the wall towards x.

@@ -446,6 +446,8 @@ void read_simulation_section(const toml::table& root, const std::string& file, S
   scene.gravity = sim.vec3("gravity", Vec3::Zero());
   scene.skin = sim.number("skin", 0, 0, 1e300, "m");
   scene.global_damping = sim.number("global_damping", 0, 0, 0.99);
+  scene.settle_time = sim.number("settle_time", 0, 0, 1e300, "s");
+  scene.settle_damping = sim.number("settle_damping", 0.5, 0, 0.99);
   scene.breakage = sim.flag("breakage", true);
   scene.bonded_contacts = sim.flag("bonded_contacts", true);
   sim.finish();

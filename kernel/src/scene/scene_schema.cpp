@@ -12,6 +12,10 @@ SceneSectionSpec simulation() {
            {"gravity", "vec3", "m/s^2", "[0, 0, 0]", "gravitational acceleration"},
            {"skin", "number", "m", "0 (automatic)", "Verlet skin of the neighbour list"},
            {"global_damping", "number", "1", "0", "Cundall's local damping, 0 to 0.99: for quasi-static loading"},
+           {"settle_time", "number", "s", "0",
+            "before the loading: the body rests this long under gravity on walls held in place, with "
+            "settle_damping; the clock, the walls' motion and the outputs start after it"},
+           {"settle_damping", "number", "1", "0.5", "Cundall's local damping while settling, 0 to 0.99"},
            {"breakage", "bool", "", "true", "the one switch for bond breakage"},
            {"bonded_contacts", "bool", "", "true",
             "false: a pair joined by an intact bond gets no contact force, its contact starts when the bond "

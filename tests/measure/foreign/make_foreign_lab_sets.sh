@@ -30,7 +30,8 @@
 #                  slower is weaker, the stiffness unchanged                       bond_viscosity
 #   friction_high  roller friction 1.0 against the grains' 0.5                     support_friction
 #   friction_none  frictionless rollers                                            support_friction
-#   self_weight    gravity 2 g (19.62 m/s^2, a beam twice as heavy in its weight)  self_weight
+#   self_weight    gravity 2 g (19.62 m/s^2, a beam twice as heavy in its weight),
+#                  settled on the rollers for 0.2 s before the pins move             self_weight
 #   cohesion       a failed bond pulls with 0.5 N (0.32 F_n,c) until 1 mm apart    contact_cohesion
 #   toe            seating toe g = 2.5 mm, F_h = 15 N (synth)                      outside
 #   both           the compliance frame and softening 1.5 at once                  machine_compliance, bond_softening
@@ -85,7 +86,7 @@ synth both 1701 8 machine_compliance,bond_softening --set bond.softening_ratio=1
 ! wanted both || python3 "$here/foreign_frame.py" "$out/both" "${frame[@]}" "$step"
 synth friction_high 1801 9 support_friction --set material_pair.grain.roller.friction=1.0
 synth friction_none 1901 10 support_friction --set material_pair.grain.roller.friction=0
-synth self_weight 2001 11 self_weight --set 'simulation.gravity=[0.0, 0.0, -19.62]'
+synth self_weight 2001 11 self_weight --set 'simulation.gravity=[0.0, 0.0, -19.62]' --set simulation.settle_time=0.2 --set simulation.settle_damping=0.7
 synth cohesion 2201 13 contact_cohesion --set bond.cohesion_force=0.5 --set bond.cohesion_range=1e-3
 synth rates_null 2301 14 none --rates 0.02,0.1
 synth rates 2101 12 bond_viscosity --rates 0.02,0.1 --set bond.fatigue_time=2e-3 --set bond.fatigue_exponent=16

@@ -1,7 +1,8 @@
 #pragma once
 // The candidate effects `shard diagnose` tries (scenes/measurements/effects.toml): each is one
 // parameter with a neutral value (the effect is off, the base model) and a plausible size (the
-// trial run that gives its signature). `set` switches on the plugin that carries the parameter;
+// trial run that gives its signature). `set` holds what the effect needs besides its parameter:
+// the plugin that carries it, or a settling phase for the beam's weight;
 // `machine_compliance` is not a scene key but the series spring of the testing machine, applied
 // to the simulated curve (w + C F).
 //
@@ -50,7 +51,7 @@ struct CandidateEffect {
   std::string unit;
   double neutral = 0;
   double plausible = 0;
-  std::vector<std::string> set;  // extra overrides that switch the effect's plugin on
+  std::vector<std::string> set;  // extra overrides the effect needs whenever it is on
   std::string separated_by;      // the measurement that tells it apart from look-alikes
   std::string doc;
   std::string value_format;      // "" or a scene value with one {} for the scalar, e.g. "[0, 0, {}]"
