@@ -1,8 +1,8 @@
 #pragma once
 // The candidate effects `shard diagnose` tries (scenes/measurements/effects.toml): each is one
 // parameter with a neutral value (the effect is off, the base model) and a plausible size (the
-// trial run that gives its signature). `set` holds what the effect needs besides its parameter:
-// the plugin that carries it, or a settling phase for the beam's weight;
+// trial run that gives its signature). `set` holds what the effect needs besides its parameter,
+// such as the plugin that carries it;
 // `machine_compliance` is not a scene key but the series spring of the testing machine, applied
 // to the simulated curve (w + C F).
 //
