@@ -16,16 +16,8 @@
 #include "shard/simulation.hpp"
 
 namespace shard {
-namespace {
 
 namespace fs = std::filesystem;
-
-// A [stop] load wall: a loading pin of the test.
-bool is_load_wall(const Scene& scene, const Wall& w) {
-  return std::find(scene.stop.load_walls.begin(), scene.stop.load_walls.end(), w.name) != scene.stop.load_walls.end();
-}
-
-}  // namespace
 
 SceneOverrides BendingFixture::seating_overrides(const fs::path& scene_file, const SceneOverrides& overrides) const {
   const Scene scene = load_scene(scene_file, host_, overrides);
@@ -36,7 +28,7 @@ SceneOverrides BendingFixture::seating_overrides(const fs::path& scene_file, con
   SceneOverrides out;
   for (const Wall& w : scene.walls) {
     if (w.shape != WallShape::Cylinder) continue;
-    const bool loading = is_load_wall(scene, w);
+    const bool loading = scene.stop.is_load_wall(w.name);
     if (!loading && w.velocity.norm() > 0) continue;
     // A loading pin arrives along +n (first contact = smallest offset); a support waits on the far
     // side and is brought against the body along -n (largest offset).
@@ -60,7 +52,7 @@ SpecimenSetup BendingFixture::specimen_setup(const fs::path& scene_file, const S
   std::vector<const Wall*> pins, supports;
   for (const Wall& w : scene.walls) {
     if (w.shape != WallShape::Cylinder) continue;
-    if (is_load_wall(scene, w)) pins.push_back(&w);
+    if (scene.stop.is_load_wall(w.name)) pins.push_back(&w);
     else if (w.velocity.norm() == 0) supports.push_back(&w);
   }
   if (pins.size() != 2 || supports.size() != 2)
@@ -84,7 +76,7 @@ double BendingFixture::scene_rate(const fs::path& scene_file, const SceneOverrid
   const Scene scene = load_scene(scene_file, host_, overrides);
   double rate = 0;
   for (const Wall& w : scene.walls)
-    if (is_load_wall(scene, w))
+    if (scene.stop.is_load_wall(w.name))
       rate = std::max(rate, w.velocity.norm());
   return rate;
 }
@@ -99,7 +91,7 @@ SceneOverrides BendingFixture::rate_overrides(const fs::path& scene_file, const 
   const double f = rate / own;
   SceneOverrides out;
   for (const Wall& w : scene.walls)
-    if (is_load_wall(scene, w)) {
+    if (scene.stop.is_load_wall(w.name)) {
       out.push_back({fmt::format("wall.{}.velocity", w.name), significant(Vec3(f * w.velocity), 12)});
       // The same ramp travel at the new speed: the ramp is f times shorter.
       if (w.motion.ramp != WallRamp::None)
@@ -115,7 +107,7 @@ SceneOverrides BendingFixture::ramp_overrides(const fs::path& scene_file, const 
   const Scene scene = load_scene(scene_file, host_, overrides);
   SceneOverrides out;
   for (const Wall& w : scene.walls)
-    if (is_load_wall(scene, w)) {
+    if (scene.stop.is_load_wall(w.name)) {
       out.push_back({fmt::format("wall.{}.ramp", w.name), ramp});
       // With ramp = "none" a ramp_time of the scene's is ignored (the loader allows that pair).
       if (ramp != "none") out.push_back({fmt::format("wall.{}.ramp_time", w.name), significant(ramp_time, 12)});

@@ -10,6 +10,7 @@
 #include "byte_record.hpp"
 #include "shard/io/atomic_file.hpp"
 #include "shard/measure/significant_digits.hpp"
+#include "shard/version.hpp"
 
 namespace shard {
 namespace {
@@ -24,13 +25,18 @@ std::string file_bytes(const fs::path& file) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-// The entry's outcome; throws with the reason the entry is not one of this format for `key`.
-RunOutcome decode_entry(const std::string& bytes, const std::string& key) {
+// The entry's outcome; throws with the reason the entry is not one of this format and release for `key`.
+RunOutcome decode_entry(const std::string& bytes, const std::string& key, const std::string& release) {
   ByteReader in(bytes, "run cache entry");
   if (bytes.size() < 8 || in.number<std::uint32_t>() != kRunCacheMagic)
     throw std::runtime_error("not a run cache entry of shard (or one written on a machine of the other byte order)");
-  if (const auto version = in.number<std::uint32_t>(); version != kRunCacheFormat)
-    throw std::runtime_error(fmt::format("format version {}, this shard reads version {}", version, kRunCacheFormat));
+  const auto format = in.number<std::uint32_t>();
+  if (format != kRunCacheFormat && format != 1)
+    throw std::runtime_error(fmt::format("format version {}, this shard reads version {}", format, kRunCacheFormat));
+  const std::string made_by = format == 1 ? std::string(kFormatOneRelease) : in.text();
+  if (made_by != release)
+    throw std::runtime_error(fmt::format("made by shard {}, this is shard {} (a release may run a scene otherwise)",
+                                         made_by, release));
   if (const auto stored = in.text(); stored != key)
     throw std::runtime_error(fmt::format("holds the run of key {}", stored));
   RunOutcome outcome = decode_outcome(in.text());
@@ -40,7 +46,10 @@ RunOutcome decode_entry(const std::string& bytes, const std::string& key) {
 
 }  // namespace
 
-RunCache::RunCache(fs::path folder) : folder_(std::move(folder)) { fs::create_directories(folder_); }
+RunCache::RunCache(fs::path folder, std::string release)
+    : folder_(std::move(folder)), release_(release.empty() ? std::string(version()) : std::move(release)) {
+  fs::create_directories(folder_);
+}
 
 std::optional<RunOutcome> RunCache::find(const std::string& key, std::ostream& log) const {
   const fs::path file = entry(key);
@@ -51,7 +60,7 @@ std::optional<RunOutcome> RunCache::find(const std::string& key, std::ostream& l
     return std::nullopt;
   }
   try {
-    RunOutcome outcome = decode_entry(file_bytes(file), key);
+    RunOutcome outcome = decode_entry(file_bytes(file), key, release_);
     outcome.key = key;
     outcome.cached = true;
     return outcome;
@@ -66,6 +75,7 @@ RunOutcome RunCache::store(const std::string& key, const RunOutcome& outcome) co
   ByteWriter out;
   out.number(kRunCacheMagic);
   out.number(kRunCacheFormat);
+  out.text(release_);
   out.text(key);
   out.text(record);
   io::write_file_atomically(entry(key), out.bytes());

@@ -41,10 +41,9 @@ void start_backend(RunBackend& backend, const RunSpec& spec, const RunStart& sta
 // touches the body.
 void seat_load_walls(RunBackend& backend, const Scene& scene, const RunLog& log) {
   const Vec3 n = scene.stop.load_direction.normalized();
-  const auto& names = scene.stop.load_walls;
   for (std::size_t w = 0; w < backend.local().walls().size(); ++w) {
     const Wall& wall = backend.local().walls()[w];
-    if (std::find(names.begin(), names.end(), wall.name) == names.end()) continue;
+    if (!scene.stop.is_load_wall(wall.name)) continue;
     const Particles& p = backend.local().particles();
     double first = std::numeric_limits<double>::infinity();
     for (std::size_t k = 0; k < p.size(); ++k) {

@@ -1,7 +1,7 @@
 // The measurement loop's run cache (apps/src/run_cache.hpp): an entry gives back the outcome it
-// was given, at the loop's precision; an entry of another format or version, a text entry of the
-// earlier layout, one cut short and one renamed from another key are refused by name, so their
-// runs are made again; an entry is written whole (no temporary file is left beside it).
+// was given, at the loop's precision; an entry of another format or version, one another release
+// made, a text entry of the earlier layout, one cut short and one renamed from another key are
+// refused by name, so their runs are made again; an entry is written whole (no temporary file is left beside it).
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
@@ -13,6 +13,7 @@
 
 #include "byte_record.hpp"
 #include "run_cache.hpp"
+#include "shard/version.hpp"
 
 namespace fs = std::filesystem;
 using namespace shard;
@@ -125,6 +126,23 @@ TEST_CASE("entries this shard does not read are refused by name, and their runs 
     CHECK_FALSE(cache.find("0004", log).has_value());
     CHECK(log.str().find(fmt::format("format version {}, this shard reads version {}", kRunCacheFormat + 1,
                                      kRunCacheFormat)) != std::string::npos);
+  }
+  SUBCASE("another release's run") {
+    RunCache(folder, "0.0.9").store("0008", sample_outcome());
+    CHECK_FALSE(cache.find("0008", log).has_value());
+    CHECK(log.str().find(fmt::format("made by shard 0.0.9, this is shard {}", shard::version())) != std::string::npos);
+    CHECK(RunCache(folder, "0.0.9").find("0008", log).has_value());
+  }
+  SUBCASE("the first format, which only release 0.1.0 wrote") {
+    ByteWriter old;
+    old.number<std::uint32_t>(0x43524853);
+    old.number<std::uint32_t>(1);
+    old.text("0009");
+    old.text(encode_outcome(sample_outcome()));
+    write_bytes(cache.entry("0009"), old.bytes());
+    CHECK(RunCache(folder, "0.1.0").find("0009", log).has_value());
+    CHECK_FALSE(RunCache(folder, "0.2.0").find("0009", log).has_value());
+    CHECK(log.str().find("made by shard 0.1.0, this is shard 0.2.0") != std::string::npos);
   }
   SUBCASE("an entry cut short") {
     cache.store("0005", sample_outcome());

@@ -231,6 +231,40 @@ TEST_CASE("a set that carries its own scatter is not named: its closest is a lea
     if (apart->sets.names[set.set] != "wild softening") CHECK(set.withheld_by != WithheldBy::own_scatter);
 }
 
+TEST_CASE("a set whose specimens broke outside the pins or did not break apart is not named") {
+  // A softened batch: named while its fractures lie between the pins; with three of its four
+  // specimens recorded as broken over a support or not broken apart, its name is withheld and the
+  // report says which specimens and why.
+  auto study = [](bool slid) {
+    auto s = std::make_unique<Study>();
+    MeasurementSet soft = measured({{"fake.softening", 1.5}}, 3000);
+    for (auto& specimen : soft.specimens) specimen.crack_position = 0.02, specimen.fragment_count = 3;
+    if (slid) {
+      soft.specimens[0].crack_position = -0.081;
+      soft.specimens[1].crack_position = 0.079;
+      soft.specimens[2].fragment_count = 1;
+    }
+    s->add("softening", std::move(soft));
+    return s;
+  };
+  auto sound = study(false);
+  const ContrastDiagnosis named = sound->run();
+  CHECK(diagnosis_of(named, *sound, "softening").decision.verdict == "bond_softening");
+  CHECK(diagnosis_of(named, *sound, "softening").fractures.invalid.empty());
+  auto slid = study(true);
+  const ContrastDiagnosis d = slid->run();
+  const SetDiagnosis& soft = diagnosis_of(d, *slid, "softening");
+  CHECK(soft.decision.verdict == kUnexplainedDifference);
+  CHECK(soft.withheld == "bond_softening");
+  CHECK(soft.withheld_by == WithheldBy::fractures);
+  CHECK(soft.fractures.invalid.size() == 3);
+  const std::string md = shard::contrast_markdown(shard::ContrastReport{slid->sets, d});
+  CHECK(md.find("3 of 4 specimens gave no bending strength") != std::string::npos);
+  CHECK(md.find("broke 81.0 mm from the centre, outside the inner span (pins at +-40.0 mm") != std::string::npos);
+  CHECK(md.find("did not break apart (1 fragment after the test)") != std::string::npos);
+  CHECK(diagnosis_of(d, *slid, "null").withheld_by != WithheldBy::fractures);
+}
+
 TEST_CASE("a 'no difference' says how large a difference the specimens would have seen") {
   // Five sets of four: 15 degrees of freedom for 8 components, whose 5 % point is
   // 15 x 8 / 8 x F(8, 8; 0.95) = 51.6, 3.3 x chi^2(8)'s 15.5: the report says a smaller difference

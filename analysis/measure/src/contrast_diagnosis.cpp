@@ -192,6 +192,19 @@ void withhold_names_of_own_scatter(std::vector<SetDiagnosis>& sets, const Contra
   }
 }
 
+void withhold_names_of_invalid_fractures(std::vector<SetDiagnosis>& sets, const ContrastSets& measured) {
+  for (auto& d : sets) {
+    d.fractures = fracture_validity(measured.sets[d.set]);
+    const std::string& v = d.decision.verdict;
+    if (v == kNoDifference || v == kUnexplainedDifference || !d.fractures.set_invalid()) continue;
+    d.withheld = v;
+    d.withheld_by = WithheldBy::fractures;
+    d.decision.verdict = kUnexplainedDifference;
+    d.decision.rivals.clear();
+    d.named_by_curve = false;
+  }
+}
+
 ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simulator, const ModelPlan& base,
                                      const std::vector<CandidateEffect>& library,
                                      const ContrastDiagnosisOptions& options, std::ostream& log) {
@@ -227,6 +240,8 @@ ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simula
   name_by_curve(out.sets, out.effects.size(), options.decide);
   require_resolved_rate_dependence(out.sets, study, trials[0], out.effects, options.decide);
   withhold_names_of_own_scatter(out.sets, study);
+  withhold_names_of_invalid_fractures(out.sets, sets);
+  if (sets.reference) out.reference_fractures = fracture_validity(sets.sets[*sets.reference]);
   if (!options.assumptions.empty())
     assess_assumptions(study, out.effects, out.sets, options.assumptions, options.decide, log);
   out.dof = study.noise().dof;

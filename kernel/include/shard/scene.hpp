@@ -2,6 +2,7 @@
 // A scene file (TOML) turned into validated settings: which plugins with which parameters, the
 // walls, the time stepping, the output and the stop rule. Every error names file:line:column,
 // the key and, for a misspelt key, the closest valid one.
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -39,6 +40,10 @@ struct StopRule {
   double max_displacement = 0;           // m; 0: off
   double rest_speed = 0;                 // m/s; 0: off
   double rest_time = 0;                  // s; given with rest_speed
+
+  bool is_load_wall(const std::string& wall_name) const {
+    return std::find(load_walls.begin(), load_walls.end(), wall_name) != load_walls.end();
+  }
 };
 
 // Particles whose centres lie in the box move at a held velocity: the clamps of a tensile test,

@@ -29,7 +29,8 @@
 #   rates          subcritical damage c^16 / 2 ms (Charles' law) at 20 and 100 mm/s:
 #                  slower is weaker, the stiffness unchanged                       bond_viscosity
 #   friction_high  roller friction 1.0 against the grains' 0.5                     support_friction
-#   friction_none  frictionless rollers                                            support_friction
+#   friction_none  frictionless support rollers, the pins as the reference's (a lab's free
+#                  rollers; with all four frictionless the beam slides off its supports)  support_friction
 #   self_weight    gravity 2 g (19.62 m/s^2, a beam twice as heavy in its weight),
 #                  settled on the rollers for 0.2 s before the pins move             self_weight
 #   cohesion       a failed bond pulls with 0.5 N (0.32 F_n,c) until 1 mm apart    contact_cohesion
@@ -85,7 +86,8 @@ synth toe 1601 7 outside --seating-gap 2.5e-3 --seating-half-force 15
 synth both 1701 8 machine_compliance,bond_softening --set bond.softening_ratio=1.5
 ! wanted both || python3 "$here/foreign_frame.py" "$out/both" "${frame[@]}" "$step"
 synth friction_high 1801 9 support_friction --set material_pair.grain.roller.friction=1.0
-synth friction_none 1901 10 support_friction --set material_pair.grain.roller.friction=0
+synth friction_none 1901 10 support_friction --set material_pair.grain.roller.friction=0 \
+  --set wall.pin_left.material=grain --set wall.pin_right.material=grain
 synth self_weight 2001 11 self_weight --set 'simulation.gravity=[0.0, 0.0, -19.62]' --set simulation.settle_time=0.2 --set simulation.settle_damping=0.7
 synth cohesion 2201 13 contact_cohesion --set bond.cohesion_force=0.5 --set bond.cohesion_range=1e-3
 synth rates_null 2301 14 none --rates 0.02,0.1

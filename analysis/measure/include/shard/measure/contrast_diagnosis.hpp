@@ -21,6 +21,7 @@
 
 #include "shard/measure/contrast_study.hpp"
 #include "shard/measure/effect_library.hpp"
+#include "shard/measure/fracture_validity.hpp"
 
 namespace shard::measure {
 
@@ -58,6 +59,7 @@ enum class WithheldBy {
   curve,        // its curve or its share of T^2 does not bear it out (require_curve_agreement)
   rate,         // its rates cannot resolve its strength's rate dependence (require_resolved_rate_dependence)
   own_scatter,  // the set carries its own scatter (withhold_names_of_own_scatter)
+  fractures,    // half its specimens or more broke outside the inner span (withhold_names_of_invalid_fractures)
 };
 
 struct SetDiagnosis {
@@ -95,6 +97,8 @@ struct SetDiagnosis {
   // How the shown model (named, or the closest) fares when a condition the base assumes is moved
   // (ContrastDiagnosisOptions::assumptions), one per assumption.
   std::vector<AssumptionSensitivity> assumptions;
+  // Its specimens that gave no bending strength (broke outside the pins, or did not break apart).
+  FractureValidity fractures;
 };
 
 // The base model, at the reference's reported grain size when `lab_grain_size` (throws, naming the
@@ -155,6 +159,13 @@ void require_resolved_rate_dependence(std::vector<SetDiagnosis>& sets, const Con
 // specimens, was named weibull_strength that way. A scatter that wide is a difference of its
 // own, which no shift of the mean describes.
 void withhold_names_of_own_scatter(std::vector<SetDiagnosis>& sets, const ContrastStudy& study);
+
+// Each set's fractures judged (fracture_validity.hpp); a set of which half or more gave no bending
+// strength is not named: its verdict reads "unexplained difference" with the name as its closest.
+// On the default-size foreign study a batch on frictionless rollers and pins slid off its supports
+// in 3 of 4 specimens (no bond broke); its force maximum was the slide's, and a name drawn from it
+// would send the lab after material physics for a fixture fault.
+void withhold_names_of_invalid_fractures(std::vector<SetDiagnosis>& sets, const ContrastSets& measured);
 
 // The names a verdict gives: the pair's two, the single effect, or none.
 std::vector<std::string> named_effects(const SetDiagnosis& d, const ContrastOptions& options = {});
@@ -237,6 +248,7 @@ struct ContrastDiagnosis {
   std::vector<GroupScatterLine> scatter;
   std::vector<double> rates;              // every rate simulated
   std::vector<SetDiagnosis> sets;         // one per set held against the reference
+  FractureValidity reference_fractures;   // the reference's specimens judged alike
   RunHealth health;
 };
 
