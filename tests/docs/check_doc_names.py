@@ -8,6 +8,8 @@ line, when the page names
   - a repository file or folder that does not exist (a path starting with one of the top-level
     folders below, or a relative Markdown link),
   - a link to a section (`page.md#anchor`, `#anchor`) whose page has no heading of that anchor,
+  - a section named in quotes after its page (`docs/x.md, "Noise"`) that is neither a heading nor a
+    bold paragraph title of that page,
   - a `shard` subcommand that `shard --help` does not list,
   - a `--option` on a `shard SUBCOMMAND` command line that the subcommand's `--help` does not list.
 Commands are read from code only (fenced blocks and `inline code`), where prose cannot be
@@ -26,6 +28,8 @@ TOP_FOLDERS = ("plugin_api", "io", "h5", "kernel", "plugins", "analysis", "drive
 # path character (build/release/tests/... is a build folder, not the repository's tests/).
 REPO_PATH = re.compile(r"(?<![\w./$-])((?:%s)/[\w.+/-]*\w)" % "|".join(re.escape(f) for f in TOP_FOLDERS))
 LINK = re.compile(r"\]\(([^)\s]+)\)")
+# A page, then a section of it in quotes: docs/explanation/diagnosis.md, "Noise".
+QUOTED_SECTION = re.compile(r"([\w./-]+\.md),?\s+\"([^\"]{3,80})\"")
 # `shard` as a program, then global options, then the subcommand.
 COMMAND = re.compile(r"(?<![\w.:/-])(?:[\w./$]*/)?shard((?:\s+--plugin-dir\s+\S+)*)\s+([a-z][a-z-]*)(?![\w])")
 OPTION = re.compile(r"(?<![\w-])(--[a-z][a-z0-9-]*)")
@@ -97,6 +101,33 @@ def heading_anchors(text):
             anchors.add(anchor if anchor not in seen else f"{anchor}-{seen[anchor]}")
             seen[anchor] = seen.get(anchor, 0) + 1
     return anchors
+
+
+def section_titles(text):
+    """The page's headings and bold paragraph titles (**Noise.**), lower case."""
+    titles = [m.group(1) for m in re.finditer(r"^#{1,6}\s+(.*?)\s*#*\s*$", text, re.MULTILINE)]
+    titles += re.findall(r"\*\*([^*]+)\*\*", text)
+    return [" ".join(t.lower().split()) for t in titles]
+
+
+def page_named(page, name, root):
+    """The page a text names: beside the page, from the repository root, or under docs/."""
+    for candidate in (page.parent / name, root / name, *sorted((root / "docs").rglob(pathlib.Path(name).name))):
+        if candidate.is_file():
+            return candidate
+    return None
+
+
+def section_problems(page, text, root):
+    problems = []
+    for match in QUOTED_SECTION.finditer(text):
+        name, section = match.group(1), " ".join(match.group(2).split())
+        named = page_named(page, name, root)
+        if named and not any(section.lower() in title for title in section_titles(named.read_text(encoding="utf-8"))):
+            number = text.count("\n", 0, match.start()) + 1
+            problems.append((number, f"names the section \"{section}\" of {name}, which has no such heading or bold "
+                                     "title"))
+    return problems
 
 
 def code_lines(text):
@@ -173,7 +204,7 @@ def main():
     failures = 0
     for page in pages:
         text = page.read_text(encoding="utf-8")
-        problems = path_problems(page, text, root)
+        problems = path_problems(page, text, root) + section_problems(page, text, root)
         for number, code in code_lines(text):
             problems += [(number, p) for p in command_problems(code, commands, options)]
         for number, problem in sorted(problems):
