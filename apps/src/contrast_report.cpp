@@ -70,10 +70,16 @@ std::string pair_text(const ContrastReport& r, const SetDiagnosis& d) {
                        sizes, p.chi_square, p.p_after, p.first, p.chi_square + p.drop, p.p_drop,
                        ContrastOptions{}.drop_p / static_cast<double>(std::max<std::size_t>(1, d.seconds_tried)),
                        d.seconds_tried, p.at_bound ? " A size sits at the bound of its range." : "");
+  const double level = ContrastOptions{}.drop_p / static_cast<double>(std::max<std::size_t>(1, d.seconds_tried));
+  if (p.p_drop < level && p.p_after > ContrastOptions{}.remaining_p)
+    return fmt::format(" With a second effect the best pair, {} (simulated together), leaves chi^2 {:.1f} (p = {:.2g} "
+                       "for what remains) and the second's drop has p = {:.2g}, but the packing seeds do not agree on "
+                       "what the second adds (p = {:.2g} that it is their scatter): a change that redraws the model's "
+                       "fracture, not a physics the data ask for. Not named.",
+                       sizes, p.chi_square, p.p_after, p.p_drop, p.p_seeds);
   return fmt::format(" With a second effect the best pair, {} (simulated together), leaves chi^2 {:.1f} (p = {:.2g} for "
                      "what remains), the second's drop p = {:.2g} against a level of {:.2g}: not named.",
-                     sizes, p.chi_square, p.p_after, p.p_drop,
-                     ContrastOptions{}.drop_p / static_cast<double>(std::max<std::size_t>(1, d.seconds_tried)));
+                     sizes, p.chi_square, p.p_after, p.p_drop, level);
 }
 
 // The measurement that would tell whether the lead is the physics at work, on this set's rates.
@@ -497,7 +503,8 @@ io::Json pair_json(const SetDiagnosis& d) {
   return {{"first", d.pair->first},          {"second", d.pair->second},
           {"values", {d.pair_values[0], d.pair_values[1]}},
           {"chi_square", d.pair->chi_square}, {"p_drop", d.pair->p_drop},
-          {"p_after", d.pair->p_after},       {"seconds_tried", d.seconds_tried},
+          {"p_after", d.pair->p_after},       {"p_seeds", d.pair->p_seeds},
+          {"seconds_tried", d.seconds_tried},
           {"at_bound", d.pair->at_bound},     {"named", names_a_pair(d)}};
 }
 

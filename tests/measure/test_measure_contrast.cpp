@@ -367,4 +367,27 @@ TEST_CASE("pair: two effects at once are sized jointly; the second is named only
   CHECK(sim.chi_square == doctest::Approx(expected).epsilon(1e-12));
   CHECK(sim.scale_first == pair.scale_first);
   CHECK(pair_is_named(sim, 2));
+  // The same pair whose move from the first effect's run the packing seeds do not agree on.
+  ContrastPairFit redrawn = sim;
+  redrawn.p_seeds = 0.2;
+  CHECK_FALSE(pair_is_named(redrawn, 2));
+}
+
+TEST_CASE("seeds agree on a move: its projection on the residual, per seed, under Student's t") {
+  const auto w = identity(3);
+  const std::vector<double> residual{1, 0, 2};
+  // Per seed r' W D: 2.1, 1.9, 2.0: mean 2, sd 0.1, t = 34.6 with 2 degrees of freedom.
+  const std::vector<std::vector<double>> alike{{0.1, 5, 1}, {-0.1, -3, 1}, {0, 0, 1}};
+  const double t = 2 / (0.1 / std::sqrt(3.0));
+  // Student's t with 2 degrees of freedom in closed form: P(T > t) = (1 - t / sqrt(2 + t^2)) / 2.
+  CHECK(seed_consistency_p(residual, w, alike) == doctest::Approx(0.5 * (1 - t / std::sqrt(2 + t * t))).epsilon(1e-9));
+  CHECK(seed_consistency_p(residual, w, alike) < 1e-3);
+  // A change that redraws the fracture: the seeds move the model either way (1.5, -1.0, 0.1).
+  const std::vector<std::vector<double>> redrawn{{1.5, 0, 0}, {-1, 0, 0}, {0.1, 0, 0}};
+  CHECK(seed_consistency_p(residual, w, redrawn) > 0.2);
+  // A mean move away from the residual, or fewer than two seeds: nothing for the pair.
+  CHECK(seed_consistency_p(residual, w, {{-1, 0, 0}, {-2, 0, 0}}) == 1.0);
+  CHECK(seed_consistency_p(residual, w, {{1, 0, 0}}) == 1.0);
+  // Every seed moves it alike: no scatter at all.
+  CHECK(seed_consistency_p(residual, w, {{1, 0, 0}, {1, 0, 0}}) == 0.0);
 }

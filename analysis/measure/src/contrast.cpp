@@ -359,9 +359,28 @@ ContrastPairFit judge_simulated_pair(const std::vector<double>& difference,
   return sized;
 }
 
+double seed_consistency_p(const std::vector<double>& residual, const std::vector<std::vector<double>>& weight,
+                          const std::vector<std::vector<double>>& moves) {
+  if (moves.size() < 2) return 1;
+  std::vector<double> along;
+  for (const auto& move : moves) {
+    if (move.size() != residual.size()) throw std::invalid_argument("contrast: a seed's move has the wrong length");
+    double g = 0;
+    for (std::size_t i = 0; i < residual.size(); ++i)
+      for (std::size_t j = 0; j < residual.size(); ++j) g += residual[i] * weight[i][j] * move[j];
+    along.push_back(g);
+  }
+  const double m = mean(along), sd = sample_sd(along);
+  if (!(m > 0)) return 1;
+  if (sd == 0) return 0;
+  return student_t_upper_tail(m / (sd / std::sqrt(static_cast<double>(along.size()))),
+                              static_cast<double>(along.size() - 1));
+}
+
 bool pair_is_named(const ContrastPairFit& pair, std::size_t seconds_tried, const ContrastOptions& options) {
   const double n = static_cast<double>(std::max<std::size_t>(1, seconds_tried));
-  return pair.scale_second != 0 && pair.p_drop < options.drop_p / n && pair.p_after > options.remaining_p;
+  return pair.scale_second != 0 && pair.p_drop < options.drop_p / n && pair.p_after > options.remaining_p &&
+         pair.p_seeds < options.drop_p;
 }
 
 }  // namespace shard::measure

@@ -391,6 +391,18 @@ std::vector<double> ContrastStudy::model_contrast(const Contrast& c, const Simul
   return out;
 }
 
+std::vector<std::vector<double>> ContrastStudy::seed_moves(const Contrast& c, const Simulated& moved,
+                                                           const Simulated& from) const {
+  std::vector<std::vector<double>> out;
+  for (std::size_t gi : c.groups) {
+    const auto a = components(moved, groups_[gi].rate), b = components(from, groups_[gi].rate);
+    out.resize(a.size());
+    for (std::size_t s = 0; s < a.size(); ++s)
+      for (std::size_t i = 0; i < a[s].size(); ++i) out[s].push_back(a[s][i] - b[s][i]);
+  }
+  return out;
+}
+
 ContrastStudy::CurveContrast ContrastStudy::curve_contrast(const Contrast& c, const Simulated& model,
                                                            const Simulated& base) const {
   CurveContrast out;

@@ -44,6 +44,11 @@ double student_t_quantile(double level, double dof) {
   return boost::math::quantile(boost::math::complement(boost::math::students_t_distribution<double>(dof), tail));
 }
 
+double student_t_upper_tail(double t, double dof) {
+  if (std::isinf(dof)) return boost::math::cdf(boost::math::complement(boost::math::normal_distribution<double>(), t));
+  return boost::math::cdf(boost::math::complement(boost::math::students_t_distribution<double>(dof), t));
+}
+
 double mean(std::span<const double> x) {
   double s = 0;
   for (double v : x) s += v;

@@ -207,6 +207,9 @@ struct ContrastPairFit {
   double drop = 0;             // the first's own chi^2 minus the pair's
   double p_drop = 1;           // added_direction_p(drop, chi_square, nu, p - 1)
   double p_after = 1;          // hotelling_p of chi_square_form: m - 2 components, p - 2 estimated
+  // That the pair's run moves the model from the first effect's run by no more than the packing
+  // seeds scatter it (seed_consistency_p); 0 for a linear fit, which no seed has run.
+  double p_seeds = 0;
 };
 
 // `first_chi_square`: the first effect's own chi^2 (its single fit), from which the drop counts.
@@ -221,8 +224,20 @@ ContrastPairFit judge_simulated_pair(const std::vector<double>& difference,
                                      ContrastPairFit sized, double first_chi_square, const ScatterEstimate& noise,
                                      const ContrastOptions& options = {});
 
+// Whether one model moves another's contrast towards the measured one on every packing seed alike.
+// `moves`: per seed, the moved model's components minus the other's (common seeds); each is
+// projected on what the other leaves of the measured contrast, `residual`, in the metric `weight`
+// (r' W D_s, the part of the move that lowers chi^2); returned is the one-sided p of their mean
+// under Student's t with seeds - 1 degrees of freedom. A brittle model's fracture components are
+// drawn anew by any change of the model, however slight: a second effect at a twelfth of its trial
+// step then lowers chi^2 by chance on some seeds and raises it on others. 1 for fewer than two
+// seeds; 0 when every seed moves it alike and towards the residual.
+double seed_consistency_p(const std::vector<double>& residual, const std::vector<std::vector<double>>& weight,
+                          const std::vector<std::vector<double>>& moves);
+
 // The pair is named when the first effect's own drop was significant (the caller's condition),
-// the second's drop beats drop_p over `seconds_tried`, and the remainder is compatible with noise.
+// the second's drop beats drop_p over `seconds_tried`, the remainder is compatible with noise, and
+// the packing seeds agree on the pair's move (p_seeds below drop_p).
 bool pair_is_named(const ContrastPairFit& pair, std::size_t seconds_tried, const ContrastOptions& options = {});
 
 // Inverse of a symmetric positive-definite matrix (throws when it is not).

@@ -102,6 +102,9 @@ class ContrastStudy {
   std::optional<RateSensitivity> rate_sensitivity(const Contrast& c, const Simulated& base, double exponent) const;
   // The model's contrast of `set`'s groups: effect minus base on each seed, averaged.
   std::vector<double> model_contrast(const Contrast& c, const Simulated& with_effect, const Simulated& base) const;
+  // Per packing seed, `moved`'s components minus `from`'s over the contrast's groups, concatenated
+  // as model_contrast concatenates them.
+  std::vector<std::vector<double>> seed_moves(const Contrast& c, const Simulated& moved, const Simulated& from) const;
 
   // The contrast as curves: measured (set mean - reference mean) and simulated (model at the
   // set's rate - base at the reference's rate) forces in units of the peak force, against

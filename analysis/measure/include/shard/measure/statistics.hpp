@@ -32,6 +32,8 @@ double equivalent_normal_score(double t, double dof);
 // The two-sided `level` quantile of Student's t with `dof` degrees of freedom (level 0.95: the
 // t that bounds 95 % of draws in |t|); the normal quantile for infinite dof.
 double student_t_quantile(double level, double dof);
+// P(T > t) for Student's t with `dof` degrees of freedom (the normal's for infinite dof).
+double student_t_upper_tail(double t, double dof);
 
 double mean(std::span<const double> x);
 // Sample standard deviation (n - 1); 0 for fewer than two values.
