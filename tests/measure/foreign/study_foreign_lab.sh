@@ -6,8 +6,8 @@
 # every set's difference from the reference at 20 mm/s (`shard compare SET --sim reference's
 # curves`): peak force, peak displacement and stiffness in % and in units of their uncertainty.
 # A set whose specimens scatter beyond the others' at p 0.01 carries its own scatter
-# (--own-scatter 0.01): the foreign friction_none, cohesion and self_weight sets do in some draws,
-# and pooled they would widen every other set's noise.
+# (--own-scatter 0.01): the foreign cohesion set does (its ductility), and pooled it would widen
+# every other set's noise.
 #
 #   study_foreign_lab.sh SHARD DATA DRAW...
 #     SHARD  the shard binary
