@@ -40,13 +40,14 @@ TEST_CASE("a fracture counts when it lies between the pins, to within what its p
   CHECK_FALSE(v.set_invalid());
 }
 
-TEST_CASE("a specimen that did not break apart gave no strength, wherever its crack is recorded") {
+TEST_CASE("a specimen with no crack that did not break apart gave no strength; a cracked one that hangs together did") {
   MeasurementSet set;
-  set.specimens = {specimen("slid off", 0.02, 1), specimen("broken", 0.02, 2), specimen("broken too", -0.01, 14)};
+  set.specimens = {specimen("slid off", std::nullopt, 1), specimen("cohesive", 0.02, 1), specimen("broken", 0.02, 2),
+                   specimen("broken too", -0.01, 14)};
   const FractureValidity v = fracture_validity(set);
   REQUIRE(v.invalid.size() == 1);
   CHECK(v.invalid[0].specimen == "slid off");
-  CHECK(v.invalid[0].reason == "did not break apart (1 fragment after the test)");
+  CHECK(v.invalid[0].reason == "has no crack recorded and did not break apart (1 fragment after the test)");
   CHECK_FALSE(v.set_invalid());
   CHECK_FALSE(fracture_validity(MeasurementSet{}).set_invalid());
 }

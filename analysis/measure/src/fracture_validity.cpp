@@ -12,8 +12,11 @@ FractureValidity fracture_validity(const MeasurementSet& set) {
   v.specimens = set.specimens.size();
   const double known_to = std::max(set.metadata.test.grain_size, set.metadata.crack_position_uncertainty);
   for (const Specimen& s : set.specimens) {
-    if (s.fragment_count && *s.fragment_count < 2) {
-      v.invalid.push_back({s.id, fmt::format("did not break apart ({:g} fragment after the test)", *s.fragment_count)});
+    // A recorded crack with one fragment is a cohesive specimen that cracked and hangs together.
+    if (!s.crack_position && s.fragment_count && *s.fragment_count < 2) {
+      v.invalid.push_back({s.id, fmt::format("has no crack recorded and did not break apart ({:g} fragment after the "
+                                             "test)",
+                                             *s.fragment_count)});
       continue;
     }
     const double half_inner = 0.5 * s.pin_distance;
