@@ -198,9 +198,10 @@ class PairSearch {
     p.fit = judge_simulated_pair(d.contrast.difference, d.contrast.weight,
                                  study_.model_contrast(d.contrast, *p.run, trials_.front()), sized,
                                  d.decision.fits.front().chi_square, study_.noise(), decide_);
+    // The first's column is its confirmed run's contrast: what it leaves is the residual the
+    // second's move must lower.
     std::vector<double> left = d.contrast.difference;
-    const auto first = study_.model_contrast(d.contrast, d.closest->run, trials_.front());
-    for (std::size_t i = 0; i < left.size(); ++i) left[i] -= first[i];
+    for (std::size_t i = 0; i < left.size(); ++i) left[i] -= p.first_column.signature[i];
     p.fit.p_seeds = seed_consistency_p(left, d.contrast.weight, study_.seed_moves(d.contrast, *p.run, d.closest->run));
   }
 
