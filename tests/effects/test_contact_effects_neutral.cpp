@@ -129,7 +129,7 @@ TEST_CASE("the effect library's contact effects take the neutral values of hertz
     CHECK(effect.set.empty());  // the parameter alone switches the policy on
     ++contact_effects;
   }
-  CHECK(contact_effects == 2);  // support_friction, contact_cohesion
+  CHECK(contact_effects == 1);  // contact_cohesion (support_friction is the supports' pair friction)
 
   const std::filesystem::path file = std::filesystem::path(SHARD_BUILD_DIR) / "tests/effects/contradicting_neutral.toml";
   std::ofstream(file) << "[[effect]]\nname = \"support_friction\"\nparameter = \"contact.support_friction_ratio\"\n"

@@ -6,6 +6,8 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -496,6 +498,27 @@ TEST_CASE("the state of an effect in a model: overrides, then the scene; the mov
   CHECK(centred[0].plausible == doctest::Approx(3e-5).scale(0));
   CHECK(centred[1].neutral == doctest::Approx(-4.9));  // the gravity the model already has
   CHECK(centred[1].plausible == doctest::Approx(-14.71));
+}
+
+TEST_CASE("the state of a material pair's parameter: its own row in either order, else the default row") {
+  // The support rollers' friction (the library's support_friction) as the scene loader fills a
+  // pair: a row of the two materials gives the key, else the default row ["*", "*"].
+  const auto scene = std::filesystem::temp_directory_path() / "shard_test_pair_state.toml";
+  std::ofstream(scene) << "[[material_pair]]\nmaterials = [\"*\", \"*\"]\nfriction = 0.67\nrestitution = 0.5\n\n"
+                          "[[material_pair]]\nmaterials = [\"support\", \"beam\"]\nrestitution = 0.3\n\n"
+                          "[[material_pair]]\nmaterials = [\"pin\", \"beam\"]\nfriction = 0.2\n";
+  ModelPlan m;
+  m.scene = scene;
+  const CandidateEffect supports = effect("support_friction", "material_pair.beam.support.friction", 0.67, 0.1, 0, 1.3);
+  const CandidateEffect pins = effect("pin_friction", "material_pair.beam.pin.friction", 0.67, 0.1, 0, 1.3);
+  const CandidateEffect rebound = effect("rebound", "material_pair.support.beam.restitution", 0.5, 0.2, 0, 1);
+  CHECK(*effect_state(m, supports) == doctest::Approx(0.67));  // its row has no friction: the default row's
+  CHECK(*effect_state(m, pins) == doctest::Approx(0.2));       // its own row, written the other way round
+  CHECK(*effect_state(m, rebound) == doctest::Approx(0.3));
+  CHECK_FALSE(effect_state(m, effect("x", "material_pair.beam.support.rolling_friction", 0, 0.1, 0, 1)).has_value());
+  m = with_effect(m, supports, 0.0);  // an override wins over the file
+  CHECK(*effect_state(m, supports) == 0.0);
+  std::filesystem::remove(scene);
 }
 
 TEST_CASE("bad input: clear errors before a single run") {

@@ -42,14 +42,14 @@ TEST_CASE("the shipped library parses and every effect switches something on") {
 }
 
 TEST_CASE("an effect's value stays inside its physical range, also where a linear step overshoots") {
-  // Hidden support friction 0.1 (the library's trial size, support_friction_ratio 0.1 / 0.67 from
-  // the particles' 0.67): the joint linear refit asked for 1.29 trial steps, a support friction of
-  // -0.067, which the plugin refuses, so the refit failed and diagnose named weibull_strength instead.
+  // Support friction from the grains' 0.67 (neutral) to the library's trial 0.1 (lubricated rollers):
+  // a joint linear refit can ask for 1.29 trial steps, a friction of -0.065, which the scene
+  // refuses; the value stops at the physical bound 0, 0.67 / 0.57 trial steps from neutral.
   const auto lib = read_effect_library(fs::path(SHARD_SOURCE_DIR) / "scenes/measurements/effects.toml");
   const auto friction = select_effects(lib, {"support_friction"}).front();
-  CHECK(friction.neutral == 1.0);  // from hertz_mindlin's schema
+  CHECK(friction.neutral == 0.67);  // the grains' friction of the scenes' Table I
   CHECK(friction.scale_max() == doctest::Approx(0.67 / 0.57));
-  CHECK(friction.value_at(1.0) == doctest::Approx(0.1 / 0.67));
+  CHECK(friction.value_at(1.0) == doctest::Approx(0.1));
   CHECK(friction.value_at(1.29) == 0.0);
   CHECK(friction.value_at(friction.scale_max()) >= 0.0);  // no rounding past the bound
   const auto weibull = select_effects(lib, {"weibull_strength"}).front();
@@ -92,7 +92,7 @@ TEST_CASE("effects on a plugin another effect switches away from are not combine
   };
   const CandidateEffect asymmetry = effect_on("bond.compression_stiffness_ratio");
   const CandidateEffect crushing = effect_on("bond.crushing_ratio", "bond.plugin=crushing_bond");
-  const CandidateEffect friction = effect_on("contact.support_friction_ratio");
+  const CandidateEffect friction = effect_on("material_pair.beam.support.friction");
   const CandidateEffect compliance = effect_on(kMachineCompliance);
   const CandidateEffect crushing_strength = effect_on("bond.crushing_strength", "bond.plugin=crushing_bond");
   const CandidateEffect other_law = effect_on("bond.other", "bond.plugin=other_bond");

@@ -208,14 +208,13 @@ TEST_CASE("hidden bond viscosity (tau_v 5 ms, data at 0.02 and 0.1 m/s): named, 
   check_found_and_calibrated(h);
 }
 
-TEST_CASE("hidden support friction 0.1: named, sized at its physical bound, calibrated") {
-  // Lubricated or PTFE-faced rollers: steel on PTFE or greased steel slides at mu 0.05-0.1, against
-  // the particles' 0.67, i.e. support_friction_ratio 0.1 / 0.67. The linear refit overshoots past
-  // frictionless (it asked for a support friction of -0.067, which the plugin refuses, and
-  // weibull_strength was named); the refit and calibrate-effect now stop at the physical bound 0,
-  // i.e. 1.175 trial steps from neutral (ratio 1).
-  check_found_and_calibrated({"friction", " --set contact.support_friction_ratio=0.149253731343", "support_friction",
-                              0.149253731343, 1});
+TEST_CASE("hidden support friction 0.1: named, sized within its physical range, calibrated") {
+  // Lubricated or PTFE-faced support rollers: steel on PTFE or greased steel slides at mu 0.05-0.1,
+  // against the grains' 0.67; the pins keep the grains' friction. A linear refit can overshoot
+  // past frictionless (a negative friction, which the scene refuses); the refit and
+  // calibrate-effect stop at the physical bound 0, 1.175 trial steps from the neutral 0.67.
+  check_found_and_calibrated({"friction", " --set material_pair.beam.support.friction=0.1", "support_friction", 0.1,
+                              0.67});
 }
 
 TEST_CASE("a seating toe outside the library is an unexplained structured residual, not a wrong name") {

@@ -176,12 +176,10 @@ SphereExtent read_specimen(const std::filesystem::path& path, const FrameData& f
   return extent;
 }
 
-// Fragments in the last frame, their masses from the scene's one density.
-FragmentSummary last_frame_fragments(const FrameData& last, double density, const BendingOptions& options) {
+// Fragments in the last frame, with the particle masses the frame gives (each of its material).
+FragmentSummary last_frame_fragments(const FrameData& last, const BendingOptions& options) {
   FragmentSummary out;
-  std::vector<double> mass(last.radius.size());
-  for (std::size_t k = 0; k < mass.size(); ++k) mass[k] = density * analysis::sphere_volume(last.radius[k]);
-  const analysis::ParticleSample sample{last.id, last.position, last.velocity, last.radius, mass, {}};
+  const analysis::ParticleSample sample{last.id, last.position, last.velocity, last.radius, last.mass, {}};
   const auto fa = analysis::analyse_fragments(sample, {last.bond_i, last.bond_j});
   double total = 0;
   for (const auto& f : fa.fragments) total += f.mass;
@@ -283,7 +281,6 @@ BendingReport analyse_bending_run(const std::filesystem::path& path, const Bendi
   const toml::table scene = stored_scene(path, meta);
   r.bond = bond_parameters(meta);
   r.breakage = scene["simulation"]["breakage"].value_or(true) && r.bond.breakage;
-  const double density = scene["material"]["density"].value_or(0.0);
 
   // Loading pins and supports, and the beam's frame and spans from them.
   const PinsAndSupports walls = pins_and_supports(scene, path);
@@ -306,7 +303,7 @@ BendingReport analyse_bending_run(const std::filesystem::path& path, const Bendi
   const double window = options.crack_window > 0 ? options.crack_window : 2 * r.mean_diameter;
   r.crack = locate_crack(mids, r.centre, r.axis, window, r.geometry.pin_distance);
 
-  r.fragments = last_frame_fragments(file.read_frame(file.frame_count() - 1), density, options);
+  r.fragments = last_frame_fragments(file.read_frame(file.frame_count() - 1), options);
   network_stiffness(first, r);
   local_instrumentation(file, first, extent, events, options, r);
   quasi_static_check(file, r);

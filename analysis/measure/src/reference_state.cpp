@@ -1,7 +1,6 @@
 #include "shard/measure/reference_state.hpp"
 
 #include <fmt/format.h>
-#include <toml++/toml.h>
 
 #include <algorithm>
 #include <cmath>
@@ -29,17 +28,6 @@ std::optional<double> override_value(const SceneOverride::Value& v, std::size_t 
   if (const auto* x = std::get_if<Vec3>(&v); x && component < 3) return (*x)[static_cast<Eigen::Index>(component)];
   if (const auto* a = std::get_if<std::vector<double>>(&v); a && component < a->size()) return (*a)[component];
   return std::nullopt;
-}
-
-std::optional<double> scene_file_value(const std::filesystem::path& scene, const std::string& key,
-                                       std::size_t component) {
-  if (scene.empty() || !std::filesystem::exists(scene)) return std::nullopt;
-  const toml::table root = toml::parse_file(scene.string());
-  const auto dot = key.find('.');
-  if (dot == std::string::npos) return std::nullopt;
-  const toml::node_view node = root[key.substr(0, dot)][key.substr(dot + 1)];
-  if (const auto* a = node.as_array()) return (*a)[component].value<double>();
-  return node.value<double>();
 }
 
 // Reads "0.5" for a scalar and "gravity z -9.81" for a component, in messages.
@@ -74,7 +62,7 @@ std::optional<double> effect_state(const ModelPlan& model, const CandidateEffect
   const std::size_t component = moved_component(effect);
   for (auto it = model.overrides.rbegin(); it != model.overrides.rend(); ++it)
     if (it->key == effect.parameter) return override_value(it->value, component);
-  return scene_file_value(model.scene, effect.parameter, component);
+  return scene_file_number(model.scene, effect.parameter, component);
 }
 
 std::vector<CandidateEffect> centred_on_reference(std::vector<CandidateEffect> effects, const ModelPlan& reference,

@@ -3,7 +3,9 @@
 // to its curves afterwards (the testing machine's compliance), at a loading rate. The diagnoses
 // build every model they try from a base plan with these functions, so an effect is applied to a
 // model in one place.
+#include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -35,6 +37,13 @@ ModelPlan with_effect(ModelPlan model, const CandidateEffect& effect, double val
 // Several effects on at once, each (effect, value) in turn.
 ModelPlan with_effects(ModelPlan model, const std::vector<std::pair<const CandidateEffect*, double>>& effects);
 ModelPlan with_parameters(ModelPlan model, const std::vector<std::string>& keys, const std::vector<double>& values);
+
+// The number the scene file gives `key`, without overrides: "section.key" (for an array value its
+// `component`), or "material_pair.A.B.key" from the row of materials A and B (either order), else
+// from the default row ["*", "*"], as the scene loader fills a pair (docs/reference/materials.md).
+// None when the file gives none.
+std::optional<double> scene_file_number(const std::filesystem::path& scene, const std::string& key,
+                                        std::size_t component = 0);
 
 // The value of section.key in the resolved scene file (overrides applied); throws when absent.
 double scene_number(const ModelPlan& model, const std::string& key);
