@@ -208,13 +208,17 @@ TEST_CASE("hidden bond viscosity (tau_v 5 ms, data at 0.02 and 0.1 m/s): named, 
   check_found_and_calibrated(h);
 }
 
-TEST_CASE("hidden support friction 0.1: named, sized within its physical range, calibrated") {
-  // Lubricated or PTFE-faced support rollers: steel on PTFE or greased steel slides at mu 0.05-0.1,
-  // against the grains' 0.67; the pins keep the grains' friction. A linear refit can overshoot
-  // past frictionless (a negative friction, which the scene refuses); the refit and
-  // calibrate-effect stop at the physical bound 0, 1.175 trial steps from the neutral 0.67.
-  check_found_and_calibrated({"friction", " --set material_pair.beam.support.friction=0.1", "support_friction", 0.1,
-                              0.67});
+TEST_CASE("hidden frictionless supports on one set: the base fit takes them up, nothing is named") {
+  // Free-turning support rollers (friction 0 against the grains' 0.67; the pins keep theirs)
+  // lower the stiffness and the peak together, as a softer and weaker bond does: on one set
+  // without a reference, E_b and sigma_crit absorb the difference, and the diagnosis must not
+  // name an effect for it. Against a reference batch, whose base fit holds E_b and sigma_crit,
+  // the contrast diagnosis can (docs/explanation/foreign-truth.md).
+  const json diagnosis = diagnose_hidden("free_supports", " --set material_pair.beam.support.friction=0");
+  INFO(diagnosis.dump());
+  CHECK(diagnosis.at("verdict") == "adequate");
+  CHECK(diagnosis.at("p_value").get<double>() > 0.05);
+  CHECK(diagnosis.at("confirmations").empty());
 }
 
 TEST_CASE("a seating toe outside the library is an unexplained structured residual, not a wrong name") {
