@@ -28,9 +28,9 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
     SimulationOptions sim;
     std::vector<std::string> params;
     std::vector<std::string> only;
-    int refit = 2;
-    int max_effects = 2;
-    int refit_iterations = 4;
+    int refit = SetDiagnosisOptions{}.refit;
+    int max_effects = SetDiagnosisOptions{}.max_effects;
+    int refit_iterations = SetDiagnosisOptions{}.refit_iterations;
     std::string scoring = "own";
   };
   auto o = std::make_shared<Options>();

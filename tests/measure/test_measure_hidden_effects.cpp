@@ -43,7 +43,7 @@ json diagnose_hidden(const std::string& tag, const std::string& hidden, const st
   const fs::path meas = kWork / ("meas_" + tag), out = kWork / ("diag_" + tag);
   shard("synth --scene " + kScene + " --work " + kWork.string() + " --out " + meas.string() + kSensor + hidden +
         (rates.empty() ? "" : " --rates " + rates));
-  shard("diagnose " + meas.string() + " --scene " + kScene + " --work " + kWork.string() + kParams + " --refit 2 --out " +
+  shard("diagnose " + meas.string() + " --scene " + kScene + " --work " + kWork.string() + kParams + " --out " +
         out.string());
   return read_document(out / "diagnose.json", kDiagnoseVersion);
 }
