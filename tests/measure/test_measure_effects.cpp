@@ -7,6 +7,7 @@
 #include <random>
 
 #include "shard/measure/diagnosis.hpp"
+#include "shard/measure/diagnosis_step.hpp"
 #include "shard/measure/effect_library.hpp"
 
 using namespace shard::measure;
@@ -55,6 +56,23 @@ TEST_CASE("an effect's value stays inside its physical range, also where a linea
   const auto weibull = select_effects(lib, {"weibull_strength"}).front();
   CHECK(weibull.value_at(-0.5) == 0.0);
   CHECK(weibull.value_at(2.0) == doctest::Approx(8.0));
+}
+
+TEST_CASE("a refit's step keeps the side the data ask for when the effect's range reaches both sides") {
+  // The supports' friction moves both ways from the grains' 0.67 (range 0-1.3, trial 0.1): data
+  // that ask for rougher supports (scale -0.95: friction 1.21) are refit there, within 0.05-3.9
+  // trial sizes of neutral and the range. The Weibull modulus has one side (min 0 = neutral): a
+  // negative ask stays a small step on its trial's side.
+  const auto lib = read_effect_library(fs::path(SHARD_SOURCE_DIR) / "scenes/measurements/effects.toml");
+  const auto friction = select_effects(lib, {"support_friction"}).front();
+  const auto weibull = select_effects(lib, {"weibull_strength"}).front();
+  CHECK(clamp_effect_scale(friction, -0.95) == doctest::Approx(-0.95));
+  CHECK(friction.value_at(clamp_effect_scale(friction, -0.95)) == doctest::Approx(1.2115));
+  CHECK(clamp_effect_scale(friction, -0.01) == doctest::Approx(-0.05));
+  CHECK(friction.value_at(clamp_effect_scale(friction, -10)) == doctest::Approx(1.3));  // the range's max
+  CHECK(clamp_effect_scale(friction, 0.5) == doctest::Approx(0.5));
+  CHECK(clamp_effect_scale(weibull, -0.5) == doctest::Approx(0.05));
+  CHECK(clamp_effect_scale(weibull, 9.0) == doctest::Approx(3.9));
 }
 
 TEST_CASE("value_format puts the scalar into a vector-valued scene key") {

@@ -167,13 +167,13 @@ RefitPlan refit_plan(const std::vector<std::string>& keys, const StepModel& star
   }
   auto place = [&](const CandidateEffect& e, double asked_scale) {
     // The step of an effect is bounded like calibrate-effect's start, then by its physical range.
-    const double scale = clamp_effect_scale(asked_scale);
+    const double scale = clamp_effect_scale(e, asked_scale);
     const double value = e.value_at(scale);
     const double asked_value = e.neutral + asked_scale * (e.plausible - e.neutral);
     if (std::abs(effect_scale(e, value) - asked_scale) > 1e-9 * std::max(1.0, std::abs(asked_scale)))
       r.at_bound.push_back(fmt::format("{} at {} (asked {:.4g}; bound: {})", e.name, e.sized(value), asked_value,
                                        value == e.min || value == e.max ? "its physical range [min, max]"
-                                                                        : "0.05-3.9 plausible sizes from neutral"));
+                                                                        : "0.05-3.9 plausible sizes from neutral, on the trial's side unless its range reaches the other"));
     return value;
   };
   const std::size_t p = keys.size();

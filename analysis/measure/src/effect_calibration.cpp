@@ -79,9 +79,9 @@ std::vector<double> linearised_start(Simulator& simulator, const MeasuredRates& 
   std::vector<double> x(n);
   for (std::size_t i = 0; i < fit.keys.size(); ++i) x[i] = clamp_base_factor(1 + lr.base_step[i]);
   if (fit.effect) {
-    fit.lower.back() = std::max(0.0, fit.effect->scale_min());
+    fit.lower.back() = std::max(-4.0, fit.effect->scale_min());
     fit.upper.back() = std::min(4.0, fit.effect->scale_max());
-    x.back() = std::clamp(clamp_effect_scale(lr.effect_scale.front()), fit.lower.back(), fit.upper.back());
+    x.back() = std::clamp(clamp_effect_scale(*fit.effect, lr.effect_scale.front()), fit.lower.back(), fit.upper.back());
   }
   return x;
 }

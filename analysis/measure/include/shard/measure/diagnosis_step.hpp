@@ -8,6 +8,7 @@
 // profile them out, so a second effect is judged on what the first leaves, with the first
 // re-sized along.
 #include <algorithm>
+#include <cmath>
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -21,11 +22,16 @@
 namespace shard::measure {
 
 // Where a linearised refit may take the model: base parameters within 0.55..1.9 x their start,
-// an effect within 0.05..3.9 plausible sizes above neutral (inside calibrate_effect's BOBYQA
-// bounds 0.5..2 and 0..4). A long linear step can reach a stiffness whose run is unstable; the
+// an effect within 0.05..3.9 plausible sizes from neutral (inside calibrate_effect's BOBYQA
+// bounds 0.5..2 and -4..4). A long linear step can reach a stiffness whose run is unstable; the
 // diagnosis's refit and the calibration's start use the same clamps so that the start is cached.
+// An effect whose physical range reaches both sides of neutral (the supports' friction: less or
+// more than the reference's) keeps the side the data ask for; any other stays on its trial's side.
 inline double clamp_base_factor(double factor) { return std::clamp(factor, 0.55, 1.9); }
-inline double clamp_effect_scale(double scale) { return std::clamp(scale, 0.05, 3.9); }
+inline double clamp_effect_scale(const CandidateEffect& effect, double scale) {
+  const double size = std::clamp(std::abs(scale), 0.05, 3.9);
+  return scale < 0 && effect.scale_min() < 0 ? -size : std::clamp(scale, 0.05, 3.9);
+}
 
 // How a model's runs are scored against the data (--scoring):
 //   Own         chi^2 with the model's own band; scattering more is stopped by the NRMSE rule
