@@ -9,6 +9,8 @@
 #     (not met), a single effect named in 1 of the 1 draws with p < 1e-3 (met), a null set named
 #     (not met). The two-rate sets' own diagnosis (diag_rates) is counted too: a rate set named as
 #     another effect is a third wrong name, and a set in both reports is counted once.
+#  3. compare_features.sh reads a feature's field from compare.json as the JSON writer lays it
+#     out (one key per line).
 #   check_foreign_lab_scripts.sh WORK
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -58,4 +60,26 @@ grep -q "| outside | never named: 1 of 1 | yes |" <<<"$out" || fail "the outside
 grep -q "| pair | both named or unexplained: 0 of 1 | no |" <<<"$out" || fail "the pair's target is not met"
 grep -q "| softening | named in 1 of 1 draws with p < 1e-3 | yes |" <<<"$out" || fail "softening's target is met"
 grep -q "| null | no difference in every draw: 0 of 1 | no |" <<<"$out" || fail "the null set's target is not met"
+source "$here/compare_features.sh"
+cat > "$work/compare.json" <<'JSON'
+{
+  "format_version": 1,
+  "features": [
+    {
+      "name": "stiffness",
+      "measured": 12980.04,
+      "score": 0.70
+    },
+    {
+      "name": "peak_force",
+      "measured": 63.956,
+      "simulated": 64.815,
+      "score": 0.96
+    }
+  ]
+}
+JSON
+[[ $(feature peak_force simulated "$work/compare.json") == 64.815 ]] || fail "peak_force simulated: expected 64.815"
+[[ $(feature stiffness score "$work/compare.json") == 0.70 || $(feature stiffness score "$work/compare.json") == 0.7 ]] ||
+  fail "stiffness score: expected 0.7"
 exit $(( failures > 0 ))

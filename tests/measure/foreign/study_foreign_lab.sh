@@ -26,8 +26,8 @@ shard=$1 data=$2
 shift 2
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 source_dir=$(cd "$here/../../.." && pwd)
-# feature NAME FIELD FILE: one number of a feature in compare.json (jq: the test group's).
-feature() { jq -r --arg name "$1" --arg field "$2" '.features[] | select(.name == $name) | .[$field]' "$3"; }
+# shellcheck source=compare_features.sh
+source "$here/compare_features.sh"
 
 # The sets of a draw that synth finished (a set still being made has no specimens.csv yet).
 complete_sets() {
