@@ -171,9 +171,11 @@ RefitPlan refit_plan(const std::vector<std::string>& keys, const StepModel& star
     const double value = e.value_at(scale);
     const double asked_value = e.neutral + asked_scale * (e.plausible - e.neutral);
     if (std::abs(effect_scale(e, value) - asked_scale) > 1e-9 * std::max(1.0, std::abs(asked_scale)))
-      r.at_bound.push_back(fmt::format("{} at {} (asked {:.4g}; bound: {})", e.name, e.sized(value), asked_value,
-                                       value == e.min || value == e.max ? "its physical range [min, max]"
-                                                                        : "0.05-3.9 plausible sizes from neutral, on the trial's side unless its range reaches the other"));
+      r.at_bound.push_back(fmt::format(
+          "{} at {} (asked {:.4g}; bound: {})", e.name, e.sized(value), asked_value,
+          value == e.min || value == e.max
+              ? "its physical range [min, max]"
+              : "0.05-3.9 plausible sizes from neutral, on the trial's side unless its range reaches the other"));
     return value;
   };
   const std::size_t p = keys.size();

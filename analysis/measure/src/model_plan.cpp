@@ -5,7 +5,6 @@
 
 #include <array>
 #include <cstdint>
-#include <sstream>
 #include <stdexcept>
 #include <variant>
 
@@ -34,13 +33,6 @@ ModelPlan with_parameters(ModelPlan model, const std::vector<std::string>& keys,
 }
 
 namespace {
-
-std::vector<std::string> dotted_parts(const std::string& key) {
-  std::vector<std::string> parts;
-  std::stringstream in(key);
-  for (std::string part; std::getline(in, part, '.');) parts.push_back(part);
-  return parts;
-}
 
 std::optional<double> number_of(const toml::node_view<const toml::node>& node, std::size_t component) {
   if (const auto* a = node.as_array()) return component < a->size() ? (*a)[component].value<double>() : std::nullopt;
@@ -75,11 +67,10 @@ std::optional<double> scene_file_number(const std::filesystem::path& scene, cons
                                         std::size_t component) {
   if (scene.empty() || !std::filesystem::exists(scene)) return std::nullopt;
   const toml::table root = toml::parse_file(scene.string());
-  const auto parts = dotted_parts(key);
+  const auto parts = scene_key_parts(key);
   if (parts.size() == 4 && parts[0] == "material_pair") return material_pair_number(root, parts[1], parts[2], parts[3]);
   if (parts.size() != 2) return std::nullopt;
-  const toml::table& file = root;
-  return number_of(file[parts[0]][parts[1]], component);
+  return number_of(root[parts[0]][parts[1]], component);
 }
 
 double scene_number(const ModelPlan& model, const std::string& key) {

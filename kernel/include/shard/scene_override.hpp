@@ -33,4 +33,7 @@ using SceneOverrides = std::vector<SceneOverride>;
 // Every assignment parsed (--set strings at the command line's boundary).
 SceneOverrides parse_overrides(const std::vector<std::string>& assignments);
 
+// A scene key's dot-separated parts: "material_pair.beam.support.friction" -> 4 parts.
+std::vector<std::string> scene_key_parts(const std::string& key);
+
 }  // namespace shard

@@ -64,13 +64,6 @@ void insert(toml::table& t, const std::string& key, const SceneOverride::Value& 
       value);
 }
 
-std::vector<std::string> key_parts(const std::string& key) {
-  std::vector<std::string> parts;
-  std::stringstream ss(key);
-  for (std::string part; std::getline(ss, part, '.');) parts.push_back(part);
-  return parts;
-}
-
 // The names of the [[material]] entries, quoted, for messages.
 std::string material_names(const toml::array& materials) {
   std::string out;
@@ -201,7 +194,7 @@ SceneOverrides parse_overrides(const std::vector<std::string>& assignments) {
 }
 
 void apply_override(toml::table& root, const SceneOverride& o) {
-  const std::vector<std::string> parts = key_parts(o.key);
+  const std::vector<std::string> parts = scene_key_parts(o.key);
   if (parts.size() == 3 && parts[0] == "wall") {
     if (auto* walls = root["wall"].as_array())
       for (auto& w : *walls)
@@ -264,6 +257,13 @@ void apply_override(toml::table& root, const SceneOverride& o) {
     section = root[parts[0]].as_table();
   }
   insert(*section, parts[1], o.value);
+}
+
+std::vector<std::string> scene_key_parts(const std::string& key) {
+  std::vector<std::string> parts;
+  std::stringstream ss(key);
+  for (std::string part; std::getline(ss, part, '.');) parts.push_back(part);
+  return parts;
 }
 
 }  // namespace shard

@@ -8,7 +8,6 @@
 // profile them out, so a second effect is judged on what the first leaves, with the first
 // re-sized along.
 #include <algorithm>
-#include <cmath>
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -29,8 +28,8 @@ namespace shard::measure {
 // more than the reference's) keeps the side the data ask for; any other stays on its trial's side.
 inline double clamp_base_factor(double factor) { return std::clamp(factor, 0.55, 1.9); }
 inline double clamp_effect_scale(const CandidateEffect& effect, double scale) {
-  const double size = std::clamp(std::abs(scale), 0.05, 3.9);
-  return scale < 0 && effect.scale_min() < 0 ? -size : std::clamp(scale, 0.05, 3.9);
+  const bool other_side = scale < 0 && effect.scale_min() < 0;
+  return other_side ? -std::clamp(-scale, 0.05, 3.9) : std::clamp(scale, 0.05, 3.9);
 }
 
 // How a model's runs are scored against the data (--scoring):
