@@ -40,6 +40,7 @@ ParticleView view_of(const Particles& p) {
   v.inertia = p.inertia.data();
   v.material = p.material.data();
   v.id = p.id.data();
+  v.flags = p.flags.data();
   return v;
 }
 

@@ -31,6 +31,9 @@ struct Wall {
   std::vector<std::array<Vec3, 3>> triangles;
   // The scene material it is made of (docs/reference/materials.md); read only when the scene has several.
   std::int32_t material = 0;
+  // Bonds between particles whose centres start within this distance of the surface never fail
+  // (unbreakable_zone.hpp), m; 0: none.
+  double unbreakable_zone = 0;
 
   // Prescribed motion. Without a ramp or table, `velocity` is constant and `displacement` the sum
   // of the steps; with one (motion.is_profile()), both are set from motion at every step.

@@ -5,6 +5,7 @@
 #include "body_placement.hpp"
 #include "wall_reach.hpp"
 #include "shard/scene.hpp"
+#include "shard/unbreakable_zone.hpp"
 
 namespace shard {
 
@@ -139,6 +140,11 @@ SceneInstance instantiate(const Scene& scene, const PluginHost& host,
     if (log) log(fmt::format("grip {}: {} particles at velocity [{}, {}, {}] m/s", grip.name, held, grip.velocity.x(),
                              grip.velocity.y(), grip.velocity.z()));
   }
+  const std::vector<std::size_t> zones = mark_unbreakable_zones(setup.particles, scene.walls);
+  for (std::size_t w = 0; w < zones.size() && log; ++w)
+    if (scene.walls[w].unbreakable_zone > 0)
+      log(fmt::format("wall {}: bonds of the {} particles within {} mm of its surface never break",
+                      scene.walls[w].name, zones[w], 1e3 * scene.walls[w].unbreakable_zone));
   setup.bonds = out.body.bonds;
   set_scene_fields(setup, scene, out);
   setup.dt = scene.dt;

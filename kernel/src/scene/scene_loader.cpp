@@ -185,6 +185,10 @@ Wall read_wall(const toml::table& t, const std::string& file, const std::filesys
   } else {
     s.fail("shape", fmt::format("= '{}' is not a wall shape; use \"plane\", \"cylinder\" or \"mesh\"", shape));
   }
+  w.unbreakable_zone = s.number("unbreakable_zone", 0, -1e300, 1e300, "m");
+  if (w.unbreakable_zone < 0)
+    s.fail("unbreakable_zone", "must be a distance >= 0 in m from the wall's surface, e.g. 0.01 (two grain "
+                               "diameters under a roller); 0 or leaving it out: every bond may break");
   read_wall_motion(s, t, dir, w);
   read_wall_spin(s, t, dir, w);
   read_wall_belt(s, t, w);

@@ -125,7 +125,10 @@ std::vector<SceneKeySpec> wall_shape_keys() {
           {"length", "number", "m", "required for a cylinder", "cylinder length, centred on point"},
           {"file", "string", "", "required for a mesh", "mesh: STL file, relative to the scene"},
           {"scale", "number", "1", "1", "mesh: factor from the STL's units to m"},
-          {"offset", "vec3", "m", "[0, 0, 0]", "mesh: added to every vertex after scaling"}};
+          {"offset", "vec3", "m", "[0, 0, 0]", "mesh: added to every vertex after scaling"},
+          {"unbreakable_zone", "number", "m", "0 (none)",
+           "bonds between particles whose centres start this close to the surface never fail: the grains under a "
+           "roller or pin, which a line load on a coarse packing crushes before the specimen cracks"}};
 }
 
 std::vector<SceneKeySpec> wall_motion_keys() {

@@ -14,6 +14,9 @@ enum ParticleFlag : std::uint8_t {
   // Velocity and angular velocity held at their set values, position and orientation integrated:
   // a loading platen made of particles. Forces still recorded.
   kPrescribed = 1u << 1,
+  // In an unbreakable zone ([[wall]] unbreakable_zone): a bond model never fails a bond whose two
+  // particles carry it (bond_unbreakable) and computes it on as an intact bond.
+  kUnbreakable = 1u << 2,
 };
 
 struct Particles {
@@ -52,8 +55,14 @@ struct ParticleView {
   const double* inertia = nullptr;
   const std::int32_t* material = nullptr;
   const Index* id = nullptr;
+  const std::uint8_t* flags = nullptr;  // ParticleFlag bits
 };
 
 ParticleView view_of(const Particles& p);
+
+// True when bond (i, j) may not fail: both its particles lie in an unbreakable zone.
+inline bool bond_unbreakable(const ParticleView& p, Index i, Index j) {
+  return p.flags != nullptr && (p.flags[i] & p.flags[j] & kUnbreakable) != 0;
+}
 
 }  // namespace shard

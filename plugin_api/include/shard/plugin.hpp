@@ -20,8 +20,9 @@ namespace shard {
 // Bump on any change to a header plugins compile against (the installed API, docs/how-to/write-a-plugin.md).
 // 2: BondModel::writes_every_output; 3: bond effects (bond_effect.hpp, Registrar::add_bond_effect)
 // and the installed API reduced to the plugin headers; 4: materials (ParamSpec::scope,
-// ContactBatch::material_pair, ContactModel::set_materials and its per-material time step).
-inline constexpr int kAbiVersion = 4;
+// ContactBatch::material_pair, ContactModel::set_materials and its per-material time step);
+// 5: ParticleView::flags and kUnbreakable (a bond model keeps the bonds of unbreakable zones).
+inline constexpr int kAbiVersion = 5;
 
 enum class PluginKind { Contact, Bond, Generator, BondEffect };
 const char* to_string(PluginKind kind);

@@ -63,7 +63,8 @@ inline void step_bond(BondBatch& batch, std::size_t k, std::size_t stride, const
     else if (c.arm) step_bond<breakage, viscous, true, true>(batch, k, stride, c, extra);
     else step_bond<breakage, viscous, true, false>(batch, k, stride, c, extra);
   };
-  if (c.breakage) {
+  // A bond of an unbreakable zone takes the law without its breakage check (an intact bond).
+  if (c.breakage && !bond_unbreakable(batch.particles, batch.i[k], batch.j[k])) {
     if (c.viscous_force) with.template operator()<true, true>();
     else with.template operator()<true, false>();
   } else {
