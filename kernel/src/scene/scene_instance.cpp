@@ -143,7 +143,7 @@ SceneInstance instantiate(const Scene& scene, const PluginHost& host,
   const std::vector<std::size_t> zones = mark_unbreakable_zones(setup.particles, scene.walls);
   for (std::size_t w = 0; w < zones.size() && log; ++w)
     if (scene.walls[w].unbreakable_zone > 0)
-      log(fmt::format("wall {}: bonds of the {} particles within {} mm of its surface never break",
+      log(fmt::format("wall {}: {} particles within {} mm of its surface; the bonds between them never break",
                       scene.walls[w].name, zones[w], 1e3 * scene.walls[w].unbreakable_zone));
   setup.bonds = out.body.bonds;
   set_scene_fields(setup, scene, out);
