@@ -2,12 +2,7 @@
 // wall's surface never fail; a bond with one end outside the zone fails as any other.
 #include <doctest/doctest.h>
 
-#include <filesystem>
-#include <fstream>
-#include <string>
-
 #include "kernel_fixtures.hpp"
-#include "shard/scene.hpp"
 #include "shard/unbreakable_zone.hpp"
 
 using namespace shard;
@@ -70,80 +65,5 @@ TEST_CASE("a bond fails unless both of its particles lie in an unbreakable zone"
     CHECK(sim.bonds().size() == (flagged == 2 ? 1u : 0u));
     // The kept bond still pulls the pair back together: it transmits its load as an intact bond.
     if (flagged == 2) CHECK(sim.particles().force[0].x() > 0);
-  }
-}
-
-TEST_CASE("[[wall]] unbreakable_zone marks the bottom layer of a box on a plane") {
-  const auto dir = std::filesystem::temp_directory_path() / "shard_unbreakable_zone";
-  std::filesystem::create_directories(dir);
-  std::ofstream(dir / "scene.toml") << R"([simulation]
-duration = 0.001
-dt = 1e-6
-
-[material]
-density = 2500
-
-[generator]
-plugin = "box_fill"
-min_corner = [0, 0, 0.01]
-max_corner = [0.008, 0.008, 0.018]
-diameter_min = 0.004
-diameter_max = 0.004
-lattice = "cubic"
-
-[contact]
-plugin = "linear_spring"
-normal_stiffness = 1e4
-
-[bond]
-plugin = "beam_bond"
-youngs_modulus = 1e8
-critical_stress = 1e6
-
-[[wall]]
-name = "floor"
-shape = "plane"
-point = [0, 0, 0.01]
-normal = [0, 0, 1]
-unbreakable_zone = 0.003
-)";
-  const Scene scene = load_scene(dir / "scene.toml", {}, test::plugins());
-  REQUIRE(scene.walls.size() == 1);
-  CHECK(scene.walls[0].unbreakable_zone == doctest::Approx(0.003));
-  const SceneInstance inst = instantiate(scene, test::plugins(), nullptr);
-  const Particles& p = inst.simulation->particles();
-  std::size_t marked = 0;
-  for (std::size_t k = 0; k < p.size(); ++k) {
-    const bool in_zone = (p.flags[k] & kUnbreakable) != 0;
-    CHECK(in_zone == (p.position[k].z() < 0.013));  // centres 2 mm above the floor, the next layer 6 mm
-    marked += in_zone ? 1 : 0;
-  }
-  CHECK(marked == 4);
-
-  std::ofstream(dir / "bad.toml") << R"([simulation]
-duration = 0.001
-
-[material]
-density = 2500
-
-[generator]
-plugin = "box_fill"
-min_corner = [0, 0, 0.01]
-max_corner = [0.008, 0.008, 0.018]
-diameter_min = 0.004
-diameter_max = 0.004
-
-[[wall]]
-name = "floor"
-shape = "plane"
-unbreakable_zone = -0.003
-)";
-  try {
-    load_scene(dir / "bad.toml", {}, test::plugins());
-    FAIL("a negative unbreakable_zone was accepted");
-  } catch (const SceneError& e) {
-    const std::string what = e.what();
-    CHECK(what.find("bad.toml:17") != std::string::npos);
-    CHECK(what.find("unbreakable_zone must be a distance >= 0") != std::string::npos);
   }
 }

@@ -9,6 +9,7 @@
 
 #include "kernel_fixtures.hpp"
 #include "shard/scene.hpp"
+#include "shard/unbreakable_zone.hpp"
 
 using namespace shard;
 
@@ -120,4 +121,22 @@ TEST_CASE("bad spin and belt keys name the file, line, column, key and fix") {
             "[wall] surface_velocity is given with belt_speed or belt_direction"));
   const auto typo = error_of("typo", kPlane + "rotation_axs = [0, 0, 1]\n");
   CHECK(has(typo, "scene.toml:27:16: unknown key 'rotation_axs' in [wall] (did you mean 'rotation_axis'?)"));
+}
+
+TEST_CASE("unbreakable_zone marks the spheres whose centres start within it of the wall") {
+  // kScene's box: two layers of 4 mm spheres, centres 2 and 6 mm above the plane at z = 0.01.
+  const std::string floor = "shape = \"plane\"\npoint = [0, 0, 0.01]\nnormal = [0, 0, 1]\n";
+  const Scene scene = scene_with("zone", floor + "unbreakable_zone = 0.003\n");
+  CHECK(scene.walls[0].unbreakable_zone == doctest::Approx(0.003));
+  const SceneInstance inst = instantiate(scene, test::plugins(), nullptr);
+  const Particles& p = inst.simulation->particles();
+  std::size_t marked = 0;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const bool in_zone = (p.flags[k] & kUnbreakable) != 0;
+    CHECK(in_zone == (p.position[k].z() < 0.013));
+    marked += in_zone ? 1 : 0;
+  }
+  CHECK(marked == 4);
+  CHECK(has(error_of("negative_zone", kPlane + "unbreakable_zone = -0.003\n"),
+            "scene.toml:27:20: [wall] unbreakable_zone must be a distance >= 0 in m"));
 }
