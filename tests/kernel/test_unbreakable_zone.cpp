@@ -23,7 +23,7 @@ Wall roller_along_y(double zone) {
   return w;
 }
 
-// Two bonded spheres moving apart at `speed` each; `flagged` of them (the first ones) in a zone.
+// Two bonded spheres moving apart at 1 mm/s each; the first `flagged` of them in a zone.
 SimulationSetup pulled_pair(const ContactModel& contact, const BondModel& bond, int flagged) {
   SimulationSetup setup;
   setup.particles.add(Vec3(0, 0, 0), kRadius, 2500.0);

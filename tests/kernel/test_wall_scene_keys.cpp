@@ -8,8 +8,8 @@
 #include <string>
 
 #include "kernel_fixtures.hpp"
+#include "shard/particles.hpp"
 #include "shard/scene.hpp"
-#include "shard/unbreakable_zone.hpp"
 
 using namespace shard;
 
