@@ -195,6 +195,21 @@ std::string power_text(const ContrastReport& r, const SetDiagnosis& d) {
                           r.result.dof, p);
 }
 
+// The closest effect's model follows the contrast up to the peak but not to the measured peak
+// force: the data then point at a second cause beside it.
+std::string missed_peak_text(const SetDiagnosis& d, const std::string& closest) {
+  if (d.after_effect != closest || !curve_agrees(d.after) || peak_force_reproduced(d.contrast, d.after_components))
+    return "";
+  for (std::size_t i = 0; i < d.contrast.names.size() && i < d.after_components.size(); ++i)
+    if (d.contrast.names[i].rfind("ln_peak_force", 0) == 0)
+      return fmt::format(" Its model follows the contrast curve before the peak ({:.1f} % against a floor of {:.1f} "
+                         "%) but moves the peak force by {:+.1f} % where the set moved it by {:+.1f} %: a second "
+                         "cause that changes the strength.",
+                         100 * d.after.rising_nrmse, 100 * naming_floor(d.after),
+                         100 * std::expm1(d.after_components[i]), 100 * std::expm1(d.contrast.difference[i]));
+  return "";
+}
+
 std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
   const ContrastDecision& c = d.decision;
   const std::string& name = r.sets.names[d.set];
@@ -236,6 +251,7 @@ std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
                          "neutral value (shard new-plugin, docs/how-to/write-a-plugin.md) and an [[effect]] entry.",
                          f.name, fitted_value(r, d, 0), fitted_uncertainty(r, d, 0), e ? e->unit_suffix() : "", 100 * share,
                          c.chi_square, f.chi_square, f.p_drop, f.p_after, f.name, f.name, f.name);
+        s += missed_peak_text(d, f.name);
       } else {
         // Simulated at its fitted size, the closest can fit worse than no effect at all.
         const std::string took =
@@ -426,9 +442,9 @@ std::string set_sections_markdown(const ContrastReport& r) {
                                         d.pair_values[0], d.pair->second, d.pair_values[1])
                           : fmt::format(" model with {} = {:.4g} | (model - measured) / u |", d.after_effect, d.after_value),
                       shown ? "---|---|" : "");
+    const std::vector<double> uncertainties = component_uncertainties(d.contrast);
     for (std::size_t i = 0; i < d.contrast.names.size(); ++i) {
-      // u: the marginal standard uncertainty of the difference (the weight is the inverse covariance).
-      const double u = 1 / std::sqrt(d.contrast.weight[i][i]);
+      const double u = uncertainties[i];
       md += fmt::format("| {} | {:+.4g} | {:.2g} |{}\n", d.contrast.names[i], d.contrast.difference[i], u,
                         shown ? fmt::format(" {:+.4g} | {:+.1f} |", d.after_components[i],
                                             (d.after_components[i] - d.contrast.difference[i]) / u)

@@ -285,9 +285,12 @@ TEST_CASE("a second effect the packing seeds do not agree on is not named beside
   CHECK(set.pair->p_after > ContrastOptions{}.remaining_p);
   CHECK(set.pair->p_seeds > 0.2);
   CHECK_FALSE(names_a_pair(set));
-  // The frame alone, named by its curve (its components after the peak carry the stronger batch).
-  CHECK(set.decision.verdict == kMachineCompliance);
-  CHECK(set.named_by_curve);
+  // The frame alone follows the rising branch but not the stronger batch's peak force: not named
+  // by its curve either, the closest of an unexplained difference.
+  CHECK(set.decision.verdict == kUnexplainedDifference);
+  CHECK_FALSE(set.named_by_curve);
+  CHECK(set.decision.fits.front().name == kMachineCompliance);
+  CHECK_FALSE(peak_force_reproduced(set.contrast, set.after_components));
 }
 
 TEST_CASE("a 'no difference' says how large a difference the specimens would have seen") {
@@ -592,6 +595,51 @@ TEST_CASE("a closest effect whose fracture components differ is named by its cur
   CHECK(sets[2].decision.verdict == kUnexplainedDifference);  // the curve misses
   CHECK_FALSE(sets[2].named_by_curve);
   CHECK(sets[3].decision.verdict == kUnexplainedDifference);  // worse than the base over the whole curve
+}
+
+TEST_CASE("a closest effect that misses the peak force is not named by its curve: a second cause") {
+  // A batch of two effects, a softer frame and stronger bonds: the frame alone reproduces the
+  // rising branch and most of T^2, but leaves the peak force where the reference has it.
+  auto frame_alone = [](double measured_peak, double model_peak) {
+    SetDiagnosis d;
+    d.decision.verdict = kUnexplainedDifference;
+    d.decision.chi_square = 1000;
+    ContrastFit f;
+    f.name = kMachineCompliance, f.scale = 1, f.identifiable = true, f.p_drop = 1e-12, f.p_after = 1e-10;
+    f.drop = 920, f.chi_square = 80;
+    d.decision.fits.push_back(f);
+    d.after_effect = kMachineCompliance;
+    d.before.nrmse = 0.3, d.after.nrmse = 0.1;
+    d.after.xi = {0.5}, d.after.rising = {1}, d.after.measured = {0.1}, d.after.simulated = {0.1};
+    d.after.u_measured = {0.03}, d.after.u_simulated = {0.02}, d.after.rising_nrmse = 0.05;
+    // Independent components, u = 0.01 each.
+    d.contrast.names = {"ln_stiffness", "ln_peak_force"};
+    d.contrast.difference = {-0.58, measured_peak};
+    d.contrast.weight = {{1e4, 0}, {0, 1e4}};
+    d.after_components = {-0.60, model_peak};
+    return d;
+  };
+  std::vector<SetDiagnosis> sets{frame_alone(0.03, 0.0), frame_alone(0.31, 0.0), frame_alone(0.31, 0.30),
+                                 frame_alone(0.31, 0.22)};
+  name_by_curve(sets, 8, ContrastOptions{});
+  CHECK(sets[0].decision.verdict == kMachineCompliance);      // 3 u from the model's unmoved peak
+  CHECK(sets[1].decision.verdict == kUnexplainedDifference);  // 31 u: the frame does not move the strength
+  CHECK_FALSE(sets[1].named_by_curve);
+  CHECK(sets[2].decision.verdict == kMachineCompliance);  // the model moves the peak as far
+  // 0.09 from a model change of 0.22: u widened to hypot(0.01, 0.2 x 0.22) = 0.045, 2 of them.
+  CHECK(sets[3].decision.verdict == kMachineCompliance);
+}
+
+TEST_CASE("a contrast component's uncertainty is its marginal one, correlations included") {
+  // Covariance [[4, 3], [3, 9]] (u 2 and 3, correlation 0.5): its inverse as the weight.
+  ContrastStudy::Contrast c;
+  c.names = {"a", "b"};
+  c.difference = {0, 0};
+  const double det = 4 * 9 - 3 * 3;
+  c.weight = {{9 / det, -3 / det}, {-3 / det, 4 / det}};
+  const std::vector<double> u = component_uncertainties(c);
+  CHECK(u[0] == doctest::Approx(2));
+  CHECK(u[1] == doctest::Approx(3));
 }
 
 TEST_CASE("what a verdict rests on: a base assumption moved, each shown model rerun there") {

@@ -1,5 +1,6 @@
 #include "shard/measure/contrast_diagnosis.hpp"
 
+#include <Eigen/Dense>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -130,6 +131,28 @@ bool curve_bears_out(const ContrastStudy::CurveContrast& after, const ContrastSt
   return curve_agrees(after, options) && after.nrmse < before.nrmse;
 }
 
+std::vector<double> component_uncertainties(const ContrastStudy::Contrast& c) {
+  const auto n = static_cast<Eigen::Index>(c.weight.size());
+  Eigen::MatrixXd weight(n, n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index j = 0; j < n; ++j) weight(i, j) = c.weight[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+  const Eigen::MatrixXd covariance = weight.ldlt().solve(Eigen::MatrixXd::Identity(n, n));
+  std::vector<double> u(c.weight.size());
+  for (Eigen::Index i = 0; i < n; ++i) u[static_cast<std::size_t>(i)] = std::sqrt(covariance(i, i));
+  return u;
+}
+
+bool peak_force_reproduced(const ContrastStudy::Contrast& c, const std::vector<double>& model,
+                           const ContrastOptions& options) {
+  const std::vector<double> u = component_uncertainties(c);
+  for (std::size_t i = 0; i < c.names.size() && i < model.size(); ++i) {
+    if (c.names[i].rfind("ln_peak_force", 0) != 0) continue;
+    const double widened = std::hypot(u[i], options.form_tolerance * model[i]);
+    if (std::abs(model[i] - c.difference[i]) > options.curve_name_peak_sigmas * widened) return false;
+  }
+  return true;
+}
+
 namespace {
 
 // The curve rule on the set's shown model.
@@ -163,7 +186,8 @@ void name_by_curve(std::vector<SetDiagnosis>& sets, std::size_t tried, const Con
     if (c.verdict != kUnexplainedDifference || names_a_pair(d, options) || c.fits.empty()) continue;
     const ContrastFit& closest = c.fits.front();
     const double share = c.chi_square > 0 ? closest.drop / c.chi_square : 0.0;
-    const bool curve_of_closest_agrees = d.after_effect == closest.name && curve_bears_out(d, options);
+    const bool curve_of_closest_agrees = d.after_effect == closest.name && curve_bears_out(d, options) &&
+                                         peak_force_reproduced(d.contrast, d.after_components, options);
     if (!(closest.scale != 0 && closest.identifiable && closest.p_drop < level && share >= options.curve_name_share &&
           curve_of_closest_agrees))
       continue;

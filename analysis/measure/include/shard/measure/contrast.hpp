@@ -146,6 +146,13 @@ struct ContrastOptions {
   // curve rule leaves out on purpose. On the foreign sets the wrong closest effects took at most
   // 78 % of T^2, the right ones 90-93 %.
   double curve_name_share = 0.85;
+  // ... and when its model reproduces the peak force: the curve rule reads the rising branch only,
+  // which one effect of two reproduces up to its own peak while the measured curve climbs on. A
+  // peak force the named effect leaves where the data do not is a second cause, not the crack's
+  // form: every peak-force component must lie within this many standard uncertainties of the
+  // model's, widened by form_tolerance x the model's own change. On the foreign draws the right
+  // curve names lay within 2.4; a batch of compliance and softening named compliance alone at 15.6.
+  double curve_name_peak_sigmas = 4.0;
   // Sets whose specimen scatter is exceptional carry their own instead of joining the pool
   // (group_scatter.hpp), at this p over the sets; 0 pools every set. Off by default: on the
   // tiny-beam foreign sets the Weibull set (95 x the others' variance) left the pool and the

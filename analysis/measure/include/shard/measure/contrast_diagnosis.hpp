@@ -135,10 +135,21 @@ bool curve_bears_out(const ContrastStudy::CurveContrast& after, const ContrastSt
 // T^2, becomes an unexplained difference.
 void require_curve_agreement(std::vector<SetDiagnosis>& sets, const ContrastOptions& options);
 
+// The marginal standard uncertainty of each component of the measured contrast (its weight is
+// the inverse covariance).
+std::vector<double> component_uncertainties(const ContrastStudy::Contrast& c);
+
+// A model's contrast components (`model`, as ContrastStudy::model_contrast orders them) reproduce
+// the measured peak force: every ln_peak_force component within
+// ContrastOptions::curve_name_peak_sigmas of it, the uncertainty widened by the form tolerance of
+// the model's own change.
+bool peak_force_reproduced(const ContrastStudy::Contrast& c, const std::vector<double>& model,
+                           const ContrastOptions& options = {});
+
 // The other way round: a set left unexplained (no pair named) whose closest single effect has a
-// significant drop over the `tried` effects, explains at least curve_name_share of T^2 and
-// reproduces the contrast curve within the curve rule is named by it (named_by_curve), with the
-// rivals the component rule would list.
+// significant drop over the `tried` effects, explains at least curve_name_share of T^2,
+// reproduces the contrast curve within the curve rule and the peak force (peak_force_reproduced)
+// is named by it (named_by_curve), with the rivals the component rule would list.
 void name_by_curve(std::vector<SetDiagnosis>& sets, std::size_t tried, const ContrastOptions& options);
 
 // A set tested at several rates whose verdict names only rate-independent effects (no rate
