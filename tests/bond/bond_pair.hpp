@@ -16,6 +16,7 @@ struct HandBonds {
   std::vector<double> radius, mass, inertia;
   std::vector<std::int32_t> material;
   std::vector<Index> id;
+  std::vector<std::uint8_t> flags;  // ParticleFlag bits per sphere; empty: none set
 
   std::vector<Index> i, j;
   std::vector<double> state;
@@ -73,6 +74,7 @@ struct HandBonds {
     b.particles.inertia = inertia.data();
     b.particles.material = material.data();
     b.particles.id = id.data();
+    b.particles.flags = flags.empty() ? nullptr : flags.data();
     b.state = state.data();
     b.force = force.data();
     b.torque_i = torque_i.data();

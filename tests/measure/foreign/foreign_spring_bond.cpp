@@ -219,7 +219,8 @@ void SpringBond::compute_bond(BondBatch& b, std::size_t k) const {
   const Vec3 twisting = p_.twisting_stiffness * m.twisting;
 
   double scale = 1;
-  if (p_.breakage) {
+  // A bond of an unbreakable zone takes the law without its breakage check (plugin ABI 5).
+  if (p_.breakage && !bond_unbreakable(b.particles, b.i[k], b.j[k])) {
     const double w = s[kStrengthFactor];
     const double terms[4] = {std::max(normal, 0.0) / (w * p_.normal_strength), shear.norm() / (w * p_.shear_strength),
                              bending.norm() / (w * p_.bending_strength), twisting.norm() / (w * p_.twisting_strength)};

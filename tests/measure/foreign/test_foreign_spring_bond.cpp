@@ -100,6 +100,18 @@ TEST_CASE("foreign spring bond: breaks where the force criterion reaches 1") {
     CHECK(k_n * (t - 1) * h < p.normal_strength);
     CHECK(k_n * t * h >= p.normal_strength);
   }
+  SUBCASE("a bond between two spheres of an unbreakable zone holds, and still pulls") {
+    SpringPair pair(model);
+    pair.scene.flags = {kUnbreakable, kUnbreakable};
+    const double dx = 3 * p.normal_strength / k_n;
+    CHECK(break_step(model, pair, n, [&](int s) { pair.place(s * dx / n); }) == 0);
+    CHECK(pair.force_on_first().x() == doctest::Approx(p.normal_stiffness * dx).epsilon(1e-8));
+  }
+  SUBCASE("one end in a zone is not enough") {
+    SpringPair pair(model);
+    pair.scene.flags = {kUnbreakable, 0};
+    CHECK(break_step(model, pair, n, [&](int s) { pair.place(s * 2 * p.normal_strength / k_n / n); }) > 0);
+  }
   SUBCASE("compression never breaks a bond") {
     SpringPair pair(model);
     const double h = -5 * p.normal_strength / k_n / n;
