@@ -201,7 +201,7 @@ std::string missed_peak_text(const SetDiagnosis& d, const std::string& closest) 
   if (d.after_effect != closest || !curve_agrees(d.after) || peak_force_reproduced(d.contrast, d.after_components))
     return "";
   for (std::size_t i = 0; i < d.contrast.names.size() && i < d.after_components.size(); ++i)
-    if (d.contrast.names[i].rfind("ln_peak_force", 0) == 0)
+    if (is_peak_force_component(d.contrast.names[i]))
       return fmt::format(" Its model follows the contrast curve before the peak ({:.1f} % against a floor of {:.1f} "
                          "%) but moves the peak force by {:+.1f} % where the set moved it by {:+.1f} %: a second "
                          "cause that changes the strength.",

@@ -628,6 +628,9 @@ TEST_CASE("a closest effect that misses the peak force is not named by its curve
   CHECK(sets[2].decision.verdict == kMachineCompliance);  // the model moves the peak as far
   // 0.09 from a model change of 0.22: u widened to hypot(0.01, 0.2 x 0.22) = 0.045, 2 of them.
   CHECK(sets[3].decision.verdict == kMachineCompliance);
+  // A study at two rates names each rate group's component.
+  CHECK(is_peak_force_component("ln_peak_force@0.02"));
+  CHECK_FALSE(is_peak_force_component("ln_peak_displacement"));
 }
 
 TEST_CASE("a contrast component's uncertainty is its marginal one, correlations included") {

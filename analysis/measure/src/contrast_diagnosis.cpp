@@ -1,6 +1,5 @@
 #include "shard/measure/contrast_diagnosis.hpp"
 
-#include <Eigen/Dense>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -132,21 +131,19 @@ bool curve_bears_out(const ContrastStudy::CurveContrast& after, const ContrastSt
 }
 
 std::vector<double> component_uncertainties(const ContrastStudy::Contrast& c) {
-  const auto n = static_cast<Eigen::Index>(c.weight.size());
-  Eigen::MatrixXd weight(n, n);
-  for (Eigen::Index i = 0; i < n; ++i)
-    for (Eigen::Index j = 0; j < n; ++j) weight(i, j) = c.weight[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
-  const Eigen::MatrixXd covariance = weight.ldlt().solve(Eigen::MatrixXd::Identity(n, n));
-  std::vector<double> u(c.weight.size());
-  for (Eigen::Index i = 0; i < n; ++i) u[static_cast<std::size_t>(i)] = std::sqrt(covariance(i, i));
+  const std::vector<std::vector<double>> covariance = spd_inverse(c.weight);
+  std::vector<double> u(covariance.size());
+  for (std::size_t i = 0; i < u.size(); ++i) u[i] = std::sqrt(covariance[i][i]);
   return u;
 }
+
+bool is_peak_force_component(const std::string& name) { return name.rfind("ln_peak_force", 0) == 0; }
 
 bool peak_force_reproduced(const ContrastStudy::Contrast& c, const std::vector<double>& model,
                            const ContrastOptions& options) {
   const std::vector<double> u = component_uncertainties(c);
   for (std::size_t i = 0; i < c.names.size() && i < model.size(); ++i) {
-    if (c.names[i].rfind("ln_peak_force", 0) != 0) continue;
+    if (!is_peak_force_component(c.names[i])) continue;
     const double widened = std::hypot(u[i], options.form_tolerance * model[i]);
     if (std::abs(model[i] - c.difference[i]) > options.curve_name_peak_sigmas * widened) return false;
   }

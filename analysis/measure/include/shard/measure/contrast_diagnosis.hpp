@@ -139,6 +139,9 @@ void require_curve_agreement(std::vector<SetDiagnosis>& sets, const ContrastOpti
 // the inverse covariance).
 std::vector<double> component_uncertainties(const ContrastStudy::Contrast& c);
 
+// A peak-force component of a contrast (ln_peak_force, or ln_peak_force@rate of one rate group).
+bool is_peak_force_component(const std::string& name);
+
 // A model's contrast components (`model`, as ContrastStudy::model_contrast orders them) reproduce
 // the measured peak force: every ln_peak_force component within
 // ContrastOptions::curve_name_peak_sigmas of it, the uncertainty widened by the form tolerance of
