@@ -150,8 +150,8 @@ struct ContrastOptions {
   // which one effect of two reproduces up to its own peak while the measured curve climbs on. A
   // peak force the named effect leaves where the data do not is a second cause, not the crack's
   // form: every peak-force component must lie within this many standard uncertainties of the
-  // model's, widened by form_tolerance x the model's own change. On the foreign draws the right
-  // curve names lay within 2.4; a batch of compliance and softening named compliance alone at 15.6.
+  // model's, widened by form_tolerance x the model's own change. On four foreign draws the right
+  // curve names lay within 1.25 of them; a compliance and softening batch's frame alone at 15.6.
   double curve_name_peak_sigmas = 4.0;
   // Sets whose specimen scatter is exceptional carry their own instead of joining the pool
   // (group_scatter.hpp), at this p over the sets; 0 pools every set. Off by default: on the
