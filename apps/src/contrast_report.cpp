@@ -195,19 +195,34 @@ std::string power_text(const ContrastReport& r, const SetDiagnosis& d) {
                           r.result.dof, p);
 }
 
-// The closest effect's model follows the contrast up to the peak but not to the measured peak
-// force: the data then point at a second cause beside it.
-std::string missed_peak_text(const SetDiagnosis& d, const std::string& closest) {
-  if (d.after_effect != closest || !curve_agrees(d.after) || peak_force_reproduced(d.contrast, d.after_components))
-    return "";
-  for (std::size_t i = 0; i < d.contrast.names.size() && i < d.after_components.size(); ++i)
-    if (is_peak_force_component(d.contrast.names[i]))
-      return fmt::format(" Its model follows the contrast curve before the peak ({:.1f} % against a floor of {:.1f} "
-                         "%) but moves the peak force by {:+.1f} % where the set moved it by {:+.1f} %: a second "
-                         "cause that changes the strength.",
-                         100 * d.after.rising_nrmse, 100 * naming_floor(d.after),
-                         100 * std::expm1(d.after_components[i]), 100 * std::expm1(d.contrast.difference[i]));
-  return "";
+// A contrast component in words: ln_peak_force@0.02 is the peak force@0.02.
+std::string component_label(const std::string& component) {
+  std::string label = component.rfind("ln_", 0) == 0 ? component.substr(3) : component;
+  std::replace(label.begin(), label.end(), '_', ' ');
+  return label;
+}
+
+// A contrast component's change as a reader takes it: a ratio for a logarithm, as is otherwise.
+std::string component_change_text(const std::string& component, double value) {
+  return component.rfind("ln_", 0) == 0 ? fmt::format("{:+.1f} %", 100 * std::expm1(value))
+                                        : fmt::format("{:+.3f}", value);
+}
+
+// The closest effect's model follows the contrast curve before the peak but misses a component a
+// name by its curve must reproduce: the data then point at a second cause beside it (a peak force
+// it leaves behind) or at another shape of the rising branch.
+std::string missed_component_text(const SetDiagnosis& d, const std::string& closest) {
+  if (d.after_effect != closest || !curve_agrees(d.after)) return "";
+  const auto missed = component_missed_by_curve_name(d.contrast, d.after_components);
+  if (!missed) return "";
+  const std::string& name = d.contrast.names[*missed];
+  const std::string moved = fmt::format(
+      " Its model follows the contrast curve before the peak ({:.1f} % against a floor of {:.1f} %) but moves the {} "
+      "by {} where the set moved it by {}",
+      100 * d.after.rising_nrmse, 100 * naming_floor(d.after), component_label(name),
+      component_change_text(name, d.after_components[*missed]), component_change_text(name, d.contrast.difference[*missed]));
+  if (is_peak_force_component(name)) return moved + ": a second cause that changes the strength.";
+  return moved + ": the set's rising branch bends otherwise than this effect bends it.";
 }
 
 std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
@@ -251,7 +266,7 @@ std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
                          "neutral value (shard new-plugin, docs/how-to/write-a-plugin.md) and an [[effect]] entry.",
                          f.name, fitted_value(r, d, 0), fitted_uncertainty(r, d, 0), e ? e->unit_suffix() : "", 100 * share,
                          c.chi_square, f.chi_square, f.p_drop, f.p_after, f.name, f.name, f.name);
-        s += missed_peak_text(d, f.name);
+        s += missed_component_text(d, f.name);
       } else {
         // Simulated at its fitted size, the closest can fit worse than no effect at all.
         const std::string took =

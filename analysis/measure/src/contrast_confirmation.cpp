@@ -304,7 +304,7 @@ class Confirmation {
   bool named_by_its_curve(const SetDiagnosis& d, const Trial& t, double share, const ContrastOptions& options) const {
     return share >= options.curve_name_share &&
            curve_bears_out(study_.curve_contrast(d.contrast, t.run, base_), d.before, options) &&
-           peak_force_reproduced(d.contrast, study_.model_contrast(d.contrast, t.run, base_), options);
+           !component_missed_by_curve_name(d.contrast, study_.model_contrast(d.contrast, t.run, base_), options);
   }
 
   std::vector<Probe> probes_wanted(const ContrastOptions& options) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <ostream>
 #include <stdexcept>
 
@@ -139,15 +140,25 @@ std::vector<double> component_uncertainties(const ContrastStudy::Contrast& c) {
 
 bool is_peak_force_component(const std::string& name) { return name.rfind("ln_peak_force", 0) == 0; }
 
-bool peak_force_reproduced(const ContrastStudy::Contrast& c, const std::vector<double>& model,
-                           const ContrastOptions& options) {
+bool is_rising_branch_component(const std::string& name) {
+  return name.rfind("ln_stiffness", 0) == 0 || name.rfind("nonlinearity", 0) == 0;
+}
+
+double curve_name_sigmas(const std::string& component, const ContrastOptions& options) {
+  if (is_peak_force_component(component)) return options.curve_name_peak_sigmas;
+  if (is_rising_branch_component(component)) return options.curve_name_rising_sigmas;
+  return std::numeric_limits<double>::infinity();
+}
+
+std::optional<std::size_t> component_missed_by_curve_name(const ContrastStudy::Contrast& c,
+                                                          const std::vector<double>& model,
+                                                          const ContrastOptions& options) {
   const std::vector<double> u = component_uncertainties(c);
   for (std::size_t i = 0; i < c.names.size() && i < model.size(); ++i) {
-    if (!is_peak_force_component(c.names[i])) continue;
     const double widened = std::hypot(u[i], options.form_tolerance * model[i]);
-    if (std::abs(model[i] - c.difference[i]) > options.curve_name_peak_sigmas * widened) return false;
+    if (std::abs(model[i] - c.difference[i]) > curve_name_sigmas(c.names[i], options) * widened) return i;
   }
-  return true;
+  return std::nullopt;
 }
 
 namespace {
@@ -184,7 +195,7 @@ void name_by_curve(std::vector<SetDiagnosis>& sets, std::size_t tried, const Con
     const ContrastFit& closest = c.fits.front();
     const double share = c.chi_square > 0 ? closest.drop / c.chi_square : 0.0;
     const bool curve_of_closest_agrees = d.after_effect == closest.name && curve_bears_out(d, options) &&
-                                         peak_force_reproduced(d.contrast, d.after_components, options);
+                                         !component_missed_by_curve_name(d.contrast, d.after_components, options);
     if (!(closest.scale != 0 && closest.identifiable && closest.p_drop < level && share >= options.curve_name_share &&
           curve_of_closest_agrees))
       continue;

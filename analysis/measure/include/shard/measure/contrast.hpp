@@ -153,6 +153,14 @@ struct ContrastOptions {
   // model's, widened by form_tolerance x the model's own change. On four foreign draws the right
   // curve names lay within 1.25 of them; a compliance and softening batch's frame alone at 15.6.
   double curve_name_peak_sigmas = 4.0;
+  // ... and the rising branch's own components, its stiffness and nonlinearity, within this many:
+  // the curve rule's NRMSE averages the rising branch, so a closest effect with the wrong shape
+  // there (a frame's spring for a seating toe that bends the curve the other way) can pass it
+  // while missing the nonlinearity by many standard uncertainties. Looser than the peak force's,
+  // as the codes' seating and zeroing bend the start of the curve differently: on four foreign
+  // draws the right curve names lay within 4.8 of them, a frame's spring for a seating toe at
+  // 13.7-17.3.
+  double curve_name_rising_sigmas = 8.0;
   // Sets whose specimen scatter is exceptional carry their own instead of joining the pool
   // (group_scatter.hpp), at this p over the sets; 0 pools every set. Off by default: on the
   // tiny-beam foreign sets the Weibull set (95 x the others' variance) left the pool and the

@@ -142,17 +142,25 @@ std::vector<double> component_uncertainties(const ContrastStudy::Contrast& c);
 // A peak-force component of a contrast (ln_peak_force, or ln_peak_force@rate of one rate group).
 bool is_peak_force_component(const std::string& name);
 
-// A model's contrast components (`model`, as ContrastStudy::model_contrast orders them) reproduce
-// the measured peak force: every ln_peak_force component within
-// ContrastOptions::curve_name_peak_sigmas of it, the uncertainty widened by the form tolerance of
-// the model's own change.
-bool peak_force_reproduced(const ContrastStudy::Contrast& c, const std::vector<double>& model,
-                           const ContrastOptions& options = {});
+// A component of the rising branch (ln_stiffness, nonlinearity, or either @rate).
+bool is_rising_branch_component(const std::string& name);
+
+// How many standard uncertainties a name by its curve may leave between a model's component and the
+// measured one: curve_name_peak_sigmas for the peak force, curve_name_rising_sigmas for the rising
+// branch's; infinite for the components that carry the fracture's form.
+double curve_name_sigmas(const std::string& component, const ContrastOptions& options = {});
+
+// The first of a model's contrast components (`model`, as ContrastStudy::model_contrast orders
+// them) that lies beyond curve_name_sigmas of the measured one, the uncertainty widened by the form
+// tolerance of the model's own change; none when the model reproduces them all.
+std::optional<std::size_t> component_missed_by_curve_name(const ContrastStudy::Contrast& c,
+                                                          const std::vector<double>& model,
+                                                          const ContrastOptions& options = {});
 
 // The other way round: a set left unexplained (no pair named) whose closest single effect has a
 // significant drop over the `tried` effects, explains at least curve_name_share of T^2,
-// reproduces the contrast curve within the curve rule and the peak force (peak_force_reproduced)
-// is named by it (named_by_curve), with the rivals the component rule would list.
+// reproduces the contrast curve within the curve rule and its components where
+// component_missed_by_curve_name looks is named by it (named_by_curve), with the rivals the component rule would list.
 void name_by_curve(std::vector<SetDiagnosis>& sets, std::size_t tried, const ContrastOptions& options);
 
 // A set tested at several rates whose verdict names only rate-independent effects (no rate
