@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 namespace shard::driver::detail {
 namespace {
@@ -90,9 +91,11 @@ std::vector<Flagged> moving(const RunBackend& run) {
 
 }  // namespace
 
-NumericalHealth::NumericalHealth(const WholeScene& whole, const Simulation* packing, const Vec3& gravity)
+NumericalHealth::NumericalHealth(const WholeScene& whole, const Simulation* packing, const Vec3& gravity,
+                                 RunDamping damping)
     : gravity_(gravity),
       limits_(whole.limits),
+      damping_(std::move(damping)),
       energy0_(whole.energy0),
       potential0_(whole.potential0),
       scale_(whole.energy_scale) {
@@ -150,13 +153,30 @@ void NumericalHealth::check(const RunBackend& run, const std::string& last_good)
   scale_ = std::max({scale_, std::abs(mechanical), std::abs(potential), std::abs(work), std::abs(energy0_)});
 }
 
+// Cundall's damping takes alpha |F| off a particle's force while it speeds up and adds it while it
+// slows down: on the way back an oscillator's spring acts (1 + alpha) times as stiff, and velocity
+// Verlet, stable up to omega dt = 2, is stable only up to critical / sqrt(1 + alpha). A regular
+// lattice, whose stiffest mode reaches the bond's critical step, gains energy at rest.
+std::string NumericalHealth::damped_step_cause(const TimeStepLimit& limit, double dt) const {
+  if (!(damping_.fraction > 0)) return "";
+  const double damped = limit.critical / std::sqrt(1 + damping_.fraction);
+  if (dt <= damped) return "";
+  return fmt::format("Cundall's damping [simulation] {} = {:g} lets a slowing particle's force grow by that fraction, "
+                     "which shortens the critical step {:.4g} s of {} to {:.4g} s, below the time step {:.4g} s (a "
+                     "regular lattice reaches that limit): set [simulation] dt to at most {:.4g} s, or lower {}",
+                     damping_.key, damping_.fraction, limit.critical, limit.name, damped, dt, damped, damping_.key);
+}
+
 std::string NumericalHealth::likely_cause(const RunBackend& run, double dt, const std::vector<Index>& ids) const {
   std::vector<std::string> causes;
-  for (const auto& limit : limits_)
+  for (const auto& limit : limits_) {
     if (dt > limit.critical)
       causes.push_back(fmt::format("the time step {:.4g} s is above the critical step {:.4g} s of {}: set [simulation] "
                                    "dt = \"auto\" or at most {:.4g} s",
                                    dt, limit.critical, limit.name, limit.recommended));
+    else if (const std::string damped = damped_step_cause(limit, dt); !damped.empty())
+      causes.push_back(damped);
+  }
   const std::string overlap = initial_overlap(run, ids);
   if (!overlap.empty()) causes.push_back(overlap);
   if (causes.empty())

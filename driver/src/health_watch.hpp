@@ -20,6 +20,13 @@
 
 namespace shard::driver::detail {
 
+// The largest Cundall damping fraction a run uses and the [simulation] key that sets it: the
+// damping shortens the models' critical time steps (NumericalHealth::likely_cause).
+struct RunDamping {
+  double fraction = 0;
+  std::string key;
+};
+
 class NumericalHealth {
  public:
   // A particle moving this fraction of its radius, or turning this angle, in one step has left the
@@ -29,8 +36,9 @@ class NumericalHealth {
 
   // `whole`: the whole scene's energy baseline and time-step limits (the same on every rank);
   // `packing`: the whole scene's Simulation at the start where this process holds it (null
-  // elsewhere), the initial packing a message looks into; `gravity` the scene's, m/s^2.
-  NumericalHealth(const WholeScene& whole, const Simulation* packing, const Vec3& gravity);
+  // elsewhere), the initial packing a message looks into; `gravity` the scene's, m/s^2; `damping`
+  // the run's largest Cundall damping.
+  NumericalHealth(const WholeScene& whole, const Simulation* packing, const Vec3& gravity, RunDamping damping);
 
   // Accumulates the work of the walls (rank 0) and of this rank's gripped particles; call after
   // every step.
@@ -49,9 +57,12 @@ class NumericalHealth {
   // Collective (the initial packing is on one rank).
   std::string likely_cause(const RunBackend& run, double dt, const std::vector<Index>& ids) const;
   std::string initial_overlap(const RunBackend& run, const std::vector<Index>& ids) const;
+  // The time step `dt` lies below `limit`'s critical step but above the one the damping leaves.
+  std::string damped_step_cause(const TimeStepLimit& limit, double dt) const;
 
   Vec3 gravity_;
   std::vector<TimeStepLimit> limits_;
+  RunDamping damping_;
   std::vector<Vec3> initial_position_;  // empty where the whole scene was not instantiated
   std::vector<double> initial_radius_;
   std::vector<Index> initial_id_;

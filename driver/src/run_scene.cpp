@@ -36,6 +36,13 @@ void start_backend(RunBackend& backend, const RunSpec& spec, const RunStart& sta
   }
 }
 
+// The larger of the loading's and the settling's Cundall damping, and its key.
+RunDamping largest_damping(const Scene& scene) {
+  if (scene.settle_time > 0 && scene.settle_damping > scene.global_damping)
+    return {scene.settle_damping, "settle_damping"};
+  return {scene.global_damping, "global_damping"};
+}
+
 // A lab seats its pins on the settled specimen before the test starts, so they do not meet it at
 // the test's speed: each [stop] load wall (a cylinder) is brought along load_direction until it
 // touches the body.
@@ -239,7 +246,7 @@ RunResult run_scene(const RunSpec& spec, const PluginHost& host, const std::vect
   // The scene generated once (the whole of it in one process, the models alone in the others);
   // the health watch, the impacts and the metadata read the whole scene's figures.
   ScenePart part = backend.instantiate(scene, host, info);
-  NumericalHealth health(part.whole, part.instance.simulation.get(), scene.gravity);
+  NumericalHealth health(part.whole, part.instance.simulation.get(), scene.gravity, largest_damping(scene));
   ImpactTracker impacts(part.whole.bodies);  // first wall contact per body (docs/reference/bodies.md)
   const RunMetadataDraft draft = run_metadata(scene, part.whole, host);
   RunResult result;

@@ -1,6 +1,7 @@
 // A run that blows up stops within a few steps, naming the step, the particles and the cause,
 // with the last good state kept as the checkpoint.
 #include <sstream>
+#include <string>
 
 #include "shard/driver/numerical_health.hpp"
 #include "reliability_fixtures.hpp"
@@ -50,6 +51,35 @@ TEST_CASE("a time step far above the bonds' critical step is stopped within a fe
   const Checkpoint good = read_checkpoint(dir / "run.checkpoint.h5");
   CHECK(good.simulation.step == 0);
   for (const auto& v : good.simulation.particles.velocity) CHECK(v.allFinite());
+}
+
+TEST_CASE("a lattice made unstable by heavy settling damping: the blow-up names the damping") {
+  std::ostringstream log;
+  const auto dir = scratch("damped_lattice");
+  RunOptions o;
+  o.scene = kScenes / "lattice_block.toml";
+  o.out_dir = dir;
+  o.quiet = true;
+  std::string message;
+  try {
+    run_scene(o, log);
+  } catch (const NumericalError& e) {
+    message = e.what();
+  }
+  CAPTURE(message);
+  REQUIRE_FALSE(message.empty());
+  // The auto step is the beam bond's critical one; 0.5 shortens it by 1 / sqrt(1.5).
+  CHECK(message.find("Cundall's damping [simulation] settle_damping = 0.5") != std::string::npos);
+  CHECK(message.find("of beam_bond") != std::string::npos);
+  CHECK(message.find("above the critical step") == std::string::npos);
+  // The step the message advises settles the same lattice to rest.
+  const std::string advice = "set [simulation] dt to at most ";
+  const auto at = message.find(advice);
+  REQUIRE(at != std::string::npos);
+  const double advised = std::stod(message.substr(at + advice.size()));
+  o.overrides = {{"simulation.dt", advised}};
+  o.out_dir = scratch("damped_lattice_advised_step");
+  CHECK_NOTHROW(run_scene(o, log));
 }
 
 TEST_CASE("spheres generated inside one another: the blow-up names the overlapping initial packing") {
