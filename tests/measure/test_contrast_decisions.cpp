@@ -604,21 +604,32 @@ TEST_CASE("a closest effect whose fracture components differ is named by its cur
   CHECK(sets[3].decision.verdict == kUnexplainedDifference);  // worse than the base over the whole curve
 }
 
+namespace {
+
+// An unexplained set whose closest effect, a frame's spring, takes `drop` of T^2 = 1000 away and
+// follows the rising branch within its floor: a name by the curve then rests on its components.
+SetDiagnosis frame_following_the_rising_branch(double drop) {
+  SetDiagnosis d;
+  d.decision.verdict = kUnexplainedDifference;
+  d.decision.chi_square = 1000;
+  ContrastFit f;
+  f.name = kMachineCompliance, f.scale = 1, f.identifiable = true, f.p_drop = 1e-12, f.p_after = 1e-10;
+  f.drop = drop, f.chi_square = 1000 - drop;
+  d.decision.fits.push_back(f);
+  d.after_effect = kMachineCompliance;
+  d.before.nrmse = 0.3, d.after.nrmse = 0.1;
+  d.after.xi = {0.5}, d.after.rising = {1}, d.after.measured = {0.1}, d.after.simulated = {0.1};
+  d.after.u_measured = {0.03}, d.after.u_simulated = {0.02}, d.after.rising_nrmse = 0.05;
+  return d;
+}
+
+}  // namespace
+
 TEST_CASE("a closest effect that misses the peak force is not named by its curve: a second cause") {
   // A batch of two effects, a softer frame and stronger bonds: the frame alone reproduces the
   // rising branch and most of T^2, but leaves the peak force where the reference has it.
   auto frame_alone = [](double measured_peak, double model_peak) {
-    SetDiagnosis d;
-    d.decision.verdict = kUnexplainedDifference;
-    d.decision.chi_square = 1000;
-    ContrastFit f;
-    f.name = kMachineCompliance, f.scale = 1, f.identifiable = true, f.p_drop = 1e-12, f.p_after = 1e-10;
-    f.drop = 920, f.chi_square = 80;
-    d.decision.fits.push_back(f);
-    d.after_effect = kMachineCompliance;
-    d.before.nrmse = 0.3, d.after.nrmse = 0.1;
-    d.after.xi = {0.5}, d.after.rising = {1}, d.after.measured = {0.1}, d.after.simulated = {0.1};
-    d.after.u_measured = {0.03}, d.after.u_simulated = {0.02}, d.after.rising_nrmse = 0.05;
+    SetDiagnosis d = frame_following_the_rising_branch(920);
     // Independent components, u = 0.01 each.
     d.contrast.names = {"ln_stiffness", "ln_peak_force"};
     d.contrast.difference = {-0.58, measured_peak};
@@ -644,17 +655,7 @@ TEST_CASE("a closest effect whose rising branch bends otherwise is not named by 
   // A seating toe softens the start of the curve and bends it the other way from a frame's spring:
   // the frame follows the rising branch's NRMSE and most of T^2, but not its nonlinearity.
   auto frame_for = [](double measured_nonlinearity, double initiation_miss) {
-    SetDiagnosis d;
-    d.decision.verdict = kUnexplainedDifference;
-    d.decision.chi_square = 1000;
-    ContrastFit f;
-    f.name = kMachineCompliance, f.scale = 1, f.identifiable = true, f.p_drop = 1e-12, f.p_after = 1e-10;
-    f.drop = 900, f.chi_square = 100;
-    d.decision.fits.push_back(f);
-    d.after_effect = kMachineCompliance;
-    d.before.nrmse = 0.3, d.after.nrmse = 0.1;
-    d.after.xi = {0.5}, d.after.rising = {1}, d.after.measured = {0.1}, d.after.simulated = {0.1};
-    d.after.u_measured = {0.03}, d.after.u_simulated = {0.02}, d.after.rising_nrmse = 0.05;
+    SetDiagnosis d = frame_following_the_rising_branch(900);
     // Independent components, u = 0.01 each; the model's nonlinearity change, 0.01, widens its u
     // to hypot(0.01, 0.2 x 0.01) = 0.0102.
     d.contrast.names = {"ln_stiffness", "ln_peak_force", "nonlinearity", "ln_initiation_force"};

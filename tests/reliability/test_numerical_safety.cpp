@@ -1,5 +1,6 @@
 // A run that blows up stops within a few steps, naming the step, the particles and the cause,
 // with the last good state kept as the checkpoint.
+#include <filesystem>
 #include <sstream>
 #include <string>
 
@@ -22,15 +23,31 @@ std::int64_t step_in(const std::string& message) {
   return std::stoll(message.substr(5, end - 5));
 }
 
+// A quiet run of `scene` into `dir`.
+RunOptions quiet_run(const std::filesystem::path& scene, const std::filesystem::path& dir) {
+  RunOptions o;
+  o.scene = scene;
+  o.out_dir = dir;
+  o.quiet = true;
+  return o;
+}
+
+// The NumericalError a run stops with; empty when it runs through.
+std::string blow_up_message(const RunOptions& o, std::ostream& log) {
+  try {
+    run_scene(o, log);
+  } catch (const NumericalError& e) {
+    return e.what();
+  }
+  return "";
+}
+
 }  // namespace
 
 TEST_CASE("a time step far above the bonds' critical step is stopped within a few steps, naming the cause") {
   std::ostringstream log;
   const auto dir = scratch("dt_too_large");
-  RunOptions o;
-  o.scene = kScenes / "crush_cube.toml";
-  o.out_dir = dir;
-  o.quiet = true;
+  RunOptions o = quiet_run(kScenes / "crush_cube.toml", dir);
   // The auto step of this scene is about 2.6e-6 s; 20 times that is far past every critical step.
   o.overrides = {{"simulation.dt", 5.2e-5}};
   std::string message;
@@ -56,16 +73,8 @@ TEST_CASE("a time step far above the bonds' critical step is stopped within a fe
 TEST_CASE("a lattice made unstable by heavy settling damping: the blow-up names the damping") {
   std::ostringstream log;
   const auto dir = scratch("damped_lattice");
-  RunOptions o;
-  o.scene = kScenes / "lattice_block.toml";
-  o.out_dir = dir;
-  o.quiet = true;
-  std::string message;
-  try {
-    run_scene(o, log);
-  } catch (const NumericalError& e) {
-    message = e.what();
-  }
+  RunOptions o = quiet_run(kScenes / "lattice_block.toml", dir);
+  const std::string message = blow_up_message(o, log);
   CAPTURE(message);
   REQUIRE_FALSE(message.empty());
   // The auto step is the beam bond's critical one; 0.5 shortens it by 1 / sqrt(1.5).
@@ -85,16 +94,8 @@ TEST_CASE("a lattice made unstable by heavy settling damping: the blow-up names 
 TEST_CASE("spheres generated inside one another: the blow-up names the overlapping initial packing") {
   std::ostringstream log;
   const auto dir = scratch("overlap");
-  RunOptions o;
-  o.scene = test::write_overlap_scene(dir);
-  o.out_dir = dir;
-  o.quiet = true;
-  std::string message;
-  try {
-    run_scene(o, log);
-  } catch (const NumericalError& e) {
-    message = e.what();
-  }
+  const RunOptions o = quiet_run(test::write_overlap_scene(dir), dir);
+  const std::string message = blow_up_message(o, log);
   CAPTURE(message);
   REQUIRE_FALSE(message.empty());
   CHECK(step_in(message) <= 20);
