@@ -159,8 +159,9 @@ std::optional<std::size_t> component_missed_by_curve_name(const ContrastStudy::C
 
 // The other way round: a set left unexplained (no pair named) whose closest single effect has a
 // significant drop over the `tried` effects, explains at least curve_name_share of T^2,
-// reproduces the contrast curve within the curve rule and its components where
-// component_missed_by_curve_name looks is named by it (named_by_curve), with the rivals the component rule would list.
+// reproduces the contrast curve within the curve rule and leaves no component missed
+// (component_missed_by_curve_name) is named by it (named_by_curve), with the rivals the component
+// rule would list.
 void name_by_curve(std::vector<SetDiagnosis>& sets, std::size_t tried, const ContrastOptions& options);
 
 // A set tested at several rates whose verdict names only rate-independent effects (no rate
