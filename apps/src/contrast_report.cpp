@@ -195,17 +195,20 @@ std::string power_text(const ContrastReport& r, const SetDiagnosis& d) {
                           r.result.dof, p);
 }
 
+// A contrast component taken as the logarithm of a feature (ln_peak_force, ln_stiffness@0.02).
+bool is_logarithmic(const std::string& component) { return component.rfind("ln_", 0) == 0; }
+
 // A contrast component in words: ln_peak_force@0.02 is the peak force@0.02.
 std::string component_label(const std::string& component) {
-  std::string label = component.rfind("ln_", 0) == 0 ? component.substr(3) : component;
+  std::string label = is_logarithmic(component) ? component.substr(3) : component;
   std::replace(label.begin(), label.end(), '_', ' ');
   return label;
 }
 
 // A contrast component's change as a reader takes it: a ratio for a logarithm, as is otherwise.
 std::string component_change_text(const std::string& component, double value) {
-  return component.rfind("ln_", 0) == 0 ? fmt::format("{:+.1f} %", 100 * std::expm1(value))
-                                        : fmt::format("{:+.3f}", value);
+  return is_logarithmic(component) ? fmt::format("{:+.1f} %", 100 * std::expm1(value))
+                                    : fmt::format("{:+.3f}", value);
 }
 
 // The closest effect's model follows the contrast curve before the peak but misses a component a
