@@ -20,8 +20,8 @@
 
 namespace shard::driver::detail {
 
-// The largest Cundall damping fraction a run uses and the [simulation] key that sets it: the
-// damping shortens the models' critical time steps (NumericalHealth::likely_cause).
+// The Cundall damping fraction that limits a run's stable step and the [simulation] key that sets
+// it: the damping shortens the models' critical time steps (NumericalHealth::likely_cause).
 struct RunDamping {
   double fraction = 0;
   std::string key;
@@ -37,7 +37,7 @@ class NumericalHealth {
   // `whole`: the whole scene's energy baseline and time-step limits (the same on every rank);
   // `packing`: the whole scene's Simulation at the start where this process holds it (null
   // elsewhere), the initial packing a message looks into; `gravity` the scene's, m/s^2; `damping`
-  // the run's largest Cundall damping.
+  // the Cundall damping that limits the run's stable step.
   NumericalHealth(const WholeScene& whole, const Simulation* packing, const Vec3& gravity, RunDamping damping);
 
   // Accumulates the work of the walls (rank 0) and of this rank's gripped particles; call after

@@ -36,9 +36,19 @@ void start_backend(RunBackend& backend, const RunSpec& spec, const RunStart& sta
   }
 }
 
-// The larger of the loading's and the settling's Cundall damping, and its key.
-RunDamping largest_damping(const Scene& scene) {
-  if (scene.settle_time > 0 && scene.settle_damping > scene.global_damping)
+// Velocity Verlet under Cundall's damping alpha is stable only up to critical / sqrt(1 + alpha)
+// (NumericalHealth::damped_step_cause), and the automatic step is the bonds' critical one. The
+// settling, whose damping is heavy, takes that much shorter steps when the step is automatic; its
+// state is the loading's start, not part of the curve, so the loading keeps the automatic step. A
+// step the scene gives is kept throughout.
+double settling_step(const Scene& scene, double dt) {
+  return scene.dt > 0 ? dt : dt / std::sqrt(1 + scene.settle_damping);
+}
+
+// The Cundall damping that can bring the stable step below the run's, and its key: the settling's
+// only when the scene gives the step (an automatic one is shortened for the settling).
+RunDamping limiting_damping(const Scene& scene) {
+  if (scene.dt > 0 && scene.settle_time > 0 && scene.settle_damping > scene.global_damping)
     return {scene.settle_damping, "settle_damping"};
   return {scene.global_damping, "global_damping"};
 }
@@ -70,19 +80,19 @@ void seat_load_walls(RunBackend& backend, const Scene& scene, const RunLog& log)
 // the settling damping, the clock from -settle_time to 0. Says how far from rest it came, as the
 // kinetic energy left against the work its weight did while it settled.
 void settle(RunBackend& backend, const Scene& scene, const RunLog& log) {
-  const double dt = backend.local().dt();
+  const double dt = settling_step(scene, backend.local().dt());
   const auto steps = static_cast<std::int64_t>(std::ceil(scene.settle_time / dt));
   const Energies before = backend.energies();
-  backend.on_all([&] { backend.local().begin_settling(static_cast<double>(steps) * dt, scene.settle_damping); });
+  backend.on_all([&] { backend.local().begin_settling(static_cast<double>(steps) * dt, scene.settle_damping, dt); });
   for (std::int64_t k = 0; k < steps; ++k) backend.step();
   backend.on_all([&] { backend.local().end_settling(); });
   const Energies after = backend.energies();
   const double weight_work = before.gravity - after.gravity;
   const double left = weight_work > 0 ? after.kinetic / weight_work : 0.0;
   if (log.info)
-    log.info(fmt::format("settled {:g} s ({} steps, damping {:g}): kinetic energy {:.3g} J left, {:.2g} of the "
-                         "{:.3g} J its weight did",
-                         scene.settle_time, steps, scene.settle_damping, after.kinetic, left, weight_work));
+    log.info(fmt::format("settled {:g} s ({} steps of {:.4g} s, damping {:g}): kinetic energy {:.3g} J left, {:.2g} "
+                         "of the {:.3g} J its weight did",
+                         scene.settle_time, steps, dt, scene.settle_damping, after.kinetic, left, weight_work));
   if (left > 0.01 && log.warning)
     log.warning(fmt::format("{}: the body is still moving after settling ({:.2g} of its weight's work is kinetic "
                             "energy); raise [simulation] settle_time or settle_damping",
@@ -246,7 +256,7 @@ RunResult run_scene(const RunSpec& spec, const PluginHost& host, const std::vect
   // The scene generated once (the whole of it in one process, the models alone in the others);
   // the health watch, the impacts and the metadata read the whole scene's figures.
   ScenePart part = backend.instantiate(scene, host, info);
-  NumericalHealth health(part.whole, part.instance.simulation.get(), scene.gravity, largest_damping(scene));
+  NumericalHealth health(part.whole, part.instance.simulation.get(), scene.gravity, limiting_damping(scene));
   ImpactTracker impacts(part.whole.bodies);  // first wall contact per body (docs/reference/bodies.md)
   const RunMetadataDraft draft = run_metadata(scene, part.whole, host);
   RunResult result;

@@ -406,8 +406,9 @@ void Simulation::run(std::int64_t steps) {
   for (std::int64_t s = 0; s < steps; ++s) step();
 }
 
-void Simulation::begin_settling(double duration, double damping) {
+void Simulation::begin_settling(double duration, double damping, double step) {
   if (!held_walls_.empty()) throw std::logic_error("begin_settling: the simulation is settling already");
+  if (!(step > 0)) throw std::invalid_argument("begin_settling: the settling's time step must be positive");
   held_walls_.reserve(walls_.size());
   for (Wall& w : walls_) {
     held_walls_.push_back({w.motion, w.velocity, w.surface_velocity});
@@ -415,6 +416,7 @@ void Simulation::begin_settling(double duration, double damping) {
     w.velocity = w.surface_velocity = Vec3::Zero();
   }
   loading_damping_ = std::exchange(global_damping_, damping);
+  loading_dt_ = std::exchange(dt_, step);
   time_ = -duration;
 }
 
@@ -435,6 +437,7 @@ void Simulation::end_settling() {
   }
   held_walls_.clear();
   global_damping_ = loading_damping_;
+  dt_ = loading_dt_;
   time_ = 0;
   step_ = 0;
 }

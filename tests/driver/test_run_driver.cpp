@@ -174,6 +174,12 @@ TEST_CASE("a settled run starts its clock, its pins and its curve at rest under 
   const auto settled = std::find_if(lines.begin(), lines.end(), [](const std::string& l) { return l.rfind("settled", 0) == 0; });
   REQUIRE(settled != lines.end());
   MESSAGE(*settled);
+  // The automatic step settles in steps shorter by 1 / sqrt(1 + settle_damping 0.5); the loading
+  // takes the automatic step itself.
+  const std::string step_text = " steps of ";
+  const auto at = settled->find(step_text);
+  REQUIRE(at != std::string::npos);
+  CHECK(std::stod(settled->substr(at + step_text.size())) == doctest::Approx(r.dt / std::sqrt(1.5)).epsilon(1e-3));
   // The beam sank onto its rollers; the pins were brought down onto it before the test began.
   for (const char* pin : {"seated pin_left ", "seated pin_right "})
     CHECK(std::any_of(lines.begin(), lines.end(), [&](const std::string& l) { return l.rfind(pin, 0) == 0; }));

@@ -287,9 +287,12 @@ TEST_CASE("settling holds the walls, runs the clock up to zero and gives their m
   WallMotion m = ramp(WallRamp::OneMinusCos);
   m.velocity = Vec3(0, 0, 0.02);
   Simulation sim(lifted_sphere(*model, m));
-  const auto steps = static_cast<std::int64_t>(std::ceil(0.05 / sim.dt()));
-  sim.begin_settling(static_cast<double>(steps) * sim.dt(), 0.5);
+  const double loading_dt = sim.dt();
+  const double settling_dt = 0.5 * loading_dt;
+  const auto steps = static_cast<std::int64_t>(std::ceil(0.05 / settling_dt));
+  sim.begin_settling(static_cast<double>(steps) * settling_dt, 0.5, settling_dt);
   CHECK(sim.time() < 0);
+  CHECK(sim.dt() == settling_dt);
   for (std::int64_t s = 0; s < steps; ++s) {
     sim.step();
     REQUIRE(sim.walls()[0].displacement.norm() == 0.0);
@@ -298,6 +301,7 @@ TEST_CASE("settling holds the walls, runs the clock up to zero and gives their m
   sim.end_settling();
   CHECK(sim.time() == 0.0);
   CHECK(sim.step_count() == 0);
+  CHECK(sim.dt() == loading_dt);
   // At rest on the floor at m g / k_n (linear_spring): to 1 % of that overlap.
   const Particles& p = sim.particles();
   for (std::size_t k = 0; k < 2; ++k) {

@@ -1,5 +1,6 @@
 // A run that blows up stops within a few steps, naming the step, the particles and the cause,
 // with the last good state kept as the checkpoint.
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -70,14 +71,20 @@ TEST_CASE("a time step far above the bonds' critical step is stopped within a fe
   for (const auto& v : good.simulation.particles.velocity) CHECK(v.allFinite());
 }
 
-TEST_CASE("a lattice made unstable by heavy settling damping: the blow-up names the damping") {
+TEST_CASE("heavy settling damping on a lattice: the automatic step settles it; the critical step blows up naming the damping") {
   std::ostringstream log;
-  const auto dir = scratch("damped_lattice");
-  RunOptions o = quiet_run(kScenes / "lattice_block.toml", dir);
+  RunOptions o = quiet_run(kScenes / "lattice_block.toml", scratch("damped_lattice_auto"));
+  // The automatic step settles at critical / sqrt(1.5): the block stays at rest.
+  const RunSummary automatic = run_scene(o, log);
+  CHECK(automatic.dt > 0);
+
+  // The same step given in the scene is kept through the settling, where 0.5 shortens the stable
+  // step by 1 / sqrt(1.5).
+  o.overrides = {{"simulation.dt", automatic.dt}};
+  o.out_dir = scratch("damped_lattice");
   const std::string message = blow_up_message(o, log);
   CAPTURE(message);
   REQUIRE_FALSE(message.empty());
-  // The auto step is the beam bond's critical one; 0.5 shortens it by 1 / sqrt(1.5).
   CHECK(message.find("Cundall's damping [simulation] settle_damping = 0.5") != std::string::npos);
   CHECK(message.find("of beam_bond") != std::string::npos);
   CHECK(message.find("above the critical step") == std::string::npos);
@@ -86,6 +93,7 @@ TEST_CASE("a lattice made unstable by heavy settling damping: the blow-up names 
   const auto at = message.find(advice);
   REQUIRE(at != std::string::npos);
   const double advised = std::stod(message.substr(at + advice.size()));
+  CHECK(advised == doctest::Approx(automatic.dt / std::sqrt(1.5)).epsilon(1e-3));
   o.overrides = {{"simulation.dt", advised}};
   o.out_dir = scratch("damped_lattice_advised_step");
   CHECK_NOTHROW(run_scene(o, log));

@@ -73,10 +73,11 @@ class Simulation {
 
   // Settling before the loading ([simulation] settle_time): a lab's specimen rests on its supports
   // under its own weight before the pins move. begin_settling holds every wall where it is, sets
-  // Cundall damping `damping` and puts the clock at -duration; the caller steps up to t = 0, then
-  // end_settling gives the walls their motion and the scene's damping back and restarts the clock
-  // and the step count at 0, so profiles, ramps and outputs run as from a body that was at rest.
-  void begin_settling(double duration, double damping);
+  // Cundall damping `damping` and the time step `step`, and puts the clock at -duration; the caller
+  // steps up to t = 0, then end_settling gives the walls their motion and the scene's damping and
+  // step back and restarts the clock and the step count at 0, so profiles, ramps and outputs run as
+  // from a body that was at rest.
+  void begin_settling(double duration, double damping, double step);
   void end_settling();
   // Moves wall k's geometry by `offset` (its point, and the centre it spins about): a pin seated
   // on the settled specimen. Its displacement stays what it was; a checkpoint keeps the new point.
@@ -158,6 +159,7 @@ class Simulation {
   };
   std::vector<HeldWall> held_walls_;
   double loading_damping_ = 0;
+  double loading_dt_ = 0;
 };
 
 }  // namespace shard
