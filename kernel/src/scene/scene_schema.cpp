@@ -15,7 +15,9 @@ SceneSectionSpec simulation() {
            {"settle_time", "number", "s", "0",
             "before the loading: the body rests this long under gravity on walls held in place, with "
             "settle_damping; the clock, the walls' motion and the outputs start after it"},
-           {"settle_damping", "number", "1", "0.5", "Cundall's local damping while settling, 0 to 0.99; with dt = \"auto\" the settling steps are dt / sqrt(1 + settle_damping)"},
+           {"settle_damping", "number", "1", "0.5",
+            "Cundall's local damping while settling, 0 to 0.99; with dt = \"auto\" the settling steps are "
+            "dt / sqrt(1 + settle_damping)"},
            {"breakage", "bool", "", "true", "the one switch for bond breakage"},
            {"bonded_contacts", "bool", "", "true",
             "false: a pair joined by an intact bond gets no contact force, its contact starts when the bond "
