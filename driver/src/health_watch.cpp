@@ -153,13 +153,10 @@ void NumericalHealth::check(const RunBackend& run, const std::string& last_good)
   scale_ = std::max({scale_, std::abs(mechanical), std::abs(potential), std::abs(work), std::abs(energy0_)});
 }
 
-// Cundall's damping takes alpha |F| off a particle's force while it speeds up and adds it while it
-// slows down: on the way back an oscillator's spring acts (1 + alpha) times as stiff, and velocity
-// Verlet, stable up to omega dt = 2, is stable only up to critical / sqrt(1 + alpha). A regular
-// lattice, whose stiffest mode reaches the bond's critical step, gains energy at rest.
+// The damping's shortened critical step (damped_stable_step) as a cause, when the step is above it.
 std::string NumericalHealth::damped_step_cause(const TimeStepLimit& limit, double dt) const {
   if (!(damping_.fraction > 0)) return "";
-  const double damped = limit.critical / std::sqrt(1 + damping_.fraction);
+  const double damped = damped_stable_step(limit.critical, damping_.fraction);
   if (dt <= damped) return "";
   return fmt::format("Cundall's damping [simulation] {} = {:g} lets a slowing particle's force grow by that fraction, "
                      "which shortens the critical step {:.4g} s of {} to {:.4g} s, below the time step {:.4g} s (a "

@@ -36,19 +36,20 @@ void start_backend(RunBackend& backend, const RunSpec& spec, const RunStart& sta
   }
 }
 
-// Velocity Verlet under Cundall's damping alpha is stable only up to critical / sqrt(1 + alpha)
-// (NumericalHealth::damped_step_cause), and the automatic step is the bonds' critical one. The
-// settling, whose damping is heavy, takes that much shorter steps when the step is automatic; its
-// state is the loading's start, not part of the curve, so the loading keeps the automatic step. A
-// step the scene gives is kept throughout.
+// The automatic step is the bonds' critical one, which Cundall's damping shortens
+// (damped_stable_step). The settling, whose damping is heavy, takes the shortened step when the
+// step is automatic; its state is the loading's start, not part of the curve, so the loading keeps
+// the automatic step. A step the scene gives is kept throughout.
+bool settling_shortens_step(const Scene& scene) { return !(scene.dt > 0); }
+
 double settling_step(const Scene& scene, double dt) {
-  return scene.dt > 0 ? dt : dt / std::sqrt(1 + scene.settle_damping);
+  return settling_shortens_step(scene) ? damped_stable_step(dt, scene.settle_damping) : dt;
 }
 
 // The Cundall damping that can bring the stable step below the run's, and its key: the settling's
-// only when the scene gives the step (an automatic one is shortened for the settling).
+// only when its step is not shortened for it.
 RunDamping limiting_damping(const Scene& scene) {
-  if (scene.dt > 0 && scene.settle_time > 0 && scene.settle_damping > scene.global_damping)
+  if (!settling_shortens_step(scene) && scene.settle_time > 0 && scene.settle_damping > scene.global_damping)
     return {scene.settle_damping, "settle_damping"};
   return {scene.global_damping, "global_damping"};
 }
