@@ -44,9 +44,59 @@ int tangent_positions(const Vec3& a, const Vec3& b, const Vec3& c, double da, do
   return z > 0.0 ? 2 : 1;
 }
 
+// Points at distances da from a and db from b on the plane n.x = h (|n| = 1): the circle where
+// the two spheres meet, cut by the plane. 0, 1 or 2 solutions.
+int tangent_positions_on_plane(const Vec3& a, const Vec3& b, double da, double db, const Vec3& n, double h,
+                               std::array<Vec3, 2>& out) {
+  const Vec3 ab = b - a;
+  const double d = ab.norm();
+  if (!(d > 0.0)) return 0;
+  const Vec3 e = ab / d;
+  const double t = (da * da - db * db + d * d) / (2.0 * d);
+  const double rho2 = da * da - t * t;
+  if (!(rho2 > 0.0)) return 0;
+  const double rho = std::sqrt(rho2);
+  const Vec3 centre = a + t * e;
+  const Vec3 across = n - n.dot(e) * e;
+  const double tilt = across.norm();
+  if (tilt <= 1e-9) return 0;  // the circle lies parallel to the plane: none or a whole circle
+  const Vec3 u = across / tilt;
+  const Vec3 v = e.cross(u);
+  const double cos_angle = (h - n.dot(centre)) / (rho * tilt);
+  if (std::abs(cos_angle) > 1.0) return 0;
+  const double sin_angle = std::sqrt(1.0 - cos_angle * cos_angle);
+  out[0] = centre + rho * (cos_angle * u + sin_angle * v);
+  out[1] = centre + rho * (cos_angle * u - sin_angle * v);
+  return sin_angle > 0.0 ? 2 : 1;
+}
+
+// The plane that holds the centres of spheres of radius r touching the surface from inside, as
+// seen from p: n.x = h with n the outward normal at the surface point nearest p.
+struct CentrePlane {
+  Vec3 normal;
+  double offset;
+};
+
+std::optional<CentrePlane> centre_plane_near(const SignedDistance& distance, const Vec3& p, double r, double step) {
+  Vec3 gradient;
+  for (int k = 0; k < 3; ++k) {
+    Vec3 dp = Vec3::Zero();
+    dp[k] = step;
+    gradient[k] = (distance(p + dp) - distance(p - dp)) / (2.0 * step);
+  }
+  // A distance field has a unit gradient; a much smaller one means p sits where the field is clamped
+  // or on a ridge between two faces, which has no single tangent plane.
+  const double norm = gradient.norm();
+  if (!(norm > 0.5)) return std::nullopt;
+  const Vec3 n = gradient / norm;
+  const Vec3 foot = p - distance(p) * n;
+  return CentrePlane{n, n.dot(foot) - r};
+}
+
 struct Candidate {
   double key;  // squared distance to the seed point
   Vec3 centre;
+  bool touches_surface;
 };
 
 class FrontFiller {
@@ -59,6 +109,7 @@ class FrontFiller {
         options_(options),
         rng_(options.seed),
         r_max_(0.5 * psd.d_max()),
+        normal_step_(options.normal_step > 0.0 ? options.normal_step : psd.d_min() / 8.0),
         grid_(bounds.lower, bounds.upper, psd.d_max()) {}
 
   SpherePacking run() {
@@ -134,16 +185,52 @@ class FrontFiller {
         if ((cb - cc).squaredNorm() >= reach * reach) continue;
         const int n = tangent_positions(ca, cb, cc, ra + r, rb + r, rc + r, spots);
         for (int s = 0; s < n; ++s)
-          if (!blocked(spots[s], r)) candidates_.push_back({(spots[s] - seed_point_).squaredNorm(), spots[s]});
+          if (!blocked(spots[s], r)) candidates_.push_back({(spots[s] - seed_point_).squaredNorm(), spots[s], false});
       }
     }
+    if (options_.conform_to_surface) add_surface_candidates(ca, ra, r);
+    // Spots against the surface come first: a sphere the front puts near the surface without
+    // touching it would leave a gap no other sphere fits in, and the face would stay rough.
     std::sort(candidates_.begin(), candidates_.end(), [](const Candidate& x, const Candidate& y) {
+      if (x.touches_surface != y.touches_surface) return x.touches_surface;
       return x.key < y.key || (x.key == y.key && std::lexicographical_compare(x.centre.data(), x.centre.data() + 3,
                                                                                y.centre.data(), y.centre.data() + 3));
     });
     for (const Candidate& candidate : candidates_)
-      if (distance_(candidate.centre) <= -r) return candidate.centre;
+      if (inside(candidate, r)) return candidate.centre;
     return std::nullopt;
+  }
+
+  bool inside(const Candidate& candidate, double r) const {
+    const double allowance = candidate.touches_surface ? options_.surface_tolerance * r : 0.0;
+    return distance_(candidate.centre) <= -r + allowance;
+  }
+
+  // Spots touching the worked sphere A, one neighbour B and the surface. The tangent plane is taken
+  // where A's nearest surface point is, then once more at the spot found, so that a curved surface
+  // is met where the sphere touches it.
+  void add_surface_candidates(const Vec3& ca, double ra, double r) {
+    if (-distance_(ca) > ra + 2.0 * r) return;  // a sphere touching A cannot reach the surface
+    const auto plane = centre_plane_near(distance_, ca, r, normal_step_);
+    if (!plane) return;
+    std::array<Vec3, 2> spots;
+    std::array<Vec3, 2> refined;
+    for (std::size_t p = 0; p < near_centre_.size(); ++p) {
+      const Vec3& cb = near_centre_[p];
+      const double rb = near_radius_[p];
+      const int n = tangent_positions_on_plane(ca, cb, ra + r, rb + r, plane->normal, plane->offset, spots);
+      for (int s = 0; s < n; ++s) {
+        if (blocked(spots[s], r)) continue;
+        const auto local = centre_plane_near(distance_, spots[s], r, normal_step_);
+        if (!local) continue;
+        const int m = tangent_positions_on_plane(ca, cb, ra + r, rb + r, local->normal, local->offset, refined);
+        if (m == 0) continue;
+        const Vec3 spot = (m == 2 && (refined[1] - spots[s]).squaredNorm() < (refined[0] - spots[s]).squaredNorm())
+                              ? refined[1]
+                              : refined[0];
+        if (!blocked(spot, r)) candidates_.push_back({(spot - seed_point_).squaredNorm(), spot, true});
+      }
+    }
   }
 
   // The seed goes to the deepest points of a probe lattice (ties: nearest the box centre; beyond
@@ -207,6 +294,7 @@ class FrontFiller {
   FrontFillOptions options_;
   Random rng_;
   double r_max_;
+  double normal_step_;
   SphereGrid grid_;
   SpherePacking packing_;
   Vec3 seed_point_ = Vec3::Zero();

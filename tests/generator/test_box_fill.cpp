@@ -5,6 +5,7 @@
 #include <map>
 
 #include "box_fill.hpp"
+#include "packing_checks.hpp"
 #include "shard/geometry/packing_quality.hpp"
 
 using namespace shard;
@@ -103,8 +104,35 @@ TEST_CASE("same seed, same packing bit for bit; another seed, another packing") 
          std::memcmp(a.radius.data(), c.radius.data(), a.radius.size() * sizeof(double)) != 0));
 }
 
+TEST_CASE("random packing with conform_surface: each face borne by a layer of touching spheres") {
+  const double edge = 12e-3;
+  GeneratorContext context;
+  context.seed = 7;
+  auto s = settings(Lattice::Random, 0.7e-3, 1.0e-3, 0.7, edge);
+  s.conform_surface = true;
+  const auto body = BoxFill(s).generate(context);
+  const geometry::Box box{Vec3::Zero(), Vec3::Constant(edge)};
+  // The box's distance is exact, so a sphere placed against a face touches it to rounding; 1e-3 r
+  // is the placement's allowance.
+  const auto cover = test::touching_area_fraction(body, box, 1e-3 * 0.35e-3);
+  for (int face = 0; face < 6; ++face) {
+    CAPTURE(face);
+    CHECK(cover[face] > 0.2);
+  }
+  for (std::size_t i = 0; i < body.position.size(); ++i) {
+    CHECK((body.position[i].array() >= body.radius[i] * (1 - 1e-3)).all());
+    CHECK((body.position[i].array() <= edge - body.radius[i] * (1 - 1e-3)).all());
+  }
+  CHECK(quality(body, "max_overlap") <= 1e-9);
+  CHECK(quality(body, "bond_components") == 1.0);
+  CHECK(quality(body, "hole_fraction") == 0.0);
+}
+
 TEST_CASE("bad box parameters are refused with the reason") {
   CHECK_THROWS_WITH(BoxFill(settings(Lattice::Random, 1e-3, 2e-3, 0.7, 1.5e-3)), doctest::Contains("at least diameter_max"));
   CHECK_THROWS_WITH(BoxFill(settings(Lattice::Random, 2e-3, 1e-3, 0.7, 1e-2)), doctest::Contains("diameter_min <= diameter_max"));
+  auto lattice_conformed = settings(Lattice::Hcp, 1e-3, 1e-3, 0.7, 1e-2);
+  lattice_conformed.conform_surface = true;
+  CHECK_THROWS_WITH(BoxFill{lattice_conformed}, doctest::Contains("conform_surface = true applies to lattice = \"random\""));
   CHECK_THROWS_WITH(parse_lattice("bcc"), doctest::Contains("\"fcc\", \"hcp\", \"cubic\" or \"random\""));
 }

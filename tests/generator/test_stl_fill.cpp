@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "mesh_fixtures.hpp"
+#include "packing_checks.hpp"
 #include "shard/geometry/advancing_front.hpp"
 #include "shard/geometry/mesh_repair.hpp"
 #include "shard/geometry/packing_quality.hpp"
@@ -289,4 +290,78 @@ TEST_CASE("a box with one face missing is refused by stl_fill") {
   geometry::write_stl(dir / "lidless.stl", lidless, geometry::StlFormat::Binary);
   CHECK(fill_error(settings("lidless.stl", 0.5e-3, 1e-3), dir.string())
             .find("lidless.stl' is not closed: 4 open edges (holes in the surface") != std::string::npos);
+}
+
+TEST_CASE("conform_surface: every face of a cube ends in a layer of spheres that touch it") {
+  auto s = settings("cube_10mm.stl", 0.6e-3, 0.8e-3);
+  const auto mesh = geometry::read_stl(test::geometry_dir() + "/cube_10mm.stl", 0.001);
+  const geometry::Box box = geometry::bounding_box(mesh);
+  // A sphere touches a face when it is placed against it: within the placement's allowance of
+  // 1e-3 of its radius.
+  const double touching = 1e-3 * 0.3e-3;
+  const auto rough = StlFill(s).generate(context_in(test::geometry_dir()));
+  s.conform_surface = true;
+  const auto flat = StlFill(s).generate(context_in(test::geometry_dir()));
+  const auto rough_cover = test::touching_area_fraction(rough, box, touching);
+  const auto flat_cover = test::touching_area_fraction(flat, box, touching);
+  for (int face = 0; face < 6; ++face) {
+    CAPTURE(face);
+    // Without the option a sphere touches a face only by chance. With it, a fixture bearing
+    // anywhere on a face meets a touching sphere within about two diameters: at least a fifth
+    // of each face lies under the discs of spheres that touch it.
+    CHECK(rough_cover[face] < 0.01);
+    CHECK(flat_cover[face] > 0.2);
+  }
+  std::size_t outside = 0;
+  for (std::size_t i = 0; i < flat.position.size(); ++i)
+    if (convex_distance(mesh, flat.position[i]) > -flat.radius[i] + touching) ++outside;
+  CHECK(outside == 0);
+  // The layer against the faces costs the packing nothing it is judged by.
+  CHECK(quality(flat, "solid_fraction") >= quality(rough, "solid_fraction") - 0.01);
+  CHECK(quality(flat, "max_overlap") <= 1e-9);
+  CHECK(quality(flat, "bond_components") == 1.0);
+  CHECK(quality(flat, "fabric_deviator") <= 0.05);
+  CHECK(quality(flat, "hole_fraction") <= 0.001);
+}
+
+namespace {
+
+// Share of the faceted sphere's surface under the discs of the spheres that touch it (gap within
+// `tolerance`); also the count of spheres that cross it by more than `tolerance`.
+std::pair<double, std::size_t> touching_share(const GeneratedBody& body, const geometry::TriangleMesh& mesh,
+                                              double tolerance) {
+  double surface = 0.0;
+  for (const auto& f : mesh.faces)
+    surface += 0.5 * (mesh.vertices[f[1]] - mesh.vertices[f[0]]).cross(mesh.vertices[f[2]] - mesh.vertices[f[0]]).norm();
+  double covered = 0.0;
+  std::size_t crossing = 0;
+  for (std::size_t i = 0; i < body.position.size(); ++i) {
+    const double gap = -convex_distance(mesh, body.position[i]) - body.radius[i];
+    if (gap < -tolerance) ++crossing;
+    if (std::abs(gap) <= tolerance) covered += std::numbers::pi * body.radius[i] * body.radius[i];
+  }
+  return {covered / surface, crossing};
+}
+
+}  // namespace
+
+TEST_CASE("conform_surface on a curved body: the outer spheres touch the faceted sphere from inside") {
+  auto s = settings("sphere_r10mm.stl", 0.5e-3, 0.65e-3);
+  const auto rough = StlFill(s).generate(context_in(test::geometry_dir()));
+  s.conform_surface = true;
+  const auto flat = StlFill(s).generate(context_in(test::geometry_dir()));
+  const auto mesh = geometry::read_stl(test::geometry_dir() + "/sphere_r10mm.stl", 0.001);
+  // Along the facets' edges the voxelized distance is not planar, so a sphere placed there may
+  // cross the surface by up to a voxel, as the plain fill may (the cube-and-sphere case above).
+  const double voxel = 0.5e-3 / 4.0;
+  const double rough_share = touching_share(rough, mesh, 0.01 * 0.25e-3).first;
+  const double flat_share = touching_share(flat, mesh, 0.01 * 0.25e-3).first;
+  CHECK(touching_share(flat, mesh, voxel).second == 0);
+  // Spheres touch a convex surface from inside further apart than a plane (the surface curves
+  // away between them): a tenth of it under touching discs, against none by chance.
+  CHECK(rough_share < 0.01);
+  CHECK(flat_share > 0.1);
+  CHECK(quality(flat, "max_overlap") <= 1e-9);
+  CHECK(quality(flat, "bond_components") == 1.0);
+  CHECK(quality(flat, "hole_fraction") <= 0.001);
 }

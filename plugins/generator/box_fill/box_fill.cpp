@@ -76,6 +76,8 @@ std::vector<ParamSpec> box_fill_params() {
       param("diameter_max", ParamType::Number, "m", "largest diameter; lattice spacing", required, geometry::kPositive),
       param("gap", ParamType::Number, "1", "bond pairs whose surface gap < gap x mean radius of the pair", 0.7,
             geometry::kNonNegative),
+      param("conform_surface", ParamType::Boolean, "",
+            "random lattice: also place spheres tangent to the faces, so they end flat to the grain", false),
       param("bond", ParamType::Boolean, "", "bond neighbours closer than the gap", true),
       param("seed_offset", ParamType::Integer, "1", "added to the scene seed for this body", 0.0),
   };
@@ -90,6 +92,7 @@ BoxFillSettings box_fill_settings(const ParamSet& params) {
   s.diameter_max = params.number("diameter_max");
   s.gap = params.number("gap");
   s.bond = params.flag("bond");
+  s.conform_surface = params.flag("conform_surface");
   s.seed_offset = params.integer("seed_offset");
   return s;
 }
@@ -103,6 +106,10 @@ BoxFill::BoxFill(BoxFillSettings settings) : settings_(std::move(settings)) {
     throw std::invalid_argument(fmt::format("box_fill: the box ({:.4g} x {:.4g} x {:.4g} m) must be at least "
                                             "diameter_max = {:.4g} m wide along every axis, with max_corner > min_corner",
                                             extent.x(), extent.y(), extent.z(), settings_.diameter_max));
+  if (settings_.conform_surface && settings_.lattice != Lattice::Random)
+    throw std::invalid_argument(
+        "box_fill: conform_surface = true applies to lattice = \"random\"; a lattice's faces are flat already. "
+        "Remove conform_surface or use the random lattice");
 }
 
 GeneratedBody BoxFill::generate(const GeneratorContext& context) const {
@@ -118,6 +125,7 @@ GeneratedBody BoxFill::generate(const GeneratorContext& context) const {
   if (settings_.lattice == Lattice::Random) {
     geometry::FrontFillOptions options;
     options.seed = seed;
+    options.conform_to_surface = settings_.conform_surface;
     packing = geometry::advancing_front_fill(distance, box, psd, options);
   } else {
     packing.centre = lattice_sites(settings_.lattice, box.lower, box.upper, settings_.diameter_max);

@@ -20,6 +20,7 @@ struct BoxFillSettings {
   double diameter_max = 0.0;
   double gap = 0.0;  // relative to the pair's mean radius, as in stl_fill
   bool bond = true;
+  bool conform_surface = false;  // random lattice: also place spheres tangent to the faces
   long seed_offset = 0;
 };
 

@@ -42,6 +42,9 @@ std::vector<ParamSpec> stl_fill_params() {
       param("gap_tolerance", ParamType::Number, "m",
             "cracks up to this wide count as closed; 0 = min(1e-3 x bounding-box diagonal, diameter_min / 2)", 0.0,
             geometry::kNonNegative),
+      param("conform_surface", ParamType::Boolean, "",
+            "also place spheres tangent to the surface, so plane faces end flat to the grain (where a fixture bears)",
+            false),
       param("max_hole_fraction", ParamType::Number, "1",
             "error if more of the body than this stays further than d_max from any sphere", 0.02, {0.0, 1.0}),
   };
@@ -60,6 +63,7 @@ StlFillSettings stl_fill_settings(const ParamSet& params) {
   s.seed_offset = params.integer("seed_offset");
   s.save = params.text("save");
   s.max_hole_fraction = params.number("max_hole_fraction");
+  s.conform_surface = params.flag("conform_surface");
   s.weld_tolerance = params.number("weld_tolerance");
   s.gap_tolerance = params.number("gap_tolerance");
   return s;
@@ -95,9 +99,12 @@ GeneratedBody StlFill::generate(const GeneratorContext& context) const {
                                           "{:.4g} m is below diameter_max = {:.4g} m. Reduce the diameters or check "
                                           "'scale' (0.001 for a file in mm)",
                                           path.string(), smallest_extent, psd.d_max()));
-  // A band of r_max plus a few voxels keeps "SDF <= -r" exact for every candidate sphere.
+  // A band of r_max plus a few voxels keeps "SDF <= -r" exact for every candidate sphere. Placing
+  // spheres against the surface also needs the normal where a worked sphere of radius r_max, with a
+  // sphere of diameter d_max between it and the surface, sits: 1.5 d_max deep.
+  const double band = (settings_.conform_surface ? 1.5 : 0.5) * psd.d_max() + 3.0 * voxel;
   const SignedDistanceField field(
-      mesh, voxel, 0.5 * psd.d_max() + 3.0 * voxel,
+      mesh, voxel, band,
       repair.edges.open_edges == 0 ? geometry::SignRule::RayMajority : geometry::SignRule::WindingWhenRaysDisagree);
   const geometry::SignedDistance distance = [&field](const Vec3& p) { return field.distance(p); };
   const auto seconds_since_start = [&start] {
@@ -108,6 +115,8 @@ GeneratedBody StlFill::generate(const GeneratorContext& context) const {
 
   geometry::FrontFillOptions options;
   options.seed = context.seed + static_cast<std::uint64_t>(settings_.seed_offset);
+  options.conform_to_surface = settings_.conform_surface;
+  options.normal_step = voxel;
   geometry::SpherePacking packing;
   try {
     packing = geometry::advancing_front_fill(distance, bounds, psd, options);
@@ -137,8 +146,9 @@ GeneratedBody StlFill::generate(const GeneratorContext& context) const {
   if (!settings_.save.empty()) {
     const auto out = geometry::resolve_against(context.scene_dir, settings_.save);
     geometry::save_packing_csv(out, packing, bonds,
-                               {fmt::format("stl_fill file={} scale={} d={}..{} gap={} seed={}", settings_.file,
-                                            settings_.scale, psd.d_min(), psd.d_max(), settings_.gap, options.seed),
+                               {fmt::format("stl_fill file={} scale={} d={}..{} gap={} seed={} conform_surface={}",
+                                            settings_.file, settings_.scale, psd.d_min(), psd.d_max(), settings_.gap,
+                                            options.seed, settings_.conform_surface),
                                 geometry::format_quality(quality)});
     log(fmt::format("packing saved to '{}' and '{}'", out.string(), geometry::bonds_path_for(out).string()));
   }

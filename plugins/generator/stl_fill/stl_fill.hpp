@@ -27,6 +27,7 @@ struct StlFillSettings {
   long seed_offset = 0;
   std::string save;  // empty: do not store the packing
   double max_hole_fraction = 0.02;
+  bool conform_surface = false;  // also place spheres tangent to the surface
   double weld_tolerance = 0.0;  // [m]; 0: geometry::default_weld_tolerance()
   double gap_tolerance = 0.0;   // [m]; 0: min(1e-3 x bounding-box diagonal, diameter_min / 2)
 };
