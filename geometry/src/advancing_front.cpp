@@ -93,6 +93,10 @@ std::optional<CentrePlane> centre_plane_near(const SignedDistance& distance, con
   return CentrePlane{n, n.dot(foot) - r};
 }
 
+// A sphere placed against the surface may cross it by this fraction of its radius: it absorbs the
+// interpolation error of a voxelized signed distance.
+constexpr double kSurfaceAllowance = 1e-3;
+
 struct Candidate {
   double key;  // squared distance to the seed point
   Vec3 centre;
@@ -202,7 +206,7 @@ class FrontFiller {
   }
 
   bool inside(const Candidate& candidate, double r) const {
-    const double allowance = candidate.touches_surface ? options_.surface_tolerance * r : 0.0;
+    const double allowance = candidate.touches_surface ? kSurfaceAllowance * r : 0.0;
     return distance_(candidate.centre) <= -r + allowance;
   }
 

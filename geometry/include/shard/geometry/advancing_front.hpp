@@ -30,13 +30,11 @@ struct FrontFillOptions {
   // Spacing of the probe lattice that finds the seed position, as a fraction of d_max.
   double probe_spacing = 0.5;
   // Also try spots tangent to two placed spheres and to the body's surface (its local tangent
-  // plane). A plane face then ends in a layer of spheres that all touch it, flat to within the
-  // tolerance below, instead of the grain-rough face a front of tangent spheres leaves: a fixture
-  // bearing on the face meets that layer, not the one grain that stands out furthest.
+  // plane). A plane face then ends in a layer of spheres that all touch it (each may cross it by
+  // 1e-3 of its radius, the voxelized distance's rounding), instead of the grain-rough face a
+  // front of tangent spheres leaves: a fixture bearing on the face meets that layer, not the one
+  // grain that stands out furthest.
   bool conform_to_surface = false;
-  // A sphere placed against the surface may cross it by this fraction of its radius; it absorbs
-  // the interpolation error of a voxelized signed distance.
-  double surface_tolerance = 1e-3;
   // Step of the central differences that give the surface normal [m]; 0: d_min / 8.
   double normal_step = 0.0;
 };
