@@ -373,6 +373,25 @@ TEST_CASE("pair: two effects at once are sized jointly; the second is named only
   CHECK_FALSE(pair_is_named(redrawn, 2));
 }
 
+TEST_CASE("pair: a second effect is sought only beside a closest that took three quarters of T^2") {
+  // The figures of two sets of the default-size foreign study (flat-faced model, 11 effects).
+  ContrastFit friction;  // a self-weight set's closest: roller friction, T^2 112.7 -> chi^2 50.6
+  friction.chi_square = 50.59, friction.drop = 112.67 - 50.59, friction.p_drop = 8.6e-5;
+  CHECK_FALSE(starts_a_pair(friction, 112.67, 11));  // 55 %: a stand-in, not a start
+  ContrastFit compliance;  // a compliance + softening set's closest: the frame, 7799 -> 1079
+  compliance.chi_square = 1078.9, compliance.drop = 7798.8 - 1078.9, compliance.p_drop = 1e-12;
+  CHECK(starts_a_pair(compliance, 7798.8, 11));  // 86 %
+  ContrastFit unsure = compliance;
+  unsure.p_drop = 0.05 / 11;  // not below the level over the library
+  CHECK_FALSE(starts_a_pair(unsure, 7798.8, 11));
+  ContrastFit twin = compliance;
+  twin.identifiable = false;
+  CHECK_FALSE(starts_a_pair(twin, 7798.8, 11));
+  ContrastOptions half;
+  half.pair_first_share = 0.5;
+  CHECK(starts_a_pair(friction, 112.67, 11, half));
+}
+
 TEST_CASE("seeds agree on a move: its projection on the residual, per seed, under Student's t") {
   const auto w = identity(3);
   const std::vector<double> residual{1, 0, 2};

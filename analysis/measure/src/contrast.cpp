@@ -377,6 +377,11 @@ double seed_consistency_p(const std::vector<double>& residual, const std::vector
                               static_cast<double>(along.size() - 1));
 }
 
+bool starts_a_pair(const ContrastFit& closest, double t_square, std::size_t effects, const ContrastOptions& options) {
+  const double n = static_cast<double>(std::max<std::size_t>(1, effects));
+  return closest.p_drop < options.drop_p / n && closest.identifiable && closest.drop >= options.pair_first_share * t_square;
+}
+
 bool pair_is_named(const ContrastPairFit& pair, std::size_t seconds_tried, const ContrastOptions& options) {
   const double n = static_cast<double>(std::max<std::size_t>(1, seconds_tried));
   return pair.scale_second != 0 && pair.p_drop < options.drop_p / n && pair.p_after > options.remaining_p &&

@@ -14,8 +14,6 @@ namespace shard::measure {
 
 namespace {
 
-constexpr double kPairFirstShare = 0.5;
-
 // A signature in units of `unit` trial sizes, with the effect's range in those units (for a
 // second effect, whose size the pair's fit chooses freely, at most kFarthestTrialSteps from neutral).
 EffectSignature in_units(const CandidateEffect& e, std::vector<double> signature, double unit, bool second) {
@@ -129,12 +127,7 @@ class PairSearch {
     SetDiagnosis& d = sets_[s];
     if (d.decision.verdict != kUnexplainedDifference || !d.closest || d.decision.fits.empty()) return {};
     const ContrastFit& closest = d.decision.fits.front();
-    // The first must have earned its place: a significant drop of its own over the library, and
-    // most of the difference (the stepwise path keeps an effect that explains much but not all;
-    // one that takes less than half is no better a start than the pair without it).
-    const double n = static_cast<double>(effects_.size());
-    if (!(closest.p_drop < decide_.drop_p / n) || !closest.identifiable || d.closest->scale == 0) return {};
-    if (!(closest.drop >= kPairFirstShare * d.decision.chi_square)) return {};
+    if (!starts_a_pair(closest, d.decision.chi_square, effects_.size(), decide_) || d.closest->scale == 0) return {};
     const std::size_t f = d.closest->effect;
     const EffectSignature first = in_units(effects_[f], study_.model_contrast(d.contrast, d.closest->run, trials_.front()),
                                            d.closest->scale, false);

@@ -146,6 +146,13 @@ struct ContrastOptions {
   // curve rule leaves out on purpose. On the foreign sets the wrong closest effects took at most
   // 79 % of T^2 (four draws), the right ones 87-98 %.
   double curve_name_share = 0.85;
+  // A pair is tried only beside a closest effect that took at least this share of T^2 on its own.
+  // The pair search is stepwise: it keeps the closest and adds a second. A closest that takes
+  // about half may stand in for an effect the library lacks, and a second then patches what it
+  // misses. On the default-size foreign draws the right pairs' closest took 86-91 % of T^2; the two
+  // wrong pairs' (a self-weight set read as roller friction + asymmetry, a Weibull set as Weibull
+  // + roller friction) 55 % and 64 %.
+  double pair_first_share = 0.75;
   // ... and when its model reproduces the peak force: the curve rule reads the rising branch only,
   // which one effect of two reproduces up to its own peak while the measured curve climbs on. A
   // peak force the named effect leaves where the data do not is a second cause, not the crack's
@@ -249,6 +256,11 @@ ContrastPairFit judge_simulated_pair(const std::vector<double>& difference,
 // seeds; 0 when every seed moves it alike and towards the residual.
 double seed_consistency_p(const std::vector<double>& residual, const std::vector<std::vector<double>>& weight,
                           const std::vector<std::vector<double>>& moves);
+
+// Whether a set's closest single effect may start a pair: its own drop significant over the
+// `effects` of the library, identifiable, and at least pair_first_share of the set's T^2.
+bool starts_a_pair(const ContrastFit& closest, double t_square, std::size_t effects,
+                   const ContrastOptions& options = {});
 
 // The pair is named when the first effect's own drop was significant (the caller's condition),
 // the second's drop beats drop_p over `seconds_tried`, the remainder is compatible with noise, and
