@@ -390,6 +390,10 @@ std::string base_markdown(const ContrastReport& r) {
   else {
     for (std::size_t k = 0; k < r.result.calibration.path.size(); ++k) md += fmt::format("{}. {}\n", k + 1, r.result.calibration.path[k]);
     const BaseCalibration& c = r.result.calibration;
+    if (c.returned_line + 1 < c.path.size())
+      md += fmt::format("\nThe base is line {}'s: the steps after it raised the misfit beyond the runs' noise and "
+                        "were halved back without reaching a better point.\n",
+                        c.returned_line + 1);
     md += fmt::format("\nFitted to {}:", c.form_targets ? "the reference's stiffness, peak force, peak displacement and "
                                                           "post-peak regime"
                                                         : "the reference's stiffness, peak force and peak displacement");
@@ -518,7 +522,7 @@ io::Json base_json(const BaseCalibration& c) {
     if (c.at_range_bound[k]) at_bound.push_back(c.keys[k]);
   }
   return {{"base", values}, {"base_uncertainty", uncertainty}, {"base_at_range_bound", at_bound},
-          {"base_form_targets", c.form_targets}};
+          {"base_form_targets", c.form_targets}, {"base_path", c.path}, {"base_returned_line", c.returned_line + 1}};
 }
 
 io::Json fits_json(const ContrastReport& r, const SetDiagnosis& d) {

@@ -84,6 +84,23 @@ TEST_CASE("a base fit on the reference finds the parameters the reference was ma
   CHECK(d.calibration.values[1] == doctest::Approx(2e5).epsilon(0.04));
 }
 
+TEST_CASE("a base fit step that raises the misfit beyond noise is halved back, not taken") {
+  // The model beds into its rollers below E = 1.1e7 Pa (half the stiffness); the reference was
+  // made at 1e7 without bedding. From 1.5e7 a Gauss-Newton step lands at 1e7, bedded, and the next
+  // one doubles E: taking every step ends at 1e7 (stiffness -50 %) after three iterations.
+  Study s;
+  s.simulator.bedding_modulus = 1.1e7;
+  s.base = with_parameters(s.base, {"bond.youngs_modulus"}, {1.5e7});
+  const ContrastDiagnosis d = s.run();
+  const BaseCalibration& c = d.calibration;
+  REQUIRE(c.path.size() == 4);
+  CHECK(c.path[1].find("step halved") != std::string::npos);
+  // Kept: 1.5e7, then halfway back in log from the bedded point, sqrt(1.5e7 x 1e7) = 1.22e7.
+  CHECK(c.returned_line + 1 < c.path.size());
+  CHECK(c.values[0] == doctest::Approx(std::sqrt(1.5e7 * 1e7)).epsilon(0.04));
+  CHECK(c.values[1] == doctest::Approx(2e5).epsilon(0.04));
+}
+
 TEST_CASE("one library effect: named with its size; a null set: no difference") {
   Study s;
   s.add("softening", measured({{"fake.softening", 1.5}}, 3000));

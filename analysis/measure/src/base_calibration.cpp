@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <ostream>
 
 #include "shard/measure/contrast_study.hpp"
@@ -16,6 +17,7 @@ namespace shard::measure {
 namespace {
 
 constexpr double kBaseStep = 0.05;  // relative step of a base parameter for its Jacobian
+constexpr double kConvergedStep = 0.005;  // in log: a step this small ends the fit
 // Targets: the reference's (or the consensus') logarithms of stiffness, peak force and peak
 // displacement, the form-free scale of a curve. They hold about two independent numbers (w_peak
 // follows from the other two for a nearly linear rise), enough for E_b and sigma_crit; a third
@@ -99,20 +101,27 @@ std::string path_line(const BaseCalibration& cal, const Eigen::VectorXd& z, cons
                      t.form ? fmt::format(", post-peak regime {:+.2f} sigma", z(3)) : "");
 }
 
-// The base at the current values, then (for a Jacobian) each parameter 5 % up, or down where up
-// leaves its range (poisson_ratio at 0.5); `steps` receives each one's step in log.
-std::vector<ModelPlan> step_models(const ModelPlan& base, const BaseCalibration& cal, bool with_steps,
-                                   std::vector<double>& steps) {
+// The base at the given values.
+ModelPlan point_model(const ModelPlan& base, const BaseCalibration& cal, double rate) {
+  ModelPlan m = with_parameters(base, cal.keys, cal.values);
+  m.loading_rate = rate;
+  return m;
+}
+
+// For a Jacobian: each parameter 5 % up, or down where up leaves its range (poisson_ratio at
+// 0.5); `steps` receives each one's step in log.
+std::vector<ModelPlan> jacobian_models(const ModelPlan& base, const BaseCalibration& cal, double rate,
+                                       std::vector<double>& steps) {
   const double log_step = std::log1p(kBaseStep);
-  std::vector<ModelPlan> models{with_parameters(base, cal.keys, cal.values)};
+  std::vector<ModelPlan> models;
   steps.assign(cal.keys.size(), log_step);
-  if (with_steps)
-    for (std::size_t i = 0; i < cal.keys.size(); ++i) {
-      std::vector<double> v = cal.values;
-      v[i] *= 1 + kBaseStep;
-      if (v[i] > cal.range[i].max) v[i] = cal.values[i] / (1 + kBaseStep), steps[i] = -log_step;
-      models.push_back(with_parameters(base, cal.keys, v));
-    }
+  for (std::size_t i = 0; i < cal.keys.size(); ++i) {
+    std::vector<double> v = cal.values;
+    v[i] *= 1 + kBaseStep;
+    if (v[i] > cal.range[i].max) v[i] = cal.values[i] / (1 + kBaseStep), steps[i] = -log_step;
+    models.push_back(with_parameters(base, cal.keys, v));
+    models.back().loading_rate = rate;
+  }
   return models;
 }
 
@@ -121,7 +130,7 @@ Eigen::MatrixXd jacobian(const BaseTargets& t, const std::vector<std::vector<Spe
   Eigen::MatrixXd J(z.size(), static_cast<Eigen::Index>(steps.size()));
   for (std::size_t i = 0; i < steps.size(); ++i) {
     Comparison unused;
-    J.col(static_cast<Eigen::Index>(i)) = (base_residual(t, sims[1 + i], &base_comparison, unused) - z) / steps[i];
+    J.col(static_cast<Eigen::Index>(i)) = (base_residual(t, sims[i], &base_comparison, unused) - z) / steps[i];
   }
   return J;
 }
@@ -164,6 +173,30 @@ void set_uncertainties(BaseCalibration& cal, const Eigen::MatrixXd& J) {
         cal.values[i] * std::sqrt(std::max(0.0, cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i))));
 }
 
+// A point the fit has accepted: its values, misfit (the squared standardised residual), runs and
+// its line in the path.
+struct KeptPoint {
+  std::vector<double> values;
+  double misfit = 0;
+  std::vector<Specimen> sims;
+  std::size_t line = 0;
+};
+
+// A step is kept when it raises the misfit by at most this: the targets are standardised, so runs
+// of nearly one model differ by about one unit in each. A step that raises it further left the
+// region where the Jacobian holds (a beam that starts to crush at its rollers, say).
+double misfit_allowance(const Eigen::VectorXd& z) { return static_cast<double>(z.size()); }
+
+// Halfway back (in log) from a rejected point to the kept one; returns the largest step left.
+double halve_towards(BaseCalibration& cal, const std::vector<double>& kept) {
+  double largest = 0;
+  for (std::size_t i = 0; i < cal.values.size(); ++i) {
+    cal.values[i] = std::sqrt(cal.values[i] * kept[i]);
+    largest = std::max(largest, std::abs(std::log(cal.values[i] / kept[i])));
+  }
+  return largest;
+}
+
 }  // namespace
 
 BaseCalibration ContrastStudy::calibrate_base(const std::vector<std::string>& keys, int iterations, std::ostream& log) {
@@ -178,28 +211,36 @@ BaseCalibration ContrastStudy::calibrate_base(const std::vector<std::string>& ke
   cal.at_range_bound.assign(keys.size(), false);
   cal.form_targets = keys.size() > 2;
   const BaseTargets t = base_targets(sets_, groups_, scatter_, scale_rate_, cal.form_targets);
-  std::vector<Specimen> final_sims;
+  std::optional<KeptPoint> kept;
   Eigen::MatrixXd last_jacobian;
   for (int it = 0; it <= iterations; ++it) {
-    std::vector<double> steps;
-    std::vector<ModelPlan> models = step_models(base_, cal, it < iterations, steps);
-    for (auto& m : models) m.loading_rate = scale_rate_;
-    simulator_.check_inputs(models.front(), t.reference, *t.metadata);
-    const auto sims = simulator_.simulate(models, log);
-    Comparison base_comparison;
-    const Eigen::VectorXd z = base_residual(t, sims[0], nullptr, base_comparison);
+    const ModelPlan here = point_model(base_, cal, scale_rate_);
+    simulator_.check_inputs(here, t.reference, *t.metadata);
+    std::vector<Specimen> sims = std::move(simulator_.simulate({here}, log).front());
+    Comparison comparison;
+    const Eigen::VectorXd z = base_residual(t, sims, nullptr, comparison);
+    const double misfit = z.squaredNorm();
     cal.path.push_back(path_line(cal, z, t));
-    log << "contrast: base " << cal.path.back() << '\n';
-    if (it == iterations) {
-      final_sims = sims[0];
-      break;
+    if (kept && misfit > kept->misfit + misfit_allowance(z)) {
+      cal.path.back() += fmt::format(" (misfit {:.3g} against line {}'s {:.3g}: step halved)", misfit, kept->line + 1,
+                                     kept->misfit);
+      log << "contrast: base " << cal.path.back() << '\n';
+      if (halve_towards(cal, kept->values) < kConvergedStep) break;
+      continue;
     }
-    last_jacobian = jacobian(t, sims, base_comparison, z, steps);
-    if (gauss_newton_step(cal, last_jacobian, z) < 0.005) iterations = it + 1;  // converged: the next pass is cached
+    log << "contrast: base " << cal.path.back() << '\n';
+    kept = KeptPoint{cal.values, misfit, std::move(sims), cal.path.size() - 1};
+    if (it == iterations) break;
+    std::vector<double> steps;
+    const auto moved = simulator_.simulate(jacobian_models(base_, cal, scale_rate_, steps), log);
+    last_jacobian = jacobian(t, moved, comparison, z, steps);
+    if (gauss_newton_step(cal, last_jacobian, z) < kConvergedStep) iterations = it + 1;  // the next pass is cached
   }
+  cal.values = kept->values;
+  cal.returned_line = kept->line;
   set_uncertainties(cal, last_jacobian);
   base_ = with_parameters(base_, keys, cal.values);
-  cal.form_error = compare(t.reference, *t.metadata, final_sims);
+  cal.form_error = compare(t.reference, *t.metadata, kept->sims);
   return cal;
 }
 

@@ -53,7 +53,10 @@ struct BaseCalibration {
   std::vector<measure::ParameterRange> range;  // what the plugins accept (ParamSpec)
   std::vector<bool> at_range_bound;          // the last step asked for a value outside the range
   bool form_targets = false;                 // the post-peak regime was a target
-  std::vector<std::string> path;  // one line per iteration
+  std::vector<std::string> path;  // one line per iteration; a step that raised the misfit says so
+  // The path line whose values are returned: the last step the fit kept. A step that raises the
+  // misfit beyond the runs' noise is halved back towards it instead of being taken.
+  std::size_t returned_line = 0;
   std::vector<std::string> at_bound;  // parameters whose step was clamped in the last iteration
   measure::Comparison form_error;     // the calibrated base against the reference
 };
