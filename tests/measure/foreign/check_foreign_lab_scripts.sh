@@ -8,7 +8,8 @@
 #     effect is none. Its targets: the outside set never named (met), the pair given a wrong name
 #     (not met), a single effect named in 1 of the 1 draws with p < 1e-3 (met), a null set named
 #     (not met). The two-rate sets' own diagnosis (diag_rates) is counted too: a rate set named as
-#     another effect is a third wrong name, and a set in both reports is counted once.
+#     another effect is a third wrong name, and a set in both reports is counted once. With
+#     --model flat_zones the draw's diag_flat_zones is read instead.
 #  3. compare_features.sh reads a feature's field from compare.json as the JSON writer lays it
 #     out (one key per line).
 #   check_foreign_lab_scripts.sh WORK
@@ -60,6 +61,15 @@ grep -q "| outside | never named: 1 of 1 | yes |" <<<"$out" || fail "the outside
 grep -q "| pair | both named or unexplained: 0 of 1 | no |" <<<"$out" || fail "the pair's target is not met"
 grep -q "| softening | named in 1 of 1 draws with p < 1e-3 | yes |" <<<"$out" || fail "softening's target is met"
 grep -q "| null | no difference in every draw: 0 of 1 | no |" <<<"$out" || fail "the null set's target is not met"
+# Another model's diagnoses (study_foreign_lab.sh's STUDY_MODEL) are read from their own folders.
+mkdir -p "$draw/diag_flat_zones"
+cat > "$draw/diag_flat_zones/diagnose.json" <<'JSON'
+{"reference": "reference", "sets": [
+ {"name": "null", "verdict": "no difference", "p_value": 0.3}]}
+JSON
+out=$(python3 "$here/foreign_confusion.py" --model flat_zones "$draw")
+grep -q "wrong names: 0$" <<<"$out" || fail "flat_zones: expected no wrong name (its own diagnosis, no diag_rates_flat_zones)"
+grep -q "| null | none | no difference 1 |" <<<"$out" || fail "flat_zones: the null set from diag_flat_zones"
 source "$here/compare_features.sh"
 cat > "$work/compare.json" <<'JSON'
 {

@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
 """Confusion matrix of the contrast diagnosis on foreign truth, over draws.
 
-    foreign_confusion.py DRAW_FOLDER...
+    foreign_confusion.py [--model NAME] DRAW_FOLDER...
       each DRAW_FOLDER holds sets/ (make_foreign_lab_sets.sh: every set's metadata.toml carries
       [test] notes = "truth: ...") and diag/diagnose.json (`shard diagnose` of those sets); the
       two-rate sets' own diagnosis (rates_null and rates against the reference) in
-      diag_rates/diagnose.json is read too when the folder has it
+      diag_rates/diagnose.json is read too when the folder has it. With --model NAME other than
+      random (study_foreign_lab.sh's STUDY_MODEL), diag_NAME and diag_rates_NAME are read instead.
 
 Prints one row per set: its truth and how often each verdict came over the draws, then the wrong
 names: a named effect that is not in the set's truth ("no difference" and "unexplained
@@ -52,11 +53,12 @@ def read_report(folder, diagnosis):
             for s in report["sets"]]
 
 
-def read_draw(folder):
-    rows = read_report(folder, "diag")
-    if os.path.exists(os.path.join(folder, "diag_rates", "diagnose.json")):
+def read_draw(folder, suffix):
+    rows = read_report(folder, "diag" + suffix)
+    rates = "diag_rates" + suffix
+    if os.path.exists(os.path.join(folder, rates, "diagnose.json")):
         seen = {name for name, *_ in rows}
-        rows += [row for row in read_report(folder, "diag_rates") if row[0] not in seen]
+        rows += [row for row in read_report(folder, rates) if row[0] not in seen]
     return rows
 
 
@@ -79,19 +81,26 @@ def target(truth, verdicts):
 
 
 def main():
-    if len(sys.argv) < 2:
+    args = sys.argv[1:]
+    suffix = ""
+    if args[:1] == ["--model"]:
+        if len(args) < 2:
+            sys.exit("--model needs a name (random or flat_zones)\n" + __doc__)
+        suffix = "" if args[1] == "random" else "_" + args[1]
+        args = args[2:]
+    if not args:
         sys.exit(__doc__)
     rows = collections.OrderedDict()
     per_set = collections.OrderedDict()
     wrong, verdicts = [], 0
-    for folder in sys.argv[1:]:
-        for name, truth, verdict, p in read_draw(folder):
+    for folder in args:
+        for name, truth, verdict, p in read_draw(folder, suffix):
             rows.setdefault((name, truth), collections.Counter())[verdict] += 1
             per_set.setdefault((name, truth), []).append((verdict, p))
             verdicts += 1
             allowed = set(truth.split(","))
             wrong += [(folder, name, effect) for effect in named_effects(verdict) if effect not in allowed]
-    print(f"| set | truth | verdicts over {len(sys.argv) - 1} draws |\n|---|---|---|")
+    print(f"| set | truth | verdicts over {len(args)} draws |\n|---|---|---|")
     for (name, truth), counts in rows.items():
         cells = ", ".join(f"{v} {n}" for v, n in counts.most_common())
         print(f"| {name} | {truth} | {cells} |")

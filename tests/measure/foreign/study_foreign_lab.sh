@@ -17,6 +17,13 @@
 #            already diagnosed is not run again), the model's run cache to DATA/model (shared by
 #            the draws)
 #     DRAW   draw numbers, e.g. 0 1 2 3
+#   STUDY_MODEL (environment) the model the sets are diagnosed with:
+#     random      (default) scenes/four_point_bending.toml as it is, a random packing
+#     flat_zones  the same beam filled with conform_surface = true (faces flat to the grain where
+#                 the rollers bear) and 10 mm unbreakable zones under the four rollers
+#                 (docs/explanation/foreign-truth.md, "With flat faces where the fixture bears");
+#                 its diagnoses go to draw_k/diag_flat_zones and draw_k/diag_rates_flat_zones, its
+#                 run cache to DATA/model_flat_zones
 set -euo pipefail
 if [[ $# -lt 3 ]]; then
   echo "usage: $0 SHARD DATA DRAW..." >&2
@@ -24,6 +31,18 @@ if [[ $# -lt 3 ]]; then
 fi
 shard=$1 data=$2
 shift 2
+model=${STUDY_MODEL:-random}
+case $model in
+  random) model_args=() suffix="" ;;
+  flat_zones)
+    model_args=(--set generator.conform_surface=true)
+    for roller in support_left support_right pin_left pin_right; do
+      model_args+=(--set "wall.$roller.unbreakable_zone=0.010")
+    done
+    suffix=_flat_zones
+    ;;
+  *) echo "$0: STUDY_MODEL=$model is not a model of this study. Fix: STUDY_MODEL=random or flat_zones" >&2; exit 2 ;;
+esac
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 source_dir=$(cd "$here/../../.." && pwd)
 # shellcheck source=compare_features.sh
@@ -61,7 +80,7 @@ diagnose() {
   [[ -f $out/diagnose.json ]] && return 0
   start=$(date +%s)
   "$shard" diagnose "$draw/sets/reference" "$@" --reference reference --scene "$source_dir/scenes/four_point_bending.toml" \
-    --effects "$source_dir/scenes/measurements/effects.toml" --work "$data/model" \
+    --effects "$source_dir/scenes/measurements/effects.toml" --work "$data/model$suffix" "${model_args[@]}" \
     --param bond.youngs_modulus --param bond.critical_stress --own-scatter 0.01 --workers 2 --out "$out" > "$out.log" 2>&1 ||
     { tail -20 "$out.log"; echo "$0: diagnose of $out failed (log: $out.log)" >&2; exit 1; }
   echo "$(basename "$draw") $(basename "$out"): diagnose $(( $(date +%s) - start )) s wall"
@@ -83,10 +102,10 @@ for k in "$@"; do
   echo "draw $k: each set against the reference"
   contrasts "$draw"
   # shellcheck disable=SC2046  # one folder per word
-  diagnose "$draw" "$draw/diag" $(one_rate_sets "$draw")
+  diagnose "$draw" "$draw/diag$suffix" $(one_rate_sets "$draw")
   if [[ -f $draw/sets/rates/specimens.csv && -f $draw/sets/rates_null/specimens.csv ]]; then
-    diagnose "$draw" "$draw/diag_rates" "$draw/sets/rates_null" "$draw/sets/rates"
+    diagnose "$draw" "$draw/diag_rates$suffix" "$draw/sets/rates_null" "$draw/sets/rates"
   fi
   folders+=("$draw")
 done
-python3 "$here/foreign_confusion.py" "${folders[@]}"
+python3 "$here/foreign_confusion.py" --model "$model" "${folders[@]}"
