@@ -4,6 +4,7 @@
 // beyond the effect's range is flagged at its bound, and two effects at once are named as a pair.
 // Every path runs in milliseconds, so a change of a decision rule is tested without a DEM run.
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -99,6 +100,11 @@ TEST_CASE("a base fit step that raises the misfit beyond noise is halved back, n
   CHECK(c.returned_line + 1 < c.path.size());
   CHECK(c.values[0] == doctest::Approx(std::sqrt(1.5e7 * 1e7)).epsilon(0.04));
   CHECK(c.values[1] == doctest::Approx(2e5).epsilon(0.04));
+  const std::string md = shard::contrast_markdown(shard::ContrastReport{s.sets, d});
+  CHECK(md.find(fmt::format("The base is line {}'s", c.returned_line + 1)) != std::string::npos);
+  const io::Json json = shard::contrast_json(shard::ContrastReport{s.sets, d});
+  CHECK(json.at("base_returned_line").get<std::size_t>() == c.returned_line + 1);
+  CHECK(json.at("base_path").size() == c.path.size());
 }
 
 TEST_CASE("one library effect: named with its size; a null set: no difference") {
