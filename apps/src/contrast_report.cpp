@@ -149,11 +149,23 @@ std::string withheld_for_fractures_text(const SetDiagnosis& d, const std::string
       d.withheld.substr(0, d.withheld.find(" + ")));
 }
 
+std::string withheld_for_base_text(const ContrastReport& r, const SetDiagnosis& d, const std::string& name) {
+  const ContrastDecision& c = d.decision;
+  return fmt::format(
+      "{} differs from the reference (T^2 = {:.1f}, p = {:.2g}): unexplained difference. The closest, {}, explains "
+      "{:.0f} % of T^2, but the fitted base leaves NRMSE {:.1f} % against the reference (a name needs at most {:.0f} "
+      "%): the effects were moved about a model that is not the reference's specimen. Fit the base first (more "
+      "--base-iterations, another --param, a model that does not crush at its rollers), then diagnose again.",
+      name, c.chi_square, c.p_value, d.withheld, 100 * d.share, 100 * r.result.calibration.form_error.nrmse,
+      100 * ContrastOptions{}.base_nrmse_limit);
+}
+
 // A name the component statistics gave and the curve did not bear out: a lead, never a name.
 std::string withheld_text(const ContrastReport& r, const SetDiagnosis& d, const std::string& name) {
   if (d.withheld_by == WithheldBy::rate) return withheld_for_rate_text(d, name);
   if (d.withheld_by == WithheldBy::own_scatter) return withheld_for_scatter_text(r, d, name);
   if (d.withheld_by == WithheldBy::fractures) return withheld_for_fractures_text(d, name);
+  if (d.withheld_by == WithheldBy::base) return withheld_for_base_text(r, d, name);
   const ContrastDecision& c = d.decision;
   const bool curve_misses = !curve_agrees(d.after);
   std::string why = !improves_on_base(d)
@@ -564,6 +576,7 @@ const char* withheld_by_name(WithheldBy by) {
     case WithheldBy::rate: return "rate";
     case WithheldBy::own_scatter: return "own_scatter";
     case WithheldBy::fractures: return "fractures";
+    case WithheldBy::base: return "base";
   }
   return "";
 }

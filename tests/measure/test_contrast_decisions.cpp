@@ -107,6 +107,29 @@ TEST_CASE("a base fit step that raises the misfit beyond noise is halved back, n
   CHECK(json.at("base_path").size() == c.path.size());
 }
 
+TEST_CASE("no name about a base that does not reproduce the reference") {
+  // Softening 1.0 is named about a fitted base; left unfitted at twice the reference's bond
+  // modulus (stiffness +100 %), the base's form error is far beyond 10 % and the name is withheld.
+  auto softened = [](bool fit_base) {
+    Study s;
+    s.add("soft", measured({{"fake.softening", 1.0}}, 3000));
+    if (!fit_base) {
+      s.options.params.clear();
+      s.base = with_parameters(s.base, {"bond.youngs_modulus"}, {2e7});
+    }
+    const ContrastDiagnosis d = s.run();
+    return std::make_pair(d.calibration.form_error.nrmse, diagnosis_of(d, s, "soft"));
+  };
+  const auto [fitted_nrmse, fitted] = softened(true);
+  CHECK(fitted_nrmse < 0.05);
+  CHECK(fitted.decision.verdict == "bond_softening");
+  const auto [distant_nrmse, distant] = softened(false);
+  CHECK(distant_nrmse > 0.10);
+  CHECK(distant.decision.verdict == kUnexplainedDifference);
+  CHECK(distant.withheld == "bond_softening");
+  CHECK(distant.withheld_by == WithheldBy::base);
+}
+
 TEST_CASE("one library effect: named with its size; a null set: no difference") {
   Study s;
   s.add("softening", measured({{"fake.softening", 1.5}}, 3000));

@@ -207,34 +207,45 @@ void name_by_curve(std::vector<SetDiagnosis>& sets, std::size_t tried, const Con
   }
 }
 
+namespace {
+
+bool gives_a_name(const SetDiagnosis& d) {
+  return d.decision.verdict != kNoDifference && d.decision.verdict != kUnexplainedDifference;
+}
+
+// The set reads "unexplained difference"; its name is kept as the closest, with the rule that withheld it.
+void withhold(SetDiagnosis& d, WithheldBy by) {
+  d.withheld = d.decision.verdict;
+  d.withheld_by = by;
+  d.decision.verdict = kUnexplainedDifference;
+  d.decision.rivals.clear();
+  d.named_by_curve = false;
+}
+
+}  // namespace
+
 void withhold_names_of_own_scatter(std::vector<SetDiagnosis>& sets, const ContrastStudy& study) {
   const auto carries_own_scatter = [&](std::size_t set) {
     for (std::size_t gi = 0; gi < study.groups().size(); ++gi)
       if (study.groups()[gi].set == set && study.scatter().own[gi]) return true;
     return false;
   };
-  for (auto& d : sets) {
-    const std::string& v = d.decision.verdict;
-    if (v == kNoDifference || v == kUnexplainedDifference || !carries_own_scatter(d.set)) continue;
-    d.withheld = v;
-    d.withheld_by = WithheldBy::own_scatter;
-    d.decision.verdict = kUnexplainedDifference;
-    d.decision.rivals.clear();
-    d.named_by_curve = false;
-  }
+  for (auto& d : sets)
+    if (gives_a_name(d) && carries_own_scatter(d.set)) withhold(d, WithheldBy::own_scatter);
 }
 
 void withhold_names_of_invalid_fractures(std::vector<SetDiagnosis>& sets, const ContrastSets& measured) {
   for (auto& d : sets) {
     d.fractures = fracture_validity(measured.sets[d.set]);
-    const std::string& v = d.decision.verdict;
-    if (v == kNoDifference || v == kUnexplainedDifference || !d.fractures.set_invalid()) continue;
-    d.withheld = v;
-    d.withheld_by = WithheldBy::fractures;
-    d.decision.verdict = kUnexplainedDifference;
-    d.decision.rivals.clear();
-    d.named_by_curve = false;
+    if (gives_a_name(d) && d.fractures.set_invalid()) withhold(d, WithheldBy::fractures);
   }
+}
+
+void withhold_names_on_a_distant_base(std::vector<SetDiagnosis>& sets, double base_nrmse,
+                                      const ContrastOptions& options) {
+  if (!(base_nrmse > options.base_nrmse_limit)) return;
+  for (auto& d : sets)
+    if (gives_a_name(d)) withhold(d, WithheldBy::base);
 }
 
 ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simulator, const ModelPlan& base,
@@ -273,6 +284,7 @@ ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simula
   require_resolved_rate_dependence(out.sets, study, trials[0], out.effects, options.decide);
   withhold_names_of_own_scatter(out.sets, study);
   withhold_names_of_invalid_fractures(out.sets, sets);
+  withhold_names_on_a_distant_base(out.sets, out.calibration.form_error.nrmse, options.decide);
   if (sets.reference) out.reference_fractures = fracture_validity(sets.sets[*sets.reference]);
   if (!options.assumptions.empty())
     assess_assumptions(study, out.effects, out.sets, options.assumptions, options.decide, log);

@@ -146,6 +146,13 @@ struct ContrastOptions {
   // curve rule leaves out on purpose. On the foreign sets the wrong closest effects took at most
   // 79 % of T^2 (four draws), the right ones 87-98 %.
   double curve_name_share = 0.85;
+  // Names need a base that reproduces the reference: at most this NRMSE of form error between the
+  // fitted base's curves and the reference's (BaseCalibration::form_error). On the default-size
+  // foreign draws the bases that left 4.2-8.7 % gave no wrong name; one that left 11.5 % (a fit
+  // that did not converge, stiffness -26 %) named a softening set "bond_softening +
+  // machine_compliance", one that left 16 % (6 mm unbreakable zones) named a high-friction set
+  // compression_asymmetry.
+  double base_nrmse_limit = 0.10;
   // A pair is tried only beside a closest effect that took at least this share of T^2 on its own.
   // The pair search is stepwise: it keeps the closest and adds a second. A closest that takes
   // about half may stand in for an effect the library lacks, and a second then patches what it

@@ -60,6 +60,7 @@ enum class WithheldBy {
   rate,         // its rates cannot resolve its strength's rate dependence (require_resolved_rate_dependence)
   own_scatter,  // the set carries its own scatter (withhold_names_of_own_scatter)
   fractures,    // half its specimens or more broke outside the inner span (withhold_names_of_invalid_fractures)
+  base,         // the fitted base does not reproduce the reference (withhold_names_on_a_distant_base)
 };
 
 struct SetDiagnosis {
@@ -189,6 +190,14 @@ void withhold_names_of_own_scatter(std::vector<SetDiagnosis>& sets, const Contra
 // in 3 of 4 specimens (no bond broke); its force maximum was the slide's, and a name drawn from it
 // would send the lab after material physics for a fixture fault.
 void withhold_names_of_invalid_fractures(std::vector<SetDiagnosis>& sets, const ContrastSets& measured);
+
+// No set is named when the fitted base leaves more than ContrastOptions::base_nrmse_limit of form
+// error against the reference: the contrasts are the effects' moves about the base, and about a
+// base that is not the reference's specimen (a fit that did not converge, a model that crushes at
+// its rollers) they move otherwise than about the lab's. Each name reads "unexplained
+// difference" with the name as its closest.
+void withhold_names_on_a_distant_base(std::vector<SetDiagnosis>& sets, double base_nrmse,
+                                      const ContrastOptions& options);
 
 // The names a verdict gives: the pair's two, the single effect, or none.
 std::vector<std::string> named_effects(const SetDiagnosis& d, const ContrastOptions& options = {});
