@@ -88,8 +88,8 @@ SetDiagnosis linear_diagnosis(const ContrastStudy& study, std::size_t set, const
 double share_of(const SetDiagnosis& d, const ContrastOptions& options) {
   const double t2 = d.decision.chi_square;
   if (!(t2 > 0)) return 0;
-  if (d.pair && (pair_is_named(*d.pair, d.seconds_tried, options) || d.decision.verdict == kUnexplainedDifference))
-    return std::max(0.0, (t2 - d.pair->chi_square) / t2);
+  // A pair not named is the report's own line (pair_text); the share is that of what the verdict shows.
+  if (d.pair && pair_is_named(*d.pair, d.seconds_tried, options)) return std::max(0.0, (t2 - d.pair->chi_square) / t2);
   return d.decision.fits.empty() ? 0 : std::max(0.0, d.decision.fits.front().drop / t2);
 }
 
