@@ -234,7 +234,8 @@ BaseCalibration ContrastStudy::calibrate_base(const std::vector<std::string>& ke
     std::vector<double> steps;
     const auto moved = simulator_.simulate(jacobian_models(base_, cal, scale_rate_, steps), log);
     last_jacobian = jacobian(t, moved, comparison, z, steps);
-    if (gauss_newton_step(cal, last_jacobian, z) < kConvergedStep) iterations = it + 1;  // the next pass is cached
+    // Converged: one more pass runs the stepped point, without a Jacobian.
+    if (gauss_newton_step(cal, last_jacobian, z) < kConvergedStep) iterations = it + 1;
   }
   cal.values = kept->values;
   cal.returned_line = kept->line;
