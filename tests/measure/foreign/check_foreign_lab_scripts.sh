@@ -9,7 +9,8 @@
 #     (not met), a single effect named in 1 of the 1 draws with p < 1e-3 (met), a null set named
 #     (not met). The two-rate sets' own diagnosis (diag_rates) is counted too: a rate set named as
 #     another effect is a third wrong name, and a set in both reports is counted once. With
-#     --model flat_zones the draw's diag_flat_zones is read instead.
+#     --model flat_zones the draw's diag_flat_zones is read instead; study_foreign_lab.sh refuses
+#     a STUDY_MODEL it does not know (exit 2, naming the two it has).
 #  3. compare_features.sh reads a feature's field from compare.json as the JSON writer lays it
 #     out (one key per line).
 #   check_foreign_lab_scripts.sh WORK
@@ -70,6 +71,11 @@ JSON
 out=$(python3 "$here/foreign_confusion.py" --model flat_zones "$draw")
 grep -q "wrong names: 0$" <<<"$out" || fail "flat_zones: expected no wrong name (its own diagnosis, no diag_rates_flat_zones)"
 grep -q "| null | none | no difference 1 |" <<<"$out" || fail "flat_zones: the null set from diag_flat_zones"
+# A model the study does not know is refused before anything runs, naming the fix.
+rc=0
+err=$(STUDY_MODEL=flat bash "$here/study_foreign_lab.sh" /nonexistent/shard "$work/none" 0 2>&1 >/dev/null) || rc=$?
+[[ $rc == 2 ]] || fail "STUDY_MODEL=flat: exit $rc, expected 2"
+grep -q "STUDY_MODEL=random or flat_zones" <<<"$err" || fail "STUDY_MODEL=flat: the message names no fix: $err"
 source "$here/compare_features.sh"
 cat > "$work/compare.json" <<'JSON'
 {
