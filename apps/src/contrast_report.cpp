@@ -89,20 +89,25 @@ std::string separating_text(const ContrastReport& r, const SetDiagnosis& d, cons
   return how.empty() ? "" : fmt::format(" What would tell: {}.", how);
 }
 
+// How every withheld name's text opens: the set's difference, and the name as its closest.
+std::string withheld_opening(const SetDiagnosis& d, const std::string& name) {
+  return fmt::format("{} differs from the reference (T^2 = {:.1f}, p = {:.2g}): unexplained difference. The closest, "
+                     "{}, explains {:.0f} % of T^2",
+                     name, d.decision.chi_square, d.decision.p_value, d.withheld, 100 * d.share);
+}
+
 // A rate-independent name for a strength difference that the set's two rates cannot tell from a
 // rate-dependent strength (rate_sensitivity.hpp): a lead, with the specimens that would decide.
 std::string withheld_for_rate_text(const SetDiagnosis& d, const std::string& name) {
-  const ContrastDecision& c = d.decision;
   const RateSensitivity& s = *d.rate_sensitivity;
-  return fmt::format(
-      "{} differs from the reference (T^2 = {:.1f}, p = {:.2g}): unexplained difference. The closest, {}, explains "
-      "{:.0f} % of T^2 and passes the component and curve tests, but it holds the strength independent of the "
+  return withheld_opening(d, name) + fmt::format(
+      " and passes the component and curve tests, but it holds the strength independent of the "
       "loading rate, and this set cannot tell: its peak force is {:+.1f} % ({:+.1f} +- {:.1f} % in ln F_max) against "
       "the reference at {:g} mm/s, and from {:g} to {:g} mm/s it changes by {:+.1f} % +- {:.1f} % (95 %) beyond the "
       "model's own change, where subcritical crack growth (n = {:g}) would change it by {:.1f} %. So a strength "
       "that grows with the rate explains this set as well. What would tell: about {} specimens at each rate (now "
       "{}), or rates a decade or more apart.",
-      name, c.chi_square, c.p_value, d.withheld, 100 * d.share, 100 * std::expm1(s.strength_contrast),
+      100 * std::expm1(s.strength_contrast),
       100 * s.strength_contrast, 100 * s.u_strength_contrast, 1e3 * s.slow_rate, 1e3 * s.slow_rate, 1e3 * s.fast_rate,
       100 * s.change, 100 * s.half_width, s.exponent, 100 * s.subcritical, s.specimens_needed(), s.specimens_per_rate);
 }
@@ -110,7 +115,6 @@ std::string withheld_for_rate_text(const SetDiagnosis& d, const std::string& nam
 // A name withheld because the set carries its own scatter (withhold_names_of_own_scatter): the
 // widest of its groups, and what would let the set be tested on its own.
 std::string withheld_for_scatter_text(const ContrastReport& r, const SetDiagnosis& d, const std::string& name) {
-  const ContrastDecision& c = d.decision;
   const ContrastDiagnosis::GroupScatterLine* widest = nullptr;
   for (const auto& g : r.result.scatter)
     if (g.set == d.set && g.own && (!widest || g.ratio > widest->ratio)) widest = &g;
@@ -119,13 +123,12 @@ std::string withheld_for_scatter_text(const ContrastReport& r, const SetDiagnosi
       widest ? fmt::format("its {} has {:.3g} x the other sets' variance (p {:.2g})", widest->component,
                            widest->ratio, widest->p_value)
              : std::string("its specimens scatter beyond the other sets'");
-  return fmt::format(
-      "{} differs from the reference (T^2 = {:.1f}, p = {:.2g}): unexplained difference. The closest, {}, explains "
-      "{:.0f} % of T^2, but {}, so the set carries its own scatter, estimated from {} specimens: too few to test what "
+  return withheld_opening(d, name) + fmt::format(
+      ", but {}, so the set carries its own scatter, estimated from {} specimens: too few to test what "
       "the name leaves unexplained. A scatter that wide is a difference of its own (beams that slide on their "
       "supports, a strength that scatters more, a batch that is not one population), which no shift of the mean "
       "describes: look at this set's curves one by one before you `shard calibrate` this set `--with {}`.",
-      name, c.chi_square, c.p_value, d.withheld, 100 * d.share, scatter, specimens,
+      scatter, specimens,
       d.withheld.substr(0, d.withheld.find(" + ")));
 }
 
@@ -139,24 +142,20 @@ std::string invalid_fractures_text(const FractureValidity& v) {
 
 // A name withheld because half the set or more broke outside the pins or did not break apart.
 std::string withheld_for_fractures_text(const SetDiagnosis& d, const std::string& name) {
-  const ContrastDecision& c = d.decision;
-  return fmt::format(
-      "{} differs from the reference (T^2 = {:.1f}, p = {:.2g}): unexplained difference. The closest, {}, explains "
-      "{:.0f} % of T^2, but {} The bending stress is uniform only between the pins, so its force maximum is not the "
+  return withheld_opening(d, name) + fmt::format(
+      ", but {} The bending stress is uniform only between the pins, so its force maximum is not the "
       "material's: check the fixture (rollers that let the beam slide, a pin that bears on a flaw) and test new "
       "specimens before you `shard calibrate` this set `--with {}`.",
-      name, c.chi_square, c.p_value, d.withheld, 100 * d.share, invalid_fractures_text(d.fractures),
+      invalid_fractures_text(d.fractures),
       d.withheld.substr(0, d.withheld.find(" + ")));
 }
 
 std::string withheld_for_base_text(const ContrastReport& r, const SetDiagnosis& d, const std::string& name) {
-  const ContrastDecision& c = d.decision;
-  return fmt::format(
-      "{} differs from the reference (T^2 = {:.1f}, p = {:.2g}): unexplained difference. The closest, {}, explains "
-      "{:.0f} % of T^2, but the fitted base leaves NRMSE {:.1f} % against the reference (a name needs at most {:.0f} "
+  return withheld_opening(d, name) + fmt::format(
+      ", but the fitted base leaves NRMSE {:.1f} % against the reference (a name needs at most {:.0f} "
       "%): the effects were moved about a model that is not the reference's specimen. Fit the base first (more "
       "--base-iterations, another --param, a model that does not crush at its rollers), then diagnose again.",
-      name, c.chi_square, c.p_value, d.withheld, 100 * d.share, 100 * r.result.calibration.form_error.nrmse,
+      100 * r.result.calibration.form_error.nrmse,
       100 * ContrastOptions{}.base_nrmse_limit);
 }
 
@@ -166,7 +165,6 @@ std::string withheld_text(const ContrastReport& r, const SetDiagnosis& d, const 
   if (d.withheld_by == WithheldBy::own_scatter) return withheld_for_scatter_text(r, d, name);
   if (d.withheld_by == WithheldBy::fractures) return withheld_for_fractures_text(d, name);
   if (d.withheld_by == WithheldBy::base) return withheld_for_base_text(r, d, name);
-  const ContrastDecision& c = d.decision;
   const bool curve_misses = !curve_agrees(d.after);
   std::string why = !improves_on_base(d)
                         ? fmt::format("its simulated contrast curve fits the measured one worse than the base model "
@@ -179,11 +177,11 @@ std::string withheld_text(const ContrastReport& r, const SetDiagnosis& d, const 
                                       ContrastOptions{}.curve_floor_factor)
                         : fmt::format("it explains {:.0f} % of the difference (a name needs {:.0f} %)", 100 * d.share,
                                       100 * ContrastOptions{}.min_share);
-  return fmt::format("{} differs from the reference (T^2 = {:.1f}, p = {:.2g}): unexplained difference. The closest, "
-                     "{}, explains {:.0f} % of T^2 and passes the component tests, but {}: the lab's difference is "
-                     "that physics in another form, or another physics. `shard calibrate` this set `--with {}` and "
-                     "look at what remains before adding it to the model.",
-                     name, c.chi_square, c.p_value, d.withheld, 100 * d.share, why,
+  return withheld_opening(d, name) +
+         fmt::format(" and passes the component tests, but {}: the lab's difference is that physics in another form, "
+                     "or another physics. `shard calibrate` this set `--with {}` and look at what remains before "
+                     "adding it to the model.",
+                     why,
                      d.withheld.substr(0, d.withheld.find(" + "))) +
          separating_text(r, d, d.withheld.substr(0, d.withheld.find(" + ")));
 }

@@ -174,16 +174,27 @@ bool names_a_pair(const SetDiagnosis& d, const ContrastOptions& options) {
   return d.pair && pair_is_named(*d.pair, d.seconds_tried, options) && d.withheld.empty();
 }
 
+namespace {
+
+bool gives_a_name(const SetDiagnosis& d) {
+  return d.decision.verdict != kNoDifference && d.decision.verdict != kUnexplainedDifference;
+}
+
+// The set reads "unexplained difference"; its name is kept as the closest, with the rule that withheld it.
+void withhold(SetDiagnosis& d, WithheldBy by) {
+  d.withheld = d.decision.verdict;
+  d.withheld_by = by;
+  d.decision.verdict = kUnexplainedDifference;
+  d.decision.rivals.clear();
+  d.named_by_curve = false;
+}
+
+}  // namespace
+
 void require_curve_agreement(std::vector<SetDiagnosis>& sets, const ContrastOptions& options) {
   for (auto& d : sets) {
     d.share = share_of(d, options);
-    const std::string& verdict = d.decision.verdict;
-    if (verdict == kNoDifference || verdict == kUnexplainedDifference) continue;
-    if (curve_bears_out(d, options) && d.share >= options.min_share) continue;
-    d.withheld = verdict;
-    d.withheld_by = WithheldBy::curve;
-    d.decision.verdict = kUnexplainedDifference;
-    d.decision.rivals.clear();
+    if (gives_a_name(d) && !(curve_bears_out(d, options) && d.share >= options.min_share)) withhold(d, WithheldBy::curve);
   }
 }
 
@@ -206,23 +217,6 @@ void name_by_curve(std::vector<SetDiagnosis>& sets, std::size_t tried, const Con
     d.named_by_curve = true;
   }
 }
-
-namespace {
-
-bool gives_a_name(const SetDiagnosis& d) {
-  return d.decision.verdict != kNoDifference && d.decision.verdict != kUnexplainedDifference;
-}
-
-// The set reads "unexplained difference"; its name is kept as the closest, with the rule that withheld it.
-void withhold(SetDiagnosis& d, WithheldBy by) {
-  d.withheld = d.decision.verdict;
-  d.withheld_by = by;
-  d.decision.verdict = kUnexplainedDifference;
-  d.decision.rivals.clear();
-  d.named_by_curve = false;
-}
-
-}  // namespace
 
 void withhold_names_of_own_scatter(std::vector<SetDiagnosis>& sets, const ContrastStudy& study) {
   const auto carries_own_scatter = [&](std::size_t set) {
