@@ -496,6 +496,14 @@ std::string set_sections_markdown(const ContrastReport& r) {
   return md;
 }
 
+std::string left_out_markdown(const std::vector<ContrastDiagnosis::LeftOutEffect>& left_out) {
+  if (left_out.empty()) return {};
+  std::string md = "Left out of the library (their trials gave no contrast to read, so no set is held against "
+                   "them; a set they would explain reads \"unexplained difference\"):\n\n";
+  for (const auto& e : left_out) md += fmt::format("- {}: {}\n", e.name, e.reason);
+  return md + "\n";
+}
+
 }  // namespace
 
 std::string contrast_markdown(const ContrastReport& r) {
@@ -505,6 +513,7 @@ std::string contrast_markdown(const ContrastReport& r) {
                                                 : std::string("the consensus of the others"));
   md += fmt::format("Components per curve: {}. Effects tried: {}.\n\n", fmt::join(names, ", "),
                     r.result.effects.size());
+  md += left_out_markdown(r.result.left_out);
   md += scatter_markdown(r);
   if (!r.result.scaled_sizes.empty())
     md += "Trial sizes from the fitted base run (plausible_from rules, docs/explanation/diagnosis.md):\n\n```\n" + r.result.scaled_sizes +
@@ -643,6 +652,8 @@ io::Json contrast_json(const ContrastReport& r) {
   j["form_error_nrmse"] = r.result.calibration.form_error.nrmse;
   j.update(base_json(r.result.calibration));
   j["dynamic_warning"] = r.result.health.dynamic_warning;
+  j["left_out_effects"] = io::Json::array();
+  for (const auto& e : r.result.left_out) j["left_out_effects"].push_back({{"effect", e.name}, {"reason", e.reason}});
   j["reference_invalid_fractures"] = fractures_json(r.result.reference_fractures);
   j["sets"] = io::Json::array();
   for (const auto& d : r.result.sets) j["sets"].push_back(set_json(r, d));

@@ -20,6 +20,7 @@
 // does: F_p x exp(0.1 r) on odd seeds and exp(-0.1 r) on even ones, so its mean over seeds 1-3 is
 // a third of that up, which no seed agrees on.
 // Each packing seed scatters k, F_p, n and d by ~1 %, as a random packing does.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -142,12 +143,24 @@ inline MeasurementSet measured_set(const std::map<std::string, double>& truth, s
   return set;
 }
 
+// A beam that is not bent up to a fracture (it slides off its rollers, or crushes at them): the
+// force the pins meet first (a third of the peak) falls to zero over the travel.
+inline void without_rise(Curve& c) {
+  const double f0 = *std::max_element(c.force.begin(), c.force.end()) / 3, w_end = c.displacement.back();
+  for (std::size_t k = 0; k < c.size(); ++k) c.force[k] = f0 * (1 - c.displacement[k] / w_end);
+}
+
 class FakeSimulator final : public Simulator {
  public:
   explicit FakeSimulator(int seeds = 3) : seeds_(seeds) {}
 
   // A run softened beyond this fails, as a DEM beam that breaks before the pins load it.
   double softening_limit = std::numeric_limits<double>::infinity();
+  // Below this roller friction the model's beam slides off its rollers and never bends: its force
+  // falls from the moment the pins touch (a curve with no rise to a peak).
+  double sliding_friction = 0;
+  // Below this bond modulus the model's beam crushes at its rollers: a curve with no rise.
+  double crushing_modulus = 0;
   // Below this bond modulus the model's beam beds into its rollers and shows half its stiffness,
   // as a DEM beam whose grains crush at the fixture: a response that turns back on a fit.
   double bedding_modulus = 0;
@@ -160,9 +173,12 @@ class FakeSimulator final : public Simulator {
       if (p.at("fake.softening") > softening_limit)
         throw std::runtime_error("fake run: the curve never reaches the seating preload (softened beyond the limit)");
       std::vector<Specimen> replicates;
-      for (int seed = 1; seed <= seeds_; ++seed)
-        replicates.push_back(recorded_as_tested(specimen_of(p, static_cast<std::uint64_t>(seed), 0.01, m.loading_rate),
-                                                m, test_, "fake run"));
+      for (int seed = 1; seed <= seeds_; ++seed) {
+        Specimen run = specimen_of(p, static_cast<std::uint64_t>(seed), 0.01, m.loading_rate);
+        if (p.at("support.friction") < sliding_friction || p.at("bond.youngs_modulus") < crushing_modulus)
+          without_rise(run.curve);
+        replicates.push_back(recorded_as_tested(std::move(run), m, test_, "fake run"));
+      }
       out.push_back(std::move(replicates));
       ++runs_;
     }

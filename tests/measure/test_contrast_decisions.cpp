@@ -107,6 +107,20 @@ TEST_CASE("a base fit step that raises the misfit beyond noise is halved back, n
   CHECK(json.at("base_path").size() == c.path.size());
 }
 
+TEST_CASE("a base fit step to a model without a rise to a peak is halved back") {
+  // Below E = 1.1e7 Pa the model's beam crushes at its rollers; the reference was made at 1e7.
+  Study s;
+  s.simulator.crushing_modulus = 1.1e7;
+  s.base = with_parameters(s.base, {"bond.youngs_modulus"}, {1.5e7});
+  const BaseCalibration c = s.run().calibration;
+  const auto riseless = std::find_if(c.path.begin(), c.path.end(), [](const std::string& line) {
+    return line.find("has no rise to a peak") != std::string::npos && line.find("step halved") != std::string::npos;
+  });
+  CHECK(riseless != c.path.end());
+  CHECK(c.values[0] >= 1.1e7);
+  CHECK(c.values[0] < 1.5e7);
+}
+
 TEST_CASE("no name about a base that does not reproduce the reference") {
   // Softening 1.0 is named about a fitted base; left unfitted at twice the reference's bond
   // modulus (stiffness +100 %), the base's form error is far beyond 10 % and the name is withheld.
@@ -448,6 +462,36 @@ TEST_CASE("calibrating the named effect cuts the contrast NRMSE") {
   CHECK(c.after.nrmse < 0.5 * c.before.nrmse);
 }
 
+TEST_CASE("an effect whose trial beam does not bend up to a fracture is left out, the other verdicts stand") {
+  // The lubricated-roller trial (friction 0.1) slides the model's beam off its rollers: its curve
+  // has no rise, so support_friction's contrast cannot be read. The diagnosis goes on without it.
+  Study s;
+  s.add("softening", measured({{"fake.softening", 1.5}}, 3000));
+  s.add("compliance", measured({}, 4000, 5e-5));
+  s.simulator.sliding_friction = 0.2;
+  const ContrastDiagnosis d = s.run();
+  REQUIRE(d.left_out.size() == 1);
+  CHECK(d.left_out[0].name == "support_friction");
+  CHECK(d.left_out[0].reason.find("the trial of support_friction at 0.1") != std::string::npos);
+  CHECK(d.left_out[0].reason.find("has no rise to a peak (the stiffness") != std::string::npos);
+  CHECK(d.effects.size() == library().size() - 1);
+  CHECK(diagnosis_of(d, s, "null").decision.verdict == kNoDifference);
+  CHECK(diagnosis_of(d, s, "softening").decision.verdict == "bond_softening");
+  CHECK(diagnosis_of(d, s, "compliance").decision.verdict == kMachineCompliance);
+  const auto json = shard::contrast_json(shard::ContrastReport{s.sets, d});
+  REQUIRE(json.at("left_out_effects").size() == 1);
+  CHECK(json.at("left_out_effects")[0].at("effect") == "support_friction");
+  CHECK(shard::contrast_markdown(shard::ContrastReport{s.sets, d}).find("- support_friction: the trial of") != std::string::npos);
+}
+
+TEST_CASE("a base model whose beam does not bend up to a fracture stops the diagnosis, named") {
+  Study s;
+  s.add("softening", measured({{"fake.softening", 1.5}}, 3000));
+  s.simulator.sliding_friction = 0.35;  // the reference's rollers (0.3) too
+  CHECK_THROWS_WITH_AS(s.run(), doctest::Contains("the base model at bond.youngs_modulus=1e+07"), std::runtime_error);
+  CHECK_THROWS_WITH_AS(s.run(), doctest::Contains("at 20 mm/s the simulated curve"), std::runtime_error);
+}
+
 TEST_CASE("a calibration whose scan reaches a size that does not run leaves that size out") {
   // The scan tries 8 trial sizes (softening 8); runs beyond 6 fail, as a beam that breaks under
   // its own weight before loading. The calibration goes on without them.
@@ -460,7 +504,7 @@ TEST_CASE("a calibration whose scan reaches a size that does not run leaves that
   base.scene = "fake.toml";
   const ContrastCalibration c = calibrate_contrast(s.sets, 2, s.simulator, base, {library()[0]}, options, s.log);
   CHECK(c.values[0] == doctest::Approx(1.5).epsilon(0.15).scale(0));
-  CHECK(s.log.str().find("did not run and is left out") != std::string::npos);
+  CHECK(s.log.str().find("gave no usable run and is left out") != std::string::npos);
   for (const auto& [value, chi_square] : c.scan) CHECK(value <= 6);
 }
 

@@ -90,10 +90,15 @@ Eigen::VectorXd base_residual(const BaseTargets& t, const std::vector<Specimen>&
   return z;
 }
 
-// One line of the fit's path: the values and how far the model is from the reference.
-std::string path_line(const BaseCalibration& cal, const Eigen::VectorXd& z, const BaseTargets& t) {
+std::string point_values(const BaseCalibration& cal) {
   std::string values;
   for (std::size_t i = 0; i < cal.keys.size(); ++i) values += fmt::format("{}{}={:.4g}", i ? ", " : "", cal.keys[i], cal.values[i]);
+  return values;
+}
+
+// One line of the fit's path: the values and how far the model is from the reference.
+std::string path_line(const BaseCalibration& cal, const Eigen::VectorXd& z, const BaseTargets& t) {
+  const std::string values = point_values(cal);
   // z holds (model - target) / u: the relative error is exp(z u) - 1.
   return fmt::format("{}: stiffness {:+.1f} %, peak force {:+.1f} %, peak displacement {:+.1f} % against the reference{}",
                      values, 100 * std::expm1(z(0) * t.u_target[0]), 100 * std::expm1(z(1) * t.u_target[1]),
@@ -218,22 +223,37 @@ BaseCalibration ContrastStudy::calibrate_base(const std::vector<std::string>& ke
     simulator_.check_inputs(here, t.reference, *t.metadata);
     std::vector<Specimen> sims = std::move(simulator_.simulate({here}, log).front());
     Comparison comparison;
-    const Eigen::VectorXd z = base_residual(t, sims, nullptr, comparison);
-    const double misfit = z.squaredNorm();
-    cal.path.push_back(path_line(cal, z, t));
-    if (kept && misfit > kept->misfit + misfit_allowance(z)) {
-      cal.path.back() += fmt::format(" (misfit {:.3g} against line {}'s {:.3g}: step halved)", misfit, kept->line + 1,
-                                     kept->misfit);
+    std::optional<Eigen::VectorXd> residual;
+    try {
+      residual = base_residual(t, sims, nullptr, comparison);
+    } catch (const CurveWithoutRise& e) {
+      const std::string why = simulated_without_rise(e, scale_rate_);
+      if (!kept) throw std::runtime_error(fmt::format("the base model at {}: {}", point_values(cal), why));
+      cal.path.push_back(fmt::format("{}: {} (step halved)", point_values(cal), why));
+    }
+    if (residual) cal.path.push_back(path_line(cal, *residual, t));
+    // A point without a rise, or one whose misfit grew beyond noise, left the region the
+    // Jacobian described: halfway back towards the kept point.
+    if (kept && (!residual || residual->squaredNorm() > kept->misfit + misfit_allowance(*residual))) {
+      if (residual)
+        cal.path.back() += fmt::format(" (misfit {:.3g} against line {}'s {:.3g}: step halved)", residual->squaredNorm(),
+                                       kept->line + 1, kept->misfit);
       log << "contrast: base " << cal.path.back() << '\n';
       if (halve_towards(cal, kept->values) < kConvergedStep) break;
       continue;
     }
+    const Eigen::VectorXd& z = *residual;
     log << "contrast: base " << cal.path.back() << '\n';
-    kept = KeptPoint{cal.values, misfit, std::move(sims), cal.path.size() - 1};
+    kept = KeptPoint{cal.values, z.squaredNorm(), std::move(sims), cal.path.size() - 1};
     if (it == iterations) break;
     std::vector<double> steps;
     const auto moved = simulator_.simulate(jacobian_models(base_, cal, scale_rate_, steps), log);
-    last_jacobian = jacobian(t, moved, comparison, z, steps);
+    try {
+      last_jacobian = jacobian(t, moved, comparison, z, steps);
+    } catch (const CurveWithoutRise& e) {
+      throw std::runtime_error(fmt::format("the base fit's run 5 % from {}: {}", point_values(cal),
+                                           simulated_without_rise(e, scale_rate_)));
+    }
     // Converged: one more pass runs the stepped point, without a Jacobian.
     if (gauss_newton_step(cal, last_jacobian, z) < kConvergedStep) iterations = it + 1;
   }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "shard/measure/comparison.hpp"
 #include "shard/measure/features.hpp"
@@ -31,14 +32,9 @@ Eigen::VectorXd to_vector(const std::vector<double>& v) {
 }
 
 double positive_log(double x, const char* what, const Curve& c) {
-  if (!(x > 0))
-    throw std::invalid_argument(fmt::format("curve '{}': {} is {:g}, not positive: the curve has no rise to a peak "
-                                            "(check the sign convention: force and displacement positive into the "
-                                            "specimen)",
-                                            c.id, what, x));
+  if (!(x > 0)) throw CurveWithoutRise(c.id, what, x);
   return std::log(x);
 }
-
 
 double quadratic_chi_square(const Eigen::VectorXd& d, const Eigen::MatrixXd& w, const Eigen::VectorXd& model) {
   const Eigen::VectorXd r = d - model;
@@ -74,6 +70,22 @@ void judge_pair(ContrastPairFit& p, const Eigen::VectorXd& d, const Eigen::Matri
 }
 
 }  // namespace
+
+CurveWithoutRise::CurveWithoutRise(std::string curve_, std::string figure_, double value_)
+    : std::invalid_argument(fmt::format("curve '{}': {} is {:g}, not positive: the curve has no rise to a peak "
+                                        "(check the sign convention: force and displacement positive into the "
+                                        "specimen)",
+                                        curve_, figure_, value_)),
+      curve(std::move(curve_)),
+      figure(std::move(figure_)),
+      value(value_) {}
+
+std::string simulated_without_rise(const CurveWithoutRise& e, double rate) {
+  return fmt::format("at {:g} mm/s the simulated curve '{}' has no rise to a peak ({} {:.4g}): the beam was not bent "
+                     "up to a fracture (it slid on its supports, or inertia carried the load), so the run gives no "
+                     "contrast",
+                     rate * 1e3, e.curve, e.figure, e.value);
+}
 
 ContrastScale contrast_scale(const std::vector<Curve>& curves) {
   if (curves.empty()) throw std::invalid_argument("contrast: no curves to take the scale from");

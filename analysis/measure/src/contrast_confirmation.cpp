@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 #include <ostream>
+#include <stdexcept>
 
 #include "shard/measure/contrast_diagnosis.hpp"
 #include "shard/measure/effect_scaling.hpp"
@@ -16,19 +17,31 @@ std::vector<CandidateEffect> scaled_to_base_run(std::vector<CandidateEffect> eff
   described.clear();
   if (std::none_of(effects.begin(), effects.end(), [](const auto& e) { return !e.plausible_from.empty(); }))
     return effects;
-  const auto base = study.simulate({study.base()}, log);
-  const TestScales scales = base_run_scales(base.front().curves);
+  const TestScales scales = base_run_scales(simulate_base(study, log).curves);
   effects = with_test_plausible(std::move(effects), scales);
   described = describe_scaled_plausible(effects, scales);
   log << "diagnose: plausible sizes from the base run:\n" << described;
   return effects;
 }
 
+ContrastStudy::Simulated simulate_base(ContrastStudy& study, std::ostream& log) {
+  try {
+    return std::move(study.simulate({study.base()}, log).front());
+  } catch (const std::exception& e) {
+    throw std::runtime_error(fmt::format("the base model: {}. Fix: run the base scene at that rate and look at its "
+                                         "curve (shard bending run.h5, shard bending-rate-check), or leave out "
+                                         "the sets tested there",
+                                         e.what()));
+  }
+}
+
 std::vector<std::optional<ContrastStudy::Simulated>> simulate_each(ContrastStudy& study,
                                                                    const std::vector<ModelPlan>& models,
                                                                    const std::function<std::string(std::size_t)>& label,
-                                                                   std::ostream& log, const std::string& command) {
+                                                                   std::ostream& log, const std::string& command,
+                                                                   std::vector<std::string>* failures) {
   std::vector<std::optional<ContrastStudy::Simulated>> runs(models.size());
+  if (failures) failures->assign(models.size(), {});
   try {
     auto all = study.simulate(models, log);
     for (std::size_t m = 0; m < models.size(); ++m) runs[m] = std::move(all[m]);
@@ -36,8 +49,9 @@ std::vector<std::optional<ContrastStudy::Simulated>> simulate_each(ContrastStudy
     for (std::size_t m = 0; m < models.size(); ++m) try {
         runs[m] = std::move(study.simulate({models[m]}, log).front());
       } catch (const std::exception& e) {
-        const std::string what = e.what();
-        log << fmt::format("{}: {} did not run and is left out: {}\n", command, label(m), what.substr(0, what.find('\n')));
+        const std::string what = e.what(), reason = what.substr(0, what.find('\n'));
+        log << fmt::format("{}: {} gave no usable run and is left out: {}\n", command, label(m), reason);
+        if (failures) (*failures)[m] = reason;
       }
   }
   return runs;

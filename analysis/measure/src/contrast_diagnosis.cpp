@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <ostream>
 #include <stdexcept>
+#include <string>
 
 #include "shard/measure/reference_state.hpp"
 
@@ -48,6 +50,56 @@ Trials trial_models(const ModelPlan& base, const std::vector<CandidateEffect>& e
     t.models.back().probe = true;
   }
   return t;
+}
+
+// The trials' runs, with the effects they sign. An effect whose trial on either side gives no
+// usable run (a lubricated roller the beam slides on, a run inertia carries) is left out with its
+// reason: its contrast cannot be read, and the library without it still judges the others (a set
+// that needed it stays unexplained by the curve rule).
+struct TrialRuns {
+  std::vector<CandidateEffect> effects;
+  std::vector<ContrastStudy::Simulated> runs;  // as Trials::models
+  std::vector<std::size_t> mirror;
+  std::vector<ContrastDiagnosis::LeftOutEffect> left_out;
+};
+
+std::string trial_label(const Trials& plan, const std::vector<CandidateEffect>& effects, std::size_t m) {
+  for (std::size_t e = 0; e < effects.size(); ++e) {
+    if (m == 1 + e) return fmt::format("the trial of {} at {:.4g}", effects[e].name, effects[e].plausible);
+    if (plan.mirror[e] != 0 && m == plan.mirror[e]) return fmt::format("the trial of {} at {:.4g}", effects[e].name, effects[e].value_at(-1));
+  }
+  return "the base";
+}
+
+TrialRuns run_trials(ContrastStudy& study, const std::vector<CandidateEffect>& effects, std::ostream& log) {
+  const Trials plan = trial_models(study.base(), effects);
+  log << fmt::format("diagnose: base and {} effects ({} of them both ways) at {} rate(s)\n", effects.size(),
+                     plan.models.size() - 1 - effects.size(), study.rates().size());
+  TrialRuns out;
+  out.runs.push_back(simulate_base(study, log));
+  const std::vector<ModelPlan> trials(plan.models.begin() + 1, plan.models.end());
+  std::vector<std::string> failures;
+  auto runs = simulate_each(
+      study, trials, [&](std::size_t m) { return trial_label(plan, effects, 1 + m); }, log, "diagnose", &failures);
+  auto run_of = [&](std::size_t m) -> std::optional<ContrastStudy::Simulated>& { return runs[m - 1]; };
+  auto failure_of = [&](std::size_t m) { return m == 0 ? std::string() : failures[m - 1]; };
+  std::vector<std::size_t> kept;
+  for (std::size_t e = 0; e < effects.size(); ++e) {
+    std::size_t failed = 0;
+    for (std::size_t m : {1 + e, plan.mirror[e]})
+      if (failed == 0 && !failure_of(m).empty()) failed = m;
+    if (failed == 0) kept.push_back(e);
+    else out.left_out.push_back({effects[e].name, trial_label(plan, effects, failed) + ": " + failure_of(failed)});
+  }
+  for (std::size_t e : kept) {
+    out.effects.push_back(effects[e]);
+    out.runs.push_back(std::move(*run_of(1 + e)));
+  }
+  for (std::size_t e : kept) {
+    out.mirror.push_back(plan.mirror[e] == 0 ? 0 : out.runs.size());
+    if (plan.mirror[e] != 0) out.runs.push_back(std::move(*run_of(plan.mirror[e])));
+  }
+  return out;
 }
 
 // Effect e's contrast per trial step, on the side of neutral where the set's difference lies: the
@@ -255,22 +307,22 @@ ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simula
     out.finer = finer_calibration(sets, simulator, base, options, log);
     out.finer_factor = options.finer;
   }
-  out.effects = centred_on_reference(scaled_to_base_run(library, study, out.scaled_sizes, log), study.base(), log);
-  const Trials plan = trial_models(study.base(), out.effects);
+  TrialRuns tried = run_trials(
+      study, centred_on_reference(scaled_to_base_run(library, study, out.scaled_sizes, log), study.base(), log), log);
+  out.effects = std::move(tried.effects);
+  out.left_out = std::move(tried.left_out);
   out.rates = study.rates();
-  log << fmt::format("diagnose: base and {} effects ({} of them both ways) at {} rate(s)\n", out.effects.size(),
-                     plan.models.size() - 1 - out.effects.size(), out.rates.size());
-  const auto trials = study.simulate(plan.models, log);
+  const auto& trials = tried.runs;
   for (std::size_t s = 0; s < sets.sets.size(); ++s)
     if (!sets.reference || *sets.reference != s)
-      out.sets.push_back(linear_diagnosis(study, s, out.effects, trials, plan.mirror, options.decide));
+      out.sets.push_back(linear_diagnosis(study, s, out.effects, trials, tried.mirror, options.decide));
   confirm_contrasts(study, out.effects, trials[0], out.sets, options.confirm, options.confirm_iterations,
                     options.confirm_probes, options.decide, log);
   // A single name the curve does not bear out may be half of a pair: the pairs are sought after
   // the curve rule, and a named pair is held to the same rule.
   require_curve_agreement(out.sets, options.decide);
   if (options.pairs > 0) {
-    confirm_contrast_pairs(study, out.effects, trials, plan.mirror, out.sets, options.pairs, options.pair_iterations,
+    confirm_contrast_pairs(study, out.effects, trials, tried.mirror, out.sets, options.pairs, options.pair_iterations,
                            options.decide, log);
     require_curve_agreement(out.sets, options.decide);
   }

@@ -250,7 +250,18 @@ std::vector<ContrastStudy::Simulated> ContrastStudy::simulate(const std::vector<
       for (const auto& sp : sims[m * r.size() + k]) curves.push_back(sp.curve);
       out[m].curves.push_back(std::move(curves));
     }
+  for (const auto& run : out) require_rises(run);
   return out;
+}
+
+void ContrastStudy::require_rises(const Simulated& run) const {
+  const auto r = rates();
+  for (std::size_t k = 0; k < r.size(); ++k)
+    for (const auto& c : run.curves[k]) try {
+        contrast_components(c, band_);
+      } catch (const CurveWithoutRise& e) {
+        throw std::runtime_error(simulated_without_rise(e, r[k]));
+      }
 }
 
 ContrastScale ContrastStudy::simulated_scale(const Simulated& base) const {

@@ -34,6 +34,7 @@
 // least-squares a = t'W d / t'W t kept in the effect's physical range; what remains is
 // chi^2_e = (d - a t)' W (d - a t); the drop chi^2_0 - chi^2_e is judged by Rao's test of the
 // information one more direction adds (added_direction_p), Bonferroni over the effects tried.
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -63,7 +64,18 @@ struct StiffnessBand {
 StiffnessBand stiffness_band(const ContrastScale& reference);
 
 const std::vector<std::string>& contrast_component_names();
-// The components of one curve; throws when the curve has no rise to a peak. A curve whose peak
+// contrast_components' error for a curve with no rise to a peak: the figure that is not positive.
+// A measured curve's message points at the sign convention; a simulated one's caller says which
+// model gave it (ContrastStudy::simulate).
+class CurveWithoutRise : public std::invalid_argument {
+ public:
+  CurveWithoutRise(std::string curve, std::string figure, double value);
+  std::string curve, figure;
+  double value = 0;
+};
+// The same for a simulated curve at `rate` (m/s), in the words of a model run.
+std::string simulated_without_rise(const CurveWithoutRise& e, double rate);
+// The components of one curve; throws CurveWithoutRise when it has no rise to a peak. A curve whose peak
 // lies below the band's top / 0.6 has its line taken over the band scaled down to 60 % of its
 // own peak.
 std::vector<double> contrast_components(const Curve& c, const StiffnessBand& band = {});

@@ -33,6 +33,10 @@ std::vector<CandidateEffect> scaled_to_base_run(std::vector<CandidateEffect> eff
                                                          ContrastStudy& study, std::string& described,
                                                          std::ostream& log);
 
+// The fitted base's run; throws, naming the base model, when it gives no usable curve (a base
+// that does not bend up to a fracture at one of the study's rates leaves nothing to contrast).
+ContrastStudy::Simulated simulate_base(ContrastStudy& study, std::ostream& log);
+
 // The farthest an effect is sized from neutral where the data choose the size freely (calibrate's
 // search, a pair's second effect), in trial steps (its library size): a size the library's
 // plausible value misjudges by more is a different effect.
@@ -202,14 +206,16 @@ void withhold_names_on_a_distant_base(std::vector<SetDiagnosis>& sets, double ba
 // The names a verdict gives: the pair's two, the single effect, or none.
 std::vector<std::string> named_effects(const SetDiagnosis& d, const ContrastOptions& options = {});
 
-// One batch of models; when a run fails (a size the plugin refuses, or an unstable one) the models
-// are run one by one (finished runs are cached) and a failed one is left out (empty) with its
-// reason in the log, named by `label` after the `command` that asked for it.
+// One batch of models; when a run fails (a size the plugin refuses, an unstable one, a curve with
+// no rise) the models are run one by one (finished runs are cached) and a failed one is left out
+// (empty) with its reason in the log, named by `label` after the `command` that asked for it, and
+// in `failures` when given (one entry per model, empty for a run that stands).
 std::vector<std::optional<ContrastStudy::Simulated>> simulate_each(ContrastStudy& study,
                                                                    const std::vector<ModelPlan>& models,
                                                                    const std::function<std::string(std::size_t)>& label,
                                                                    std::ostream& log,
-                                                                   const std::string& command = "diagnose");
+                                                                   const std::string& command = "diagnose",
+                                                                   std::vector<std::string>* failures = nullptr);
 
 // Simulates each set's best `count` effects at their linear sizes, then (up to `iterations` in
 // all) at the size the secant through the effect's last two runs asks for; then, for a set whose
@@ -279,6 +285,12 @@ struct ContrastDiagnosis {
   };
   std::vector<GroupScatterLine> scatter;
   std::vector<double> rates;              // every rate simulated
+  // Library effects whose trial (on either side) gave no usable run, with the reason: their
+  // contrasts cannot be read, so no set is held against them.
+  struct LeftOutEffect {
+    std::string name, reason;
+  };
+  std::vector<LeftOutEffect> left_out;
   std::vector<SetDiagnosis> sets;         // one per set held against the reference
   FractureValidity reference_fractures;   // the reference's specimens judged alike
   RunHealth health;

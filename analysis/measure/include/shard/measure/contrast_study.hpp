@@ -86,6 +86,9 @@ class ContrastStudy {
   struct Simulated {
     std::vector<std::vector<measure::Curve>> curves;  // [rate][seed]
   };
+  // Throws, naming the rate and the curve, when a run's curve has no rise to a peak: a model the
+  // contrasts cannot read is refused here, so a diagnosis leaves it out (simulate_each) instead of
+  // stopping where its contrast is taken.
   std::vector<Simulated> simulate(const std::vector<ModelPlan>& models, std::ostream& log);
 
   // The measured contrast of `set` (its groups concatenated) minus what the base model predicts
@@ -129,6 +132,7 @@ class ContrastStudy {
 
  private:
   std::size_t rate_index(double rate) const;
+  void require_rises(const Simulated& run) const;
   // The model's scale: its base's mean peak at the reference's (or the most common) rate.
   measure::ContrastScale simulated_scale(const Simulated& base) const;
   // Components of every seed of `model` at `rate`.
