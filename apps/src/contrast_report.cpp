@@ -100,16 +100,23 @@ std::string withheld_opening(const SetDiagnosis& d, const std::string& name) {
 // rate-dependent strength (rate_sensitivity.hpp): a lead, with the specimens that would decide.
 std::string withheld_for_rate_text(const SetDiagnosis& d, const std::string& name) {
   const RateSensitivity& s = *d.rate_sensitivity;
-  return withheld_opening(d, name) + fmt::format(
-      " and passes the component and curve tests, but it holds the strength independent of the "
-      "loading rate, and this set cannot tell: its peak force is {:+.1f} % ({:+.1f} +- {:.1f} % in ln F_max) against "
-      "the reference at {:g} mm/s, and from {:g} to {:g} mm/s it changes by {:+.1f} % +- {:.1f} % (95 %) beyond the "
-      "model's own change, where subcritical crack growth (n = {:g}) would change it by {:.1f} %. So a strength "
-      "that grows with the rate explains this set as well. What would tell: about {} specimens at each rate (now "
-      "{}), or rates a decade or more apart.",
-      100 * std::expm1(s.strength_contrast),
-      100 * s.strength_contrast, 100 * s.u_strength_contrast, 1e3 * s.slow_rate, 1e3 * s.slow_rate, 1e3 * s.fast_rate,
-      100 * s.change, 100 * s.half_width, s.exponent, 100 * s.subcritical, s.specimens_needed(), s.specimens_per_rate);
+  const std::string strength = fmt::format(
+      "its peak force is {:+.1f} % ({:+.1f} +- {:.1f} % in ln F_max) against the reference at {:g} mm/s, and from {:g} "
+      "to {:g} mm/s it changes by {:+.1f} % +- {:.1f} % (95 %) beyond the model's own change, where subcritical crack "
+      "growth (n = {:g}) would change it by {:.1f} %",
+      100 * std::expm1(s.strength_contrast), 100 * s.strength_contrast, 100 * s.u_strength_contrast, 1e3 * s.slow_rate,
+      1e3 * s.slow_rate, 1e3 * s.fast_rate, 100 * s.change, 100 * s.half_width, s.exponent, 100 * s.subcritical);
+  const std::string opening =
+      withheld_opening(d, name) + " and passes the component and curve tests, but it holds the strength independent of "
+                                  "the loading rate, and ";
+  if (s.resolved())
+    return opening + fmt::format("this set's strength changes with the rate: {}. A rate-independent cause gives no "
+                                 "such change, so the set has a rate dependence the name leaves out.",
+                                 strength);
+  return opening + fmt::format(
+      "this set cannot tell: {}. So a strength that grows with the rate explains this set as well. What would tell: "
+      "about {} specimens at each rate (now {}), or rates a decade or more apart.",
+      strength, s.specimens_needed(), s.specimens_per_rate);
 }
 
 // A name withheld because the set carries its own scatter (withhold_names_of_own_scatter): the

@@ -809,11 +809,12 @@ namespace {
 
 // A set tested at two rates: four specimens of `truth` at 0.02 m/s (2 % scatter, a lab's batch)
 // and four at 0.1 m/s scattering by `fast_scatter` (a beam that fractures dynamically at the fast
-// rate scatters wider there).
-MeasurementSet two_rate_set(const std::map<std::string, double>& truth, std::uint64_t first_seed, double fast_scatter) {
+// rate scatters wider there), of `fast_truth` there when given (a strength that depends on the rate).
+MeasurementSet two_rate_set(const std::map<std::string, double>& truth, std::uint64_t first_seed, double fast_scatter,
+                            const std::map<std::string, double>& fast_truth = {}) {
   MeasurementSet set = measured(truth, first_seed);
   fake::Parameters p;
-  for (const auto& [k, v] : truth) p.values.at(k) = v;
+  for (const auto& [k, v] : fast_truth.empty() ? truth : fast_truth) p.values.at(k) = v;
   for (std::uint64_t k = 0; k < 4; ++k)
     set.specimens.push_back(recorded_as_tested(fake::specimen_of(p, first_seed + 100 + k, fast_scatter, 0.1),
                                                ModelPlan{}, {}, "lab"));
@@ -847,6 +848,27 @@ TEST_CASE("a rate-independent name for a strength difference needs the set's two
   CHECK(wide.decision.verdict == kUnexplainedDifference);
   CHECK(wide.withheld == "compression_asymmetry");
   CHECK(wide.withheld_by == WithheldBy::rate);
+}
+
+TEST_CASE("a rate-independent name does not stand for a strength the set's two rates show changing") {
+  Study s;
+  s.options.decide.own_scatter_p = 0.01;
+  // 15 % stronger than the reference at 20 mm/s, 9 % at 100 mm/s: the strength falls with the rate
+  // by ln(1.09 / 1.15) = -5.4 %, which four specimens of 2 % at each rate resolve (half-width ~3.5 %).
+  s.add("changing", two_rate_set({{"fake.compression_ratio", 2}}, 3000, 0.02, {{"fake.compression_ratio", 1.6}}));
+  s.add("steady", two_rate_set({{"fake.compression_ratio", 2}}, 4000, 0.02));  // its pooled scatter's degrees of freedom
+  const ContrastDiagnosis d = s.run();
+  CHECK(diagnosis_of(d, s, "steady").decision.verdict == "compression_asymmetry");
+  const SetDiagnosis& changing = diagnosis_of(d, s, "changing");
+  REQUIRE(changing.rate_sensitivity);
+  CHECK(changing.rate_sensitivity->change == doctest::Approx(std::log(1.09 / 1.15)).epsilon(0.4).scale(0));
+  CHECK(changing.rate_sensitivity->resolved());
+  CHECK(changing.rate_sensitivity->rate_dependent());
+  CHECK(changing.decision.verdict == kUnexplainedDifference);
+  CHECK(changing.withheld == "compression_asymmetry");
+  CHECK(changing.withheld_by == WithheldBy::rate);
+  const std::string md = shard::contrast_markdown(shard::ContrastReport{s.sets, d});
+  CHECK(md.find("this set's strength changes with the rate") != std::string::npos);
 }
 
 TEST_CASE("the specimens per rate that would resolve a rate dependence scale with the square of the interval") {

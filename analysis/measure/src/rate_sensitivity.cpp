@@ -98,7 +98,7 @@ void require_resolved_rate_dependence(std::vector<SetDiagnosis>& sets, const Con
       return e && e->rates_needed <= 1;
     });
     const RateSensitivity& r = *d.rate_sensitivity;
-    if (!rate_independent || !r.strength_differs() || r.resolved()) continue;
+    if (!rate_independent || !r.strength_differs() || (r.resolved() && !r.rate_dependent())) continue;
     d.withheld = d.decision.verdict;
     d.withheld_by = WithheldBy::rate;
     d.decision.verdict = kUnexplainedDifference;

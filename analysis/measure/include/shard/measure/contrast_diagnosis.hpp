@@ -61,7 +61,7 @@ struct AssumptionSensitivity {
 // The rule that withheld a set's name (SetDiagnosis::withheld).
 enum class WithheldBy {
   curve,        // its curve or its share of T^2 does not bear it out (require_curve_agreement)
-  rate,         // its rates cannot resolve its strength's rate dependence (require_resolved_rate_dependence)
+  rate,         // its rates cannot resolve its strength's rate dependence, or show one (require_resolved_rate_dependence)
   own_scatter,  // the set carries its own scatter (withhold_names_of_own_scatter)
   fractures,    // half its specimens or more broke outside the inner span (withhold_names_of_invalid_fractures)
   base,         // the fitted base does not reproduce the reference (withhold_names_on_a_distant_base)
@@ -171,7 +171,9 @@ void name_by_curve(std::vector<SetDiagnosis>& sets, std::size_t tried, const Con
 
 // A set tested at several rates whose verdict names only rate-independent effects (no rate
 // effect, CandidateEffect::rates_needed 1) for a strength difference (rate_sensitivity.hpp): the
-// name stands only when the set resolves its rate dependence; otherwise the set reads
+// name stands only when the set resolves its rate dependence and shows none (the 95 % interval of
+// its change holds zero: a rate-independent cause gives the same change at every rate); otherwise
+// the set reads
 // "unexplained difference" with the name as its closest. Fills every multi-rate set's
 // rate_sensitivity for the report.
 void require_resolved_rate_dependence(std::vector<SetDiagnosis>& sets, const ContrastStudy& study,

@@ -9,8 +9,9 @@
 // asks exactly which of them it has, so a rate-independent name for its strength difference
 // claims that the strength does not change with the rate. The set supports that claim only when
 // its measured change between its slowest and fastest rate is known closely enough to exclude
-// what subcritical growth would give over that span; otherwise the name is withheld
-// (require_resolved_rate_dependence in contrast_diagnosis.hpp).
+// what subcritical growth would give over that span, and that change is nil within its interval;
+// otherwise the name is withheld (require_resolved_rate_dependence in contrast_diagnosis.hpp).
+#include <cmath>
 #include <cstddef>
 
 namespace shard::measure {
@@ -36,6 +37,8 @@ struct RateSensitivity {
   bool strength_differs() const { return u_strength_contrast > 0 && strength_contrast * strength_contrast > 4 * u_strength_contrast * u_strength_contrast; }
   // The 95 % interval of the change is narrower than the change subcritical growth would give.
   bool resolved() const { return half_width < subcritical; }
+  // The 95 % interval of the change leaves out none: the set's strength changes with the rate.
+  bool rate_dependent() const { return std::abs(change) > half_width; }
   // Specimens per rate that would bring the half-width to the subcritical change (at the same
   // scatter: the half-width falls as one over the square root of the count).
   std::size_t specimens_needed() const;
