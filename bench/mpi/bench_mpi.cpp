@@ -38,6 +38,7 @@
 #include "scene_setup.hpp"
 #include "shard/mpi/distributed_simulation.hpp"
 #include "shard/output.hpp"
+#include "shard/mpi/init.hpp"
 
 using namespace shard;
 
@@ -428,7 +429,7 @@ int pingpong(int rank, int ranks) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  MPI_Init(&argc, &argv);
+  shard::mpi::init_funneled(&argc, &argv);
   int rank = 0, ranks = 1, code = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);

@@ -13,6 +13,7 @@
 #endif
 
 #include "../run_scene.hpp"
+#include "shard/mpi/init.hpp"
 #include "mpi_backend.hpp"
 
 namespace shard::driver {
@@ -27,9 +28,7 @@ MpiSession::MpiSession() {
   int initialised = 0;
   MPI_Initialized(&initialised);
   if (!initialised) {
-    int provided = 0;
-    // Funneled: only the main thread calls MPI; a rank's OpenMP threads never do.
-    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+    mpi::init_funneled(nullptr, nullptr);
     initialised_here_ = true;
   }
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);

@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "shard/mpi/init.hpp"
+
 namespace shard::driver {
 namespace {
 
@@ -53,9 +55,7 @@ bool mpi_running() {
 
 RankEnsemble::RankEnsemble(int& argc, char**& argv) {
   if (!mpi_running()) {
-    int provided = 0;
-    // Funneled: only the main thread calls MPI; the runs' OpenMP threads never do.
-    MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+    mpi::init_funneled(&argc, &argv);
     initialised_here_ = true;
   }
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
