@@ -488,8 +488,14 @@ TEST_CASE("a base model whose beam does not bend up to a fracture stops the diag
   Study s;
   s.add("softening", measured({{"fake.softening", 1.5}}, 3000));
   s.simulator.sliding_friction = 0.35;  // the reference's rollers (0.3) too
-  CHECK_THROWS_WITH_AS(s.run(), doctest::Contains("the base model at bond.youngs_modulus=1e+07"), std::runtime_error);
-  CHECK_THROWS_WITH_AS(s.run(), doctest::Contains("at 20 mm/s the simulated curve"), std::runtime_error);
+  std::string message;
+  try {
+    s.run();
+  } catch (const std::runtime_error& e) {
+    message = e.what();
+  }
+  CHECK(message.find("the base model at bond.youngs_modulus=1e+07") != std::string::npos);
+  CHECK(message.find("at 20 mm/s the simulated curve") != std::string::npos);
 }
 
 TEST_CASE("a calibration whose scan reaches a size that does not run leaves that size out") {

@@ -68,7 +68,7 @@ std::string trial_label(const Trials& plan, const std::vector<CandidateEffect>& 
     if (m == 1 + e) return fmt::format("the trial of {} at {:.4g}", effects[e].name, effects[e].plausible);
     if (plan.mirror[e] != 0 && m == plan.mirror[e]) return fmt::format("the trial of {} at {:.4g}", effects[e].name, effects[e].value_at(-1));
   }
-  return "the base";
+  throw std::logic_error(fmt::format("trial_label: model {} is no effect's trial", m));
 }
 
 TrialRuns run_trials(ContrastStudy& study, const std::vector<CandidateEffect>& effects, std::ostream& log) {

@@ -250,15 +250,16 @@ std::vector<ContrastStudy::Simulated> ContrastStudy::simulate(const std::vector<
       for (const auto& sp : sims[m * r.size() + k]) curves.push_back(sp.curve);
       out[m].curves.push_back(std::move(curves));
     }
-  for (const auto& run : out) require_rises(run);
+  for (auto& run : out) read_components(run);
   return out;
 }
 
-void ContrastStudy::require_rises(const Simulated& run) const {
+void ContrastStudy::read_components(Simulated& run) const {
   const auto r = rates();
+  run.components.assign(r.size(), {});
   for (std::size_t k = 0; k < r.size(); ++k)
     for (const auto& c : run.curves[k]) try {
-        contrast_components(c, band_);
+        run.components[k].push_back(contrast_components(c, band_));
       } catch (const CurveWithoutRise& e) {
         throw std::runtime_error(simulated_without_rise(e, r[k]));
       }
@@ -268,10 +269,8 @@ ContrastScale ContrastStudy::simulated_scale(const Simulated& base) const {
   return contrast_scale(base.curves[rate_index(scale_rate_)]);
 }
 
-std::vector<std::vector<double>> ContrastStudy::components(const Simulated& model, double rate) const {
-  std::vector<std::vector<double>> rows;
-  for (const auto& c : model.curves[rate_index(rate)]) rows.push_back(contrast_components(c, band_));
-  return rows;
+const std::vector<std::vector<double>>& ContrastStudy::components(const Simulated& model, double rate) const {
+  return model.components[rate_index(rate)];
 }
 
 namespace {
@@ -406,7 +405,7 @@ std::vector<std::vector<double>> ContrastStudy::seed_moves(const Contrast& c, co
                                                            const Simulated& from) const {
   std::vector<std::vector<double>> out;
   for (std::size_t gi : c.groups) {
-    const auto a = components(moved, groups_[gi].rate), b = components(from, groups_[gi].rate);
+    const auto &a = components(moved, groups_[gi].rate), &b = components(from, groups_[gi].rate);
     out.resize(a.size());
     for (std::size_t s = 0; s < a.size(); ++s)
       for (std::size_t i = 0; i < a[s].size(); ++i) out[s].push_back(a[s][i] - b[s][i]);

@@ -84,7 +84,8 @@ class ContrastStudy {
 
   // The simulated curves of a model at each rate of rates(), per packing seed; one batch for all.
   struct Simulated {
-    std::vector<std::vector<measure::Curve>> curves;  // [rate][seed]
+    std::vector<std::vector<measure::Curve>> curves;                // [rate][seed]
+    std::vector<std::vector<std::vector<double>>> components;       // [rate][seed]: contrast_components
   };
   // Throws, naming the rate and the curve, when a run's curve has no rise to a peak: a model the
   // contrasts cannot read is refused here, so a diagnosis leaves it out (simulate_each) instead of
@@ -132,11 +133,12 @@ class ContrastStudy {
 
  private:
   std::size_t rate_index(double rate) const;
-  void require_rises(const Simulated& run) const;
+  // The contrast components of every curve of `run`; throws for a curve with no rise to a peak.
+  void read_components(Simulated& run) const;
   // The model's scale: its base's mean peak at the reference's (or the most common) rate.
   measure::ContrastScale simulated_scale(const Simulated& base) const;
   // Components of every seed of `model` at `rate`.
-  std::vector<std::vector<double>> components(const Simulated& model, double rate) const;
+  const std::vector<std::vector<double>>& components(const Simulated& model, double rate) const;
 
   const ContrastSets& sets_;
   Simulator& simulator_;
