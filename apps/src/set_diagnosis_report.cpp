@@ -246,6 +246,13 @@ std::string refits_markdown(const SetDiagnosisResult& d, const DiagnosisStepReco
   }
   if (s.kept_converged) md += kept_markdown(d, s);
   for (const auto& e : s.decision.effects)
+    if (!e.resolved && e.share_explained >= 0.5)
+      md += fmt::format("\n{}'s refit lowered chi^2 on the mean of the packing seeds but not seed by seed (p = {:.2g} "
+                        "that the seeds' scatter alone moves it so): its simulated change is no larger than the "
+                        "model's own packing scatter, so it is neither named nor kept. More packing seeds "
+                        "(--seeds) or a larger specimen resolve a small effect.\n",
+                        e.name, e.seed_p);
+  for (const auto& e : s.decision.effects)
     if (e.nrmse_rose && e.share_explained >= 0.5)
       md += fmt::format("\n{}'s refit lowered chi^2 but raised the NRMSE above the base refit's: not an improvement "
                         "of the curve, so it is neither named nor kept (the base refit's noise floor, the NRMSE noise "
@@ -316,7 +323,8 @@ io::Json refit_json(const RefitRun& cf, const ConfirmedEffect* ce, const Confirm
           {"delta_bic", cf.delta_bic}, {"share_explained", ce ? ce->share_explained : 0.0},
           {"p_after", ce ? ce->p_after : decision.base_p}, {"p_drop", ce ? ce->p_drop : 1.0}, {"value", cf.effect_value},
           {"failure", cf.failure}, {"step", step}, {"at_bound", join(cf.plan.at_bound, "; ")},
-          {"nrmse_rose", ce && ce->nrmse_rose}, {"failure_point_chi_square", cf.failure_chi_square},
+          {"nrmse_rose", ce && ce->nrmse_rose}, {"seed_p", ce ? ce->seed_p : 0.0},
+          {"failure_point_chi_square", cf.failure_chi_square},
           {"secant_steps", cf.secant_steps}, {"residual", std::move(residual)}};
 }
 
