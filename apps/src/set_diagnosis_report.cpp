@@ -177,13 +177,15 @@ std::string path_markdown(const SetDiagnosisResult& d) {
 
 std::string ranking_markdown(const SetDiagnosisResult& d, const Diagnosis& diagnosis) {
   std::string md =
-      "| effect | score (LM) | p-value | explains | absorbed by base | estimated value | dAIC | dBIC | regimes/features it explains |\n"
-      "|---|---|---|---|---|---|---|---|---|\n";
+      "| effect | score (LM) | p-value | seeds' p | explains | absorbed by base | estimated value | dAIC | dBIC | regimes/features it explains |\n"
+      "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : diagnosis.ranking) {
     const CandidateEffect* e = d.effect(r.name);
-    md += fmt::format("| {}{} | {:.2f} | {:.3g} | {:.0f} % | {:.0f} % | {}{} | {:+.1f} | {:+.1f} | {} |\n", r.name,
+    md += fmt::format("| {}{} | {:.2f} | {:.3g} | {}{} | {:.0f} % | {:.0f} % | {}{} | {:+.1f} | {:+.1f} | {} |\n", r.name,
                       r.identifiable ? "" : fmt::format(" (identifiable only with {} loading rates)", e->rates_needed),
-                      r.score, r.p_value, 100 * r.explained, 100 * r.absorbed, e->sized(e->neutral + r.size),
+                      r.score, r.p_value, r.seed_p == 0 ? "-" : fmt::format("{:.2g}", r.seed_p),
+                      r.resolved ? "" : " (not resolved: not refit)", 100 * r.explained, 100 * r.absorbed,
+                      e->sized(e->neutral + r.size),
                       !r.at_bound ? "" : r.size == 0 ? " (the data ask for it reversed: outside its physical range)"
                                                      : " (clamped at its physical bound)",
                       r.delta_aic, r.delta_bic, join(r.explains));
@@ -310,7 +312,8 @@ io::Json ranking_json(const SetDiagnosisResult& d, const Diagnosis& diagnosis) {
   for (const auto& r : diagnosis.ranking)
     out.push_back({{"name", r.name}, {"score", r.score}, {"p_value", r.p_value}, {"explained", r.explained},
                    {"absorbed", r.absorbed}, {"value", d.effect(r.name)->neutral + r.size},
-                   {"at_bound", r.at_bound}, {"identifiable", r.identifiable}});
+                   {"at_bound", r.at_bound}, {"identifiable", r.identifiable}, {"seed_p", r.seed_p},
+                   {"resolved", r.resolved}});
   return out;
 }
 
