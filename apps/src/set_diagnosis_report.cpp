@@ -184,7 +184,7 @@ std::string ranking_markdown(const SetDiagnosisResult& d, const Diagnosis& diagn
     md += fmt::format("| {}{} | {:.2f} | {:.3g} | {}{} | {:.0f} % | {:.0f} % | {}{} | {:+.1f} | {:+.1f} | {} |\n", r.name,
                       r.identifiable ? "" : fmt::format(" (identifiable only with {} loading rates)", e->rates_needed),
                       r.score, r.p_value, r.seed_p == 0 ? "-" : fmt::format("{:.2g}", r.seed_p),
-                      r.resolved ? "" : " (not resolved: not refit)", 100 * r.explained, 100 * r.absorbed,
+                      r.resolved ? "" : " (not resolved by the seeds)", 100 * r.explained, 100 * r.absorbed,
                       e->sized(e->neutral + r.size),
                       !r.at_bound ? "" : r.size == 0 ? " (the data ask for it reversed: outside its physical range)"
                                                      : " (clamped at its physical bound)",

@@ -177,16 +177,20 @@ RefitRun StepwiseDiagnoser::linear_refit_run(const DiagnosisStepRecord& s, const
 
 // The base refit, then the top `refit` effects that can be named; an effect these data cannot
 // identify (a rate effect at one rate) that ranks among them is refit in addition, to show how
-// much it explains, without taking a nameable effect's place. An effect the packing seeds do not
-// resolve (EffectScore::resolved) is not refit: its score is the model's packing scatter.
+// much it explains, without taking a nameable effect's place. Effects the packing seeds resolve
+// (EffectScore::resolved) take the places first: an unresolved score may be the model's packing
+// scatter, and only the refit's own seed test (ConfirmationRule::seed_p) tells.
 void StepwiseDiagnoser::plan_refits(DiagnosisStepRecord& s) const {
   s.refits.push_back(linear_refit_run(s, nullptr, nullptr));
+  std::vector<const EffectScore*> order;
+  for (bool resolved : {true, false})
+    for (const auto& r : s.diagnosis.ranking)
+      if (r.resolved == resolved && r.score > 0) order.push_back(&r);
   const auto tops = static_cast<std::size_t>(std::max(0, options_.refit));
   std::size_t nameable = 0;
-  for (std::size_t k = 0; k < s.diagnosis.ranking.size() && nameable < tops; ++k)
+  for (std::size_t k = 0; k < order.size() && nameable < tops; ++k)
     for (std::size_t e = 0; e < s.candidates.size(); ++e)
-      if (s.candidates[e]->name == s.diagnosis.ranking[k].name && s.diagnosis.ranking[k].score > 0 &&
-          s.diagnosis.ranking[k].resolved) {
+      if (s.candidates[e]->name == order[k]->name) {
         s.refits.push_back(linear_refit_run(s, s.candidates[e], &s.lin.signatures[e]));
         if (s.lin.signatures[e].identifiable) ++nameable;
       }

@@ -52,8 +52,8 @@ struct EffectScore {
   bool identifiable = true;           // EffectSignature::identifiable
   // How often the packing seeds' scatter alone would move the residual towards zero as far as
   // the fitted size does on their mean (one-sided t over the seeds' moves a* s_k . (-y)); 0 when
-  // not tested (one seed). An effect not `resolved` is ranked but neither decides the verdict nor
-  // is refit: its signature is no larger than the model's own packing scatter.
+  // not tested (one seed). An effect not `resolved` is ranked but does not decide the verdict:
+  // its signature may be no larger than the model's own packing scatter.
   double seed_p = 0;
   bool resolved = true;
 };
