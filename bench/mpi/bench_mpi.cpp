@@ -37,8 +37,8 @@
 #include "partition_report.hpp"
 #include "scene_setup.hpp"
 #include "shard/mpi/distributed_simulation.hpp"
-#include "shard/output.hpp"
 #include "shard/mpi/init.hpp"
+#include "shard/output.hpp"
 
 using namespace shard;
 

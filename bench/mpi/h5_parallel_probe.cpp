@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <string>
 #include <vector>
+
 #include "shard/mpi/init.hpp"
 
 namespace {

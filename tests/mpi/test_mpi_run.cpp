@@ -53,6 +53,7 @@
 #include <fstream>
 #include <thread>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -316,18 +317,28 @@ int kill_and_continue(const fs::path& out, const fs::path& reference, const std:
   return failures > 0 ? 1 : 0;
 }
 
-// Taken semaphores under the names a job killed while writing this run's files leaves in /dev/shm.
-std::vector<std::string> hold_stale_file_semaphores() {
-  std::vector<std::string> names;
-  for (const char* file : {"run.h5", "run.checkpoint.h5", "run.checkpoint.h5.tmp"}) {
-    const std::string name = std::string("/OMPIO_") + file;
-    sem_t* taken = sem_open(name.c_str(), O_CREAT, 0644, 0);
-    check(taken != SEM_FAILED, "a taken semaphore " + name + " made");
-    if (taken != SEM_FAILED) sem_close(taken);
-    names.push_back(name);
+// Taken semaphores under the names a job killed while writing this run's files leaves in
+// /dev/shm, removed again when the holder goes (by every rank: a second removal finds none).
+class StaleFileSemaphores {
+ public:
+  StaleFileSemaphores() {
+    for (const char* file : {"run.h5", "run.checkpoint.h5", "run.checkpoint.h5.tmp"}) {
+      const std::string name = std::string("/OMPIO_") + file;
+      sem_t* taken = sem_open(name.c_str(), O_CREAT, 0644, 0);
+      check(taken != SEM_FAILED, "a taken semaphore " + name + " made");
+      if (taken != SEM_FAILED) sem_close(taken);
+      names_.push_back(name);
+    }
   }
-  return names;
-}
+  ~StaleFileSemaphores() {
+    for (const std::string& name : names_) sem_unlink(name.c_str());
+  }
+  StaleFileSemaphores(const StaleFileSemaphores&) = delete;
+  StaleFileSemaphores& operator=(const StaleFileSemaphores&) = delete;
+
+ private:
+  std::vector<std::string> names_;
+};
 
 }  // namespace
 
@@ -366,7 +377,7 @@ int main(int argc, char** argv) {
   }
   if (mode == "kill" && argc > 5) return kill_and_continue(out, argv[3], argv[4], argv[5]);
   const bool beside_stale_semaphores = mode == "stale_semaphores";
-  const std::vector<std::string> stale = beside_stale_semaphores ? hold_stale_file_semaphores() : std::vector<std::string>{};
+  const std::optional<StaleFileSemaphores> stale = beside_stale_semaphores ? std::make_optional<StaleFileSemaphores>() : std::nullopt;
   const driver::MpiSession mpi;
   rank_ = mpi.rank();
   const std::string who = fmt::format("{} ranks", mpi.size());
@@ -465,9 +476,6 @@ int main(int argc, char** argv) {
     std::printf("rank %d: FAIL: %s\n", rank_, e.what());
     MPI_Abort(MPI_COMM_WORLD, 1);
   }
-  MPI_Barrier(MPI_COMM_WORLD);
-  if (rank_ == 0)
-    for (const std::string& name : stale) sem_unlink(name.c_str());
   int any = failures;
   MPI_Allreduce(&failures, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
   return any > 0 ? 1 : 0;

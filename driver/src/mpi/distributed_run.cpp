@@ -13,8 +13,8 @@
 #endif
 
 #include "../run_scene.hpp"
-#include "shard/mpi/init.hpp"
 #include "mpi_backend.hpp"
+#include "shard/mpi/init.hpp"
 
 namespace shard::driver {
 
