@@ -55,8 +55,6 @@ double seed_agreement_p(const EffectSignature& e, double a, const Eigen::VectorX
   const auto m = static_cast<std::size_t>(y.size());
   std::vector<double> towards_zero(m);
   for (std::size_t i = 0; i < m; ++i) towards_zero[i] = -y[static_cast<Eigen::Index>(i)];
-  std::vector<std::vector<double>> identity(m, std::vector<double>(m, 0.0));
-  for (std::size_t i = 0; i < m; ++i) identity[i][i] = 1;
   std::vector<std::vector<double>> moves;
   for (const auto& seed : e.seed_signatures) {
     if (seed.size() != m)
@@ -64,7 +62,7 @@ double seed_agreement_p(const EffectSignature& e, double a, const Eigen::VectorX
     auto& move = moves.emplace_back(seed);
     for (double& x : move) x *= a;
   }
-  return seed_consistency_p(towards_zero, identity, moves);
+  return seed_consistency_p(towards_zero, moves);
 }
 
 // An effect's score on the unabsorbed residual y, with t its signature projected off the base

@@ -41,9 +41,7 @@ double seed_resolution_p(const RefitRun& base, const RefitRun& effect) {
     for (std::size_t s = 0; s < seeds; ++s) moves[s].push_back(move[s]);
   }
   if (along.empty()) return 0;
-  std::vector<std::vector<double>> identity(along.size(), std::vector<double>(along.size(), 0.0));
-  for (std::size_t i = 0; i < along.size(); ++i) identity[i][i] = 1;
-  return seed_consistency_p(along, identity, moves);
+  return seed_consistency_p(along, moves);
 }
 
 }  // namespace
