@@ -177,13 +177,15 @@ std::string path_markdown(const SetDiagnosisResult& d) {
 
 std::string ranking_markdown(const SetDiagnosisResult& d, const Diagnosis& diagnosis) {
   std::string md =
-      "| effect | score (LM) | p-value | explains | absorbed by base | estimated value | dAIC | dBIC | regimes/features it explains |\n"
-      "|---|---|---|---|---|---|---|---|---|\n";
+      "| effect | score (LM) | p-value | seeds' p | explains | absorbed by base | estimated value | dAIC | dBIC | regimes/features it explains |\n"
+      "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : diagnosis.ranking) {
     const CandidateEffect* e = d.effect(r.name);
-    md += fmt::format("| {}{} | {:.2f} | {:.3g} | {:.0f} % | {:.0f} % | {}{} | {:+.1f} | {:+.1f} | {} |\n", r.name,
+    md += fmt::format("| {}{} | {:.2f} | {:.3g} | {}{} | {:.0f} % | {:.0f} % | {}{} | {:+.1f} | {:+.1f} | {} |\n", r.name,
                       r.identifiable ? "" : fmt::format(" (identifiable only with {} loading rates)", e->rates_needed),
-                      r.score, r.p_value, 100 * r.explained, 100 * r.absorbed, e->sized(e->neutral + r.size),
+                      r.score, r.p_value, r.seed_p == 0 ? "-" : fmt::format("{:.2g}", r.seed_p),
+                      r.resolved ? "" : " (not resolved by the seeds)", 100 * r.explained, 100 * r.absorbed,
+                      e->sized(e->neutral + r.size),
                       !r.at_bound ? "" : r.size == 0 ? " (the data ask for it reversed: outside its physical range)"
                                                      : " (clamped at its physical bound)",
                       r.delta_aic, r.delta_bic, join(r.explains));
@@ -246,6 +248,13 @@ std::string refits_markdown(const SetDiagnosisResult& d, const DiagnosisStepReco
   }
   if (s.kept_converged) md += kept_markdown(d, s);
   for (const auto& e : s.decision.effects)
+    if (!e.resolved && e.share_explained >= 0.5)
+      md += fmt::format("\n{}'s refit lowered chi^2 on the mean of the packing seeds but not seed by seed (p = {:.2g} "
+                        "that the seeds' scatter alone moves it so): its simulated change is no larger than the "
+                        "model's own packing scatter, so it is neither named nor kept. More packing seeds "
+                        "(--seeds) or a larger specimen resolve a small effect.\n",
+                        e.name, e.seed_p);
+  for (const auto& e : s.decision.effects)
     if (e.nrmse_rose && e.share_explained >= 0.5)
       md += fmt::format("\n{}'s refit lowered chi^2 but raised the NRMSE above the base refit's: not an improvement "
                         "of the curve, so it is neither named nor kept (the base refit's noise floor, the NRMSE noise "
@@ -303,7 +312,8 @@ io::Json ranking_json(const SetDiagnosisResult& d, const Diagnosis& diagnosis) {
   for (const auto& r : diagnosis.ranking)
     out.push_back({{"name", r.name}, {"score", r.score}, {"p_value", r.p_value}, {"explained", r.explained},
                    {"absorbed", r.absorbed}, {"value", d.effect(r.name)->neutral + r.size},
-                   {"at_bound", r.at_bound}, {"identifiable", r.identifiable}});
+                   {"at_bound", r.at_bound}, {"identifiable", r.identifiable}, {"seed_p", r.seed_p},
+                   {"resolved", r.resolved}});
   return out;
 }
 
@@ -316,7 +326,8 @@ io::Json refit_json(const RefitRun& cf, const ConfirmedEffect* ce, const Confirm
           {"delta_bic", cf.delta_bic}, {"share_explained", ce ? ce->share_explained : 0.0},
           {"p_after", ce ? ce->p_after : decision.base_p}, {"p_drop", ce ? ce->p_drop : 1.0}, {"value", cf.effect_value},
           {"failure", cf.failure}, {"step", step}, {"at_bound", join(cf.plan.at_bound, "; ")},
-          {"nrmse_rose", ce && ce->nrmse_rose}, {"failure_point_chi_square", cf.failure_chi_square},
+          {"nrmse_rose", ce && ce->nrmse_rose}, {"seed_p", ce ? ce->seed_p : 0.0},
+          {"failure_point_chi_square", cf.failure_chi_square},
           {"secant_steps", cf.secant_steps}, {"residual", std::move(residual)}};
 }
 

@@ -1,12 +1,14 @@
 // Features, regimes, residuals and verdict on curves whose answers are known in closed form.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
 #include <random>
 
 #include "shard/measure/comparison.hpp"
+#include "shard/measure/rate_comparison.hpp"
 #include "shard/measure/report.hpp"
 #include "shard/measure/statistics.hpp"
 
@@ -388,4 +390,43 @@ TEST_CASE("a model that is the truth has, on average, the NRMSE of the noise flo
   MESSAGE("mean NRMSE^2 / mean noise floor^2 over ", draws, " draws of one truth: ", ratio);
   CHECK(ratio > 0.8);
   CHECK(ratio < 1.25);
+}
+
+TEST_CASE("each packing seed's residual in the ensemble's band: the seeds' residuals average to the ensemble's") {
+  // Regime means and feature scores are linear in the simulated mean once the band is fixed, so
+  // what each seed alone contributes adds up to the ensemble's residual: a seed's residual is in
+  // the units the diagnosis scores in.
+  std::mt19937 rng(12);
+  const double k = 2e5, w_p = 1e-3, noise = 0.5;
+  std::vector<Specimen> measured, seeds;
+  for (int i = 0; i < 3; ++i) measured.push_back(specimen(curve(k, w_p, 0.1, noise, rng, noise)));
+  for (const double s : {0.92, 1.0, 1.07}) {
+    Curve c = curve(1.05 * k, s * w_p, 0.1, 0, rng, noise);
+    for (auto& f : c.force) f *= s;
+    seeds.push_back(specimen(c));
+  }
+  Metadata meta;
+  meta.load_cell_uncertainty = noise;
+  RateComparison ensemble;
+  ensemble.rates = {0.02};
+  ensemble.at = {compare(measured, meta, seeds)};
+  for (const auto& s : seeds) ensemble.seed_at.push_back({compare(measured, meta, {s})});
+  const ResidualVector whole = ensemble.residual_vector();
+  REQUIRE(whole.values.size() >= 5);
+  std::size_t compared = 0;
+  for (std::size_t i = 0; i < whole.names.size(); ++i) {
+    double sum = 0;
+    bool every_seed = true;
+    for (std::size_t s = 0; s < seeds.size(); ++s) {
+      const ResidualVector one = ensemble.seed_residual_vector(s, ensemble);
+      const auto at = std::find(one.names.begin(), one.names.end(), whole.names[i]);
+      if (at == one.names.end()) every_seed = false;
+      else sum += one.values[static_cast<std::size_t>(at - one.names.begin())];
+    }
+    if (!every_seed) continue;
+    CAPTURE(whole.names[i]);
+    CHECK(sum / static_cast<double>(seeds.size()) == doctest::Approx(whole.values[i]).epsilon(1e-9).scale(1e-9));
+    ++compared;
+  }
+  CHECK(compared >= 5);
 }

@@ -227,3 +227,20 @@ TEST_CASE("of two kept refits that chi^2 cannot tell apart, the closer curve goe
                                                                      {"bond_softening", 28.0, 0.114}}, 10, 2);
   CHECK(far.kept == "bond_softening");
 }
+
+TEST_CASE("a refit that improves the fit on the mean of the packing seeds but not seed by seed is neither named nor kept") {
+  // The same refit as the first case (60 -> 9.5), once with seeds that agree (p 0.01) and once
+  // with seeds whose moves scatter around the mean one (p 0.3: the packing alone moves it so).
+  const auto agreed = decide_from_refits(60, {{"self_weight", 9.5, 0.05, true, 0.01}}, 11, 2);
+  CHECK(agreed.verdict == "self_weight");
+  CHECK(agreed.effects[0].resolved);
+  const auto scattered = decide_from_refits(60, {{"self_weight", 9.5, 0.05, true, 0.3}}, 11, 2);
+  CHECK_FALSE(scattered.effects[0].resolved);
+  CHECK(scattered.effects[0].seed_p == doctest::Approx(0.3));
+  CHECK_FALSE(scattered.effects[0].qualifies);
+  CHECK_FALSE(scattered.effects[0].named);
+  CHECK(scattered.verdict == kUnexplained);
+  CHECK(scattered.kept.empty());
+  // Not tested (one seed): seed_p 0 stands as resolved.
+  CHECK(decide_from_refits(60, {{"self_weight", 9.5}}, 11, 2).verdict == "self_weight");
+}

@@ -2,6 +2,7 @@
 // a s_true + N(0, 1) noise.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <random>
 
 #include "shard/measure/diagnosis.hpp"
@@ -176,4 +177,45 @@ TEST_CASE("an effect the data want reversed scores nothing when its range forbid
       CHECK(s.score > 0);
       CHECK(s.score < free.ranking.front().score);
     }
+}
+
+// Seeds s + u, s - u and s with u = lambda s average to s and move the residual by G (1 + lambda),
+// G (1 - lambda) and G: a one-sided t of sqrt(3) / lambda on 2 degrees of freedom, whose upper
+// tail is 1/2 - t / (2 sqrt(t^2 + 2)).
+TEST_CASE("a signature the packing seeds do not resolve is ranked but decides nothing") {
+  std::mt19937_64 rng(7);
+  World w = make_world(rng);
+  const std::vector<double> r = residual(w, rng, 0, -4.0);
+  auto with_seeds = [&](double lambda) {
+    World seeded = w;
+    EffectSignature& e = seeded.effects[0];
+    e.seed_signatures = {e.signature, e.signature, e.signature};
+    for (std::size_t i = 0; i < kM; ++i) {
+      e.seed_signatures[0][i] *= 1 + lambda;
+      e.seed_signatures[1][i] *= 1 - lambda;
+    }
+    return diagnose(w.names, r, seeded.jacobian, seeded.effects);
+  };
+  auto entry = [](const Diagnosis& d, const std::string& name) {
+    for (const auto& s : d.ranking)
+      if (s.name == name) return s;
+    FAIL("no ranking entry for " << name);
+    return EffectScore{};
+  };
+  const std::string hidden = w.effects[0].name;
+  REQUIRE(diagnose(w.names, r, w.jacobian, w.effects).verdict == hidden);  // without seeds it is named
+
+  const Diagnosis agreeing = with_seeds(0.1);
+  const double t_agree = std::sqrt(3.0) / 0.1;
+  CHECK(entry(agreeing, hidden).seed_p == doctest::Approx(0.5 - t_agree / (2 * std::sqrt(t_agree * t_agree + 2))));
+  CHECK(entry(agreeing, hidden).resolved);
+  CHECK(agreeing.verdict == hidden);
+
+  const Diagnosis scattered = with_seeds(2.0);
+  const double t_scatter = std::sqrt(3.0) / 2.0;
+  CHECK(entry(scattered, hidden).seed_p ==
+        doctest::Approx(0.5 - t_scatter / (2 * std::sqrt(t_scatter * t_scatter + 2))));
+  CHECK_FALSE(entry(scattered, hidden).resolved);
+  CHECK(entry(scattered, hidden).score == doctest::Approx(entry(agreeing, hidden).score));  // still ranked by it
+  CHECK(scattered.verdict != hidden);
 }

@@ -38,8 +38,10 @@ ConfirmationDecision decide_from_refits(const RefitOutcome& base, const std::vec
     e.p_drop = drop > 0 && std::isfinite(drop) ? chi_square_survival(drop, 1) : 1;
     // NaN on either side compares false: the rule needs both NRMSEs.
     e.nrmse_rose = r.nrmse > base.nrmse;
+    e.seed_p = r.seed_p;
+    e.resolved = r.seed_p < rule.seed_p;
     e.qualifies = d.excess > 0 && e.share_explained >= rule.min_explained && e.delta_aic < 0 && e.delta_bic < 0 &&
-                  e.p_drop < drop_level && (rule.nrmse_may_rise || !e.nrmse_rose);
+                  e.p_drop < drop_level && (rule.nrmse_may_rise || !e.nrmse_rose) && e.resolved;
     e.named = e.qualifies && e.p_after > rule.remaining_p;
     e.identifiable = r.identifiable;
     if (!e.identifiable) {

@@ -389,6 +389,12 @@ double seed_consistency_p(const std::vector<double>& residual, const std::vector
                               static_cast<double>(along.size() - 1));
 }
 
+double seed_consistency_p(const std::vector<double>& residual, const std::vector<std::vector<double>>& moves) {
+  std::vector<std::vector<double>> identity(residual.size(), std::vector<double>(residual.size(), 0.0));
+  for (std::size_t i = 0; i < residual.size(); ++i) identity[i][i] = 1;
+  return seed_consistency_p(residual, identity, moves);
+}
+
 bool starts_a_pair(const ContrastFit& closest, double t_square, std::size_t effects, const ContrastOptions& options) {
   const double n = static_cast<double>(std::max<std::size_t>(1, effects));
   return closest.p_drop < options.drop_p / n && closest.identifiable && closest.drop >= options.pair_first_share * t_square;

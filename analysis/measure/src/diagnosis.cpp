@@ -8,6 +8,7 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "shard/measure/contrast.hpp"
 #include "shard/measure/statistics.hpp"
 
 namespace shard::measure {
@@ -46,10 +47,28 @@ std::vector<std::string> explained_components(const std::vector<std::string>& na
   return out;
 }
 
+// seed_consistency_p of the effect at size a: each seed's move a s_k along -y, the way that takes
+// the unabsorbed residual to zero (y is orthogonal to the base columns, so s_k . y = t_k . y).
+double seed_agreement_p(const EffectSignature& e, double a, const Eigen::VectorXd& y) {
+  if (e.seed_signatures.size() < 2) return 0;
+  if (a == 0) return 1;
+  const auto m = static_cast<std::size_t>(y.size());
+  std::vector<double> towards_zero(m);
+  for (std::size_t i = 0; i < m; ++i) towards_zero[i] = -y[static_cast<Eigen::Index>(i)];
+  std::vector<std::vector<double>> moves;
+  for (const auto& seed : e.seed_signatures) {
+    if (seed.size() != m)
+      throw std::invalid_argument(fmt::format("diagnose: a seed signature of '{}' has the wrong length", e.name));
+    auto& move = moves.emplace_back(seed);
+    for (double& x : move) x *= a;
+  }
+  return seed_consistency_p(towards_zero, moves);
+}
+
 // An effect's score on the unabsorbed residual y, with t its signature projected off the base
 // parameters' columns.
 EffectScore score_effect(const EffectSignature& e, const Eigen::VectorXd& t, const Eigen::VectorXd& y,
-                         const std::vector<std::string>& names, const Diagnosis& d) {
+                         const std::vector<std::string>& names, const Diagnosis& d, const DiagnoseOptions& options) {
   EffectScore s;
   s.name = e.name;
   const double tt = t.squaredNorm();
@@ -66,6 +85,8 @@ EffectScore score_effect(const EffectSignature& e, const Eigen::VectorXd& t, con
     s.score = std::max(0.0, -2 * a * ty - a * a * tt);
     s.size = a * e.trial_size;
     s.explains = explained_components(names, y, y + a * t, s.score);
+    s.seed_p = seed_agreement_p(e, a, y);
+    s.resolved = s.seed_p < options.seed_p;
   }
   s.identifiable = e.identifiable;
   s.p_value = chi_square_survival(s.score, 1);
@@ -81,12 +102,13 @@ EffectScore score_effect(const EffectSignature& e, const Eigen::VectorXd& t, con
 // reaches p by chance n times as often). The omnibus test dilutes one strong direction over
 // m - p degrees of freedom, so a focused candidate can be significant while it passes; the
 // data are adequate only when neither rejects (false alarms <= adequate_p + significant_p).
+// Only an effect the packing seeds resolve (EffectScore::resolved) is a focused candidate.
 std::string verdict_of(const Diagnosis& d, const DiagnoseOptions& options) {
-  const bool focused = !d.ranking.empty() &&
-                       d.ranking.front().p_value < options.significant_p / static_cast<double>(d.ranking.size());
+  const auto best = std::find_if(d.ranking.begin(), d.ranking.end(), [](const EffectScore& s) { return s.resolved; });
+  const bool focused =
+      best != d.ranking.end() && best->p_value < options.significant_p / static_cast<double>(d.ranking.size());
   if (d.p_value > options.adequate_p && !focused) return "adequate";
-  if (focused && d.ranking.front().explained >= options.min_explained && d.ranking.front().identifiable)
-    return d.ranking.front().name;
+  if (focused && best->explained >= options.min_explained && best->identifiable) return best->name;
   return "unexplained structured residual";
 }
 
@@ -115,7 +137,7 @@ Diagnosis diagnose(const std::vector<std::string>& names, const std::vector<doub
     if (static_cast<Eigen::Index>(e.signature.size()) != m)
       throw std::invalid_argument(fmt::format("diagnose: signature of '{}' has the wrong length", e.name));
     projected.push_back(project(to_vector(e.signature)));
-    d.ranking.push_back(score_effect(e, projected.back(), y, names, d));
+    d.ranking.push_back(score_effect(e, projected.back(), y, names, d, options));
   }
   for (std::size_t a = 0; a < projected.size(); ++a)
     for (std::size_t b = a + 1; b < projected.size(); ++b) {

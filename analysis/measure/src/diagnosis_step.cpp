@@ -27,6 +27,21 @@ std::vector<double> difference(const ResidualVector& r, const ResidualVector& ba
   return d;
 }
 
+// Each packing seed's change from the base run to `run` alone, in the units of each run's own
+// (scored) band, as the ensemble's signature is; empty with one seed or when a seed lacks a
+// component the ensemble has.
+std::vector<std::vector<double>> seed_differences(const RateComparison& run, const RateComparison& base) {
+  std::vector<std::vector<double>> out;
+  const std::vector<std::string> names = base.residual_vector().names;
+  for (std::size_t seed = 0; seed < run.seed_at.size() && seed < base.seed_at.size(); ++seed) {
+    const ResidualVector with = run.seed_residual_vector(seed, run), without = base.seed_residual_vector(seed, base);
+    if (with.names != names || without.names != names) return {};
+    auto& d = out.emplace_back(names.size());
+    for (std::size_t i = 0; i < d.size(); ++i) d[i] = with.values[i] - without.values[i];
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string model_name(const StepModel& m) {
@@ -117,8 +132,10 @@ StepLinearisation linearise_step(Simulator& simulator, const MeasuredRates& data
   for (const auto* e : candidates) {
     // The candidate switched on from its neutral value: one trial step.
     l.signatures.push_back({e->name, e->plausible - e->neutral,
-                            difference(comparisons[m++].residual_vector(), l.base, e->name, 1.0), e->scale_min(),
-                            e->scale_max(), e->identifiable_at(data.groups.rates.size())});
+                            difference(comparisons[m].residual_vector(), l.base, e->name, 1.0), e->scale_min(),
+                            e->scale_max(), e->identifiable_at(data.groups.rates.size()),
+                            seed_differences(comparisons[m], comparisons[0])});
+    ++m;
   }
   return l;
 }

@@ -19,6 +19,13 @@ ResidualVector RateComparison::residual_vector() const {
   return v;
 }
 
+ResidualVector RateComparison::seed_residual_vector(std::size_t seed, const RateComparison& band) const {
+  RateComparison one;
+  one.rates = rates;
+  for (std::size_t k = 0; k < seed_at.at(seed).size(); ++k) one.at.push_back(with_simulated_band(seed_at[seed][k], band.at.at(k)));
+  return one.residual_vector();
+}
+
 double RateComparison::nrmse() const {
   double s = 0;
   for (const auto& c : at) s += c.nrmse * c.nrmse;
@@ -58,6 +65,14 @@ std::vector<RateComparison> simulate_and_compare(Simulator& simulator, const Mea
     out[m].rates = groups.rates;
     for (std::size_t k = 0; k < groups.rates.size(); ++k)
       out[m].at.push_back(compare(groups.specimens[k], data.metadata, sims[m * groups.rates.size() + k], data.compare));
+    const std::size_t seeds = sims[m * groups.rates.size()].size();
+    if (seeds > 1)
+      for (std::size_t s = 0; s < seeds; ++s) {
+        std::vector<Comparison> alone;
+        for (std::size_t k = 0; k < groups.rates.size(); ++k)
+          alone.push_back(compare(groups.specimens[k], data.metadata, {sims[m * groups.rates.size() + k].at(s)}, data.compare));
+        out[m].seed_at.push_back(std::move(alone));
+      }
   }
   return out;
 }

@@ -2,13 +2,49 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <ostream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
+#include "shard/measure/contrast.hpp"
 #include "shard/measure/statistics.hpp"
 
 namespace shard::measure {
+
+namespace {
+
+// One residual component of a vector by name; NaN when the vector lacks it.
+double component(const ResidualVector& v, const std::string& name) {
+  for (std::size_t i = 0; i < v.names.size(); ++i)
+    if (v.names[i] == name) return v.values[i];
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+// seed_consistency_p of an effect refit against the base refit, seed by seed: each seed's move of
+// the residual (effect refit minus base refit, that seed alone) along the base refit's residual,
+// over the components every seed has. 0 (not tested) with fewer than two seeds or a failed run.
+double seed_resolution_p(const RefitRun& base, const RefitRun& effect) {
+  const std::size_t seeds = std::min(base.seed_residuals.size(), effect.seed_residuals.size());
+  if (seeds < 2 || !effect.failure.empty()) return 0;
+  std::vector<double> along;
+  std::vector<std::vector<double>> moves(seeds);
+  for (std::size_t i = 0; i < base.residual.names.size(); ++i) {
+    const std::string& name = base.residual.names[i];
+    std::vector<double> move;
+    for (std::size_t s = 0; s < seeds; ++s) move.push_back(component(effect.seed_residuals[s], name) - component(base.seed_residuals[s], name));
+    if (!std::all_of(move.begin(), move.end(), [](double x) { return std::isfinite(x); })) continue;
+    along.push_back(-base.residual.values[i]);  // the way that takes the residual towards zero
+    for (std::size_t s = 0; s < seeds; ++s) moves[s].push_back(move[s]);
+  }
+  if (along.empty()) return 0;
+  return seed_consistency_p(along, moves);
+}
+
+}  // namespace
 
 const CandidateEffect* SetDiagnosisResult::effect(const std::string& name) const {
   for (const auto& e : effects)
@@ -139,14 +175,20 @@ RefitRun StepwiseDiagnoser::linear_refit_run(const DiagnosisStepRecord& s, const
 
 // The base refit, then the top `refit` effects that can be named; an effect these data cannot
 // identify (a rate effect at one rate) that ranks among them is refit in addition, to show how
-// much it explains, without taking a nameable effect's place.
+// much it explains, without taking a nameable effect's place. Effects the packing seeds resolve
+// (EffectScore::resolved) take the places first: an unresolved score may be the model's packing
+// scatter, and only the refit's own seed test (ConfirmationRule::seed_p) tells.
 void StepwiseDiagnoser::plan_refits(DiagnosisStepRecord& s) const {
   s.refits.push_back(linear_refit_run(s, nullptr, nullptr));
+  std::vector<const EffectScore*> order;
+  for (bool resolved : {true, false})
+    for (const auto& r : s.diagnosis.ranking)
+      if (r.resolved == resolved && r.score > 0) order.push_back(&r);
   const auto tops = static_cast<std::size_t>(std::max(0, options_.refit));
   std::size_t nameable = 0;
-  for (std::size_t k = 0; k < s.diagnosis.ranking.size() && nameable < tops; ++k)
+  for (std::size_t k = 0; k < order.size() && nameable < tops; ++k)
     for (std::size_t e = 0; e < s.candidates.size(); ++e)
-      if (s.candidates[e]->name == s.diagnosis.ranking[k].name && s.diagnosis.ranking[k].score > 0) {
+      if (s.candidates[e]->name == order[k]->name) {
         s.refits.push_back(linear_refit_run(s, s.candidates[e], &s.lin.signatures[e]));
         if (s.lin.signatures[e].identifiable) ++nameable;
       }
@@ -186,6 +228,9 @@ void StepwiseDiagnoser::run_refits(std::vector<RefitRun>& refits, std::size_t co
     c.nrmse = sims[k].nrmse();
     c.noise_nrmse = sims[k].noise_nrmse();
     c.residual = scored.residual_vector();
+    c.seed_residuals.clear();
+    for (std::size_t seed = 0; seed < sims[k].seed_at.size(); ++seed)
+      c.seed_residuals.push_back(sims[k].seed_residual_vector(seed, scored));
     c.failure_chi_square = failure_point_chi_square(scored);
   }
   compare_with_base_refit(refits, components);
@@ -238,7 +283,8 @@ void StepwiseDiagnoser::decide(DiagnosisStepRecord& s) {
   std::vector<RefitOutcome> refits;
   for (std::size_t k = 1; k < s.refits.size(); ++k)
     refits.push_back({s.refits[k].name, s.refits[k].chi_square, s.refits[k].nrmse,
-                      s.refits[k].effect->identifiable_at(data_.groups.rates.size())});
+                      s.refits[k].effect->identifiable_at(data_.groups.rates.size()),
+                      seed_resolution_p(s.refits.front(), s.refits[k])});
   ConfirmationRule rule;
   rule.earlier_refits = refits_tried_;
   for (const auto& r : refits) refits_tried_ += r.identifiable ? 1 : 0;

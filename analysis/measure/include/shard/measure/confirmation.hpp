@@ -56,6 +56,9 @@ struct RefitOutcome {
   // Its NRMSE; NaN when not known (the no-rise rule is then not applied).
   double nrmse = std::numeric_limits<double>::quiet_NaN();
   bool identifiable = true;  // false: a rate effect on data of too few rates (above)
+  // How often the packing seeds alone would move the residual as far its way: the one-sided
+  // p of the seeds' agreement (seed_consistency_p); 0 when not tested (one seed).
+  double seed_p = 0;
 };
 
 struct ConfirmedEffect {
@@ -66,6 +69,8 @@ struct ConfirmedEffect {
   bool qualifies = false;   // every rule but "what remains is noise"
   bool named = false;
   bool identifiable = true;  // RefitOutcome::identifiable; when false, qualifies and named stay false
+  double seed_p = 0;         // RefitOutcome::seed_p
+  bool resolved = true;      // seed_p below ConfirmationRule::seed_p; when false, it qualifies for nothing
   bool would_name = false;   // not identifiable, but meets every rule a name needs
 };
 
@@ -78,6 +83,9 @@ struct ConfirmationRule {
   // share of drop_p counts them too.
   std::size_t earlier_refits = 0;
   bool nrmse_may_rise = false;
+  // An effect whose refit improves the fit only on average over the packing seeds, not seed by
+  // seed, has fitted the model's packing scatter: its signature is no larger than that scatter.
+  double seed_p = 0.05;
 };
 
 struct ConfirmationDecision {

@@ -275,6 +275,8 @@ ContrastPairFit judge_simulated_pair(const std::vector<double>& difference,
 // seeds; 0 when every seed moves it alike and towards the residual.
 double seed_consistency_p(const std::vector<double>& residual, const std::vector<std::vector<double>>& weight,
                           const std::vector<std::vector<double>>& moves);
+// The same in the unit metric (standardised residuals: the single-set diagnosis's).
+double seed_consistency_p(const std::vector<double>& residual, const std::vector<std::vector<double>>& moves);
 
 // Whether a set's closest single effect may start a pair: its own drop significant over the
 // `effects` of the library, identifiable, and at least pair_first_share of the set's T^2.

@@ -32,6 +32,9 @@ struct EffectSignature {
   // False for a rate effect on data of fewer loading rates than it needs (CandidateEffect::
   // rates_needed): scored and ranked, never the verdict.
   bool identifiable = true;
+  // Each packing seed's signature alone (seed s's effect run minus seed s's base run), the same
+  // components; they average to `signature`. Empty with one seed.
+  std::vector<std::vector<double>> seed_signatures{};
 };
 
 struct EffectScore {
@@ -47,6 +50,12 @@ struct EffectScore {
   double delta_bic = 0;
   std::vector<std::string> explains;  // residual components it reduces the most
   bool identifiable = true;           // EffectSignature::identifiable
+  // How often the packing seeds' scatter alone would move the residual towards zero as far as
+  // the fitted size does on their mean (one-sided t over the seeds' moves a* s_k . (-y)); 0 when
+  // not tested (one seed). An effect not `resolved` is ranked but does not decide the verdict:
+  // its signature may be no larger than the model's own packing scatter.
+  double seed_p = 0;
+  bool resolved = true;
 };
 
 struct Diagnosis {
@@ -64,6 +73,7 @@ struct DiagnoseOptions {
   double significant_p = 0.01;     // an effect counts below this p-value over the candidates ...
   double min_explained = 0.5;      // ... and only if it explains at least this share
   double collinear_cosine = 0.95;
+  double seed_p = 0.05;  // resolved below this seed_p (ConfirmationRule::seed_p)
 };
 
 Diagnosis diagnose(const std::vector<std::string>& component_names, const std::vector<double>& residual,

@@ -17,7 +17,12 @@ namespace shard::measure {
 struct RateComparison {
   std::vector<double> rates;
   std::vector<Comparison> at;
+  // Each packing seed's runs compared alone, [seed][rate] (none for a single seed).
+  std::vector<std::vector<Comparison>> seed_at;
   ResidualVector residual_vector() const;
+  // One seed's residual vector in the units of `band`'s (the ensemble's band: the same
+  // standardisation as band.residual_vector()).
+  ResidualVector seed_residual_vector(std::size_t seed, const RateComparison& band) const;
   double nrmse() const;
   double noise_nrmse() const;  // RMS of the per-rate Comparison::noise_nrmse
   double chi_square() const;

@@ -52,6 +52,7 @@ struct RefitRun {
   // The failure point's score (failure_displacement, every rate), NaN when a curve lacks it.
   double failure_chi_square = std::numeric_limits<double>::quiet_NaN();
   ResidualVector residual;  // as scored (the decision's components)
+  std::vector<ResidualVector> seed_residuals;  // each packing seed's alone, in residual's units
   std::string failure;      // the refit's run failed: its first error line
 };
 
