@@ -4,8 +4,10 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "shard/measure/diagnosis.hpp"
+#include "shard/measure/statistics.hpp"
 
 using namespace shard::measure;
 
@@ -218,4 +220,13 @@ TEST_CASE("a signature the packing seeds do not resolve is ranked but decides no
   CHECK_FALSE(entry(scattered, hidden).resolved);
   CHECK(entry(scattered, hidden).score == doctest::Approx(entry(agreeing, hidden).score));  // still ranked by it
   CHECK(scattered.verdict != hidden);
+}
+
+// {1, 2, 3}: mean 2, sd 1, t = 2 sqrt(3) on 2 degrees of freedom.
+TEST_CASE("mean_above_zero_p is the one-sided one-sample t-test") {
+  const double t = 2 * std::sqrt(3.0);
+  CHECK(mean_above_zero_p(std::vector<double>{1, 2, 3}) == doctest::Approx(0.5 - t / (2 * std::sqrt(t * t + 2))));
+  CHECK(mean_above_zero_p(std::vector<double>{-1, -2, -3}) == 1);  // a mean below zero
+  CHECK(mean_above_zero_p(std::vector<double>{2}) == 1);           // one value: no spread to test against
+  CHECK(mean_above_zero_p(std::vector<double>{2, 2, 2}) == 0);     // every value alike and positive
 }

@@ -373,7 +373,6 @@ ContrastPairFit judge_simulated_pair(const std::vector<double>& difference,
 
 double seed_consistency_p(const std::vector<double>& residual, const std::vector<std::vector<double>>& weight,
                           const std::vector<std::vector<double>>& moves) {
-  if (moves.size() < 2) return 1;
   std::vector<double> along;
   for (const auto& move : moves) {
     if (move.size() != residual.size()) throw std::invalid_argument("contrast: a seed's move has the wrong length");
@@ -382,17 +381,18 @@ double seed_consistency_p(const std::vector<double>& residual, const std::vector
       for (std::size_t j = 0; j < residual.size(); ++j) g += residual[i] * weight[i][j] * move[j];
     along.push_back(g);
   }
-  const double m = mean(along), sd = sample_sd(along);
-  if (!(m > 0)) return 1;
-  if (sd == 0) return 0;
-  return student_t_upper_tail(m / (sd / std::sqrt(static_cast<double>(along.size()))),
-                              static_cast<double>(along.size() - 1));
+  return mean_above_zero_p(along);
 }
 
 double seed_consistency_p(const std::vector<double>& residual, const std::vector<std::vector<double>>& moves) {
-  std::vector<std::vector<double>> identity(residual.size(), std::vector<double>(residual.size(), 0.0));
-  for (std::size_t i = 0; i < residual.size(); ++i) identity[i][i] = 1;
-  return seed_consistency_p(residual, identity, moves);
+  std::vector<double> along;
+  for (const auto& move : moves) {
+    if (move.size() != residual.size()) throw std::invalid_argument("contrast: a seed's move has the wrong length");
+    double g = 0;
+    for (std::size_t i = 0; i < residual.size(); ++i) g += residual[i] * move[i];
+    along.push_back(g);
+  }
+  return mean_above_zero_p(along);
 }
 
 bool starts_a_pair(const ContrastFit& closest, double t_square, std::size_t effects, const ContrastOptions& options) {

@@ -8,7 +8,6 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "shard/measure/contrast.hpp"
 #include "shard/measure/statistics.hpp"
 
 namespace shard::measure {
@@ -47,22 +46,18 @@ std::vector<std::string> explained_components(const std::vector<std::string>& na
   return out;
 }
 
-// seed_consistency_p of the effect at size a: each seed's move a s_k along -y, the way that takes
-// the unabsorbed residual to zero (y is orthogonal to the base columns, so s_k . y = t_k . y).
+// How often the packing seeds alone would agree as well on the move towards zero: each seed's
+// move at size a along -y, g_k = -a s_k . y (y is orthogonal to the base columns, so
+// s_k . y = t_k . y), tested by mean_above_zero_p; 0 (not tested) with fewer than two seeds.
 double seed_agreement_p(const EffectSignature& e, double a, const Eigen::VectorXd& y) {
   if (e.seed_signatures.size() < 2) return 0;
-  if (a == 0) return 1;
-  const auto m = static_cast<std::size_t>(y.size());
-  std::vector<double> towards_zero(m);
-  for (std::size_t i = 0; i < m; ++i) towards_zero[i] = -y[static_cast<Eigen::Index>(i)];
-  std::vector<std::vector<double>> moves;
+  std::vector<double> towards_zero;
   for (const auto& seed : e.seed_signatures) {
-    if (seed.size() != m)
+    if (static_cast<Eigen::Index>(seed.size()) != y.size())
       throw std::invalid_argument(fmt::format("diagnose: a seed signature of '{}' has the wrong length", e.name));
-    auto& move = moves.emplace_back(seed);
-    for (double& x : move) x *= a;
+    towards_zero.push_back(-a * y.dot(to_vector(seed)));
   }
-  return seed_consistency_p(towards_zero, moves);
+  return mean_above_zero_p(towards_zero);
 }
 
 // An effect's score on the unabsorbed residual y, with t its signature projected off the base

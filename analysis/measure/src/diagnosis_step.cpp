@@ -29,12 +29,13 @@ std::vector<double> difference(const ResidualVector& r, const ResidualVector& ba
 
 // Each packing seed's change from the base run to `run` alone, in the units of each run's own
 // (scored) band, as the ensemble's signature is; empty with one seed or when a seed lacks a
-// component the ensemble has.
-std::vector<std::vector<double>> seed_differences(const RateComparison& run, const RateComparison& base) {
+// component the ensemble has. `base_seeds`: the base run's seed_residual_vectors in its band.
+std::vector<std::vector<double>> seed_differences(const RateComparison& run, const std::vector<ResidualVector>& base_seeds,
+                                                  const std::vector<std::string>& names) {
   std::vector<std::vector<double>> out;
-  const std::vector<std::string> names = base.residual_vector().names;
-  for (std::size_t seed = 0; seed < run.seed_at.size() && seed < base.seed_at.size(); ++seed) {
-    const ResidualVector with = run.seed_residual_vector(seed, run), without = base.seed_residual_vector(seed, base);
+  const std::vector<ResidualVector> run_seeds = run.seed_residual_vectors(run);
+  for (std::size_t seed = 0; seed < run_seeds.size() && seed < base_seeds.size(); ++seed) {
+    const ResidualVector &with = run_seeds[seed], &without = base_seeds[seed];
     if (with.names != names || without.names != names) return {};
     auto& d = out.emplace_back(names.size());
     for (std::size_t i = 0; i < d.size(); ++i) d[i] = with.values[i] - without.values[i];
@@ -129,12 +130,13 @@ StepLinearisation linearise_step(Simulator& simulator, const MeasuredRates& data
   for (std::size_t j = 0; j < model.kept.size(); ++j, ++m)
     l.jacobian.push_back(difference(comparisons[m].residual_vector(), l.base, model.kept[j].first->name,
                                     l.kept_scale_step[j]));
+  const std::vector<ResidualVector> base_seeds = comparisons[0].seed_residual_vectors(comparisons[0]);
   for (const auto* e : candidates) {
     // The candidate switched on from its neutral value: one trial step.
     l.signatures.push_back({e->name, e->plausible - e->neutral,
                             difference(comparisons[m].residual_vector(), l.base, e->name, 1.0), e->scale_min(),
                             e->scale_max(), e->identifiable_at(data.groups.rates.size()),
-                            seed_differences(comparisons[m], comparisons[0])});
+                            seed_differences(comparisons[m], base_seeds, l.base.names)});
     ++m;
   }
   return l;

@@ -26,6 +26,12 @@ ResidualVector RateComparison::seed_residual_vector(std::size_t seed, const Rate
   return one.residual_vector();
 }
 
+std::vector<ResidualVector> RateComparison::seed_residual_vectors(const RateComparison& band) const {
+  std::vector<ResidualVector> out;
+  for (std::size_t seed = 0; seed < seed_at.size(); ++seed) out.push_back(seed_residual_vector(seed, band));
+  return out;
+}
+
 double RateComparison::nrmse() const {
   double s = 0;
   for (const auto& c : at) s += c.nrmse * c.nrmse;

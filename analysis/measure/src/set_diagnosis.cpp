@@ -228,9 +228,7 @@ void StepwiseDiagnoser::run_refits(std::vector<RefitRun>& refits, std::size_t co
     c.nrmse = sims[k].nrmse();
     c.noise_nrmse = sims[k].noise_nrmse();
     c.residual = scored.residual_vector();
-    c.seed_residuals.clear();
-    for (std::size_t seed = 0; seed < sims[k].seed_at.size(); ++seed)
-      c.seed_residuals.push_back(sims[k].seed_residual_vector(seed, scored));
+    c.seed_residuals = sims[k].seed_residual_vectors(scored);
     c.failure_chi_square = failure_point_chi_square(scored);
   }
   compare_with_base_refit(refits, components);

@@ -63,4 +63,13 @@ double sample_sd(std::span<const double> x) {
   return std::sqrt(s / static_cast<double>(x.size() - 1));
 }
 
+double mean_above_zero_p(std::span<const double> x) {
+  if (x.size() < 2) return 1;
+  const double m = mean(x), sd = sample_sd(x);
+  if (!(m > 0)) return 1;
+  if (sd == 0) return 0;
+  const auto n = static_cast<double>(x.size());
+  return student_t_upper_tail(m / (sd / std::sqrt(n)), n - 1);
+}
+
 }  // namespace shard::measure

@@ -23,6 +23,7 @@ struct RateComparison {
   // One seed's residual vector in the units of `band`'s (the ensemble's band: the same
   // standardisation as band.residual_vector()).
   ResidualVector seed_residual_vector(std::size_t seed, const RateComparison& band) const;
+  std::vector<ResidualVector> seed_residual_vectors(const RateComparison& band) const;  // every seed's, as above
   double nrmse() const;
   double noise_nrmse() const;  // RMS of the per-rate Comparison::noise_nrmse
   double chi_square() const;

@@ -38,5 +38,9 @@ double student_t_upper_tail(double t, double dof);
 double mean(std::span<const double> x);
 // Sample standard deviation (n - 1); 0 for fewer than two values.
 double sample_sd(std::span<const double> x);
+// One-sided p that the mean of x is above zero (one-sample Student's t, n - 1 degrees of
+// freedom): 1 for fewer than two values or a mean not above zero, 0 when every value is the same
+// positive number.
+double mean_above_zero_p(std::span<const double> x);
 
 }  // namespace shard::measure
