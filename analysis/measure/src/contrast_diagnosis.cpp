@@ -319,14 +319,16 @@ ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simula
   confirm_contrasts(study, out.effects, trials[0], out.sets, options.confirm, options.confirm_iterations,
                     options.confirm_probes, options.decide, log);
   // A single name the curve does not bear out may be half of a pair: the pairs are sought after
-  // the curve rule, and a named pair is held to the same rule.
+  // the curve rule, and a named pair is held to the same rule. One cause before two: a set its
+  // closest effect explains by the curve is named by it before any pair is sought, or a second
+  // effect would be fitted to the fracture's form that the curve rule leaves to the first.
   require_curve_agreement(out.sets, options.decide);
+  name_by_curve(out.sets, out.effects.size(), options.decide);
   if (options.pairs > 0) {
     confirm_contrast_pairs(study, out.effects, trials, tried.mirror, out.sets, options.pairs, options.pair_iterations,
                            options.decide, log);
     require_curve_agreement(out.sets, options.decide);
   }
-  name_by_curve(out.sets, out.effects.size(), options.decide);
   require_resolved_rate_dependence(out.sets, study, trials[0], out.effects, options.decide);
   withhold_names_of_own_scatter(out.sets, study);
   withhold_names_of_invalid_fractures(out.sets, sets);
