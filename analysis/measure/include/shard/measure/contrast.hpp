@@ -155,8 +155,8 @@ struct ContrastOptions {
   // A closest effect whose remainder fails the component test is still named when its curve
   // agrees and it explains at least this share of T^2: the components at and after the peak carry
   // the fracture's form (a lab's crack runs unstably, overshooting its initiation), which the
-  // curve rule leaves out on purpose. On the foreign sets the wrong closest effects took at most
-  // 79 % of T^2 (four draws), the right ones 87-98 %.
+  // curve rule leaves out on purpose. On the default-size foreign sets the right names took
+  // 87-98 % of T^2; a wrong closest effect (weibull_strength for a settled self-weight) took 88 %.
   double curve_name_share = 0.85;
   // Names need a base that reproduces the reference: at most this NRMSE of form error between the
   // fitted base's curves and the reference's (BaseCalibration::form_error). On the default-size
