@@ -270,6 +270,17 @@ void name_by_curve(std::vector<SetDiagnosis>& sets, std::size_t tried, const Con
   }
 }
 
+// A single name the curve does not bear out may be half of a pair: the pairs are sought after
+// the curve rule, and a named pair is held to the same rule.
+void name_sets(std::vector<SetDiagnosis>& sets, std::size_t tried, const ContrastOptions& options,
+               const std::function<void(std::vector<SetDiagnosis>&)>& seek_pairs) {
+  require_curve_agreement(sets, options);
+  name_by_curve(sets, tried, options);
+  if (!seek_pairs) return;
+  seek_pairs(sets);
+  require_curve_agreement(sets, options);
+}
+
 void withhold_names_of_own_scatter(std::vector<SetDiagnosis>& sets, const ContrastStudy& study) {
   const auto carries_own_scatter = [&](std::size_t set) {
     for (std::size_t gi = 0; gi < study.groups().size(); ++gi)
@@ -318,17 +329,13 @@ ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simula
       out.sets.push_back(linear_diagnosis(study, s, out.effects, trials, tried.mirror, options.decide));
   confirm_contrasts(study, out.effects, trials[0], out.sets, options.confirm, options.confirm_iterations,
                     options.confirm_probes, options.decide, log);
-  // A single name the curve does not bear out may be half of a pair: the pairs are sought after
-  // the curve rule, and a named pair is held to the same rule. One cause before two: a set its
-  // closest effect explains by the curve is named by it before any pair is sought, or a second
-  // effect would be fitted to the fracture's form that the curve rule leaves to the first.
-  require_curve_agreement(out.sets, options.decide);
-  name_by_curve(out.sets, out.effects.size(), options.decide);
-  if (options.pairs > 0) {
-    confirm_contrast_pairs(study, out.effects, trials, tried.mirror, out.sets, options.pairs, options.pair_iterations,
-                           options.decide, log);
-    require_curve_agreement(out.sets, options.decide);
-  }
+  std::function<void(std::vector<SetDiagnosis>&)> seek_pairs;
+  if (options.pairs > 0)
+    seek_pairs = [&](std::vector<SetDiagnosis>& unexplained) {
+      confirm_contrast_pairs(study, out.effects, trials, tried.mirror, unexplained, options.pairs,
+                             options.pair_iterations, options.decide, log);
+    };
+  name_sets(out.sets, out.effects.size(), options.decide, seek_pairs);
   require_resolved_rate_dependence(out.sets, study, trials[0], out.effects, options.decide);
   withhold_names_of_own_scatter(out.sets, study);
   withhold_names_of_invalid_fractures(out.sets, sets);
