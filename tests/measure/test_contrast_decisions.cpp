@@ -720,7 +720,6 @@ TEST_CASE("one cause before two: a set its closest effect names by the curve is 
       if (all[k].decision.verdict == kUnexplainedDifference) {
         offered.push_back(k);
         all[k].decision.verdict = "compression_asymmetry + bond_softening";
-        all[k].share = 0.97;
       }
   };
   name_sets(sets, 8, ContrastOptions{}, seek_pairs);

@@ -371,28 +371,38 @@ ContrastPairFit judge_simulated_pair(const std::vector<double>& difference,
   return sized;
 }
 
-double seed_consistency_p(const std::vector<double>& residual, const std::vector<std::vector<double>>& weight,
-                          const std::vector<std::vector<double>>& moves) {
+namespace {
+
+// Each seed's move projected on the residual by `product`, tested by mean_above_zero_p.
+template <class Product>
+double moves_along_residual_p(const std::vector<double>& residual, const std::vector<std::vector<double>>& moves,
+                              Product product) {
   std::vector<double> along;
   for (const auto& move : moves) {
     if (move.size() != residual.size()) throw std::invalid_argument("contrast: a seed's move has the wrong length");
-    double g = 0;
-    for (std::size_t i = 0; i < residual.size(); ++i)
-      for (std::size_t j = 0; j < residual.size(); ++j) g += residual[i] * weight[i][j] * move[j];
-    along.push_back(g);
+    along.push_back(product(move));
   }
   return mean_above_zero_p(along);
 }
 
+}  // namespace
+
+double seed_consistency_p(const std::vector<double>& residual, const std::vector<std::vector<double>>& weight,
+                          const std::vector<std::vector<double>>& moves) {
+  return moves_along_residual_p(residual, moves, [&](const std::vector<double>& move) {
+    double g = 0;
+    for (std::size_t i = 0; i < residual.size(); ++i)
+      for (std::size_t j = 0; j < residual.size(); ++j) g += residual[i] * weight[i][j] * move[j];
+    return g;
+  });
+}
+
 double seed_consistency_p(const std::vector<double>& residual, const std::vector<std::vector<double>>& moves) {
-  std::vector<double> along;
-  for (const auto& move : moves) {
-    if (move.size() != residual.size()) throw std::invalid_argument("contrast: a seed's move has the wrong length");
+  return moves_along_residual_p(residual, moves, [&](const std::vector<double>& move) {
     double g = 0;
     for (std::size_t i = 0; i < residual.size(); ++i) g += residual[i] * move[i];
-    along.push_back(g);
-  }
-  return mean_above_zero_p(along);
+    return g;
+  });
 }
 
 bool starts_a_pair(const ContrastFit& closest, double t_square, std::size_t effects, const ContrastOptions& options) {

@@ -270,8 +270,6 @@ void name_by_curve(std::vector<SetDiagnosis>& sets, std::size_t tried, const Con
   }
 }
 
-// A single name the curve does not bear out may be half of a pair: the pairs are sought after
-// the curve rule, and a named pair is held to the same rule.
 void name_sets(std::vector<SetDiagnosis>& sets, std::size_t tried, const ContrastOptions& options,
                const std::function<void(std::vector<SetDiagnosis>&)>& seek_pairs) {
   require_curve_agreement(sets, options);
