@@ -46,13 +46,20 @@ double fitted_uncertainty(const ContrastReport& r, const SetDiagnosis& d, std::s
   return std::abs(f.u_scale * unit);
 }
 
-// A fit that would be named but cannot be told apart at the contrast's rates (a rate effect).
-std::string unidentifiable_text(const ContrastReport& r, const std::string& name) {
+// A fit that would be named but cannot be told apart on what the contrast spans (a rate effect at
+// one rate, a size effect at one size).
+std::string unidentifiable_text(const ContrastReport& r, const SetDiagnosis& d, const std::string& name) {
   const CandidateEffect* e = effect_named(r, name);
-  return fmt::format(" {} would explain it, but set and reference span fewer than the {} loading rates it needs: a rate "
-                     "effect at one rate changes only the curve's shape, which rate-independent effects change too. "
-                     "{} would tell.",
-                     name, e ? e->rates_needed : 2, e && !e->separated_by.empty() ? e->separated_by : "A second rate");
+  if (!e) return fmt::format(" {} would explain it, but it cannot be named on these data.", name);
+  return fmt::format(" {} would explain it, but {}.{}", name, e->unidentifiable_reason(d.contrast.coverage),
+                     e->separated_by.empty() ? "" : fmt::format(" What would tell: {}.", e->separated_by));
+}
+
+// " (named only with 2 loading rates)" after a fit the contrast's data cannot name; "" otherwise.
+std::string not_nameable_note(const ContrastReport& r, const SetDiagnosis& d, const ContrastFit& f) {
+  const CandidateEffect* e = effect_named(r, f.name);
+  if (f.identifiable) return "";
+  return e ? fmt::format(" (named only with {})", e->needs_beyond(d.contrast.coverage)) : " (not nameable here)";
 }
 
 // What the best pair did: named (the verdict) or tried and left.
@@ -85,7 +92,7 @@ std::string pair_text(const ContrastReport& r, const SetDiagnosis& d) {
 // The measurement that would tell whether the lead is the physics at work, on this set's rates.
 std::string separating_text(const ContrastReport& r, const SetDiagnosis& d, const std::string& lead) {
   const CandidateEffect* e = effect_named(r, lead);
-  const std::string how = e ? e->separating_measurement(r.sets.sets[d.set].loading_rates().size()) : "";
+  const std::string how = e ? e->separating_measurement(d.contrast.coverage) : "";
   return how.empty() ? "" : fmt::format(" What would tell: {}.", how);
 }
 
@@ -300,7 +307,7 @@ std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
       }
     }
     if (d.pair) s += pair_text(r, d);
-    if (!c.unidentifiable.empty()) s += unidentifiable_text(r, c.unidentifiable);
+    if (!c.unidentifiable.empty()) s += unidentifiable_text(r, d, c.unidentifiable);
     return s;
   }
   const CandidateEffect* e = effect_named(r, c.verdict);
@@ -495,7 +502,7 @@ std::string set_sections_markdown(const ContrastReport& r) {
     for (std::size_t k = 0; k < d.decision.fits.size(); ++k) {
       const ContrastFit& f = d.decision.fits[k];
       md += fmt::format("| {}{} | {:.4g} | {:.2g} | {:.1f} | {:.1f} | {:.2g} | {:.1f} | {:.2g} | {} |\n", f.name,
-                        f.identifiable ? "" : " (not nameable at one rate)",
+                        not_nameable_note(r, d, f),
                         fitted_value(r, d, k), fitted_uncertainty(r, d, k), f.chi_square, f.drop, f.p_drop,
                         f.chi_square_form, f.p_after, f.at_bound ? "yes" : "");
     }

@@ -68,7 +68,7 @@ void add_diagnose_command(CLI::App& app, CommandContext& ctx) {
                                                    select_effects(read_effect_library(library), o->only), options,
                                                    std::cerr);
     const SetDiagnosisReport report{result,          o->measurements,   o->model.scene,
-                                    library,         o->sim.seeds,      data.groups.rates.size(),
+                                    library,         o->sim.seeds,      data.coverage(),
                                     o->max_effects,  options.scoring,   o->sim.score_reference};
     const std::string md = set_diagnosis_markdown(report);
     std::ofstream(o->out / "diagnose.md") << md;

@@ -61,11 +61,9 @@ std::string header_markdown(const SetDiagnosisReport& r) {
     md += "Trial sizes from the base run (plausible_from rules, docs/explanation/diagnosis.md):\n\n```\n" +
           d.scaled_sizes + "```\n\n";
   for (const auto& e : d.effects)
-    if (!e.identifiable_at(r.rates))
-      md += fmt::format("{} is a rate effect: at {} loading rate{} it changes only the curve's shape, which "
-                        "rate-independent effects change too, so it is scored and refit but named only with {} "
-                        "rates.\n\n",
-                        e.name, r.rates, r.rates == 1 ? "" : "s", e.rates_needed);
+    if (!e.identifiable_at(r.coverage))
+      md += fmt::format("{} is scored and refit but not named on these data: {}.\n\n", e.name,
+                        e.unidentifiable_reason(r.coverage));
   return md;
 }
 
@@ -96,11 +94,9 @@ std::string unidentifiable_text(const SetDiagnosisReport& r) {
     double p_after = 0;
     for (const auto& c : s.decision.effects)
       if (c.name == e->name) p_after = c.p_after;
-    md += fmt::format(" {}'s refit would leave noise (p after {:.2g}), but these data have {} loading rate{}: a "
-                      "rate effect then changes only the curve's shape, which rate-independent effects change "
-                      "too, so it is identifiable only with {} rates ({}).",
-                      e->name, p_after, r.rates, r.rates == 1 ? "" : "s", e->rates_needed,
-                      e->separated_by.empty() ? "test at another loading rate" : e->separated_by);
+    md += fmt::format(" {}'s refit would leave noise (p after {:.2g}), but {}{}.", e->name, p_after,
+                      e->unidentifiable_reason(r.coverage),
+                      e->separated_by.empty() ? "" : fmt::format(" ({})", e->separated_by));
   }
   return md;
 }
@@ -182,7 +178,7 @@ std::string ranking_markdown(const SetDiagnosisResult& d, const Diagnosis& diagn
   for (const auto& r : diagnosis.ranking) {
     const CandidateEffect* e = d.effect(r.name);
     md += fmt::format("| {}{} | {:.2f} | {:.3g} | {}{} | {:.0f} % | {:.0f} % | {}{} | {:+.1f} | {:+.1f} | {} |\n", r.name,
-                      r.identifiable ? "" : fmt::format(" (identifiable only with {} loading rates)", e->rates_needed),
+                      r.identifiable ? "" : " (not nameable on these data: above)",
                       r.score, r.p_value, r.seed_p == 0 ? "-" : fmt::format("{:.2g}", r.seed_p),
                       r.resolved ? "" : " (not resolved by the seeds)", 100 * r.explained, 100 * r.absorbed,
                       e->sized(e->neutral + r.size),

@@ -16,7 +16,7 @@ struct SetDiagnosisReport {
   const measure::SetDiagnosisResult& result;
   std::filesystem::path measurements, scene, library;
   int seeds = 0;
-  std::size_t rates = 1;  // loading rates of the data
+  measure::DataCoverage coverage;  // what the data span (loading rates, specimen sizes)
   int max_effects = 0;
   measure::Scoring scoring = measure::Scoring::Own;
   measure::ScoreReference score_reference = measure::ScoreReference::Normal;

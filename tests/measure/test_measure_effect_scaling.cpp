@@ -93,14 +93,36 @@ TEST_CASE("compression_asymmetry's range stays inside what beam_bond accepts") {
   CHECK(e.value_at(-100.0) == doctest::Approx(e.min));
 }
 
+TEST_CASE("a strength scatter needs two specimen sizes before it can be named") {
+  const auto library = read_effect_library(std::filesystem::path(SHARD_SOURCE_DIR) / "scenes/measurements/effects.toml");
+  // At one size it weakens the beam as a self-weight or a weaker batch does; the size effect is its own.
+  const CandidateEffect& weibull = named(library, "weibull_strength");
+  CHECK(weibull.sizes_needed == 2);
+  CHECK(weibull.rates_needed == 1);
+  CHECK_FALSE(weibull.identifiable_at({1, 1}));
+  CHECK_FALSE(weibull.identifiable_at({3, 1}));  // more rates do not stand in for a second size
+  CHECK(weibull.identifiable_at({1, 2}));
+  CHECK(weibull.needs_beyond({2, 1}) == "2 specimen sizes");
+  CHECK(weibull.unidentifiable_reason({1, 1}).find("size effect") != std::string::npos);
+  CHECK(weibull.separating_measurement({1, 1}) == weibull.separated_by);
+  const auto file = std::filesystem::temp_directory_path() / "shard_sizes_needed.toml";
+  std::ofstream(file) << "[[effect]]\nname = \"w\"\nparameter = \"a.b\"\nneutral = 0.0\nplausible = 1.0\nsizes_needed = 1.5\n";
+  CHECK_THROWS_WITH_AS(read_effect_library(file), doctest::Contains("shard_sizes_needed.toml:6:16: 'sizes_needed' must be"),
+                       std::runtime_error);
+}
+
 TEST_CASE("a rate effect needs two loading rates before it can be named") {
   const auto library = read_effect_library(std::filesystem::path(SHARD_SOURCE_DIR) / "scenes/measurements/effects.toml");
   // At one rate a viscosity bends the curve as softening or compression-stiff bonds do.
-  CHECK(named(library, "bond_viscosity").rates_needed == 2);
-  CHECK_FALSE(named(library, "bond_viscosity").identifiable_at(1));
-  CHECK(named(library, "bond_viscosity").identifiable_at(2));
+  const CandidateEffect& viscosity = named(library, "bond_viscosity");
+  CHECK(viscosity.rates_needed == 2);
+  CHECK_FALSE(viscosity.identifiable_at({1, 1}));
+  CHECK(viscosity.identifiable_at({2, 1}));
+  CHECK(viscosity.needs_beyond({1, 1}) == "2 loading rates");
+  CHECK(viscosity.unidentifiable_reason({1, 1}).find("rate effect") != std::string::npos);
+  CHECK(viscosity.unidentifiable_reason({2, 1}).empty());
   for (const auto& e : library)
-    if (e.name != "bond_viscosity") CHECK(e.identifiable_at(1));
+    if (e.name != "bond_viscosity" && e.name != "weibull_strength") CHECK(e.identifiable_at({1, 1}));
   const auto file = std::filesystem::temp_directory_path() / "shard_rates_needed.toml";
   std::ofstream(file) << "[[effect]]\nname = \"v\"\nparameter = \"a.b\"\nneutral = 0.0\nplausible = 1.0\nrates_needed = 0\n";
   CHECK_THROWS_WITH_AS(read_effect_library(file), doctest::Contains("shard_rates_needed.toml:6:16: 'rates_needed' must be"),

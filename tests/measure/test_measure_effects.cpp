@@ -133,12 +133,12 @@ TEST_CASE("a rate effect on data that already have two rates asks for rates fart
   const CandidateEffect& rate = picked[0].rates_needed > 1 ? picked[0] : picked[1];
   const CandidateEffect& softening = picked[0].rates_needed > 1 ? picked[1] : picked[0];
   REQUIRE(rate.rates_needed == 2);
-  CHECK(rate.separating_measurement(1) == rate.separated_by);
-  const std::string two = rate.separating_measurement(2);
+  CHECK(rate.separating_measurement({1, 1}) == rate.separated_by);
+  const std::string two = rate.separating_measurement({2, 1});
   CHECK(two.find("farther apart than these 2") != std::string::npos);
   CHECK(two.find(rate.separated_by) == std::string::npos);
-  CHECK(softening.separating_measurement(1) == softening.separated_by);
-  CHECK(softening.separating_measurement(3) == softening.separated_by);
+  CHECK(softening.separating_measurement({1, 1}) == softening.separated_by);
+  CHECK(softening.separating_measurement({3, 1}) == softening.separated_by);
 }
 
 TEST_CASE("library errors name the file, line and the valid keys") {

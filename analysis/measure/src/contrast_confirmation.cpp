@@ -246,7 +246,7 @@ class Confirmation {
                                const ContrastStudy::Simulated& run) const {
     const CandidateEffect& e = effects_[effect];
     return EffectSignature{e.name, e.value_at(scale) - e.neutral, study_.model_contrast(d.contrast, run, base_), 1, 1,
-                           e.identifiable_at(study_.rate_count(d.contrast))};
+                           e.identifiable_at(d.contrast.coverage)};
   }
   EffectSignature signature_of(const SetDiagnosis& d, const Trial& t) const {
     return signature_of(d, t.effect, t.scale, t.run);

@@ -107,7 +107,7 @@ TrialRuns run_trials(ContrastStudy& study, const std::vector<CandidateEffect>& e
 EffectSignature signature_for(const ContrastStudy& study, const SetDiagnosis& d, const CandidateEffect& e,
                               const std::vector<ContrastStudy::Simulated>& runs, std::size_t plus,
                               std::size_t mirror) {
-  const bool nameable = e.identifiable_at(study.rate_count(d.contrast));
+  const bool nameable = e.identifiable_at(d.contrast.coverage);
   const double step = e.plausible - e.neutral;
   const auto t_plus = study.model_contrast(d.contrast, runs[plus], runs[0]);
   if (mirror == 0) return {e.name, step, t_plus, e.scale_min(), e.scale_max(), nameable};

@@ -133,7 +133,7 @@ class PairSearch {
                                            d.closest->scale, false);
     std::vector<PairTrial> mine;
     for (std::size_t e = 0; e < effects_.size(); ++e) {
-      if (e == f || !effects_[e].identifiable_at(study_.rate_count(d.contrast)) || !combinable(effects_[f], effects_[e]))
+      if (e == f || !effects_[e].identifiable_at(d.contrast.coverage) || !combinable(effects_[f], effects_[e]))
         continue;
       ++d.seconds_tried;
       EffectSignature second;

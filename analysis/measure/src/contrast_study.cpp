@@ -33,6 +33,17 @@ std::string folder_name(const fs::path& folder) {
   return (p.has_filename() ? p.filename() : p.parent_path().filename()).string();
 }
 
+std::size_t rates_spanned(const std::vector<ContrastGroup>& groups, const std::vector<std::size_t>& of) {
+  std::vector<double> seen;
+  auto add = [&](double v) {
+    for (double x : seen)
+      if (same_rate(x, v)) return;
+    seen.push_back(v);
+  };
+  for (std::size_t gi : of) add(groups[gi].rate), add(groups[gi].reference_rate);
+  return seen.size();
+}
+
 void check_geometry(const ContrastSets& s) {
   const std::size_t first = s.reference.value_or(0);
   const Specimen& ref = s.sets[first].specimens.front();
@@ -376,18 +387,8 @@ ContrastStudy::Contrast ContrastStudy::contrast(std::size_t set, const Simulated
   c.weight = spd_inverse(joint_covariance(blocks, m));
   if (blocks.size() == 1)  // one rate: the component names need no rate
     c.names.assign(contrast_component_names().begin(), contrast_component_names().end());
+  c.coverage = DataCoverage{rates_spanned(groups_, c.groups), 1};
   return c;
-}
-
-std::size_t ContrastStudy::rate_count(const Contrast& c) const {
-  std::vector<double> seen;
-  auto add = [&](double v) {
-    for (double x : seen)
-      if (same_rate(x, v)) return;
-    seen.push_back(v);
-  };
-  for (std::size_t gi : c.groups) add(groups_[gi].rate), add(groups_[gi].reference_rate);
-  return seen.size();
 }
 
 std::vector<double> ContrastStudy::model_contrast(const Contrast& c, const Simulated& with_effect,

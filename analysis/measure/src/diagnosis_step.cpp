@@ -135,7 +135,7 @@ StepLinearisation linearise_step(Simulator& simulator, const MeasuredRates& data
     // The candidate switched on from its neutral value: one trial step.
     l.signatures.push_back({e->name, e->plausible - e->neutral,
                             difference(comparisons[m].residual_vector(), l.base, e->name, 1.0), e->scale_min(),
-                            e->scale_max(), e->identifiable_at(data.groups.rates.size()),
+                            e->scale_max(), e->identifiable_at(data.coverage()),
                             seed_differences(comparisons[m], base_seeds, l.base.names)});
     ++m;
   }

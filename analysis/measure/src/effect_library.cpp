@@ -123,12 +123,32 @@ std::string CandidateEffect::sized(double value) const { return fmt::format("{:.
 
 // A rate effect that stayed within the scatter over the rates the data have is told by a wider
 // span of rates (it grows with the logarithm of the rate) or by a narrower scatter.
-std::string CandidateEffect::separating_measurement(std::size_t rates) const {
-  if (rates_needed > 1 && identifiable_at(rates))
+std::string CandidateEffect::separating_measurement(const DataCoverage& data) const {
+  if (rates_needed > 1 && identifiable_at(data))
     return fmt::format("loading rates farther apart than these {} (a rate effect grows with the logarithm of the "
                        "rate: a decade or more between the slowest and the fastest), or more specimens per rate",
-                       rates);
+                       data.rates);
   return separated_by;
+}
+
+std::string CandidateEffect::needs_beyond(const DataCoverage& data) const {
+  if (data.rates < static_cast<std::size_t>(rates_needed)) return fmt::format("{} loading rates", rates_needed);
+  if (data.sizes < static_cast<std::size_t>(sizes_needed)) return fmt::format("{} specimen sizes", sizes_needed);
+  return "";
+}
+
+std::string CandidateEffect::unidentifiable_reason(const DataCoverage& data) const {
+  const auto plural = [](std::size_t n) { return n == 1 ? "" : "s"; };
+  if (data.rates < static_cast<std::size_t>(rates_needed))
+    return fmt::format("a rate effect at {} loading rate{} changes only the curve's shape, which rate-independent "
+                       "effects change too: it is named only with {}",
+                       data.rates, plural(data.rates), needs_beyond(data));
+  if (data.sizes < static_cast<std::size_t>(sizes_needed))
+    return fmt::format("at {} specimen size{} it changes the curves as other causes do; its own mark is how it "
+                       "scales with the specimen's size (a strength scatter: the larger specimen the weaker, the "
+                       "Weibull size effect), so it is named only with {}",
+                       data.sizes, plural(data.sizes), needs_beyond(data));
+  return "";
 }
 
 double CandidateEffect::scale_min() const {
@@ -189,14 +209,15 @@ void read_effect_key(const std::filesystem::path& file, const std::string& k, co
      : k == "min"       ? e.min
      : k == "max"       ? e.max
                         : e.plausible_factor) = *v;
-  } else if (k == "rates_needed") {
+  } else if (k == "rates_needed" || k == "sizes_needed") {
     const auto v = value.value<std::int64_t>();
+    const bool rates = k == "rates_needed";
     if (!value.is_integer() || !v || *v < 1)
       throw std::runtime_error(fmt::format(
-          "{}: 'rates_needed' must be a whole number >= 1 (the loading rates the data need before the effect can "
-          "be named; 2 for a rate effect such as a viscosity)",
-          where(file, value)));
-    e.rates_needed = static_cast<int>(*v);
+          "{}: '{}' must be a whole number >= 1 (the {} the data need before the effect can be named; 2 for {})",
+          where(file, value), k, rates ? "loading rates" : "specimen sizes",
+          rates ? "a rate effect such as a viscosity" : "an effect known by its size effect such as a Weibull scatter"));
+    (rates ? e.rates_needed : e.sizes_needed) = static_cast<int>(*v);
   } else if (k == "set") {
     const auto* a = value.as_array();
     if (!a) throw std::runtime_error(fmt::format("{}: 'set' must be an array of \"section.key=value\" strings", where(file, value)));
@@ -209,7 +230,7 @@ void read_effect_key(const std::filesystem::path& file, const std::string& k, co
   } else {
     throw std::runtime_error(fmt::format(
         "{}: unknown key '{}' in [[effect]]; the keys are name, parameter, value_format, unit, neutral, "
-        "plausible, plausible_from, plausible_factor, min, max, rates_needed, set, separated_by, doc",
+        "plausible, plausible_from, plausible_factor, min, max, rates_needed, sizes_needed, set, separated_by, doc",
         where(file, value), k));
   }
 }

@@ -281,7 +281,7 @@ void StepwiseDiagnoser::decide(DiagnosisStepRecord& s) {
   std::vector<RefitOutcome> refits;
   for (std::size_t k = 1; k < s.refits.size(); ++k)
     refits.push_back({s.refits[k].name, s.refits[k].chi_square, s.refits[k].nrmse,
-                      s.refits[k].effect->identifiable_at(data_.groups.rates.size()),
+                      s.refits[k].effect->identifiable_at(data_.coverage()),
                       seed_resolution_p(s.refits.front(), s.refits[k])});
   ConfirmationRule rule;
   rule.earlier_refits = refits_tried_;

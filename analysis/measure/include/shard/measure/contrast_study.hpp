@@ -99,11 +99,11 @@ class ContrastStudy {
     std::vector<double> difference;
     std::vector<std::vector<double>> weight;
     std::vector<std::size_t> groups;  // indices into groups()
+    // The loading rates of its groups and their references (a rate effect is told apart from a
+    // rate-independent one only across two or more), at the scene's one specimen size.
+    DataCoverage coverage;
   };
   Contrast contrast(std::size_t set, const Simulated& base) const;
-  // The loading rates a contrast spans: its groups' and their references' (a rate effect is told
-  // apart from a rate-independent one only across two or more).
-  std::size_t rate_count(const Contrast& c) const;
   // The set's rate dependence of its strength (rate_sensitivity.hpp), when the contrast spans two
   // or more of the set's own rates; `exponent` is subcritical growth's n it is held against.
   std::optional<RateSensitivity> rate_sensitivity(const Contrast& c, const Simulated& base, double exponent) const;

@@ -30,6 +30,9 @@
 // rate-independent effects (softening, asymmetry) also change: `rates_needed = 2` says that the
 // data need that many loading rates before the effect can be told apart and named. With fewer, a
 // diagnosis still scores, refits and reports it (a rival, with the caveat), never names it.
+// `sizes_needed = 2` says the same of specimen sizes: a bond strength scatter lowers the strength
+// of one specimen size as any other weakening does (a self-weight, a weaker batch); what is its
+// own is the Weibull size effect, the larger specimen the weaker.
 // A parameter that is not a plain number in the scene (a vector such as simulation.gravity) takes
 // `value_format = "[0.0, 0.0, {}]"`: the effect's scalar value goes where {} stands.
 #include <filesystem>
@@ -44,6 +47,14 @@
 namespace shard::measure {
 
 inline constexpr const char* kMachineCompliance = "machine_compliance";
+
+// What the data span that an effect may need before it can be told from its look-alikes.
+struct DataCoverage {
+  std::size_t rates = 1;  // distinct loading rates
+  // Specimen sizes the diagnosis compares: one scene, one geometry (a set of other specimens is
+  // refused or, with --ignore-geometry, simulated at the scene's size).
+  std::size_t sizes = 1;
+};
 
 struct CandidateEffect {
   std::string name;
@@ -61,13 +72,20 @@ struct CandidateEffect {
   std::string plausible_from;  // "" or a scale of the measurements (above)
   double plausible_factor = 0;
   int rates_needed = 1;  // loading rates the data need before the effect can be named (above)
+  int sizes_needed = 1;  // specimen sizes the same (above)
   std::string origin;    // "file:line:column" of its [[effect]] table, for messages
 
-  // Can the effect be told apart on data tested at `rates` loading rates?
-  bool identifiable_at(std::size_t rates) const { return rates >= static_cast<std::size_t>(rates_needed); }
-  // The measurement that would tell this effect from its rivals on data of `rates` loading rates:
-  // separated_by, except for a rate effect on data that already have the rates it needs.
-  std::string separating_measurement(std::size_t rates) const;
+  // Can the effect be told apart on data that span `data`?
+  bool identifiable_at(const DataCoverage& data) const {
+    return data.rates >= static_cast<std::size_t>(rates_needed) && data.sizes >= static_cast<std::size_t>(sizes_needed);
+  }
+  // What it needs that `data` lack, "2 loading rates" or "2 specimen sizes" ("" when nothing).
+  std::string needs_beyond(const DataCoverage& data) const;
+  // Why it cannot be named on `data`, in a report's words ("" when it can): what it needs, and why.
+  std::string unidentifiable_reason(const DataCoverage& data) const;
+  // The measurement that would tell this effect from its rivals on `data`: separated_by, except for
+  // a rate effect on data that already have the rates it needs.
+  std::string separating_measurement(const DataCoverage& data) const;
 
   bool post_processing() const { return parameter == kMachineCompliance; }
   // The plugin this effect switches its section to ("crushing_bond" for set = ["bond.plugin=

@@ -35,6 +35,8 @@ struct MeasuredRates {
   RateGroups groups;
   Metadata metadata;
   CompareOptions compare;
+  // Its loading rates, at the scene's one specimen size (DataCoverage::sizes).
+  DataCoverage coverage() const { return DataCoverage{groups.rates.size(), 1}; }
 };
 
 // Simulates every model at every rate of the data (one batch) and compares. The first call takes
