@@ -55,10 +55,23 @@ std::string unidentifiable_text(const ContrastReport& r, const SetDiagnosis& d, 
                      e->separated_by.empty() ? "" : fmt::format(" What would tell: {}.", e->separated_by));
 }
 
+// A closest that takes nearly all of the difference away but that these data cannot name: its size
+// and share, why it is not named, and what would tell, with no suggestion that it is at work.
+std::string unnameable_closest_text(const ContrastReport& r, const SetDiagnosis& d, double share) {
+  const ContrastFit& f = d.decision.fits.front();
+  const CandidateEffect* e = effect_named(r, f.name);
+  return fmt::format(" The closest, {} = {:.4g} +- {:.2g}{}, takes {:.0f} % of it away (T^2 {:.1f} -> chi^2 {:.1f}, "
+                     "p = {:.2g} for what remains), but {} cannot be named on these data{}.{}",
+                     f.name, fitted_value(r, d, 0), fitted_uncertainty(r, d, 0), e ? e->unit_suffix() : "",
+                     100 * share, d.decision.chi_square, f.chi_square, f.p_after, f.name,
+                     e ? ": " + e->unidentifiable_reason(d.contrast.coverage) : "",
+                     e && !e->separated_by.empty() ? fmt::format(" What would tell: {}.", e->separated_by) : "");
+}
+
 // " (named only with 2 loading rates)" after a fit the contrast's data cannot name; "" otherwise.
 std::string not_nameable_note(const ContrastReport& r, const SetDiagnosis& d, const ContrastFit& f) {
-  const CandidateEffect* e = effect_named(r, f.name);
   if (f.identifiable) return "";
+  const CandidateEffect* e = effect_named(r, f.name);
   return e ? fmt::format(" (named only with {})", e->needs_beyond(d.contrast.coverage)) : " (not nameable here)";
 }
 
@@ -277,6 +290,7 @@ std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
     std::string s = fmt::format("{} differs from the reference (T^2 = {:.1f}, p = {:.2g}), and no library effect "
                                 "explains the difference.",
                                 name, c.chi_square, c.p_value);
+    std::string unnameable_said;  // the closest's text already says why it is not named
     if (!c.fits.empty()) {
       const ContrastFit& f = c.fits.front();
       const double share = c.chi_square > 0 ? f.drop / c.chi_square : 0;
@@ -284,7 +298,10 @@ std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
       // foreign truth a right effect in the lab's own form (a parabolic softening against the
       // library's linear one) took 90-93 % of T^2, the wrong closest fits 16-78 %: hence 85 %.
       // The verdict stays; the text points at the effect.
-      if (share >= 0.85 && f.p_drop < 0.01) {
+      if (share >= 0.85 && f.p_drop < 0.01 && !f.identifiable) {
+        s += unnameable_closest_text(r, d, share);
+        unnameable_said = f.name;
+      } else if (share >= 0.85 && f.p_drop < 0.01) {
         const CandidateEffect* e = effect_named(r, f.name);
         s += fmt::format(" The closest, {} = {:.4g} +- {:.2g}{}, takes {:.0f} % of it away (T^2 {:.1f} -> chi^2 "
                          "{:.1f}, the drop has p = {:.2g}) but leaves p = {:.2g} for what remains: {} in another form "
@@ -307,7 +324,8 @@ std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
       }
     }
     if (d.pair) s += pair_text(r, d);
-    if (!c.unidentifiable.empty()) s += unidentifiable_text(r, d, c.unidentifiable);
+    if (!c.unidentifiable.empty() && c.unidentifiable != unnameable_said)
+      s += unidentifiable_text(r, d, c.unidentifiable);
     return s;
   }
   const CandidateEffect* e = effect_named(r, c.verdict);

@@ -360,6 +360,30 @@ TEST_CASE("a second effect the packing seeds do not agree on is not named beside
   CHECK(md.find("a second cause that changes the strength") != std::string::npos);
 }
 
+TEST_CASE("an effect known by its size effect is not named from one specimen size, and the report says what would tell") {
+  Study s;
+  s.add("softening", measured({{"fake.softening", 1.5}}, 3000));
+  std::vector<CandidateEffect> effects = library();
+  effects[0].sizes_needed = 2;  // bond_softening, as if a second size were its fingerprint
+  effects[0].separated_by = "specimens of another size";
+  const ContrastDiagnosis d = s.run(effects);
+  const SetDiagnosis& soft = diagnosis_of(d, s, "softening");
+  // The same set is named bond_softening with a library that does not ask for a second size
+  // ("one library effect: named with its size"); here its closest stays the closest, unnamed.
+  CHECK(soft.decision.verdict == kUnexplainedDifference);
+  REQUIRE_FALSE(soft.decision.fits.empty());
+  CHECK(soft.decision.fits.front().name == "bond_softening");
+  CHECK_FALSE(soft.decision.fits.front().identifiable);
+  CHECK_FALSE(soft.pair.has_value());  // a pair starts from a closest that could be named
+  const std::string md = shard::contrast_markdown(shard::ContrastReport{s.sets, d});
+  const auto said_at = md.find("at 1 specimen size");
+  REQUIRE(said_at != std::string::npos);
+  CHECK(md.find("at 1 specimen size", said_at + 1) == std::string::npos);  // the reason once, not twice
+  CHECK(md.find("named only with 2 specimen sizes") != std::string::npos);
+  CHECK(md.find("What would tell: specimens of another size.") != std::string::npos);
+  CHECK(md.find("bond_softening in another form") == std::string::npos);
+}
+
 TEST_CASE("a 'no difference' says how large a difference the specimens would have seen") {
   // Five sets of four: 15 degrees of freedom for 8 components, whose 5 % point is
   // 15 x 8 / 8 x F(8, 8; 0.95) = 51.6, 3.3 x chi^2(8)'s 15.5: the report says a smaller difference
