@@ -895,6 +895,11 @@ TEST_CASE("a rate-independent name for a strength difference needs the set's two
   s.add("wide", two_rate_set({{"fake.compression_ratio", 2}}, 4000, 0.15));
   const ContrastDiagnosis d = s.run();
   CHECK_FALSE(diagnosis_of(d, s, "null").rate_sensitivity);  // one rate: nothing to resolve
+  // What each contrast spans, which decides what a rate effect may be named on: the null set's
+  // one rate, and the two-rate sets' 20 and 100 mm/s (the reference's 20 among them), one size.
+  CHECK(diagnosis_of(d, s, "null").contrast.coverage.rates == 1);
+  CHECK(diagnosis_of(d, s, "tight").contrast.coverage.rates == 2);
+  CHECK(diagnosis_of(d, s, "tight").contrast.coverage.sizes == 1);
   // Subcritical growth of n = 20 changes the strength by ln(5) / 21 = 0.0766 from 20 to 100 mm/s.
   const SetDiagnosis& tight = diagnosis_of(d, s, "tight");
   REQUIRE(tight.rate_sensitivity);
