@@ -298,10 +298,11 @@ std::string verdict_text(const ContrastReport& r, const SetDiagnosis& d) {
       // foreign truth a right effect in the lab's own form (a parabolic softening against the
       // library's linear one) took 90-93 % of T^2, the wrong closest fits 16-78 %: hence 85 %.
       // The verdict stays; the text points at the effect.
-      if (share >= 0.85 && f.p_drop < 0.01 && !f.identifiable) {
+      const bool lead = share >= 0.85 && f.p_drop < 0.01;
+      if (lead && !f.identifiable) {
         s += unnameable_closest_text(r, d, share);
         unnameable_said = f.name;
-      } else if (share >= 0.85 && f.p_drop < 0.01) {
+      } else if (lead) {
         const CandidateEffect* e = effect_named(r, f.name);
         s += fmt::format(" The closest, {} = {:.4g} +- {:.2g}{}, takes {:.0f} % of it away (T^2 {:.1f} -> chi^2 "
                          "{:.1f}, the drop has p = {:.2g}) but leaves p = {:.2g} for what remains: {} in another form "

@@ -329,8 +329,8 @@ ContrastDiagnosis diagnose_contrasts(const ContrastSets& sets, Simulator& simula
                     options.confirm_probes, options.decide, log);
   std::function<void(std::vector<SetDiagnosis>&)> seek_pairs;
   if (options.pairs > 0)
-    seek_pairs = [&](std::vector<SetDiagnosis>& unexplained) {
-      confirm_contrast_pairs(study, out.effects, trials, tried.mirror, unexplained, options.pairs,
+    seek_pairs = [&](std::vector<SetDiagnosis>& sets_now) {
+      confirm_contrast_pairs(study, out.effects, trials, tried.mirror, sets_now, options.pairs,
                              options.pair_iterations, options.decide, log);
     };
   name_sets(out.sets, out.effects.size(), options.decide, seek_pairs);

@@ -132,18 +132,18 @@ std::string CandidateEffect::separating_measurement(const DataCoverage& data) co
 }
 
 std::string CandidateEffect::needs_beyond(const DataCoverage& data) const {
-  if (data.rates < static_cast<std::size_t>(rates_needed)) return fmt::format("{} loading rates", rates_needed);
-  if (data.sizes < static_cast<std::size_t>(sizes_needed)) return fmt::format("{} specimen sizes", sizes_needed);
+  if (lacks_rates(data)) return fmt::format("{} loading rates", rates_needed);
+  if (lacks_sizes(data)) return fmt::format("{} specimen sizes", sizes_needed);
   return "";
 }
 
 std::string CandidateEffect::unidentifiable_reason(const DataCoverage& data) const {
   const auto plural = [](std::size_t n) { return n == 1 ? "" : "s"; };
-  if (data.rates < static_cast<std::size_t>(rates_needed))
+  if (lacks_rates(data))
     return fmt::format("a rate effect at {} loading rate{} changes only the curve's shape, which rate-independent "
                        "effects change too: it is named only with {}",
                        data.rates, plural(data.rates), needs_beyond(data));
-  if (data.sizes < static_cast<std::size_t>(sizes_needed))
+  if (lacks_sizes(data))
     return fmt::format("at {} specimen size{} it changes the curves as other causes do; its own mark is how it "
                        "scales with the specimen's size (a strength scatter: the larger specimen the weaker, the "
                        "Weibull size effect), so it is named only with {}",

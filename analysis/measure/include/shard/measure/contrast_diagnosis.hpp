@@ -170,9 +170,9 @@ std::optional<std::size_t> component_missed_by_curve_name(const ContrastStudy::C
 void name_by_curve(std::vector<SetDiagnosis>& sets, std::size_t tried, const ContrastOptions& options);
 
 // The order of the naming rules after the confirmations: the curve rule withholds the single
-// names it does not bear out (one may be half of a pair), then a set its closest effect explains by the curve is named by it,
-// then `seek_pairs` (none: no pair search) completes the sets still unexplained to pairs, which
-// the curve rule judges again. One cause before two: a pair sought before the curve name would
+// names it does not bear out (one may be half of a pair), then a set its closest effect explains
+// by the curve is named by it, then `seek_pairs` (none: no pair search) completes the sets still
+// unexplained to pairs, which the curve rule judges again. One cause before two: a pair sought before the curve name would
 // fit a second effect to the fracture's form that the curve rule leaves to the first.
 void name_sets(std::vector<SetDiagnosis>& sets, std::size_t tried, const ContrastOptions& options,
                const std::function<void(std::vector<SetDiagnosis>&)>& seek_pairs);

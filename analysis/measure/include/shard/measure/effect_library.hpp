@@ -76,9 +76,9 @@ struct CandidateEffect {
   std::string origin;    // "file:line:column" of its [[effect]] table, for messages
 
   // Can the effect be told apart on data that span `data`?
-  bool identifiable_at(const DataCoverage& data) const {
-    return data.rates >= static_cast<std::size_t>(rates_needed) && data.sizes >= static_cast<std::size_t>(sizes_needed);
-  }
+  bool identifiable_at(const DataCoverage& data) const { return !lacks_rates(data) && !lacks_sizes(data); }
+  bool lacks_rates(const DataCoverage& data) const { return data.rates < static_cast<std::size_t>(rates_needed); }
+  bool lacks_sizes(const DataCoverage& data) const { return data.sizes < static_cast<std::size_t>(sizes_needed); }
   // What it needs that `data` lack, "2 loading rates" or "2 specimen sizes" ("" when nothing).
   std::string needs_beyond(const DataCoverage& data) const;
   // Why it cannot be named on `data`, in a report's words ("" when it can): what it needs, and why.
