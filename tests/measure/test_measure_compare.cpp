@@ -196,6 +196,31 @@ TEST_CASE("fracture transients: crack initiation at the first significant drop, 
   CHECK(*curve_features(cut)[Feature::FailureDisplacement] == doctest::Approx(1.2e-3).scale(0));
 }
 
+TEST_CASE("crack initiation: a specimen ringing about its elastic line has not cracked") {
+  // A beam loaded at speed: the rise 2 N/mm rings about its line by 0.08 N with a 0.4 mm period
+  // (slope 2 - 0.08 x 2 pi / 0.4 = 1.26 N/mm > 0, so the force never falls), then the first crack
+  // at 2.0 N and 1 mm drops it to 1.8 N, the overshoot peaks at 2.5 N at 1.5 mm, and the beam
+  // fails. Each trough lies 0.08 N below the line, beyond the 0.05 N threshold (2 % of F_max), and
+  // comes back above it: swings, not damage. Initiation is the crack, at 2.0 N and 1 mm.
+  const double pi = std::acos(-1.0);
+  std::vector<std::pair<double, double>> corners;
+  for (int i = 0; i <= 100; ++i) {
+    const double w = 1e-5 * i;
+    corners.emplace_back(w, 2000.0 * w + 0.08 * std::sin(2 * pi * w / 0.4e-3));
+  }
+  for (auto corner : {std::pair{1.05e-3, 1.8}, {1.5e-3, 2.5}, {2.2e-3, 0.0}}) corners.push_back(corner);
+  const Curve ringing = polyline(corners, 1e-5, 0.01);
+  CHECK(significant_drop(ringing) == doctest::Approx(0.05).scale(0));
+  const ElasticFit line = elastic_fit(ringing);
+  double deepest = 0;  // the deepest trough below the line past the middle of the fit window
+  for (std::size_t k = 0; k < ringing.size() && ringing.displacement[k] < 1e-3; ++k)
+    if (ringing.force[k] > 0.35 * 2.5) deepest = std::max(deepest, line.force_at(ringing.displacement[k]) - ringing.force[k]);
+  REQUIRE(deepest > significant_drop(ringing));
+  const CrackInitiation at = crack_initiation(ringing);
+  CHECK(at.force == doctest::Approx(2.0).epsilon(0.01));
+  CHECK(at.displacement == doctest::Approx(1e-3).scale(0));
+}
+
 TEST_CASE("a model that fails later than the specimens is penalised by the failure point") {
   // The grid ends at the shortest measured curve; a model whose post-peak fall comes later shows
   // little there, but its failure displacement (half of F_max after the peak) is beyond noise,

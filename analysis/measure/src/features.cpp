@@ -205,6 +205,25 @@ FeatureValues curve_features(const Curve& c) {
   return f;
 }
 
+namespace {
+
+// Whether the curve, having left `line` by more than `drop` at row `from`, stays off it until the
+// peak or until the load drops by `drop` below its running maximum (the crack that follows
+// damage): damage is lasting. A departure the curve recovers from, coming back within half the
+// threshold of the line, is a swing about it, not damage: a specimen loaded at speed rings about
+// its elastic line, by more than 2 % of F_max, long before it cracks.
+bool departure_lasts(const Curve& c, const ElasticFit& line, std::size_t from, std::size_t top, double drop) {
+  const std::size_t peak = peak_index(c);
+  for (std::size_t k = from; k <= peak; ++k) {
+    if (c.force[k] > c.force[top]) top = k;
+    if (c.force[top] - c.force[k] > drop) return true;
+    if (c.force[k] >= line.force_at(c.displacement[k]) - 0.5 * drop) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 CrackInitiation crack_initiation(const Curve& c) {
   const double drop = significant_drop(c);
   const ElasticFit line = elastic_fit(c);
@@ -221,7 +240,7 @@ CrackInitiation crack_initiation(const Curve& c) {
     if (c.force[k] > c.force[top]) top = k;
     if (c.force[top] > drops_from && c.force[top] - c.force[k] > drop) break;
     const double on_line = line.force_at(c.displacement[k]);
-    if (c.force[k] > line_from && on_line - c.force[k] > drop) break;
+    if (c.force[k] > line_from && on_line - c.force[k] > drop && departure_lasts(c, line, k, top, drop)) break;
   }
   // The last point before the break: the running maximum after a drop, the previous point after
   // a departure from the line.

@@ -99,9 +99,11 @@ FeatureValues curve_features(const Curve& c);
 // Crack initiation, read the same way on measured and simulated curves: the earlier of the last
 // point before the first load drop of more than significant_drop below the running maximum, and
 // the last point before the force falls below the elastic line (elastic_fit) by more than that
-// threshold (damage bends a curve before it drops), judged once the force is past the middle of
-// the line's fit window (below it, a seating toe or a ramp bends the curve). The force maximum of
-// an unstable fracture can lie well above it (the overshoot F_max / F_init - 1).
+// threshold and stays off it (damage bends a curve before it drops, and lastingly: a departure
+// the curve comes back from is the ringing of a specimen loaded at speed), judged once the force
+// is past the middle of the line's fit window (below it, a seating toe or a ramp bends the
+// curve). The force maximum of an unstable fracture can lie well above it (the overshoot
+// F_max / F_init - 1).
 struct CrackInitiation {
   std::size_t index = 0;
   double force = 0;         // N
